@@ -1,0 +1,53 @@
+#pragma once
+// The one evaluation interface. Every backend compiles a module's kernel function to a Kernel
+// that evaluates batches of points in structure-of-arrays form (inputs[k][i] -> outputs[k][i]),
+// plus a one-point call. Polygonizers, render2d, eval and bench only ever see Kernels.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ir/ir.h"
+
+namespace fscript::backend {
+
+// Limits that keep an untrusted script from hanging or exhausting the host (language spec).
+struct Budgets {
+  uint64_t max_loop_iterations = 10'000'000;  // per evaluation (one point)
+  uint32_t max_call_depth = 1000;             // nested user-function calls
+  uint64_t max_array_elements = 1'000'000;    // per evaluation, all arrays together
+};
+constexpr uint32_t kCallDepthCeiling = 100'000;  // the largest depth a user may ask for
+
+struct RuntimeError {
+  std::string message;
+  uint32_t line = 0;  // source line of the loop, call or array access (0: unknown)
+};
+
+class Kernel {
+ public:
+  virtual ~Kernel() = default;
+  virtual size_t num_inputs() const = 0;
+  virtual size_t num_outputs() const = 0;
+  // Evaluates n points. Returns false on a runtime error (budget, bounds), described in `err`.
+  // Safe to call from several threads at once.
+  virtual bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, RuntimeError& err) const = 0;
+  // One point; the same results as a batch of one.
+  virtual bool eval(const float* inputs, float* outputs, RuntimeError& err) const = 0;
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  virtual std::string name() const = 0;
+  // Compiles the module's kernel function (the one flagged `kernel`). On failure returns nullptr
+  // with a message (an environment failure: the module is assumed verified).
+  virtual std::unique_ptr<Kernel> compile(const ir::Module& m, const Budgets& budgets, std::string& error) const = 0;
+};
+
+// Backends built into this binary, fastest first.
+std::vector<std::string> available_backends();
+// nullptr if `name` is unknown or not built.
+std::unique_ptr<Backend> make_backend(const std::string& name);
+
+}  // namespace fscript::backend

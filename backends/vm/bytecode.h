@@ -1,0 +1,82 @@
+#pragma once
+// VM bytecode: register code compiled from the optimised SSA IR. Op numbering is ir::Op itself
+// (the one table); operands are register numbers or, for binary ops, immediates.
+//
+//   VInst  | op | kinds | dst | a | b | c | aux | line |
+//   kinds: bit 0 = a is the immediate `imm_a`, bit 1 = b is the immediate `imm_b`.
+//   Registers are lane vectors in batch mode: register r of lane i is regs[r * lanes + i].
+//
+// Blocks are laid out in reverse post-order; each ends in a terminator whose edges carry the
+// phi moves (a parallel copy) for the lanes that take them. A batch runs a chunk of up to
+// kChunkLanes points: it executes the lowest-numbered block that has waiting lanes, once per
+// instruction over all those lanes (masked writes when only some lanes are present), until every
+// lane has returned. Straight-line kernels are therefore one pass over the code per chunk.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ir/ir.h"
+
+namespace fscript::vm {
+
+constexpr uint32_t kChunkLanes = 128;
+constexpr uint32_t kNoReg = UINT32_MAX;
+
+struct VInst {
+  ir::Op op = ir::Op::Const;
+  uint8_t kinds = 0;
+  uint32_t dst = kNoReg;
+  uint32_t a = kNoReg, b = kNoReg, c = kNoReg;
+  float imm_a = 0, imm_b = 0;
+  int32_t aux = 0;       // global/array slot, callee, or index into VmFunction::lists
+  bool array_global = false;
+  uint32_t line = 0;
+};
+
+struct Move {
+  uint32_t dst, src;
+};
+
+struct Edge {
+  uint32_t block = 0;                // target block index
+  std::vector<Move> moves;           // phi copies, performed as one parallel copy
+};
+
+struct VBlock {
+  uint32_t begin = 0, end = 0;       // instruction range, terminator excluded
+  ir::Op term = ir::Op::Ret;
+  uint32_t cond = kNoReg;            // Branch
+  Edge edges[2];                     // Jump: [0]; Branch: [0] when truthy, [1] otherwise
+  std::vector<uint32_t> results;     // Ret
+};
+
+struct VmFunction {
+  std::string name;
+  uint32_t num_params = 0;
+  uint32_t num_results = 1;
+  uint32_t num_regs = 0;
+  uint32_t num_arrays = 0;
+  std::vector<std::string> array_names;
+  std::vector<uint32_t> param_regs;              // register of each parameter (kNoReg if unused)
+  std::vector<std::pair<uint32_t, float>> consts;  // registers holding constants, set once per run
+  std::vector<VInst> code;
+  std::vector<VBlock> blocks;
+  std::vector<std::vector<uint32_t>> lists;      // call argument registers
+};
+
+struct VmProgram {
+  std::vector<VmFunction> functions;
+  uint32_t kernel = 0;
+  uint32_t num_globals = 0;
+  uint32_t num_global_arrays = 0;
+  std::vector<std::string> global_names;
+  std::vector<std::string> global_array_names;
+};
+
+// Compiles every function of the module; the kernel is the function flagged `kernel`.
+bool compile_program(const ir::Module& m, VmProgram& out, std::string& error);
+
+// Bytecode listing, for debugging and `fscript emit-asm --backend vm`.
+std::string disassemble(const VmProgram& p);
+
+}  // namespace fscript::vm

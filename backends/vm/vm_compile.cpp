@@ -1,0 +1,184 @@
+// IR -> VM bytecode: register assignment by linear scan, constants as immediates of binary ops
+// (or registers filled once per run), phis as parallel copies on the edges.
+#include <unordered_map>
+
+#include "backends/regalloc.h"
+#include "backends/vm/bytecode.h"
+#include "ir/text.h"
+
+namespace fscript::vm {
+namespace {
+
+using ir::Inst;
+using ir::Op;
+
+bool is_binary_arith(Op op) {
+  switch (op) {
+    case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: case Op::Mod: case Op::Min: case Op::Max:
+    case Op::Pow: case Op::Atan2: case Op::Eq: case Op::Ne: case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge:
+      return true;
+    default: return false;
+  }
+}
+
+class FunctionCompiler {
+ public:
+  FunctionCompiler(const ir::Function& fn, VmFunction& out) : fn_(fn), out_(out) {}
+
+  void run() {
+    out_.name = fn_.name;
+    out_.num_params = fn_.num_params;
+    out_.num_results = fn_.num_results;
+    out_.num_arrays = static_cast<uint32_t>(fn_.arrays.size());
+    out_.array_names = fn_.arrays;
+    lo_ = backend::compute_intervals(fn_);
+    reg_ = backend::linear_scan(fn_, lo_, [&](const Inst* i) { return i->op == Op::Const; }, out_.num_regs);
+    out_.param_regs.assign(fn_.num_params, kNoReg);
+    for (size_t k = 0; k < lo_.blocks.size(); ++k) block_index_[lo_.blocks[k]] = static_cast<uint32_t>(k);
+    for (ir::Block* b : lo_.blocks) emit_block(b);
+  }
+
+ private:
+  uint32_t const_reg(const Inst* c) {
+    auto it = const_regs_.find(c);
+    if (it != const_regs_.end()) return it->second;
+    uint32_t r = out_.num_regs++;
+    out_.consts.push_back({r, c->imm});
+    return const_regs_[c] = r;
+  }
+
+  uint32_t r(const Inst* v) { return v->op == Op::Const ? const_reg(v) : reg_[v->id]; }
+
+  void emit_block(ir::Block* b) {
+    VBlock vb;
+    vb.begin = static_cast<uint32_t>(out_.code.size());
+    for (const Inst* i : b->insts) {
+      if (i->op == Op::Phi || i->op == Op::Const) continue;
+      if (ir::has_flag(i->op, ir::Terminator)) break;
+      emit(*i);
+    }
+    vb.end = static_cast<uint32_t>(out_.code.size());
+    const Inst* t = b->terminator();
+    vb.term = t->op;
+    switch (t->op) {
+      case Op::Jump: vb.edges[0] = edge(b, t->targets[0]); break;
+      case Op::Branch:
+        vb.cond = r(t->args[0]);
+        vb.edges[0] = edge(b, t->targets[0]);
+        vb.edges[1] = edge(b, t->targets[1]);
+        break;
+      case Op::Ret:
+        for (const Inst* a : t->args) vb.results.push_back(r(a));
+        break;
+      default: break;
+    }
+    out_.blocks.push_back(std::move(vb));
+  }
+
+  Edge edge(ir::Block* from, ir::Block* to) {
+    Edge e;
+    e.block = block_index_.at(to);
+    for (const Inst* p : to->insts) {
+      if (p->op != Op::Phi) break;
+      if (reg_[p->id] == kNoReg) continue;
+      for (size_t k = 0; k < p->args.size(); ++k)
+        if (p->targets[k] == from) e.moves.push_back({reg_[p->id], r(p->args[k])});
+    }
+    return e;
+  }
+
+  void emit(const Inst& i) {
+    VInst v;
+    v.op = i.op;
+    v.aux = i.aux;
+    v.array_global = i.array_global;
+    v.line = i.line;
+    if (i.defines_value()) v.dst = reg_[i.id];
+    if (i.op == Op::Param) out_.param_regs[i.aux] = v.dst;
+    if (i.op == Op::Call) {
+      std::vector<uint32_t> args;
+      for (const Inst* a : i.args) args.push_back(r(a));
+      v.aux = static_cast<int32_t>(out_.lists.size());
+      out_.lists.push_back(std::move(args));
+      v.c = static_cast<uint32_t>(i.aux);  // callee
+      out_.code.push_back(v);
+      return;
+    }
+    uint32_t* slots[3] = {&v.a, &v.b, &v.c};
+    for (size_t k = 0; k < i.args.size() && k < 3; ++k) {
+      const Inst* a = i.args[k];
+      if (a->op == Op::Const && is_binary_arith(i.op)) {
+        v.kinds |= static_cast<uint8_t>(1u << k);
+        (k == 0 ? v.imm_a : v.imm_b) = a->imm;
+      } else {
+        *slots[k] = r(a);
+      }
+    }
+    out_.code.push_back(v);
+  }
+
+  const ir::Function& fn_;
+  VmFunction& out_;
+  backend::LinearOrder lo_;
+  std::vector<uint32_t> reg_;
+  std::unordered_map<const Inst*, uint32_t> const_regs_;
+  std::unordered_map<const ir::Block*, uint32_t> block_index_;
+};
+
+}  // namespace
+
+bool compile_program(const ir::Module& m, VmProgram& out, std::string& error) {
+  out.functions.clear();
+  out.num_globals = static_cast<uint32_t>(m.globals.size());
+  out.num_global_arrays = static_cast<uint32_t>(m.arrays.size());
+  out.global_names = m.globals;
+  out.global_array_names = m.arrays;
+  bool found = false;
+  for (size_t k = 0; k < m.functions.size(); ++k) {
+    out.functions.emplace_back();
+    FunctionCompiler(*m.functions[k], out.functions.back()).run();
+    if (m.functions[k]->kernel) {
+      out.kernel = static_cast<uint32_t>(k);
+      found = true;
+    }
+  }
+  if (!found) error = "the module has no kernel function";
+  return found;
+}
+
+std::string disassemble(const VmProgram& p) {
+  std::string s;
+  for (const auto& f : p.functions) {
+    s += "function " + f.name + " (" + std::to_string(f.num_regs) + " registers)\n";
+    for (auto [r, v] : f.consts) s += "  r" + std::to_string(r) + " := " + ir::format_float(v) + "\n";
+    for (size_t b = 0; b < f.blocks.size(); ++b) {
+      const VBlock& vb = f.blocks[b];
+      s += "B" + std::to_string(b) + ":\n";
+      for (uint32_t k = vb.begin; k < vb.end; ++k) {
+        const VInst& v = f.code[k];
+        s += "  ";
+        if (v.dst != kNoReg) s += "r" + std::to_string(v.dst) + " = ";
+        s += ir::mnemonic(v.op);
+        auto operand = [&](int idx, uint32_t reg, float imm) {
+          if (v.kinds & (1u << idx)) s += " #" + ir::format_float(imm);
+          else if (reg != kNoReg) s += " r" + std::to_string(reg);
+        };
+        operand(0, v.a, v.imm_a);
+        operand(1, v.b, v.imm_b);
+        operand(2, v.c, 0);
+        s += "\n";
+      }
+      s += "  " + std::string(ir::mnemonic(vb.term));
+      if (vb.term == ir::Op::Branch) s += " r" + std::to_string(vb.cond);
+      for (int e = 0; e < (vb.term == ir::Op::Branch ? 2 : vb.term == ir::Op::Jump ? 1 : 0); ++e) {
+        s += " B" + std::to_string(vb.edges[e].block);
+        for (auto mv : vb.edges[e].moves) s += " [r" + std::to_string(mv.dst) + "<-r" + std::to_string(mv.src) + "]";
+      }
+      for (uint32_t r : vb.results) s += " r" + std::to_string(r);
+      s += "\n";
+    }
+  }
+  return s;
+}
+
+}  // namespace fscript::vm

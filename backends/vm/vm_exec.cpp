@@ -1,0 +1,400 @@
+// VM executor. One dispatch per instruction per chunk of lanes; the lane loops are plain C++
+// that the compiler vectorises (this file is built with -O3). Lanes diverge at branches: each
+// block runs for the lanes waiting at it, lowest block first, with masked register writes, so
+// every lane computes exactly what a scalar run of the program would.
+#include "backends/vm/vm_exec.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "runtime/math/math.h"
+
+namespace fscript::vm {
+namespace {
+
+using backend::Budgets;
+using backend::RuntimeError;
+using ir::Op;
+using Mask = uint32_t;  // all ones: the lane is present
+
+// Per-lane state of one evaluation: budgets used so far and the lane's array storage.
+struct LaneEnv {
+  uint64_t ticks = 0;
+  uint32_t depth = 0;
+  std::vector<float> heap;
+  std::vector<int64_t> garr_off, garr_len;  // global arrays (-1: not created yet)
+  void reset(uint32_t n_global_arrays) {
+    ticks = 0;
+    depth = 0;
+    heap.clear();
+    garr_off.assign(n_global_arrays, -1);
+    garr_len.assign(n_global_arrays, 0);
+  }
+};
+
+// A function activation over `lanes` lanes.
+struct Frame {
+  const VmFunction* f;
+  float* regs;       // f->num_regs * lanes
+  uint32_t lanes;
+  LaneEnv** env;     // env[i]: lane i's state
+  float* gmem;       // global g of lane i is gmem[g * gstride + i]
+  uint32_t gstride;
+  std::vector<int64_t> arr_off, arr_len;  // local arrays, [slot * lanes + i]
+};
+
+std::string fmt(float v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.9g", static_cast<double>(v));
+  return b;
+}
+
+template <class F>
+inline void binary(const VInst& v, float* R, uint32_t L, const Mask* m, bool full, F f) {
+  float* __restrict d = R + size_t(v.dst) * L;
+  const float* __restrict a = (v.kinds & 1) ? nullptr : R + size_t(v.a) * L;
+  const float* __restrict b = (v.kinds & 2) ? nullptr : R + size_t(v.b) * L;
+  const float ia = v.imm_a, ib = v.imm_b;
+  switch (v.kinds) {
+    case 0:
+      if (full) for (uint32_t i = 0; i < L; ++i) d[i] = f(a[i], b[i]);
+      else for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(a[i], b[i]) : d[i];
+      break;
+    case 1:
+      if (full) for (uint32_t i = 0; i < L; ++i) d[i] = f(ia, b[i]);
+      else for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(ia, b[i]) : d[i];
+      break;
+    case 2:
+      if (full) for (uint32_t i = 0; i < L; ++i) d[i] = f(a[i], ib);
+      else for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(a[i], ib) : d[i];
+      break;
+    default:
+      for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(ia, ib) : d[i];
+      break;
+  }
+}
+
+template <class F>
+inline void unary(const VInst& v, float* R, uint32_t L, const Mask* m, bool full, F f) {
+  float* __restrict d = R + size_t(v.dst) * L;
+  const float* __restrict a = R + size_t(v.a) * L;
+  if (full) for (uint32_t i = 0; i < L; ++i) d[i] = f(a[i]);
+  else for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(a[i]) : d[i];
+}
+
+template <class F>
+inline void ternary(const VInst& v, float* R, uint32_t L, const Mask* m, bool full, F f) {
+  float* __restrict d = R + size_t(v.dst) * L;
+  const float* a = R + size_t(v.a) * L;
+  const float* b = R + size_t(v.b) * L;
+  const float* c = R + size_t(v.c) * L;
+  if (full) for (uint32_t i = 0; i < L; ++i) d[i] = f(a[i], b[i], c[i]);
+  else for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(a[i], b[i], c[i]) : d[i];
+}
+
+// A transcendental with a SIMD batch twin: compute every lane, keep the present ones.
+inline void batched(const VInst& v, float* R, uint32_t L, const Mask* m, bool full,
+                    void (*fn)(const float*, float*, size_t)) {
+  float* d = R + size_t(v.dst) * L;
+  const float* a = R + size_t(v.a) * L;
+  if (full) {
+    fn(a, d, L);
+    return;
+  }
+  alignas(64) float tmp[kChunkLanes];
+  fn(a, tmp, L);
+  for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? tmp[i] : d[i];
+}
+
+class Executor {
+ public:
+  Executor(const VmProgram& p, const Budgets& b) : p_(p), budgets_(b) {}
+
+  bool run_chunk(const float* const* in, float* const* out, size_t base, uint32_t L, RuntimeError& err);
+
+ private:
+  bool run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, size_t base, float* result, RuntimeError& err);
+  bool exec(Frame& fr, const VInst& v, const Mask* m, bool full, RuntimeError& err);
+  bool lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err);
+  bool call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err);
+  bool array_slot(Frame& fr, const VInst& v, uint32_t i, int64_t*& off, int64_t*& len, std::string& name);
+  void edge_moves(Frame& fr, const Edge& e, const Mask* m);
+  static void init_frame(Frame& fr) {
+    const VmFunction& f = *fr.f;
+    for (auto [r, v] : f.consts) std::fill_n(fr.regs + size_t(r) * fr.lanes, fr.lanes, v);
+    fr.arr_off.assign(size_t(f.num_arrays) * fr.lanes, -1);
+    fr.arr_len.assign(size_t(f.num_arrays) * fr.lanes, 0);
+  }
+
+  const VmProgram& p_;
+  const Budgets& budgets_;
+};
+
+bool Executor::run_chunk(const float* const* in, float* const* out, size_t base, uint32_t L, RuntimeError& err) {
+  thread_local std::vector<LaneEnv> envs;
+  thread_local std::vector<LaneEnv*> env_ptrs;
+  thread_local std::vector<float> regs, gmem;
+  const VmFunction& k = p_.functions[p_.kernel];
+  envs.resize(kChunkLanes);
+  env_ptrs.resize(kChunkLanes);
+  for (uint32_t i = 0; i < L; ++i) {
+    envs[i].reset(p_.num_global_arrays);
+    env_ptrs[i] = &envs[i];
+  }
+  regs.resize(size_t(k.num_regs) * L);
+  gmem.assign(size_t(p_.num_globals) * L, __builtin_nanf(""));
+  Frame fr{&k, regs.data(), L, env_ptrs.data(), gmem.data(), L, {}, {}};
+  init_frame(fr);
+  for (uint32_t p = 0; p < k.num_params; ++p)
+    if (k.param_regs[p] != kNoReg) std::memcpy(fr.regs + size_t(k.param_regs[p]) * L, in[p] + base, L * sizeof(float));
+  std::vector<Mask> all(L, ~Mask{0});
+  return run(fr, all, out, base, nullptr, err);
+}
+
+void Executor::edge_moves(Frame& fr, const Edge& e, const Mask* m) {
+  if (e.moves.empty()) return;
+  uint32_t L = fr.lanes;
+  thread_local std::vector<float> tmp;
+  tmp.resize(e.moves.size() * L);
+  for (size_t k = 0; k < e.moves.size(); ++k)
+    std::memcpy(tmp.data() + k * L, fr.regs + size_t(e.moves[k].src) * L, L * sizeof(float));
+  for (size_t k = 0; k < e.moves.size(); ++k) {
+    float* d = fr.regs + size_t(e.moves[k].dst) * L;
+    const float* s = tmp.data() + k * L;
+    for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? s[i] : d[i];
+  }
+}
+
+// Runs the frame's function until every present lane returns. Kernel frames write `out`;
+// a one-lane call frame writes `*result`.
+bool Executor::run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, size_t base, float* result,
+                   RuntimeError& err) {
+  const VmFunction& f = *fr.f;
+  uint32_t L = fr.lanes;
+  size_t nb = f.blocks.size();
+  std::vector<Mask> pending(nb * L, 0);
+  std::vector<uint32_t> count(nb, 0);
+  std::copy(start_mask.begin(), start_mask.end(), pending.begin());
+  count[0] = static_cast<uint32_t>(std::count(start_mask.begin(), start_mask.end(), ~Mask{0}));
+  std::vector<Mask> m(L), mt(L), mf(L);
+  auto send = [&](const Edge& e, const Mask* mask, uint32_t n) {
+    if (n == 0) return;
+    edge_moves(fr, e, mask);
+    Mask* dst = pending.data() + size_t(e.block) * L;
+    for (uint32_t i = 0; i < L; ++i) dst[i] |= mask[i];
+    count[e.block] += n;
+  };
+  for (size_t b = 0; b < nb;) {
+    if (count[b] == 0) {
+      ++b;
+      continue;
+    }
+    std::copy_n(pending.begin() + static_cast<long>(b * L), L, m.begin());
+    std::fill_n(pending.begin() + static_cast<long>(b * L), L, 0);
+    bool full = count[b] == L;
+    uint32_t present = count[b];
+    count[b] = 0;
+    const VBlock& vb = f.blocks[b];
+    for (uint32_t k = vb.begin; k < vb.end; ++k)
+      if (!exec(fr, f.code[k], m.data(), full, err)) return false;
+    size_t next = b + 1;
+    switch (vb.term) {
+      case Op::Jump:
+        send(vb.edges[0], m.data(), present);
+        next = std::min<size_t>(next, vb.edges[0].block);
+        break;
+      case Op::Branch: {
+        const float* c = fr.regs + size_t(vb.cond) * L;
+        uint32_t nt = 0;
+        for (uint32_t i = 0; i < L; ++i) {
+          bool t = math::truthy(c[i]);
+          mt[i] = m[i] & (t ? ~Mask{0} : 0);
+          mf[i] = m[i] & (t ? 0 : ~Mask{0});
+          nt += mt[i] ? 1 : 0;
+        }
+        send(vb.edges[0], mt.data(), nt);
+        send(vb.edges[1], mf.data(), present - nt);
+        next = std::min<size_t>({next, vb.edges[0].block, vb.edges[1].block});
+        break;
+      }
+      case Op::Ret:
+        for (uint32_t i = 0; i < L; ++i) {
+          if (!m[i]) continue;
+          for (size_t o = 0; o < vb.results.size(); ++o) {
+            float v = fr.regs[size_t(vb.results[o]) * L + i];
+            if (result) *result = v;
+            else out[o][base + i] = v;
+          }
+        }
+        break;
+      default: break;
+    }
+    b = next;
+  }
+  return true;
+}
+
+bool Executor::exec(Frame& fr, const VInst& v, const Mask* m, bool full, RuntimeError& err) {
+  float* R = fr.regs;
+  uint32_t L = fr.lanes;
+  namespace M = fscript::math;
+  switch (v.op) {
+    case Op::Add: binary(v, R, L, m, full, [](float a, float b) { return a + b; }); return true;
+    case Op::Sub: binary(v, R, L, m, full, [](float a, float b) { return a - b; }); return true;
+    case Op::Mul: binary(v, R, L, m, full, [](float a, float b) { return a * b; }); return true;
+    case Op::Div: binary(v, R, L, m, full, [](float a, float b) { return a / b; }); return true;
+    case Op::Mod: binary(v, R, L, m, full, M::mod); return true;
+    case Op::Min: binary(v, R, L, m, full, M::min); return true;
+    case Op::Max: binary(v, R, L, m, full, M::max); return true;
+    case Op::Pow: binary(v, R, L, m, full, M::pow); return true;
+    case Op::Atan2: binary(v, R, L, m, full, M::atan2); return true;
+    case Op::Eq: binary(v, R, L, m, full, M::eq); return true;
+    case Op::Ne: binary(v, R, L, m, full, M::ne); return true;
+    case Op::Lt: binary(v, R, L, m, full, M::lt); return true;
+    case Op::Le: binary(v, R, L, m, full, M::le); return true;
+    case Op::Gt: binary(v, R, L, m, full, M::gt); return true;
+    case Op::Ge: binary(v, R, L, m, full, M::ge); return true;
+    case Op::Neg: unary(v, R, L, m, full, M::neg); return true;
+    case Op::Abs: unary(v, R, L, m, full, M::abs); return true;
+    case Op::Sqrt: unary(v, R, L, m, full, M::sqrt); return true;
+    case Op::Floor: unary(v, R, L, m, full, M::floor); return true;
+    case Op::Ceil: unary(v, R, L, m, full, M::ceil); return true;
+    case Op::Round: unary(v, R, L, m, full, M::round); return true;
+    case Op::Sign: unary(v, R, L, m, full, M::sign); return true;
+    case Op::Not: unary(v, R, L, m, full, M::not_); return true;
+    case Op::Truth: unary(v, R, L, m, full, M::truth); return true;
+    case Op::Log10: unary(v, R, L, m, full, M::log10); return true;
+    case Op::Tan: unary(v, R, L, m, full, M::tan); return true;
+    case Op::Asin: unary(v, R, L, m, full, M::asin); return true;
+    case Op::Acos: unary(v, R, L, m, full, M::acos); return true;
+    case Op::Atan: unary(v, R, L, m, full, M::atan); return true;
+    case Op::Sinh: unary(v, R, L, m, full, M::sinh); return true;
+    case Op::Cosh: unary(v, R, L, m, full, M::cosh); return true;
+    case Op::Tanh: unary(v, R, L, m, full, M::tanh); return true;
+    case Op::Sin: batched(v, R, L, m, full, M::sin_batch); return true;
+    case Op::Cos: batched(v, R, L, m, full, M::cos_batch); return true;
+    case Op::Exp: batched(v, R, L, m, full, M::exp_batch); return true;
+    case Op::Log: batched(v, R, L, m, full, M::log_batch); return true;
+    case Op::Clamp: ternary(v, R, L, m, full, M::clamp); return true;
+    case Op::Select: ternary(v, R, L, m, full, M::select); return true;
+    case Op::Noise: ternary(v, R, L, m, full, M::noise); return true;
+    case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
+    case Op::Call: case Op::Tick:
+      for (uint32_t i = 0; i < L; ++i)
+        if (m[i] && !lane_op(fr, v, i, err)) return false;
+      return true;
+    case Op::Param:
+      return true;  // filled when the frame starts
+    case Op::Const: case Op::Phi: case Op::Jump: case Op::Branch: case Op::Ret:
+      return true;  // never emitted as instructions
+  }
+  return true;
+}
+
+bool Executor::array_slot(Frame& fr, const VInst& v, uint32_t i, int64_t*& off, int64_t*& len, std::string& name) {
+  if (v.array_global) {
+    off = &fr.env[i]->garr_off[v.aux];
+    len = &fr.env[i]->garr_len[v.aux];
+    name = p_.global_array_names[v.aux];
+  } else {
+    off = &fr.arr_off[size_t(v.aux) * fr.lanes + i];
+    len = &fr.arr_len[size_t(v.aux) * fr.lanes + i];
+    name = fr.f->array_names[v.aux];
+    name = name.substr(0, name.find('.'));
+  }
+  return true;
+}
+
+bool Executor::lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
+  float* R = fr.regs;
+  uint32_t L = fr.lanes;
+  auto reg = [&](uint32_t r) -> float& { return R[size_t(r) * L + i]; };
+  LaneEnv& env = *fr.env[i];
+  switch (v.op) {
+    case Op::GLoad: reg(v.dst) = fr.gmem[size_t(v.aux) * fr.gstride + i]; return true;
+    case Op::GStore: fr.gmem[size_t(v.aux) * fr.gstride + i] = reg(v.a); return true;
+    case Op::Tick:
+      if (++env.ticks > budgets_.max_loop_iterations) {
+        err = {"loop iteration budget exceeded: more than " + std::to_string(budgets_.max_loop_iterations) +
+                   " iterations in one evaluation",
+               v.line};
+        return false;
+      }
+      return true;
+    case Op::Call: return call(fr, v, i, err);
+    default: break;
+  }
+  int64_t *off, *len;
+  std::string name;
+  array_slot(fr, v, i, off, len, name);
+  if (v.op == Op::ANew) {
+    float n = math::round(reg(v.a));
+    if (!(n >= 0) || n > static_cast<float>(budgets_.max_array_elements) ||
+        env.heap.size() + static_cast<size_t>(n) > budgets_.max_array_elements) {
+      err = {"array '" + name + "' of " + fmt(reg(v.a)) + " elements: sizes must be whole numbers from 0 to the budget of " +
+                 std::to_string(budgets_.max_array_elements) + " elements per evaluation",
+             v.line};
+      return false;
+    }
+    *off = static_cast<int64_t>(env.heap.size());
+    *len = static_cast<int64_t>(n);
+    env.heap.resize(env.heap.size() + static_cast<size_t>(n), 0.0f);
+    return true;
+  }
+  if (*off < 0) {
+    err = {"array '" + name + "' is used before it is created", v.line};
+    return false;
+  }
+  if (v.op == Op::ALen) {
+    reg(v.dst) = static_cast<float>(*len);
+    return true;
+  }
+  long idx = math::array_index(reg(v.a), *len);
+  if (idx < 0) {
+    err = {"index " + fmt(reg(v.a)) + " is out of range for array '" + name + "' of " + std::to_string(*len) + " elements",
+           v.line};
+    return false;
+  }
+  if (v.op == Op::ALoad) reg(v.dst) = env.heap[*off + idx];
+  else env.heap[*off + idx] = reg(v.b);
+  return true;
+}
+
+// A user call for lane i runs the callee alone (one lane): recursion never diverges a batch.
+bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
+  LaneEnv& env = *fr.env[i];
+  if (env.depth + 1 > budgets_.max_call_depth) {
+    err = {"call depth budget exceeded: more than " + std::to_string(budgets_.max_call_depth) + " nested calls", v.line};
+    return false;
+  }
+  const VmFunction& callee = p_.functions[v.c];
+  std::vector<float> regs(std::max<uint32_t>(callee.num_regs, 1));
+  Frame sub{&callee, regs.data(), 1, fr.env + i, fr.gmem + i, fr.gstride, {}, {}};
+  init_frame(sub);
+  const auto& args = fr.f->lists[v.aux];
+  for (size_t k = 0; k < args.size(); ++k)
+    if (callee.param_regs[k] != kNoReg) regs[callee.param_regs[k]] = fr.regs[size_t(args[k]) * fr.lanes + i];
+  ++env.depth;
+  std::vector<Mask> one(1, ~Mask{0});
+  float result = __builtin_nanf("");
+  bool ok = run(sub, one, nullptr, 0, &result, err);
+  --env.depth;
+  fr.regs[size_t(v.dst) * fr.lanes + i] = result;
+  return ok;
+}
+
+}  // namespace
+
+bool run_batch(const VmProgram& p, const Budgets& budgets, const float* const* inputs, float* const* outputs,
+               size_t n, RuntimeError& err) {
+  Executor ex(p, budgets);
+  for (size_t base = 0; base < n; base += kChunkLanes) {
+    uint32_t L = static_cast<uint32_t>(std::min<size_t>(kChunkLanes, n - base));
+    if (!ex.run_chunk(inputs, outputs, base, L, err)) return false;
+  }
+  return true;
+}
+
+}  // namespace fscript::vm

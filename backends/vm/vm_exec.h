@@ -1,0 +1,15 @@
+#pragma once
+// The VM executor: runs a VmProgram's kernel over a chunk of lanes (SIMT over the CFG, masked
+// writes), and user calls one lane at a time (recursion), under the budgets.
+#include <cstddef>
+
+#include "backends/backend.h"
+#include "backends/vm/bytecode.h"
+
+namespace fscript::vm {
+
+// Evaluates points [0, n) of `inputs` into `outputs`, chunk by chunk.
+bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,
+               float* const* outputs, size_t n, backend::RuntimeError& err);
+
+}  // namespace fscript::vm

@@ -1,0 +1,59 @@
+// Diagnostic sink and gcc-style rendering.
+#include "frontend/diagnostics.h"
+
+namespace fscript::frontend {
+
+void DiagnosticSink::report(const SourceFile& file, Severity sev, Span span, std::string message) {
+  Diagnostic d;
+  d.severity = sev;
+  d.path = file.path();
+  d.pos = file.position(span.begin);
+  d.message = std::move(message);
+  d.line_text = file.line_text(span.begin);
+  LineCol end = file.position(span.end > span.begin ? span.end : span.begin + 1);
+  d.length = end.line == d.pos.line && end.col > d.pos.col ? end.col - d.pos.col : 1;
+  if (sev == Severity::Error) ++errors_;
+  diags_.push_back(std::move(d));
+}
+
+void DiagnosticSink::plain_error(const std::string& path, std::string message) {
+  Diagnostic d;
+  d.path = path;
+  d.pos = {0, 0};
+  d.message = std::move(message);
+  ++errors_;
+  diags_.push_back(std::move(d));
+}
+
+static const char* severity_name(Severity s) {
+  switch (s) {
+    case Severity::Error: return "error";
+    case Severity::Warning: return "warning";
+    case Severity::Note: return "note";
+  }
+  return "error";
+}
+
+std::string render(const Diagnostic& d) {
+  std::string out = d.path;
+  if (d.pos.line > 0) out += ":" + std::to_string(d.pos.line) + ":" + std::to_string(d.pos.col);
+  out += std::string(": ") + severity_name(d.severity) + ": " + d.message + "\n";
+  if (d.pos.line == 0) return out;
+  out += d.line_text + "\n";
+  std::string caret;
+  for (uint32_t i = 1; i < d.pos.col && i <= d.line_text.size(); ++i)
+    caret += d.line_text[i - 1] == '\t' ? '\t' : ' ';
+  caret += '^';
+  uint32_t room = d.line_text.size() >= d.pos.col ? uint32_t(d.line_text.size()) - d.pos.col + 1 : 1;
+  for (uint32_t i = 1; i < d.length && i < room; ++i) caret += '~';
+  out += caret + "\n";
+  return out;
+}
+
+std::string render_all(const DiagnosticSink& sink) {
+  std::string out;
+  for (const auto& d : sink.all()) out += render(d);
+  return out;
+}
+
+}  // namespace fscript::frontend

@@ -1,0 +1,22 @@
+#pragma once
+// Kernel specifications for a script's entry points (language spec, "Entry points"): which
+// inputs set which globals, and which outputs a kernel returns.
+#include <string>
+
+#include "frontend/fscript/lower.h"
+#include "frontend/fscript/sema.h"
+
+namespace fscript::frontend {
+
+// The script's own entry point: FRep, else parametric_x/y/z, else parametric_r/g/b; an
+// expression-form script yields its value, an assignment list its assigned outputs.
+bool default_spec(const SemaResult& sema, KernelSpec& spec, std::string& error);
+
+// A call of the function NAME (exact name first, then ignoring case) with its parameters as the
+// kernel's inputs. Entry-point functions also set the input globals (x, y, z, u, v, w, t).
+bool function_spec(const SemaResult& sema, const std::string& name, KernelSpec& spec, std::string& error);
+
+// FRep(x, y, z[, t]) as a 4-input, 1-output kernel (x, y, z, t).
+bool frep_spec(const SemaResult& sema, KernelSpec& spec, std::string& error);
+
+}  // namespace fscript::frontend

@@ -1,0 +1,25 @@
+#pragma once
+// A light scan of a .wrl file for the FScript texts in FVRML string fields (definition,
+// diffuseColor, operation, ...), with their positions in the .wrl. Enough for `fscript check`
+// until the full VRML97 parser (frontend/vrml) replaces it.
+#include <string>
+#include <vector>
+
+namespace fscript::frontend {
+
+struct EmbeddedScript {
+  std::string field;   // e.g. "definition"
+  std::string text;    // the string's contents, escapes resolved
+  uint32_t line = 1;   // position in the .wrl of the first character of the contents
+  uint32_t col = 1;
+};
+
+// The FVRML fields whose SFString values are FScript (the plug-in's PROTO file).
+bool is_fscript_field(const std::string& name);
+
+std::vector<EmbeddedScript> scan_wrl(const std::string& text);
+
+// The lines of a file, for carets under positions inside embedded strings.
+std::vector<std::string> split_lines(const std::string& text);
+
+}  // namespace fscript::frontend

@@ -1,0 +1,32 @@
+#pragma once
+// CFG analyses shared by passes and backends: reverse post-order and dominators.
+#include <unordered_map>
+#include <vector>
+
+#include "ir/ir.h"
+
+namespace fscript::ir {
+
+// Reverse post-order from the entry. A branch's second (false) target is visited first, so a
+// loop's exit block comes after the whole loop body: the SIMD VM schedules blocks in this order.
+std::vector<Block*> reverse_post_order(const Function& fn);
+
+// Immediate dominators (Cooper, Harvey, Kennedy), for reachable blocks.
+class DomTree {
+ public:
+  explicit DomTree(const Function& fn);
+  Block* idom(Block* b) const { return idom_.at(b); }
+  bool dominates(Block* a, Block* b) const;  // reflexive
+  const std::vector<Block*>& rpo() const { return rpo_; }
+  const std::vector<Block*>& children(Block* b) const;
+  size_t rpo_index(Block* b) const { return index_.at(b); }
+  bool reachable(const Block* b) const { return index_.count(const_cast<Block*>(b)) != 0; }
+
+ private:
+  std::vector<Block*> rpo_;
+  std::unordered_map<Block*, size_t> index_;
+  std::unordered_map<Block*, Block*> idom_;
+  std::unordered_map<Block*, std::vector<Block*>> kids_;
+};
+
+}  // namespace fscript::ir

@@ -1,0 +1,70 @@
+#pragma once
+// runtime/math: THE definition of every FScript built-in on float. The VM and constant folding
+// call these; the JIT backends call the same symbols (or the batch twins below, tested against them).
+// Transcendentals are computed in double and rounded once, so they are within 1 ulp.
+#include <cstddef>
+
+namespace fscript::math {
+
+// ---- exact operations (bit-identical on every backend, up to the sign of a zero result) ----
+// Defined inline so the VM's lane loops vectorise them; constant folding uses the same code.
+inline float add(float a, float b) { return a + b; }
+inline float sub(float a, float b) { return a - b; }
+inline float mul(float a, float b) { return a * b; }
+inline float div(float a, float b) { return a / b; }
+float mod(float a, float b);  // fmod: the sign of a (JavaScript %); exact
+inline float neg(float a) { return -a; }
+// NaN if either operand is NaN (JavaScript Math.min/max), else the smaller/larger.
+inline float min(float a, float b) { return (a != a || b != b) ? a + b : (b < a ? b : a); }
+inline float max(float a, float b) { return (a != a || b != b) ? a + b : (b > a ? b : a); }
+inline float abs(float a) { return __builtin_fabsf(a); }
+inline float sqrt(float a) { return __builtin_sqrtf(a); }
+inline float floor(float a) { return __builtin_floorf(a); }
+inline float ceil(float a) { return __builtin_ceilf(a); }
+// Nearest integer, ties toward +infinity (Math.round); a - floor(a) is exact for every float.
+inline float round(float a) {
+  float f = __builtin_floorf(a);
+  return (a - f >= 0.5f) ? f + 1.0f : f;
+}
+inline float sign(float a) { return a > 0 ? 1.0f : (a < 0 ? -1.0f : a); }  // NaN stays NaN
+inline float clamp(float a, float lo, float hi) { return min(max(a, lo), hi); }
+inline bool truthy(float a) { return a == a && a != 0; }  // != 0 and not NaN
+inline float eq(float a, float b) { return a == b ? 1.0f : 0.0f; }
+inline float ne(float a, float b) { return a != b ? 1.0f : 0.0f; }
+inline float lt(float a, float b) { return a < b ? 1.0f : 0.0f; }
+inline float le(float a, float b) { return a <= b ? 1.0f : 0.0f; }
+inline float gt(float a, float b) { return a > b ? 1.0f : 0.0f; }
+inline float ge(float a, float b) { return a >= b ? 1.0f : 0.0f; }
+inline float not_(float a) { return truthy(a) ? 0.0f : 1.0f; }
+inline float truth(float a) { return truthy(a) ? 1.0f : 0.0f; }
+inline float select(float c, float a, float b) { return truthy(c) ? a : b; }
+
+// ---- transcendental (within 4 ulp; here within 1) ----
+float pow(float a, float b);    // JavaScript Math.pow: pow(x, NaN) = NaN, pow(NaN, 0) = 1, pow(+-1, +-inf) = NaN
+float exp(float a);
+float log(float a);
+float log10(float a);
+float sin(float a);
+float cos(float a);
+float tan(float a);
+float asin(float a);
+float acos(float a);
+float atan(float a);
+float atan2(float y, float x);
+float sinh(float a);
+float cosh(float a);
+float tanh(float a);
+float noise(float x, float y, float z);  // Ken Perlin's improved noise, in [-1, 1]
+
+// Array index rule: round(a) as an integer, or -1 when out of [0, length) or NaN.
+long array_index(float a, long length);
+
+// ---- batch twins for the vectorised paths: out[i] = f(a[i]) for i < n ----
+// sin, cos, exp and log use SIMD-friendly polynomial code (auto-vectorised: 4 lanes SSE,
+// 8 lanes when built for AVX2); the others loop over the scalar definition.
+void sin_batch(const float* a, float* out, size_t n);
+void cos_batch(const float* a, float* out, size_t n);
+void exp_batch(const float* a, float* out, size_t n);
+void log_batch(const float* a, float* out, size_t n);
+
+}  // namespace fscript::math

@@ -1,0 +1,248 @@
+// fscript run, eval, check, emit-ir, emit-asm, fmt.
+#include "tools/fscript/commands.h"
+
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "backends/vm/vm_backend.h"
+#include "frontend/fscript/formatter.h"
+#include "frontend/fscript/parser.h"
+#include "frontend/fscript/wrl_scan.h"
+#include "ir/passes/passes.h"
+#include "ir/text.h"
+
+namespace fscript::cli {
+
+namespace {
+
+// Arguments for the kernel's inputs: the given ones, then 0 for the rest.
+bool bind_args(const Compiled& c, const std::vector<float>& given, std::vector<float>& in, std::string& error) {
+  size_t n = c.spec.input_names.size();
+  if (given.size() > n) {
+    error = "too many arguments: " + std::to_string(given.size()) + " given, the entry takes " + std::to_string(n);
+    return false;
+  }
+  in = given;
+  in.resize(n, 0.0f);
+  return true;
+}
+
+void print_outputs(const Compiled& c, const float* out, bool named) {
+  size_t n = c.spec.outputs.size();
+  for (size_t k = 0; k < n; ++k) {
+    if (named) std::cout << c.spec.outputs[k].name << "=";
+    std::cout << format_number(out[k]) << (named || k + 1 == n ? "\n" : ",");
+  }
+}
+
+}  // namespace
+
+int cmd_run(const Options& o, const std::string& file, const std::string& entry, const std::vector<std::string>& args) {
+  std::vector<float> given;
+  for (const auto& a : args) {
+    float v;
+    if (!parse_number(a, v)) {
+      std::cerr << "error: '" << a << "' is not a number\n";
+      return kExitUsage;
+    }
+    given.push_back(v);
+  }
+  Compiled c;
+  if (int rc = compile_file(file, entry, o, c); rc != kExitOk) return rc;
+  std::vector<float> in, out(c.kernel->num_outputs());
+  std::string error;
+  if (!bind_args(c, given, in, error)) {
+    std::cerr << "error: " << error << "\n";
+    return kExitUsage;
+  }
+  backend::RuntimeError err;
+  if (!c.kernel->eval(in.data(), out.data(), err)) {
+    print_runtime_error(c.script.file->path(), err);
+    return kExitInput;
+  }
+  bool named = entry.empty() && c.spec.outputs.size() > 1;
+  named |= entry.empty() && c.script.sema.form == frontend::ScriptForm::Assignments;
+  print_outputs(c, out.data(), named);
+  return kExitOk;
+}
+
+int cmd_eval(const Options& o, const std::string& file, const std::string& entry, const std::string& points) {
+  Compiled c;
+  if (int rc = compile_file(file, entry, o, c); rc != kExitOk) return rc;
+  std::string text;
+  if (!read_source(points.empty() ? "-" : points, text)) return kExitInput;
+  std::string where = points.empty() || points == "-" ? "<stdin>" : points;
+  size_t n_in = c.spec.input_names.size();
+  std::vector<std::vector<float>> cols(n_in);
+  std::istringstream ss(text);
+  std::string line;
+  for (size_t ln = 1; std::getline(ss, line); ++ln) {
+    size_t b = line.find_first_not_of(" \t\r");
+    if (b == std::string::npos || line[b] == '#') continue;
+    std::vector<float> row;
+    std::stringstream ls(line);
+    std::string cell;
+    while (std::getline(ls, cell, ',')) {
+      float v;
+      if (!parse_number(cell, v)) {
+        std::cerr << where << ":" << ln << ": error: '" << cell << "' is not a number\n";
+        return kExitInput;
+      }
+      row.push_back(v);
+    }
+    if (row.size() > n_in) {
+      std::cerr << where << ":" << ln << ": error: " << row.size() << " values, but the entry takes " << n_in << "\n";
+      return kExitInput;
+    }
+    row.resize(n_in, 0.0f);
+    for (size_t k = 0; k < n_in; ++k) cols[k].push_back(row[k]);
+  }
+  size_t n = n_in ? cols[0].size() : 0;
+  std::vector<const float*> in(n_in);
+  for (size_t k = 0; k < n_in; ++k) in[k] = cols[k].data();
+  std::vector<std::vector<float>> outs(c.kernel->num_outputs(), std::vector<float>(n));
+  std::vector<float*> out;
+  for (auto& v : outs) out.push_back(v.data());
+  backend::RuntimeError err;
+  if (!c.kernel->eval_batch(in.data(), out.data(), n, err)) {
+    print_runtime_error(c.script.file->path(), err);
+    return kExitInput;
+  }
+  std::string buf;
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t k = 0; k < out.size(); ++k) buf += format_number(out[k][i]) + (k + 1 == out.size() ? "\n" : ",");
+  }
+  std::cout << buf;
+  return kExitOk;
+}
+
+namespace {
+
+bool is_set_operation(const std::string& t) {
+  for (const char* k : {"union", "intersection", "subtraction", "difference", "blend_union", "blend_intersection"})
+    if (t == k) return true;
+  return false;
+}
+
+// Checks one FScript text embedded in a .wrl; returns false if it has errors.
+bool check_embedded(const std::string& path, const std::vector<std::string>& lines,
+                    const frontend::EmbeddedScript& e, frontend::DiagnosticSink& diag) {
+  std::string text = e.text;
+  size_t b = text.find_first_not_of(" \t\r\n");
+  size_t end = text.find_last_not_of(" \t\r\n");
+  std::string trimmed = text.substr(b, end - b + 1);
+  std::vector<std::string> extra;
+  if (e.field == "operation") {
+    if (is_set_operation(trimmed)) return true;
+    extra = {"f", "g"};
+    for (int k = 1; k <= 16; ++k) extra.push_back("f" + std::to_string(k));
+  }
+  auto file = std::make_unique<frontend::SourceFile>(path, text, e.line, e.col);
+  file->set_outer_lines(lines);
+  frontend::Script s;
+  size_t before = diag.error_count();
+  frontend::load_script(std::move(file), diag, s, extra);
+  if (diag.error_count() != before) return false;
+  frontend::KernelSpec spec;
+  std::string err;
+  if (!frontend::default_spec(s.sema, spec, err)) spec = {};
+  frontend::BuildOptions bo;
+  bo.optimize = false;
+  frontend::build_module(s, spec, diag, bo, err);
+  return true;
+}
+
+int check_wrl(const std::string& path, const std::string& text, frontend::DiagnosticSink& diag) {
+  std::vector<std::string> lines = frontend::split_lines(text);
+  bool ok = true;
+  for (const auto& e : frontend::scan_wrl(text)) ok &= check_embedded(path, lines, e, diag);
+  return ok ? kExitOk : kExitInput;
+}
+
+}  // namespace
+
+int cmd_check(const std::vector<std::string>& files) {
+  int rc = kExitOk;
+  for (const auto& path : files) {
+    std::string text;
+    if (!read_source(path, text)) {
+      rc = kExitInput;
+      continue;
+    }
+    frontend::DiagnosticSink diag;
+    bool is_wrl = path.size() > 4 && path.substr(path.size() - 4) == ".wrl";
+    if (is_wrl) {
+      if (check_wrl(path, text, diag) != kExitOk) rc = kExitInput;
+    } else {
+      frontend::Script s;
+      if (!frontend::load_script(std::make_unique<frontend::SourceFile>(path, text), diag, s)) {
+        rc = kExitInput;
+      } else {
+        frontend::KernelSpec spec;
+        std::string err;
+        if (!frontend::default_spec(s.sema, spec, err)) spec = {};
+        frontend::BuildOptions bo;
+        bo.optimize = false;
+        frontend::build_module(s, spec, diag, bo, err);
+      }
+    }
+    print_diagnostics(diag);
+  }
+  return rc;
+}
+
+int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes) {
+  Options o;
+  Compiled c;
+  std::string text;
+  if (!read_source(file, text)) return kExitInput;
+  frontend::DiagnosticSink diag;
+  if (!frontend::load_script(std::make_unique<frontend::SourceFile>(file, text), diag, c.script)) {
+    print_diagnostics(diag);
+    return kExitInput;
+  }
+  std::string error;
+  bool have = entry.empty() ? frontend::default_spec(c.script.sema, c.spec, error)
+                            : frontend::function_spec(c.script.sema, entry, c.spec, error);
+  if (!have) c.spec = {};  // no entry point: show the functions with an empty kernel
+  frontend::BuildOptions bo;
+  bo.optimize = opt && passes.empty();
+  c.module = frontend::build_module(c.script, c.spec, diag, bo, error);
+  print_diagnostics(diag);
+  if (c.module && !passes.empty()) error = ir::run_passes(*c.module, passes);
+  if (!c.module || !error.empty()) {
+    std::cerr << "error: " << error << "\n";
+    return kExitInput;
+  }
+  std::cout << ir::print(*c.module);
+  return kExitOk;
+}
+
+int cmd_emit_asm(const Options& o, const std::string& file, const std::string& entry) {
+  std::string name = o.backend.empty() ? backend::available_backends().front() : o.backend;
+  if (!backend::make_backend(name)) {
+    pick_backend(name);
+    return kExitUsage;
+  }
+  Compiled c;
+  if (int rc = compile_file(file, entry, o, c); rc != kExitOk) return rc;
+  if (auto* vk = dynamic_cast<const vm::VmKernel*>(c.kernel.get())) std::cout << vm::disassemble(vk->program());
+  return kExitOk;
+}
+
+int cmd_fmt(const std::string& file) {
+  std::string text;
+  if (!read_source(file, text)) return kExitInput;
+  frontend::SourceFile src(file == "-" ? "<stdin>" : file, text);
+  frontend::DiagnosticSink diag;
+  auto prog = frontend::parse(src, diag);
+  if (diag.has_errors()) {
+    print_diagnostics(diag);
+    return kExitInput;
+  }
+  std::cout << frontend::format_program(*prog, text);
+  return kExitOk;
+}
+
+}  // namespace fscript::cli

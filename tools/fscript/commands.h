@@ -1,0 +1,21 @@
+#pragma once
+// The fscript subcommands; each returns the process exit status (CLI contract: 0, 1 or 2).
+#include <string>
+#include <vector>
+
+#include "tools/fscript/common.h"
+
+namespace fscript::cli {
+
+int cmd_run(const Options& o, const std::string& file, const std::string& entry, const std::vector<std::string>& args);
+int cmd_eval(const Options& o, const std::string& file, const std::string& entry, const std::string& points);
+int cmd_check(const std::vector<std::string>& files);
+int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes);
+int cmd_emit_asm(const Options& o, const std::string& file, const std::string& entry);
+int cmd_fmt(const std::string& file);
+int cmd_bench(const Options& o, const std::string& file, const std::string& entry, size_t points, unsigned threads,
+              bool one_point);
+int cmd_render2d(const Options& o, const std::string& file, const std::string& entry, const std::string& size,
+                 const std::string& bounds, const std::string& out, unsigned threads);
+
+}  // namespace fscript::cli

@@ -1,0 +1,98 @@
+// Shared helpers of the fscript commands.
+#include "tools/fscript/common.h"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <iterator>
+
+#include "frontend/fscript/entry.h"
+
+namespace fscript::cli {
+
+bool read_source(const std::string& path, std::string& text) {
+  if (path == "-") {
+    text.assign(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>());
+    return true;
+  }
+  std::string err;
+  if (frontend::read_file(path, text, err)) return true;
+  std::cerr << path << ": error: cannot read the file: " << err << "\n";
+  return false;
+}
+
+void print_diagnostics(const frontend::DiagnosticSink& sink) { std::cerr << frontend::render_all(sink); }
+
+std::unique_ptr<backend::Backend> pick_backend(const std::string& name) {
+  std::string n = name.empty() ? backend::available_backends().front() : name;
+  auto b = backend::make_backend(n);
+  if (!b) {
+    std::string avail;
+    for (const auto& a : backend::available_backends()) avail += (avail.empty() ? "" : ", ") + a;
+    std::cerr << "error: backend '" << n << "' is not built in this binary (available: " << avail << ")\n";
+  }
+  return b;
+}
+
+int compile_file(const std::string& path, const std::string& entry, const Options& opts, Compiled& out,
+                 bool want_kernel) {
+  std::string text;
+  if (!read_source(path, text)) return kExitInput;
+  frontend::DiagnosticSink diag;
+  auto file = std::make_unique<frontend::SourceFile>(path == "-" ? "<stdin>" : path, std::move(text));
+  bool ok = frontend::load_script(std::move(file), diag, out.script);
+  if (!ok) {
+    print_diagnostics(diag);
+    return kExitInput;
+  }
+  std::string error;
+  bool have_spec = entry.empty() ? frontend::default_spec(out.script.sema, out.spec, error)
+                                 : frontend::function_spec(out.script.sema, entry, out.spec, error);
+  if (!have_spec) {
+    print_diagnostics(diag);
+    std::cerr << out.script.file->path() << ": error: " << error << "\n";
+    return kExitInput;
+  }
+  frontend::BuildOptions bo;
+  out.module = frontend::build_module(out.script, out.spec, diag, bo, error);
+  print_diagnostics(diag);
+  if (!out.module) {
+    std::cerr << "internal error: " << error << "\n";
+    return kExitInput;
+  }
+  if (!want_kernel) return kExitOk;
+  auto be = pick_backend(opts.backend);
+  if (!be) return kExitUsage;
+  out.kernel = be->compile(*out.module, opts.budgets, error);
+  if (!out.kernel) {
+    std::cerr << "error: " << error << "\n";
+    return kExitInput;
+  }
+  return kExitOk;
+}
+
+std::string format_number(float v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(v));
+  return buf;
+}
+
+bool parse_number(const std::string& text, float& out) {
+  size_t b = text.find_first_not_of(" \t\r");
+  size_t e = text.find_last_not_of(" \t\r");
+  if (b == std::string::npos) return false;
+  std::string t = text.substr(b, e - b + 1);
+  char* end = nullptr;
+  out = std::strtof(t.c_str(), &end);
+  return end && *end == '\0';
+}
+
+void print_runtime_error(const std::string& path, const backend::RuntimeError& err) {
+  std::cerr << path;
+  if (err.line) std::cerr << ":" << err.line;
+  std::cerr << ": error: " << err.message << "\n";
+}
+
+}  // namespace fscript::cli

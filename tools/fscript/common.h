@@ -1,0 +1,52 @@
+#pragma once
+// Shared pieces of the fscript commands: loading and compiling a script to a Kernel with
+// diagnostics printed, number formatting and parsing per the CLI contract.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "backends/backend.h"
+#include "frontend/diagnostics.h"
+#include "frontend/fscript/compiler.h"
+
+namespace fscript::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitInput = 1;
+constexpr int kExitUsage = 2;
+
+struct Options {
+  std::string backend;        // empty: the fastest built
+  backend::Budgets budgets;
+};
+
+struct Compiled {
+  frontend::Script script;
+  frontend::KernelSpec spec;
+  std::unique_ptr<ir::Module> module;
+  std::unique_ptr<backend::Kernel> kernel;
+};
+
+// Reads FILE ("-" is standard input). On failure prints "error: cannot read ..." and returns false.
+bool read_source(const std::string& path, std::string& text);
+
+// Prints every diagnostic of the sink to standard error.
+void print_diagnostics(const frontend::DiagnosticSink& sink);
+
+// Loads, analyses, lowers, optimises and compiles `path` for `entry` ("" = the script's entry
+// point; "FRep" style names match without case). Returns an exit status (0 = ready).
+int compile_file(const std::string& path, const std::string& entry, const Options& opts, Compiled& out,
+                 bool want_kernel = true);
+
+// The backend for `name` ("" = default); prints a usage error and returns nullptr if not built.
+std::unique_ptr<backend::Backend> pick_backend(const std::string& name);
+
+// Numbers: %.9g, nan (never -nan), inf, -inf.
+std::string format_number(float v);
+// Accepts decimal, hex float, nan, inf, -inf, -0. Returns false on anything else.
+bool parse_number(const std::string& text, float& out);
+
+// Prints a runtime error as "FILE:LINE: error: message".
+void print_runtime_error(const std::string& path, const backend::RuntimeError& err);
+
+}  // namespace fscript::cli

@@ -1,0 +1,114 @@
+// fscript: the FScript command-line tool (see docs/cli.md and ../shared/spec/cli.md).
+// Every command runs on a thread with a large stack: deep but legal nesting never overflows.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "frontend/big_stack.h"
+#include "tools/fscript/commands.h"
+
+namespace fscript::cli {
+namespace {
+
+struct Args {
+  Options opts;
+  std::string file, entry, points_path, size, bounds, out, passes;
+  std::vector<std::string> files, values;
+  size_t points = 1'000'000;
+  unsigned threads = 1;
+  bool opt = false, one_point = false;
+  uint32_t max_depth = 1000;
+};
+
+void add_budget_flags(CLI::App& app, Args& a) {
+  app.add_option("--max-loop-iterations", a.opts.budgets.max_loop_iterations,
+                 "loop iterations allowed per evaluation (default 10000000)")
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 62));
+  app.add_option("--max-call-depth", a.max_depth, "nested calls allowed (default 1000)")
+      ->check(CLI::Range(1u, backend::kCallDepthCeiling));
+  app.add_option("--max-array-elements", a.opts.budgets.max_array_elements,
+                 "array elements allowed per evaluation (default 1000000)")
+      ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 32));
+}
+
+CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args& a) {
+  CLI::App* c = app.add_subcommand(name, help);
+  c->add_option("FILE", a.file, "the .fs script ('-' for standard input)")->required();
+  c->add_option("--backend,-b", a.opts.backend, "evaluation backend: vm (default: the fastest built)");
+  c->add_option("--entry,-e", a.entry, "function to call (default: the script's entry point)");
+  add_budget_flags(*c, a);
+  return c;
+}
+
+int dispatch(CLI::App& app, Args& a) {
+  a.opts.budgets.max_call_depth = a.max_depth;
+  if (app.got_subcommand("run")) return cmd_run(a.opts, a.file, a.entry, a.values);
+  if (app.got_subcommand("eval")) return cmd_eval(a.opts, a.file, a.entry, a.points_path);
+  if (app.got_subcommand("check")) return cmd_check(a.files);
+  if (app.got_subcommand("emit-ir")) return cmd_emit_ir(a.file, a.entry, a.opt, a.passes);
+  if (app.got_subcommand("emit-asm")) return cmd_emit_asm(a.opts, a.file, a.entry);
+  if (app.got_subcommand("fmt")) return cmd_fmt(a.file);
+  if (app.got_subcommand("bench")) return cmd_bench(a.opts, a.file, a.entry, a.points, a.threads, a.one_point);
+  if (app.got_subcommand("render2d"))
+    return cmd_render2d(a.opts, a.file, a.entry, a.size, a.bounds, a.out, a.threads);
+  // No subcommand: the program on standard input runs once (the REPL arrives with issue 7).
+  return cmd_run(a.opts, "-", a.entry, {});
+}
+
+int real_main(int argc, char** argv) {
+  CLI::App app{"fscript: compiler, runner and tools for FScript, the function-script language of FVRML"};
+  app.require_subcommand(0, 1);
+  Args a;
+  add_budget_flags(app, a);
+
+  CLI::App* run = add_compiling(app, "run", "call the entry (or --entry NAME) with numeric ARGs and print the result", a);
+  run->add_option("ARG", a.values, "arguments (nan, inf, -inf accepted); missing ones are 0");
+  run->allow_extras(false);
+
+  CLI::App* eval = add_compiling(app, "eval", "evaluate rows of comma-separated arguments in batches", a);
+  eval->add_option("--points,-p", a.points_path, "file of rows ('-' or absent: standard input)");
+
+  CLI::App* check = app.add_subcommand("check", "diagnostics only, for .fs scripts and .wrl scenes");
+  check->add_option("FILE", a.files, "files to check")->required();
+
+  CLI::App* emit = app.add_subcommand("emit-ir", "print the SSA IR");
+  emit->add_option("FILE", a.file, "the .fs script")->required();
+  emit->add_flag("--opt", a.opt, "after the optimisation pipeline");
+  emit->add_option("--passes", a.passes, "run these passes in order instead (inline,promote,fold,dce,gvn,simplify,ifconv)");
+  emit->add_option("--entry,-e", a.entry, "function to build the kernel for");
+
+  add_compiling(app, "emit-asm", "print the generated code of a backend", a);
+
+  CLI::App* fmt = app.add_subcommand("fmt", "print the canonical formatting of a script");
+  fmt->add_option("FILE", a.file, "the .fs script")->required();
+
+  CLI::App* bench = add_compiling(app, "bench", "time the batch path over many points", a);
+  bench->add_option("--points,-n", a.points, "number of points (default 1000000)")->check(CLI::Range(size_t{1}, size_t{1} << 32));
+  bench->add_option("--threads,-j", a.threads, "threads (default 1)")->check(CLI::Range(1u, 1024u));
+  bench->add_flag("--one-point", a.one_point, "call the kernel one point at a time instead of in batches");
+
+  CLI::App* r2d = add_compiling(app, "render2d", "picture of f(x, y, 0, 0) >= 0 as a PNG", a);
+  r2d->add_option("--size,-s", a.size, "W or WxH pixels")->required();
+  r2d->add_option("--bounds", a.bounds, "X0,X1,Y0,Y1")->required();
+  r2d->add_option("-o,--output", a.out, "output PNG");
+  r2d->add_option("--threads,-j", a.threads, "threads (default 1)")->check(CLI::Range(1u, 1024u));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int rc = app.exit(e);
+    return rc == 0 ? kExitOk : kExitUsage;
+  }
+  return dispatch(app, a);
+}
+
+}  // namespace
+}  // namespace fscript::cli
+
+int main(int argc, char** argv) {
+  int rc = 0;
+  fscript::frontend::run_with_big_stack([&] { rc = fscript::cli::real_main(argc, argv); });
+  std::cout.flush();
+  return rc;
+}

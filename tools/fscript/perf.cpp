@@ -1,0 +1,183 @@
+// fscript bench and render2d: the batch path over many points, one or more threads.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+#include "runtime/render/png.h"
+#include "tools/fscript/commands.h"
+
+namespace fscript::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr size_t kBatch = 4096;  // points per eval_batch call in bench and render2d
+
+// Runs `work(begin, end)` over [0, n) in kBatch slices on `threads` threads; false on any error.
+template <class Work>
+bool parallel_slices(size_t n, unsigned threads, Work work, backend::RuntimeError& err) {
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::vector<backend::RuntimeError> errs(threads);
+  auto worker = [&](unsigned id) {
+    while (!failed) {
+      size_t b = next.fetch_add(kBatch);
+      if (b >= n) return;
+      if (!work(b, std::min(n, b + kBatch), errs[id])) failed = true;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker, t);
+  worker(0);
+  for (auto& th : pool) th.join();
+  for (auto& e : errs)
+    if (!e.message.empty()) err = e;
+  return !failed;
+}
+
+// Varied inputs: a 3D grid over [-1, 1]^3 (the shared benchmarks' dense grid), t = 0.
+std::vector<std::vector<float>> grid_inputs(size_t n, size_t n_in) {
+  size_t side = std::max<size_t>(2, static_cast<size_t>(std::ceil(std::cbrt(static_cast<double>(n)))));
+  std::vector<std::vector<float>> cols(n_in, std::vector<float>(n, 0.0f));
+  for (size_t i = 0; i < n; ++i) {
+    size_t idx[3] = {i % side, (i / side) % side, (i / side / side) % side};
+    for (size_t k = 0; k < n_in && k < 3; ++k)
+      cols[k][i] = -1.0f + 2.0f * static_cast<float>(idx[k]) / static_cast<float>(side - 1);
+  }
+  return cols;
+}
+
+}  // namespace
+
+int cmd_bench(const Options& o, const std::string& file, const std::string& entry, size_t points, unsigned threads,
+              bool one_point) {
+  Compiled c;
+  if (int rc = compile_file(file, entry, o, c); rc != kExitOk) return rc;
+  size_t n_in = c.kernel->num_inputs(), n_out = c.kernel->num_outputs();
+  auto cols = grid_inputs(points, n_in);
+  std::vector<std::vector<float>> outs(n_out, std::vector<float>(points));
+  backend::RuntimeError err;
+  auto t0 = Clock::now();
+  bool ok = parallel_slices(points, std::max(1u, threads), [&](size_t b, size_t e, backend::RuntimeError& er) {
+    if (one_point) {
+      std::vector<float> in(n_in), out(n_out);
+      for (size_t i = b; i < e; ++i) {
+        for (size_t k = 0; k < n_in; ++k) in[k] = cols[k][i];
+        if (!c.kernel->eval(in.data(), out.data(), er)) return false;
+      }
+      return true;
+    }
+    std::vector<const float*> in(n_in);
+    std::vector<float*> out(n_out);
+    for (size_t k = 0; k < n_in; ++k) in[k] = cols[k].data() + b;
+    for (size_t k = 0; k < n_out; ++k) out[k] = outs[k].data() + b;
+    return c.kernel->eval_batch(in.data(), out.data(), e - b, er);
+  }, err);
+  double secs = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (!ok) {
+    print_runtime_error(c.script.file->path(), err);
+    return kExitInput;
+  }
+  std::printf("%.6g evals/s\n%.4g ns/eval\n", static_cast<double>(points) / secs, secs * 1e9 / static_cast<double>(points));
+  return kExitOk;
+}
+
+namespace {
+
+bool parse_size(const std::string& s, uint32_t& w, uint32_t& h) {
+  size_t x = s.find_first_of("xX");
+  char* end;
+  unsigned long a = std::strtoul(s.c_str(), &end, 10);
+  if (end == s.c_str()) return false;
+  unsigned long b = a;
+  if (x != std::string::npos) {
+    const char* p = s.c_str() + x + 1;
+    b = std::strtoul(p, &end, 10);
+    if (end == p) return false;
+  } else if (*end) {
+    return false;
+  }
+  if (*end || a < 1 || b < 1 || a > 32768 || b > 32768) return false;
+  w = static_cast<uint32_t>(a);
+  h = static_cast<uint32_t>(b);
+  return true;
+}
+
+bool parse_bounds(const std::string& s, float (&v)[4]) {
+  std::stringstream ss(s);
+  std::string cell;
+  int k = 0;
+  while (std::getline(ss, cell, ',')) {
+    if (k >= 4 || !parse_number(cell, v[k]) || !std::isfinite(v[k])) return false;
+    ++k;
+  }
+  return k == 4;
+}
+
+}  // namespace
+
+int cmd_render2d(const Options& o, const std::string& file, const std::string& entry, const std::string& size,
+                 const std::string& bounds, const std::string& out_path, unsigned threads) {
+  uint32_t w, h;
+  float bd[4];
+  if (!parse_size(size, w, h)) {
+    std::cerr << "error: --size wants W or WxH with 1 <= W, H <= 32768, got '" << size << "'\n";
+    return kExitUsage;
+  }
+  if (!parse_bounds(bounds, bd)) {
+    std::cerr << "error: --bounds wants four finite numbers X0,X1,Y0,Y1, got '" << bounds << "'\n";
+    return kExitUsage;
+  }
+  Compiled c;
+  if (int rc = compile_file(file, entry, o, c); rc != kExitOk) return rc;
+  size_t n_in = c.kernel->num_inputs();
+  if (n_in < 2) {
+    std::cerr << "error: render2d needs an entry with at least two inputs (x, y)\n";
+    return kExitInput;
+  }
+  size_t n = size_t(w) * h;
+  auto t0 = Clock::now();
+  std::vector<uint8_t> px(n);
+  std::atomic<size_t> white{0};
+  backend::RuntimeError err;
+  bool ok = parallel_slices(n, std::max(1u, threads), [&](size_t b, size_t e, backend::RuntimeError& er) {
+    std::vector<std::vector<float>> cols(n_in, std::vector<float>(e - b, 0.0f));
+    for (size_t i = b; i < e; ++i) {
+      size_t col = i % w, row = i / w;
+      cols[0][i - b] = w > 1 ? bd[0] + static_cast<float>(col) * (bd[1] - bd[0]) / static_cast<float>(w - 1) : bd[0];
+      cols[1][i - b] = h > 1 ? bd[3] - static_cast<float>(row) * (bd[3] - bd[2]) / static_cast<float>(h - 1) : bd[3];
+    }
+    std::vector<const float*> in(n_in);
+    for (size_t k = 0; k < n_in; ++k) in[k] = cols[k].data();
+    std::vector<std::vector<float>> outs(c.kernel->num_outputs(), std::vector<float>(e - b));
+    std::vector<float*> out;
+    for (auto& v : outs) out.push_back(v.data());
+    if (!c.kernel->eval_batch(in.data(), out.data(), e - b, er)) return false;
+    size_t count = 0;
+    for (size_t i = b; i < e; ++i) {
+      bool inside = outs[0][i - b] >= 0.0f;
+      px[i] = inside ? 255 : 0;
+      count += inside;
+    }
+    white += count;
+    return true;
+  }, err);
+  double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  if (!ok) {
+    print_runtime_error(c.script.file->path(), err);
+    return kExitInput;
+  }
+  std::string error;
+  if (!out_path.empty() && !render::write_png(out_path, w, h, 1, px, error)) {
+    std::cerr << "error: " << error << "\n";
+    return kExitInput;
+  }
+  std::printf("%zu white pixels\n%.3f ms\n", white.load(), ms);
+  return kExitOk;
+}
+
+}  // namespace fscript::cli

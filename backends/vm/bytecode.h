@@ -19,7 +19,7 @@
 
 namespace fscript::vm {
 
-constexpr uint32_t kChunkLanes = 128;
+constexpr uint32_t kChunkLanes = 256;
 constexpr uint32_t kNoReg = UINT32_MAX;
 
 struct VInst {
@@ -69,6 +69,7 @@ struct VmProgram {
   uint32_t kernel = 0;
   uint32_t num_globals = 0;
   uint32_t num_global_arrays = 0;
+  bool needs_lane_state = false;  // some function ticks, calls, or touches globals or arrays
   std::vector<std::string> global_names;
   std::vector<std::string> global_array_names;
 };

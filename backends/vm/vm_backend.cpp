@@ -5,6 +5,16 @@
 
 namespace fscript::vm {
 
+bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,
+               float* const* outputs, size_t n, backend::RuntimeError& err) {
+  switch (math::active_isa()) {
+    case math::Isa::Base: return isa_base::run_batch(p, budgets, inputs, outputs, n, err);
+    case math::Isa::Avx2: return isa_avx2::run_batch(p, budgets, inputs, outputs, n, err);
+    case math::Isa::Avx512: return isa_avx512::run_batch(p, budgets, inputs, outputs, n, err);
+  }
+  return false;
+}
+
 std::unique_ptr<backend::Kernel> VmBackend::compile(const ir::Module& m, const backend::Budgets& b,
                                                     std::string& error) const {
   VmProgram p;

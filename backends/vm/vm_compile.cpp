@@ -142,6 +142,15 @@ bool compile_program(const ir::Module& m, VmProgram& out, std::string& error) {
       found = true;
     }
   }
+  for (const auto& f : out.functions)
+    for (const auto& v : f.code)
+      switch (v.op) {
+        case Op::Tick: case Op::Call: case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad:
+        case Op::AStore: case Op::ALen:
+          out.needs_lane_state = true;
+          break;
+        default: break;
+      }
   if (!found) error = "the module has no kernel function";
   return found;
 }

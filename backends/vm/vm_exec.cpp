@@ -9,9 +9,14 @@
 #include <cstring>
 #include <vector>
 
+#include "runtime/math/batch_isa.h"
 #include "runtime/math/math.h"
 
-namespace fscript::vm {
+#ifndef FS_ISA
+#error "vm_exec.cpp is compiled once per ISA with FS_ISA set (see backends/CMakeLists.txt)"
+#endif
+
+namespace fscript::vm::FS_ISA {
 namespace {
 
 using backend::Budgets;
@@ -136,20 +141,31 @@ bool Executor::run_chunk(const float* const* in, float* const* out, size_t base,
   thread_local std::vector<LaneEnv> envs;
   thread_local std::vector<LaneEnv*> env_ptrs;
   thread_local std::vector<float> regs, gmem;
+  thread_local std::vector<Mask> all;
   const VmFunction& k = p_.functions[p_.kernel];
-  envs.resize(kChunkLanes);
-  env_ptrs.resize(kChunkLanes);
-  for (uint32_t i = 0; i < L; ++i) {
-    envs[i].reset(p_.num_global_arrays);
-    env_ptrs[i] = &envs[i];
+  if (p_.needs_lane_state) {
+    envs.resize(kChunkLanes);
+    env_ptrs.resize(kChunkLanes);
+    for (uint32_t i = 0; i < L; ++i) {
+      envs[i].reset(p_.num_global_arrays);
+      env_ptrs[i] = &envs[i];
+    }
+    gmem.assign(size_t(p_.num_globals) * L, __builtin_nanf(""));
   }
   regs.resize(size_t(k.num_regs) * L);
-  gmem.assign(size_t(p_.num_globals) * L, __builtin_nanf(""));
   Frame fr{&k, regs.data(), L, env_ptrs.data(), gmem.data(), L, {}, {}};
   init_frame(fr);
   for (uint32_t p = 0; p < k.num_params; ++p)
     if (k.param_regs[p] != kNoReg) std::memcpy(fr.regs + size_t(k.param_regs[p]) * L, in[p] + base, L * sizeof(float));
-  std::vector<Mask> all(L, ~Mask{0});
+  all.assign(L, ~Mask{0});
+  if (k.blocks.size() == 1) {  // straight-line kernel: one pass over the code, all lanes present
+    const VBlock& vb = k.blocks[0];
+    for (uint32_t i = vb.begin; i < vb.end; ++i)
+      if (!exec(fr, k.code[i], all.data(), true, err)) return false;
+    for (size_t o = 0; o < vb.results.size(); ++o)
+      std::memcpy(out[o] + base, fr.regs + size_t(vb.results[o]) * L, L * sizeof(float));
+    return true;
+  }
   return run(fr, all, out, base, nullptr, err);
 }
 
@@ -245,41 +261,41 @@ bool Executor::exec(Frame& fr, const VInst& v, const Mask* m, bool full, Runtime
     case Op::Sub: binary(v, R, L, m, full, [](float a, float b) { return a - b; }); return true;
     case Op::Mul: binary(v, R, L, m, full, [](float a, float b) { return a * b; }); return true;
     case Op::Div: binary(v, R, L, m, full, [](float a, float b) { return a / b; }); return true;
-    case Op::Mod: binary(v, R, L, m, full, M::mod); return true;
-    case Op::Min: binary(v, R, L, m, full, M::min); return true;
-    case Op::Max: binary(v, R, L, m, full, M::max); return true;
-    case Op::Pow: binary(v, R, L, m, full, M::pow); return true;
-    case Op::Atan2: binary(v, R, L, m, full, M::atan2); return true;
-    case Op::Eq: binary(v, R, L, m, full, M::eq); return true;
-    case Op::Ne: binary(v, R, L, m, full, M::ne); return true;
-    case Op::Lt: binary(v, R, L, m, full, M::lt); return true;
-    case Op::Le: binary(v, R, L, m, full, M::le); return true;
-    case Op::Gt: binary(v, R, L, m, full, M::gt); return true;
-    case Op::Ge: binary(v, R, L, m, full, M::ge); return true;
-    case Op::Neg: unary(v, R, L, m, full, M::neg); return true;
-    case Op::Abs: unary(v, R, L, m, full, M::abs); return true;
-    case Op::Sqrt: unary(v, R, L, m, full, M::sqrt); return true;
-    case Op::Floor: unary(v, R, L, m, full, M::floor); return true;
-    case Op::Ceil: unary(v, R, L, m, full, M::ceil); return true;
-    case Op::Round: unary(v, R, L, m, full, M::round); return true;
-    case Op::Sign: unary(v, R, L, m, full, M::sign); return true;
-    case Op::Not: unary(v, R, L, m, full, M::not_); return true;
-    case Op::Truth: unary(v, R, L, m, full, M::truth); return true;
-    case Op::Log10: unary(v, R, L, m, full, M::log10); return true;
-    case Op::Tan: unary(v, R, L, m, full, M::tan); return true;
-    case Op::Asin: unary(v, R, L, m, full, M::asin); return true;
-    case Op::Acos: unary(v, R, L, m, full, M::acos); return true;
-    case Op::Atan: unary(v, R, L, m, full, M::atan); return true;
-    case Op::Sinh: unary(v, R, L, m, full, M::sinh); return true;
-    case Op::Cosh: unary(v, R, L, m, full, M::cosh); return true;
-    case Op::Tanh: unary(v, R, L, m, full, M::tanh); return true;
-    case Op::Sin: batched(v, R, L, m, full, M::sin_batch); return true;
-    case Op::Cos: batched(v, R, L, m, full, M::cos_batch); return true;
-    case Op::Exp: batched(v, R, L, m, full, M::exp_batch); return true;
-    case Op::Log: batched(v, R, L, m, full, M::log_batch); return true;
-    case Op::Clamp: ternary(v, R, L, m, full, M::clamp); return true;
-    case Op::Select: ternary(v, R, L, m, full, M::select); return true;
-    case Op::Noise: ternary(v, R, L, m, full, M::noise); return true;
+    case Op::Mod: binary(v, R, L, m, full, [](float a, float b) { return M::mod(a, b); }); return true;
+    case Op::Min: binary(v, R, L, m, full, [](float a, float b) { return M::min(a, b); }); return true;
+    case Op::Max: binary(v, R, L, m, full, [](float a, float b) { return M::max(a, b); }); return true;
+    case Op::Pow: binary(v, R, L, m, full, [](float a, float b) { return M::pow(a, b); }); return true;
+    case Op::Atan2: binary(v, R, L, m, full, [](float a, float b) { return M::atan2(a, b); }); return true;
+    case Op::Eq: binary(v, R, L, m, full, [](float a, float b) { return M::eq(a, b); }); return true;
+    case Op::Ne: binary(v, R, L, m, full, [](float a, float b) { return M::ne(a, b); }); return true;
+    case Op::Lt: binary(v, R, L, m, full, [](float a, float b) { return M::lt(a, b); }); return true;
+    case Op::Le: binary(v, R, L, m, full, [](float a, float b) { return M::le(a, b); }); return true;
+    case Op::Gt: binary(v, R, L, m, full, [](float a, float b) { return M::gt(a, b); }); return true;
+    case Op::Ge: binary(v, R, L, m, full, [](float a, float b) { return M::ge(a, b); }); return true;
+    case Op::Neg: unary(v, R, L, m, full, [](float a) { return M::neg(a); }); return true;
+    case Op::Abs: unary(v, R, L, m, full, [](float a) { return M::abs(a); }); return true;
+    case Op::Sqrt: unary(v, R, L, m, full, [](float a) { return M::sqrt(a); }); return true;
+    case Op::Floor: unary(v, R, L, m, full, [](float a) { return M::floor(a); }); return true;
+    case Op::Ceil: unary(v, R, L, m, full, [](float a) { return M::ceil(a); }); return true;
+    case Op::Round: unary(v, R, L, m, full, [](float a) { return M::round(a); }); return true;
+    case Op::Sign: unary(v, R, L, m, full, [](float a) { return M::sign(a); }); return true;
+    case Op::Not: unary(v, R, L, m, full, [](float a) { return M::not_(a); }); return true;
+    case Op::Truth: unary(v, R, L, m, full, [](float a) { return M::truth(a); }); return true;
+    case Op::Log10: unary(v, R, L, m, full, [](float a) { return M::log10(a); }); return true;
+    case Op::Tan: unary(v, R, L, m, full, [](float a) { return M::tan(a); }); return true;
+    case Op::Asin: unary(v, R, L, m, full, [](float a) { return M::asin(a); }); return true;
+    case Op::Acos: unary(v, R, L, m, full, [](float a) { return M::acos(a); }); return true;
+    case Op::Atan: unary(v, R, L, m, full, [](float a) { return M::atan(a); }); return true;
+    case Op::Sinh: unary(v, R, L, m, full, [](float a) { return M::sinh(a); }); return true;
+    case Op::Cosh: unary(v, R, L, m, full, [](float a) { return M::cosh(a); }); return true;
+    case Op::Tanh: unary(v, R, L, m, full, [](float a) { return M::tanh(a); }); return true;
+    case Op::Sin: batched(v, R, L, m, full, M::FS_ISA::sin_batch); return true;
+    case Op::Cos: batched(v, R, L, m, full, M::FS_ISA::cos_batch); return true;
+    case Op::Exp: batched(v, R, L, m, full, M::FS_ISA::exp_batch); return true;
+    case Op::Log: batched(v, R, L, m, full, M::FS_ISA::log_batch); return true;
+    case Op::Clamp: ternary(v, R, L, m, full, [](float a, float b, float c) { return M::clamp(a, b, c); }); return true;
+    case Op::Select: ternary(v, R, L, m, full, [](float a, float b, float c) { return M::select(a, b, c); }); return true;
+    case Op::Noise: ternary(v, R, L, m, full, [](float a, float b, float c) { return M::noise(a, b, c); }); return true;
     case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
     case Op::Call: case Op::Tick:
       for (uint32_t i = 0; i < L; ++i)
@@ -397,4 +413,4 @@ bool run_batch(const VmProgram& p, const Budgets& budgets, const float* const* i
   return true;
 }
 
-}  // namespace fscript::vm
+}  // namespace fscript::vm::FS_ISA

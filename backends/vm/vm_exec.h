@@ -5,10 +5,18 @@
 
 #include "backends/backend.h"
 #include "backends/vm/bytecode.h"
+#include "runtime/math/isa.h"
 
 namespace fscript::vm {
 
-// Evaluates points [0, n) of `inputs` into `outputs`, chunk by chunk.
+// Evaluates points [0, n) of `inputs` into `outputs`, chunk by chunk; one variant per ISA.
+#define FS_VM_RUN_BATCH                                                                                    \
+  bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,         \
+                 float* const* outputs, size_t n, backend::RuntimeError& err)
+FS_FOR_EACH_ISA_DECLARE(FS_VM_RUN_BATCH)
+#undef FS_VM_RUN_BATCH
+
+// The variant of the active ISA.
 bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,
                float* const* outputs, size_t n, backend::RuntimeError& err);
 

@@ -6,9 +6,14 @@
 #include <cmath>
 #include <cstdint>
 
+#include "runtime/math/batch_isa.h"
 #include "runtime/math/math.h"
 
-namespace fscript::math {
+#ifndef FS_ISA
+#error "batch.cpp is compiled once per ISA with FS_ISA set (see CMakeLists.txt)"
+#endif
+
+namespace fscript::math::FS_ISA {
 namespace {
 
 constexpr double kTwoOverPi = 0.63661977236758134308;
@@ -27,20 +32,31 @@ inline float cos_poly(float r) {
   return ((2.443315711809948e-5f * z - 1.388731625493765e-3f) * z + 4.166664568298827e-2f) * z * z - 0.5f * z + 1.0f;
 }
 
+// Branch-free selection by bit masks: the vectoriser if-converts these where it gives up on ?:.
+inline uint32_t mask_of(bool b) { return 0u - static_cast<uint32_t>(b); }
+inline float pick(uint32_t m, float a, float b) {
+  return std::bit_cast<float>((std::bit_cast<uint32_t>(a) & m) | (std::bit_cast<uint32_t>(b) & ~m));
+}
+
 // quadrant_offset 0: sin, 1: cos (cos x = sin(x + pi/2)).
 inline float trig_lane(float x, int quadrant_offset) {
-  double xd = std::fabs(x) <= kTrigLimit ? static_cast<double>(x) : 0.0;
+  float xs = pick(mask_of(std::fabs(x) <= kTrigLimit), x, 0.0f);
+  double xd = static_cast<double>(xs);
   double jd = (xd * kTwoOverPi + kRoundMagic) - kRoundMagic;
   double r = (xd - jd * kPio2Hi) - jd * kPio2Lo;
   int q = static_cast<int>(jd) + quadrant_offset;
   float rf = static_cast<float>(r);
-  float s = sin_poly(rf), c = cos_poly(rf);
-  float v = (q & 1) ? c : s;
-  return (q & 2) ? -v : v;
+  float v = pick(mask_of(q & 1), cos_poly(rf), sin_poly(rf));
+  return std::bit_cast<float>(std::bit_cast<uint32_t>(v) ^ (static_cast<uint32_t>(q & 2) << 30));
 }
 
+// Redoes lanes outside the fast range with the scalar definition. The test is a vectorised
+// OR-reduction first, so the common case (every lane in range) costs one cheap pass.
 template <float (*Scalar)(float), typename Pred>
 void fix_up(const float* a, float* out, size_t n, Pred outside_fast_range) {
+  uint32_t any = 0;
+  for (size_t i = 0; i < n; ++i) any |= mask_of(outside_fast_range(a[i]));
+  if (!any) return;
   for (size_t i = 0; i < n; ++i)
     if (outside_fast_range(a[i])) out[i] = Scalar(a[i]);
 }
@@ -50,7 +66,7 @@ constexpr float kExpLo = -103.972084f;   // below: 0
 inline float pow2i(int k) { return std::bit_cast<float>((k + 127) << 23); }
 
 inline float exp_lane(float x) {
-  float xc = (x <= kExpHi && x >= kExpLo) ? x : 0.0f;
+  float xc = pick(mask_of((x <= kExpHi) & (x >= kExpLo)), x, 0.0f);
   float kf = (xc * 1.44269504088896341f + 12582912.0f) - 12582912.0f;
   float r = (xc - kf * 0.693359375f) - kf * -2.12194440e-4f;
   float p = ((((((1.9875691500e-4f * r + 1.3981999507e-3f) * r + 8.3334519073e-3f) * r + 4.1665795894e-2f) * r +
@@ -61,14 +77,14 @@ inline float exp_lane(float x) {
 }
 
 inline float log_lane(float x) {
-  bool tiny = x < 1.17549435e-38f;
-  float xs = tiny ? x * 8388608.0f : x;
+  uint32_t tiny = mask_of(x < 1.17549435e-38f);
+  float xs = pick(tiny, x * 8388608.0f, x);
   int32_t bits = std::bit_cast<int32_t>(xs);
-  int e = ((bits >> 23) & 0xff) - 126 - (tiny ? 23 : 0);
+  int e = ((bits >> 23) & 0xff) - 126 - static_cast<int>(tiny & 23u);
   float m = std::bit_cast<float>((bits & 0x007fffff) | 0x3f000000);  // [0.5, 1)
-  bool low = m < 0.707106781186547524f;
-  e -= low ? 1 : 0;
-  m = low ? (m + m) - 1.0f : m - 1.0f;
+  uint32_t low = mask_of(m < 0.707106781186547524f);
+  e -= static_cast<int>(low & 1u);
+  m = pick(low, (m + m) - 1.0f, m - 1.0f);
   float z = m * m;
   float y = ((((((((7.0376836292e-2f * m - 1.1514610310e-1f) * m + 1.1676998740e-1f) * m - 1.2420140846e-1f) * m +
                  1.4249322787e-1f) * m - 1.6668057665e-1f) * m + 2.0000714765e-1f) * m - 2.4999993993e-1f) * m +
@@ -83,23 +99,23 @@ inline float log_lane(float x) {
 
 void sin_batch(const float* a, float* out, size_t n) {
   for (size_t i = 0; i < n; ++i) out[i] = trig_lane(a[i], 0);
-  fix_up<sin>(a, out, n, [](float v) { return !(std::fabs(v) <= kTrigLimit); });
+  fix_up<fscript::math::sin>(a, out, n, [](float v) { return !(std::fabs(v) <= kTrigLimit); });
 }
 
 void cos_batch(const float* a, float* out, size_t n) {
   for (size_t i = 0; i < n; ++i) out[i] = trig_lane(a[i], 1);
-  fix_up<cos>(a, out, n, [](float v) { return !(std::fabs(v) <= kTrigLimit); });
+  fix_up<fscript::math::cos>(a, out, n, [](float v) { return !(std::fabs(v) <= kTrigLimit); });
 }
 
 void exp_batch(const float* a, float* out, size_t n) {
   for (size_t i = 0; i < n; ++i) out[i] = exp_lane(a[i]);
-  fix_up<exp>(a, out, n, [](float v) { return !(v <= kExpHi && v >= kExpLo); });
+  fix_up<fscript::math::exp>(a, out, n, [](float v) { return !((v <= kExpHi) & (v >= kExpLo)); });
 }
 
 void log_batch(const float* a, float* out, size_t n) {
   for (size_t i = 0; i < n; ++i) out[i] = log_lane(a[i]);
   // Non-positive, infinite and NaN inputs take the scalar path (NaN, -inf, inf).
-  fix_up<log>(a, out, n, [](float v) { return !(v > 0.0f && v < INFINITY); });
+  fix_up<fscript::math::log>(a, out, n, [](float v) { return !((v > 0.0f) & (v < INFINITY)); });
 }
 
-}  // namespace fscript::math
+}  // namespace fscript::math::FS_ISA

@@ -14,9 +14,16 @@ inline float mul(float a, float b) { return a * b; }
 inline float div(float a, float b) { return a / b; }
 float mod(float a, float b);  // fmod: the sign of a (JavaScript %); exact
 inline float neg(float a) { return -a; }
-// NaN if either operand is NaN (JavaScript Math.min/max), else the smaller/larger.
-inline float min(float a, float b) { return (a != a || b != b) ? a + b : (b < a ? b : a); }
-inline float max(float a, float b) { return (a != a || b != b) ? a + b : (b > a ? b : a); }
+// NaN if either operand is NaN (JavaScript Math.min/max), else the smaller/larger. Written as
+// two selects without short-circuit logic, so lane loops vectorise (cmpps + blend).
+inline float min(float a, float b) {
+  float m = b < a ? b : a;  // a when a is NaN
+  return b != b ? b : m;
+}
+inline float max(float a, float b) {
+  float m = b > a ? b : a;
+  return b != b ? b : m;
+}
 inline float abs(float a) { return __builtin_fabsf(a); }
 inline float sqrt(float a) { return __builtin_sqrtf(a); }
 inline float floor(float a) { return __builtin_floorf(a); }
@@ -28,7 +35,7 @@ inline float round(float a) {
 }
 inline float sign(float a) { return a > 0 ? 1.0f : (a < 0 ? -1.0f : a); }  // NaN stays NaN
 inline float clamp(float a, float lo, float hi) { return min(max(a, lo), hi); }
-inline bool truthy(float a) { return a == a && a != 0; }  // != 0 and not NaN
+inline bool truthy(float a) { return (a == a) & (a != 0.0f); }  // != 0 and not NaN
 inline float eq(float a, float b) { return a == b ? 1.0f : 0.0f; }
 inline float ne(float a, float b) { return a != b ? 1.0f : 0.0f; }
 inline float lt(float a, float b) { return a < b ? 1.0f : 0.0f; }

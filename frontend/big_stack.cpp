@@ -3,20 +3,35 @@
 
 #include <pthread.h>
 
+#include <exception>
+
 namespace fscript::frontend {
 
-static void* trampoline(void* arg) {
-  (*static_cast<const std::function<void()>*>(arg))();
+namespace {
+struct Job {
+  const std::function<void()>* fn;
+  std::exception_ptr error;
+};
+void* trampoline(void* arg) {
+  auto* job = static_cast<Job*>(arg);
+  try {
+    (*job->fn)();
+  } catch (...) {
+    job->error = std::current_exception();  // rethrown on the calling thread
+  }
   return nullptr;
 }
+}  // namespace
 
 void run_with_big_stack(const std::function<void()>& fn, size_t stack_bytes) {
   pthread_attr_t attr;
   pthread_t thread;
+  Job job{&fn, nullptr};
   if (pthread_attr_init(&attr) == 0 && pthread_attr_setstacksize(&attr, stack_bytes) == 0 &&
-      pthread_create(&thread, &attr, trampoline, const_cast<std::function<void()>*>(&fn)) == 0) {
+      pthread_create(&thread, &attr, trampoline, &job) == 0) {
     pthread_attr_destroy(&attr);
     pthread_join(thread, nullptr);
+    if (job.error) std::rethrow_exception(job.error);
     return;
   }
   pthread_attr_destroy(&attr);

@@ -9,7 +9,7 @@ namespace fscript::frontend {
 constexpr size_t kBigStackBytes = size_t{1} << 30;  // reserved, committed only as touched
 
 // Runs `fn` to completion on a fresh thread with `stack_bytes` of stack; falls back to calling it
-// directly if such a thread cannot be created.
+// directly if such a thread cannot be created. An exception `fn` throws is rethrown here.
 void run_with_big_stack(const std::function<void()>& fn, size_t stack_bytes = kBigStackBytes);
 
 }  // namespace fscript::frontend

@@ -26,7 +26,7 @@ struct Cursor {
   std::string word() {
     ws();
     size_t b = i;
-    while (i < s.size() && (std::isalnum(static_cast<unsigned char>(s[i])) || s[i] == '_' || s[i] == '.' ||
+    while (i < s.size() && (std::isalnum(static_cast<unsigned char>(s[i])) || s[i] == '_' || s[i] == '.' || s[i] == '$' ||
                             s[i] == '-' || s[i] == '+'))
       ++i;
     return s.substr(b, i - b);

@@ -8,8 +8,9 @@
 
 namespace fscript::frontend {
 
-// The script's own entry point: FRep, else parametric_x/y/z, else parametric_r/g/b; an
-// expression-form script yields its value, an assignment list its assigned outputs.
+// The script's own entry point: FRep, else parametric_x/y/z, else parametric_r/g/b, else the
+// script's only function; an expression-form script yields its value, an assignment list its
+// assigned outputs.
 bool default_spec(const SemaResult& sema, KernelSpec& spec, std::string& error);
 
 // A call of the function NAME (exact name first, then ignoring case) with its parameters as the

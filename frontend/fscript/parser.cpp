@@ -73,11 +73,15 @@ class Parser {
 
   // One diagnostic per mistake: after an error, stay quiet until the parser resynchronizes.
   void error_at(Span s, const std::string& msg) {
-    if (panic_) return;
+    if (panic_ || fatal_) return;
     panic_ = true;
     diag_.error(f_, s, msg);
   }
   void expected(const std::string& what) {
+    if (at(Tok::Error)) {  // the lexer already reported this token
+      panic_ = true;
+      return;
+    }
     std::string got = at(Tok::Eof) ? "end of input" : "'" + std::string(text(cur().span)) + "'";
     error_at(cur().span, "expected " + what + ", found " + got);
   }
@@ -106,9 +110,11 @@ class Parser {
     }
     panic_ = false;
   }
+  // After this error the parser skips the rest of the file and reports nothing more.
   bool enter(Span where) {
     if (++depth_ <= kMaxNesting) return true;
     error_at(where, "nesting deeper than " + std::to_string(kMaxNesting) + " levels");
+    fatal_ = true;
     return false;
   }
   struct DepthGuard {
@@ -149,13 +155,17 @@ class Parser {
       case Tok::KwWhile: return while_stmt();
       case Tok::KwDo: return do_stmt();
       case Tok::KwBreak: case Tok::KwContinue: {
-        Stmt* s = prog_->new_stmt(at(Tok::KwBreak) ? StmtKind::Break : StmtKind::Continue, advance().span);
+        StmtKind kind = at(Tok::KwBreak) ? StmtKind::Break : StmtKind::Continue;
+        Stmt* s = prog_->new_stmt(kind, advance().span);
         end_statement();
         return s;
       }
       case Tok::KwReturn: return return_stmt();
       case Tok::KwFunction: return function_decl(top_level);
       case Tok::Semi: return prog_->new_stmt(StmtKind::Empty, advance().span);
+      case Tok::RBrace:
+        error_at(cur().span, "unexpected '}' (no block is open here)");
+        return prog_->new_stmt(StmtKind::Error, advance().span);
       default: {
         Stmt* s = prog_->new_stmt(StmtKind::ExprStmt, start);
         s->expr = expression();
@@ -284,6 +294,7 @@ class Parser {
       do {
         if (!at(Tok::Ident)) {
           expected("a parameter name");
+          while (!at(Tok::RParen) && !at(Tok::LBrace) && !at(Tok::Eof)) advance();
           break;
         }
         Decl d;
@@ -293,6 +304,7 @@ class Parser {
       } while (accept(Tok::Comma));
     }
     expect(Tok::RParen, "after the parameters");
+    if (panic_ && at(Tok::LBrace)) panic_ = false;  // the body is parsed and checked on its own
     if (at(Tok::LBrace)) {
       s->body = block();
     } else {
@@ -559,6 +571,7 @@ class Parser {
   size_t pos_ = 0;
   int depth_ = 0;
   bool panic_ = false;
+  bool fatal_ = false;
   std::unique_ptr<Program> prog_;
 };
 

@@ -99,10 +99,15 @@ class Promoter {
     }
   }
 
-  // Stores the current value of every global (all of them, or those this function writes).
+  // Stores the current value of every global (all of them, or those this function writes),
+  // except where that value was just loaded from the same global: memory already holds it.
   void flush(Block* b, bool all) {
-    for (int g = 0; g < n_; ++g)
-      if (all || written_.count(g)) b->insts.push_back(make(Op::GStore, b, g, {ssa_.read(g, b)}));
+    for (int g = 0; g < n_; ++g) {
+      if (!all && !written_.count(g)) continue;
+      Inst* v = ssa_.read(g, b);
+      if (v->op == Op::GLoad && v->aux == g) continue;
+      b->insts.push_back(make(Op::GStore, b, g, {v}));
+    }
   }
 
   bool is_entry_load(Inst* i) const {

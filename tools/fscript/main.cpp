@@ -43,7 +43,10 @@ CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args&
 
 int dispatch(CLI::App& app, Args& a) {
   a.opts.budgets.max_call_depth = a.max_depth;
-  if (app.got_subcommand("run")) return cmd_run(a.opts, a.file, a.entry, a.values);
+  if (CLI::App* run = app.get_subcommand("run"); run->parsed()) {
+    for (const auto& extra : run->remaining()) a.values.push_back(extra);
+    return cmd_run(a.opts, a.file, a.entry, a.values);
+  }
   if (app.got_subcommand("eval")) return cmd_eval(a.opts, a.file, a.entry, a.points_path);
   if (app.got_subcommand("check")) return cmd_check(a.files);
   if (app.got_subcommand("emit-ir")) return cmd_emit_ir(a.file, a.entry, a.opt, a.passes);
@@ -64,7 +67,7 @@ int real_main(int argc, char** argv) {
 
   CLI::App* run = add_compiling(app, "run", "call the entry (or --entry NAME) with numeric ARGs and print the result", a);
   run->add_option("ARG", a.values, "arguments (nan, inf, -inf accepted); missing ones are 0");
-  run->allow_extras(false);
+  run->allow_extras();  // "-inf" and "-1e3" are arguments, not options
 
   CLI::App* eval = add_compiling(app, "eval", "evaluate rows of comma-separated arguments in batches", a);
   eval->add_option("--points,-p", a.points_path, "file of rows ('-' or absent: standard input)");

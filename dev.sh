@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# One entry point for setting up, building and testing, on a fresh Debian bookworm machine.
+#   ./dev.sh demo    install what is missing, build, render a bundled example to out/
+#   ./dev.sh test    install what is missing, build, run every test (ctest)
+#   SANITIZE=1 ./dev.sh test   the same with AddressSanitizer + UndefinedBehaviorSanitizer
+#   ./dev.sh build   build only
+set -euo pipefail
+cd "$(dirname "$0")"
+
+PACKAGES=(cmake ninja-build g++ python3 catch2 nlohmann-json3-dev libcli11-dev libpng-dev libedit-dev)
+
+install_missing() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "installing: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}" >/dev/null
+}
+
+build() {
+  local dir=build type=Release extra=()
+  if [ "${SANITIZE:-0}" = 1 ]; then
+    dir=build-asan type=RelWithDebInfo extra=(-DFS_SANITIZE=ON)
+  fi
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" "${extra[@]}" >/dev/null
+  ninja -C "$dir" >&2
+  BUILD_DIR=$dir
+}
+
+cmd="${1:-demo}"
+install_missing
+build
+case "$cmd" in
+  build) ;;
+  test)
+    export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
+    export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+    (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)")
+    ;;
+  demo)
+    mkdir -p out
+    "$BUILD_DIR/tools/fscript/fscript" render2d examples/blobs.fs --size 800x600 --bounds -2,2,-1.5,1.5 -o out/blobs.png
+    echo "wrote out/blobs.png"
+    ;;
+  *) echo "usage: ./dev.sh demo|test|build" >&2; exit 2 ;;
+esac

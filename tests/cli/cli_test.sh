@@ -1,0 +1,150 @@
+#!/usr/bin/env bash
+# CLI tests: exit statuses, messages and outputs of `fscript` as a user sees them.
+# usage: cli_test.sh FSCRIPT SOURCE_DIR
+set -u
+F="$1"
+SRC="$2"
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fails=0
+n=0
+
+# check NAME WANT_STATUS WANT_PATTERN(grep -E on stdout+stderr, "" for none) -- command...
+check() {
+  local name="$1" want="$2" pat="$3"
+  shift 4
+  n=$((n + 1))
+  local out status
+  out=$("$@" 2>&1)
+  status=$?
+  if [ "$status" != "$want" ]; then
+    echo "FAIL $name: exit $status, wanted $want"; echo "$out" | head -20; fails=$((fails + 1)); return
+  fi
+  if [ -n "$pat" ] && ! grep -qE -- "$pat" <<<"$out"; then
+    echo "FAIL $name: output does not match /$pat/"; echo "$out" | head -20; fails=$((fails + 1)); return
+  fi
+}
+
+cat > "$T/sphere.fs" <<'FS'
+function FRep(x, y, z, t) { return 1 - x*x - y*y - z*z; }
+FS
+cat > "$T/parts.fs" <<'FS'
+x=u; y=v*2; z=-w;
+FS
+cat > "$T/bad.fs" <<'FS'
+function f(x) {
+  return x + ;
+}
+function g(y) { return h(y); }
+FS
+cat > "$T/loop.fs" <<'FS'
+function f(x) {
+  while (true) {
+    x = x + 1;
+  }
+  return x;
+}
+FS
+cat > "$T/rec.fs" <<'FS'
+function f(x) { return f(x + 1); }
+FS
+cat > "$T/nan.fs" <<'FS'
+function f(x) { return sqrt(x) + log(x); }
+FS
+cat > "$T/scene.wrl" <<'WRL'
+#VRML V2.0 utf8
+FShape { geometry FGeometry {
+  definition "function frep(x,y,z,t){
+     return 1 - x*x - undefined_thing;
+  }"
+} }
+WRL
+
+check run-frep 0 '^0$' -- "$F" run "$T/sphere.fs" 1 0 0
+check run-frep-nan-arg 0 '^nan$' -- "$F" run "$T/sphere.fs" nan 0 0
+check run-frep-inf-arg 0 '^-inf$' -- "$F" run "$T/sphere.fs" -inf 0 0
+check run-entry-case 0 '^1$' -- "$F" run "$T/sphere.fs" --entry frep 0 0 0
+check run-assignments 0 'x=1' -- "$F" run "$T/parts.fs" 1 2 3
+check run-assignments-y 0 'y=4' -- "$F" run "$T/parts.fs" 1 2 3
+check run-stdin 0 'z=-0' -- bash -c "\"$F\" < \"$T/parts.fs\""
+check run-nan-domain 0 '^nan$' -- "$F" run "$T/nan.fs" -1
+check run-too-many-args 2 'too many arguments' -- "$F" run "$T/sphere.fs" 1 2 3 4 5
+check run-bad-number 2 'not a number' -- "$F" run "$T/sphere.fs" 1 abc
+check run-missing-file 1 'cannot read' -- "$F" run "$T/none.fs"
+check run-syntax 1 'bad.fs:2:14: error: expected an expression' -- "$F" run "$T/bad.fs" --entry f
+check run-caret 1 '^ +\^' -- "$F" run "$T/bad.fs" --entry f
+check run-two-errors 1 "unknown function 'h'" -- "$F" check "$T/bad.fs"
+check run-loop 1 'loop.fs:2: error: loop iteration budget' -- "$F" run "$T/loop.fs" 0
+check run-loop-flag 1 'more than 50 iterations' -- "$F" run "$T/loop.fs" --max-loop-iterations 50 0
+check run-recursion 1 'rec.fs:1: error: call depth budget exceeded' -- "$F" run "$T/rec.fs" 0
+printf 'function a(x) { return x; }\nfunction b(x) { return x; }\n' > "$T/two.fs"
+check run-no-entry 1 'no entry point' -- "$F" run "$T/two.fs"
+check run-unknown-entry 1 "no function named 'nope'" -- "$F" run "$T/rec.fs" --entry nope
+check backend-missing 2 "backend 'sse' is not built" -- "$F" run "$T/sphere.fs" --backend sse 0 0 0
+check usage-unknown-command 2 '' -- "$F" frobnicate
+check usage-render-size 2 'size' -- "$F" render2d "$T/sphere.fs" --size 0x5 --bounds -1,1,-1,1
+check usage-render-bounds 2 'bounds' -- "$F" render2d "$T/sphere.fs" --size 4 --bounds -1,1,1
+
+printf '0,0,0\n# a comment\n\n1,0,0\n0.5,0.5,0\nnan,0,0\n' > "$T/pts.csv"
+check eval-rows 0 '^0\.5$' -- "$F" eval "$T/sphere.fs" --entry FRep --points "$T/pts.csv"
+out=$("$F" eval "$T/sphere.fs" --entry FRep --points "$T/pts.csv")
+[ "$out" = $'1\n0\n0.5\nnan' ] || { echo "FAIL eval-exact: got [$out]"; fails=$((fails + 1)); }
+printf '0,0,0\n1,zero,0\n' > "$T/badpts.csv"
+check eval-bad-row 1 'badpts.csv:2: error' -- "$F" eval "$T/sphere.fs" --entry FRep --points "$T/badpts.csv"
+check eval-stdin 0 '^1$' -- bash -c "echo 0,0,0 | \"$F\" eval \"$T/sphere.fs\" --entry FRep"
+
+check wrl-positions 1 'scene.wrl:4:23: error: unknown name' -- "$F" check "$T/scene.wrl"
+check emit-ir 0 'fn @kernel\(4\) -> 1 kernel' -- "$F" emit-ir "$T/sphere.fs" --opt
+check emit-ir-passes 0 'fmul' -- "$F" emit-ir "$T/sphere.fs" --passes inline,fold
+check emit-ir-bad-pass 1 "unknown pass 'nope'" -- "$F" emit-ir "$T/sphere.fs" --passes nope
+check emit-asm-vm 0 'registers' -- "$F" emit-asm "$T/sphere.fs" --backend vm
+check bench 0 'ns/eval' -- "$F" bench "$T/sphere.fs" --entry FRep --points 10000 --threads 2
+check bench-one-point 0 'evals/s' -- "$F" bench "$T/sphere.fs" --entry FRep --points 1000 --one-point
+
+# render2d: a disc of radius 1 sampled on 101x101 over [-1.5, 1.5]^2; the count is computed
+# independently here (float arithmetic as the tool samples it).
+check render2d 0 'white pixels' -- "$F" render2d "$T/sphere.fs" --entry FRep --size 101 --bounds -1.5,1.5,-1.5,1.5 -o "$T/disc.png"
+want=$(python3 -c "
+import struct
+def f32(v): return struct.unpack('f', struct.pack('f', v))[0]
+c=0
+for r in range(101):
+  for i in range(101):
+    x=f32(-1.5+f32(i*f32(f32(3.0)/100))); y=f32(1.5-f32(r*f32(f32(3.0)/100)))
+    c += 1-x*x-y*y >= 0
+print(c)")
+got=$("$F" render2d "$T/sphere.fs" --entry FRep --size 101 --bounds -1.5,1.5,-1.5,1.5 | head -1 | cut -d' ' -f1)
+[ "$got" = "$want" ] || { echo "FAIL render2d-count: got $got want $want"; fails=$((fails + 1)); }
+head -c 8 "$T/disc.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' || { echo "FAIL render2d-png: not a PNG"; fails=$((fails + 1)); }
+check render2d-unwritable 1 'cannot write' -- "$F" render2d "$T/sphere.fs" --size 4 --bounds -1,1,-1,1 -o "$T/no/such/dir/x.png"
+
+# fmt: canonical output, idempotent
+printf 'function f(x){var a=x*2;if(a>1){return a}else{return -a^2}}\n' > "$T/ugly.fs"
+"$F" fmt "$T/ugly.fs" > "$T/pretty.fs"
+"$F" fmt "$T/pretty.fs" > "$T/pretty2.fs"
+cmp -s "$T/pretty.fs" "$T/pretty2.fs" || { echo "FAIL fmt-idempotent"; fails=$((fails + 1)); }
+check fmt-layout 0 '^  if \(a > 1\) \{$' -- "$F" fmt "$T/ugly.fs"
+check fmt-error 1 'expected an expression' -- "$F" fmt "$T/bad.fs"
+
+# Hostile input: deep nesting, a 1 MB expression, an unterminated comment.
+python3 -c "print('function f(x) { return ' + '('*100000 + 'x' + ')'*100000 + '; }')" > "$T/deep.fs"
+check deep-nesting 1 'nesting deeper than' -- "$F" check "$T/deep.fs"
+python3 -c "print('function FRep(x, y, z) { return 0' + ' + x'*260000 + '; }')" > "$T/long.fs"
+check long-expression 0 '^260000$' -- "$F" run "$T/long.fs" 1 0 0
+printf 'function f(x) { return x; }\n/* open\n' > "$T/open.fs"
+check unterminated-comment 1 'open.fs:2:1: error: unterminated comment' -- "$F" check "$T/open.fs"
+printf 'function f(x) { return x; }\n\xff\xfe\n' > "$T/binary.fs"
+check invalid-bytes 1 'binary.fs:2:1: error: unexpected byte' -- "$F" check "$T/binary.fs"
+
+# The shared corpus and the paper's data, when present.
+if [ -d "$SRC/../shared/corpus" ]; then
+  while IFS= read -r -d '' w; do
+    check "corpus-check $(basename "$w")" 0 '' -- "$F" check "$w"
+  done < <(find "$SRC/../shared/corpus" -name '*.wrl' -print0)
+fi
+if [ -f "$SRC/../shared/data/prospero.fs" ]; then
+  check prospero-256 0 '^8150 white pixels' -- "$F" render2d "$SRC/../shared/data/prospero.fs" --entry FRep --size 256 --bounds -1,1,-1,1
+fi
+
+echo "$((n - fails)) of $n CLI checks passed"
+[ "$fails" = 0 ]

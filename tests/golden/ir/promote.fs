@@ -1,0 +1,49 @@
+// Globals become SSA values in the kernel; a recursive callee keeps them in memory.
+var acc = 0;
+function add(v) { acc = acc + v; return acc; }
+function rec(n) { if (n <= 0) return acc; acc = acc + 1; return rec(n - 1); }
+function FRep(x, y, z, t) { add(x); add(y); return acc + rec(2); }
+// run: FRep(1, 2, 0, 0) == 8
+// ir-after: inline,promote,fold,simplify,dce
+//   fn @rec(1) -> 1 recursive {
+//   b0:
+//     v0 = gload @acc
+//     v1 = param 0
+//     v2 = const 0
+//     v3 = fle v1, v2
+//     cbr v3, b1, b2
+//   b1:
+//     ret v0
+//   b2:
+//     v6 = const 1
+//     v7 = fadd v0, v6
+//     v8 = const 1
+//     v9 = fsub v1, v8
+//     gstore @acc, v7
+//     v11 = call @rec(v9) !4
+//     ret v11
+//   }
+//   fn @kernel(4) -> 1 kernel {
+//   b0:
+//     v0 = const nan
+//     v1 = param 0
+//     v2 = param 1
+//     v3 = param 2
+//     v4 = param 3
+//     v5 = fadd v1, v2
+//     v6 = const 2
+//     gstore @x, v1
+//     gstore @y, v2
+//     gstore @z, v3
+//     gstore @u, v1
+//     gstore @v, v2
+//     gstore @w, v3
+//     gstore @t, v4
+//     gstore @r, v0
+//     gstore @g, v0
+//     gstore @b, v0
+//     gstore @acc, v5
+//     v18 = call @rec(v6) !5
+//     v19 = fadd v5, v18
+//     ret v19
+//   }

@@ -1,0 +1,184 @@
+// runtime/math: every built-in against an independent higher-precision reference (long double,
+// the x87 80-bit libm) over millions of inputs and the special values; batch twins against both.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "runtime/math/isa.h"
+#include "runtime/math/math.h"
+
+using namespace fscript;
+
+namespace {
+
+int64_t ordered(float f) {
+  int32_t i;
+  std::memcpy(&i, &f, 4);
+  return i < 0 ? static_cast<int64_t>(INT32_MIN) - i : i;
+}
+
+// Distance in units in the last place; both NaN is 0, one NaN is "infinite".
+uint64_t ulps(float a, float b) {
+  if (std::isnan(a) || std::isnan(b)) return std::isnan(a) && std::isnan(b) ? 0 : UINT64_MAX;
+  if (a == b) return 0;
+  int64_t d = ordered(a) - ordered(b);
+  return static_cast<uint64_t>(d < 0 ? -d : d);
+}
+
+float from_bits(uint32_t u) {
+  float f;
+  std::memcpy(&f, &u, 4);
+  return f;
+}
+
+// Inputs: random bit patterns (every magnitude), a dense typical range, and the special values.
+std::vector<float> inputs(size_t n, float lo, float hi, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::vector<float> v;
+  std::uniform_real_distribution<float> typical(lo, hi);
+  for (size_t i = 0; i < n / 2; ++i) v.push_back(typical(rng));
+  for (size_t i = 0; i < n / 2; ++i) {
+    float f = from_bits(rng());
+    if (std::isfinite(f)) v.push_back(f);
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  for (float s : {0.0f, -0.0f, inf, -inf, std::numeric_limits<float>::quiet_NaN(), 1e38f, -1e38f, 3.4e38f, 1e-38f,
+                  -1e-38f, 1e-45f, 1.0f, -1.0f, 0.5f, 88.7f, 89.0f, -103.0f, -104.0f})
+    v.push_back(s);
+  for (int k = -2000; k <= 2000; ++k) v.push_back(static_cast<float>(k * M_PI / 2));
+  for (int k = 1; k < 60; ++k) v.push_back(static_cast<float>(k * 1e5 * M_PI / 2));
+  return v;
+}
+
+// Worst ulp error of f against ref over the inputs (references that overflow float are fine).
+template <class F, class R>
+uint64_t worst(const std::vector<float>& in, F f, R ref, float* where) {
+  uint64_t w = 0;
+  for (float x : in) {
+    float want = static_cast<float>(ref(static_cast<long double>(x)));
+    uint64_t d = ulps(f(x), want);
+    if (d > w) {
+      w = d;
+      *where = x;
+    }
+  }
+  return w;
+}
+
+constexpr size_t kN = 2'000'000;
+
+}  // namespace
+
+#define UNARY_CASE(NAME, REF, LO, HI)                                                                   \
+  TEST_CASE("math: " #NAME " within 4 ulp of the long double reference") {                             \
+    auto in = inputs(kN, LO, HI, __LINE__);                                                           \
+    float at = 0;                                                                                     \
+    uint64_t w = worst(in, [](float x) { return math::NAME(x); }, [](long double x) { return REF(x); }, &at); \
+    INFO("worst " << w << " ulp at " << at);                                                          \
+    CHECK(w <= 4);                                                                                    \
+  }
+
+UNARY_CASE(sin, sinl, -20.0f, 20.0f)
+UNARY_CASE(cos, cosl, -20.0f, 20.0f)
+UNARY_CASE(tan, tanl, -3.0f, 3.0f)
+UNARY_CASE(asin, asinl, -1.0f, 1.0f)
+UNARY_CASE(acos, acosl, -1.0f, 1.0f)
+UNARY_CASE(atan, atanl, -10.0f, 10.0f)
+UNARY_CASE(exp, expl, -100.0f, 90.0f)
+UNARY_CASE(log, logl, 0.0f, 100.0f)
+UNARY_CASE(log10, log10l, 0.0f, 100.0f)
+UNARY_CASE(sinh, sinhl, -10.0f, 10.0f)
+UNARY_CASE(cosh, coshl, -10.0f, 10.0f)
+UNARY_CASE(tanh, tanhl, -5.0f, 5.0f)
+UNARY_CASE(sqrt, sqrtl, 0.0f, 100.0f)
+
+TEST_CASE("math: pow and atan2 within 4 ulp; JavaScript special cases") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> base(0.0f, 10.0f), expo(-10.0f, 10.0f), any(-100.0f, 100.0f);
+  uint64_t wp = 0, wa = 0;
+  for (int i = 0; i < 1'000'000; ++i) {
+    float a = base(rng), b = expo(rng);
+    wp = std::max(wp, ulps(math::pow(a, b), static_cast<float>(powl(a, b))));
+    float y = any(rng), x = any(rng);
+    wa = std::max(wa, ulps(math::atan2(y, x), static_cast<float>(atan2l(y, x))));
+  }
+  CHECK(wp <= 4);
+  CHECK(wa <= 4);
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  CHECK(std::isnan(math::pow(1, nan)));
+  CHECK(math::pow(nan, 0) == 1);
+  CHECK(std::isnan(math::pow(1, inf)));
+  CHECK(std::isnan(math::pow(-1, -inf)));
+  CHECK(math::pow(-2, 3) == -8);
+  CHECK(std::isnan(math::pow(-2, 0.5f)));
+}
+
+TEST_CASE("math: exact operations and their NaN rules") {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  CHECK(std::isnan(math::min(nan, 1)));
+  CHECK(std::isnan(math::min(1, nan)));
+  CHECK(std::isnan(math::max(nan, 1)));
+  CHECK(std::isnan(math::max(1, nan)));
+  CHECK(math::min(-1, 2) == -1);
+  CHECK(math::max(-1, 2) == 2);
+  CHECK(math::round(2.5f) == 3);
+  CHECK(math::round(-2.5f) == -2);
+  CHECK(math::round(0.49999997f) == 0);
+  CHECK(math::round(8388609.0f) == 8388609.0f);
+  CHECK(math::mod(-7, 3) == -1);
+  CHECK(std::isnan(math::sign(nan)));
+  CHECK(math::sign(-0.0f) == 0);
+  CHECK(math::clamp(5, 0, 1) == 1);
+  CHECK(!math::truthy(nan));
+  CHECK(!math::truthy(-0.0f));
+  CHECK(math::array_index(1.5f, 3) == 2);
+  CHECK(math::array_index(2.5f, 3) == -1);
+  CHECK(math::array_index(nan, 3) == -1);
+  CHECK(math::array_index(-0.5f, 3) == 0);
+}
+
+TEST_CASE("math: batch twins agree with the scalar definitions within 2 ulp on every ISA") {
+  auto in = inputs(kN, -100.0f, 100.0f, 99);
+  std::vector<float> out(in.size());
+  struct Fn {
+    const char* name;
+    void (*batch)(const float*, float*, size_t);
+    float (*scalar)(float);
+  } fns[] = {{"sin", math::sin_batch, math::sin}, {"cos", math::cos_batch, math::cos},
+             {"exp", math::exp_batch, math::exp}, {"log", math::log_batch, math::log}};
+  for (const auto& f : fns) {
+    // Odd lengths and offsets exercise the vector loops' tails.
+    for (size_t start = 0; start < in.size(); start += 1021)
+      f.batch(in.data() + start, out.data() + start, std::min<size_t>(1021, in.size() - start));
+    uint64_t w = 0;
+    float at = 0;
+    for (size_t i = 0; i < in.size(); ++i) {
+      uint64_t d = ulps(out[i], f.scalar(in[i]));
+      if (d > w) {
+        w = d;
+        at = in[i];
+      }
+    }
+    INFO(f.name << " (" << math::isa_name(math::active_isa()) << "): worst " << w << " ulp at " << at);
+    CHECK(w <= 2);
+  }
+}
+
+TEST_CASE("math: noise is in [-1, 1], zero on the lattice, continuous, NaN for non-finite input") {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> d(-300.0f, 300.0f);
+  int out_of_range = 0, jumps = 0;
+  for (int i = 0; i < 200000; ++i) {
+    float x = d(rng), y = d(rng), z = d(rng);
+    float v = math::noise(x, y, z);
+    out_of_range += !(v >= -1.0f && v <= 1.0f);
+    jumps += !(std::fabs(math::noise(x + 1e-4f, y, z) - v) < 0.01f);
+  }
+  CHECK(out_of_range == 0);
+  CHECK(jumps == 0);
+  CHECK(math::noise(3, -7, 12) == 0);
+  CHECK(std::isnan(math::noise(std::numeric_limits<float>::infinity(), 0, 0)));
+  CHECK(std::isfinite(math::noise(3e38f, -3e38f, 1e30f)));
+}

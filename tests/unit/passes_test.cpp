@@ -1,0 +1,70 @@
+// Passes: each keeps results identical (differential against the unoptimised program) and the
+// verifier runs after every pass (build() sets verify_each).
+#include <catch2/catch.hpp>
+
+#include "ir/passes/passes.h"
+#include "ir/text.h"
+#include "tests/unit/helpers.h"
+
+using namespace fscript;
+
+static const char* kPrograms[] = {
+    "function FRep(x,y,z,t){ var a = x*y + sin(x); var b = y*x + sin(x); return a - b + (z > 0 ? a : b); }",
+    "function sq(v){return v*v;} function FRep(x,y,z,t){ return sqrt(sq(x)+sq(y)+sq(z)) - 0.5; }",
+    "function FRep(x,y,z,t){ var s = 0; for (var i = 0; i < 5; i++) { if (x > i) s += i; else s -= y; } return s; }",
+    "var c = 3; function f(v){ c = c + v; return c; } function FRep(x,y,z,t){ f(x); f(y); return c * z; }",
+    "function fib(n){ return n < 2 ? n : fib(n-1) + fib(n-2); } function FRep(x,y,z,t){ return fib(floor(abs(x)) % 10) + y; }",
+    "function FRep(x,y,z,t){ var a = [x, y, z]; a[1] += 2; return a[0] * a[1] - a[2] + a.length; }",
+    "function FRep(x,y,z,t){ return (x && y) + (x || z) + !y + (x == y) + (x != z) + (x <= y) + (x >= z); }",
+};
+
+TEST_CASE("passes: optimised and unoptimised programs agree") {
+  const float pts[][4] = {{0, 0, 0, 0}, {1, 2, 3, 0}, {-1.5f, 0.25f, 7, 1}, {3, -2, 0.5f, 0}, {0.1f, 0.2f, -0.3f, 2}};
+  for (const char* src : kPrograms) {
+    auto plain = test::build(src, "", false);
+    auto opt = test::build(src, "", true);
+    INFO(src << "\n" << test::messages(plain->diag));
+    REQUIRE(plain->ok);
+    REQUIRE(opt->ok);
+    for (const auto& p : pts) {
+      std::vector<float> in(p, p + 4);
+      float a = test::eval1(*plain, in), b = test::eval1(*opt, in);
+      INFO("at " << p[0] << "," << p[1] << "," << p[2]);
+      CHECK((a == b || (std::isnan(a) && std::isnan(b))));
+    }
+  }
+}
+
+TEST_CASE("passes: inlining leaves no calls to non-recursive functions") {
+  auto b = test::build(kPrograms[1]);
+  REQUIRE(b->ok);
+  std::string text = ir::print(*b->module);
+  CHECK(text.find("call") == std::string::npos);
+  CHECK(b->module->functions.size() == 1);
+}
+
+TEST_CASE("passes: promotion removes global memory from a call-free kernel") {
+  auto b = test::build(kPrograms[3]);
+  REQUIRE(b->ok);
+  std::string text = ir::print(*b->module);
+  CHECK(text.find("gload") == std::string::npos);
+  CHECK(text.find("gstore") == std::string::npos);
+}
+
+TEST_CASE("passes: if-conversion makes a straight-line kernel") {
+  auto b = test::build("function FRep(x,y,z,t){ var d = x; if (x < 0) d = -x; return d > y ? d : y; }");
+  REQUIRE(b->ok);
+  CHECK(b->module->functions.back()->blocks.size() == 1);
+}
+
+TEST_CASE("passes: every pass runs alone on every program and verifies") {
+  for (const char* src : kPrograms)
+    for (const char* pass : {"inline", "promote", "fold", "dce", "gvn", "simplify", "ifconv"}) {
+      auto b = test::build(src, "", false);
+      REQUIRE(b->ok);
+      ir::PassOptions po;
+      po.verify_each = true;
+      INFO(src << " / " << pass);
+      CHECK(ir::run_passes(*b->module, pass, po) == "");
+    }
+}

@@ -1,0 +1,125 @@
+// The VM: batch path equals the one-point path, divergent lanes, budgets, special values per op.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "ir/eval.h"
+#include "ir/text.h"
+#include "tests/unit/helpers.h"
+
+using namespace fscript;
+
+static bool same(float a, float b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+
+TEST_CASE("vm: a batch gives the same results as one point at a time, with divergent lanes") {
+  auto b = test::build(R"(
+    function steps(x) { var n = 0; var v = abs(x) * 10; while (v > 1) { v = v / 2; n++; } return n; }
+    function fib(n) { return n < 2 ? n : fib(n - 1) + fib(n - 2); }
+    function FRep(x, y, z, t) {
+      var s = steps(x);
+      if (y > 0) { for (var i = 0; i < s; i++) { if (i == 3) break; z += sin(i); } } else { z = fib(floor(abs(y) * 5)); }
+      return s * 100 + z;
+    })");
+  REQUIRE(b->ok);
+  const size_t n = 1000;
+  std::vector<float> xs(n), ys(n), zs(n), ts(n, 0), out(n);
+  for (size_t i = 0; i < n; ++i) {
+    xs[i] = std::sin(static_cast<float>(i)) * 3;
+    ys[i] = std::cos(static_cast<float>(i) * 0.7f);
+    zs[i] = static_cast<float>(i % 7);
+  }
+  const float* in[] = {xs.data(), ys.data(), zs.data(), ts.data()};
+  float* outs[] = {out.data()};
+  backend::RuntimeError err;
+  REQUIRE(b->kernel->eval_batch(in, outs, n, err));
+  int mismatches = 0;
+  for (size_t i = 0; i < n; ++i) mismatches += !same(out[i], test::eval1(*b, {xs[i], ys[i], zs[i], 0}));
+  CHECK(mismatches == 0);
+}
+
+TEST_CASE("vm: every pure op matches ir::eval_pure (runtime/math) on special values") {
+  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<float> vals = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, inf, -inf, nan, 1e-38f, 1e-45f, 3e38f,
+                                   static_cast<float>(M_PI / 2), static_cast<float>(2 * M_PI), 100.0f, -100.0f};
+  for (int k = 0; k < ir::kNumOps; ++k) {
+    ir::Op op = static_cast<ir::Op>(k);
+    if (!ir::has_flag(op, ir::Pure) || op == ir::Op::Const || op == ir::Op::Param) continue;
+    int arity = ir::op_info(op).arity;
+    // A kernel applying op to its parameters: fn @kernel(arity) -> 1 kernel { ... }.
+    std::string text = "fn @kernel(" + std::to_string(arity) + ") -> 1 kernel {\nb0:\n";
+    std::string args;
+    for (int a = 0; a < arity; ++a) {
+      text += "  v" + std::to_string(a) + " = param " + std::to_string(a) + "\n";
+      args += (a ? ", v" : " v") + std::to_string(a);
+    }
+    text += "  v9 = " + std::string(ir::mnemonic(op)) + args + "\n  ret v9\n}\n";
+    std::string err;
+    auto m = ir::read(text, err);
+    INFO(ir::mnemonic(op) << ": " << err);
+    REQUIRE(m);
+    auto kernel = backend::make_backend("vm")->compile(*m, {}, err);
+    REQUIRE(kernel);
+    // Every combination of special values, evaluated as one batch.
+    size_t combos = 1;
+    for (int a = 0; a < arity; ++a) combos *= vals.size();
+    std::vector<std::vector<float>> cols(arity, std::vector<float>(combos));
+    for (size_t c = 0; c < combos; ++c)
+      for (int a = 0, r = static_cast<int>(c); a < arity; ++a, r /= static_cast<int>(vals.size()))
+        cols[a][c] = vals[r % vals.size()];
+    std::vector<const float*> in;
+    for (auto& col : cols) in.push_back(col.data());
+    std::vector<float> out(combos);
+    float* outs[] = {out.data()};
+    backend::RuntimeError rerr;
+    REQUIRE(kernel->eval_batch(in.data(), outs, combos, rerr));
+    int bad = 0;
+    bool transcendental = ir::has_flag(op, ir::CallsRuntime);
+    for (size_t c = 0; c < combos; ++c) {
+      float a[3] = {0, 0, 0}, want;
+      for (int i = 0; i < arity; ++i) a[i] = cols[i][c];
+      REQUIRE(ir::eval_pure(op, a, want));
+      bool ok = same(out[c], want) || (out[c] == 0 && want == 0);
+      if (!ok && transcendental && std::isfinite(want) && std::isfinite(out[c]))
+        ok = std::fabs(out[c] - want) <= 4 * std::fabs(std::nextafter(want, inf) - want);
+      bad += !ok;
+    }
+    CHECK(bad == 0);
+  }
+}
+
+TEST_CASE("vm: budgets stop runaway scripts and name the line") {
+  backend::Budgets small;
+  small.max_loop_iterations = 1000;
+  small.max_call_depth = 20;
+  auto loop = test::build("function f(x) {\n  while (x == x) {\n    x = x + 1;\n  }\n  return x;\n}", "f", true, small);
+  REQUIRE(loop->ok);
+  std::vector<float> in = {1}, out(1);
+  backend::RuntimeError err;
+  CHECK(!loop->kernel->eval(in.data(), out.data(), err));
+  CHECK(err.line == 2);
+  CHECK(err.message.find("loop iteration budget") != std::string::npos);
+  auto rec = test::build("function f(x) {\n  return f(x + 1);\n}", "f", true, small);
+  REQUIRE(rec->ok);
+  CHECK(!rec->kernel->eval(in.data(), out.data(), err));
+  CHECK(err.line == 2);
+  CHECK(err.message.find("call depth") != std::string::npos);
+}
+
+TEST_CASE("vm: an out-of-range index names the line and never touches other memory") {
+  auto b = test::build("function f(i) {\n  var a = [1, 2, 3];\n  return a[i];\n}", "f");
+  REQUIRE(b->ok);
+  std::vector<float> in = {1e9f}, out(1);
+  backend::RuntimeError err;
+  CHECK(!b->kernel->eval(in.data(), out.data(), err));
+  CHECK(err.line == 3);
+  CHECK(err.message.find("out of range") != std::string::npos);
+}
+
+TEST_CASE("vm: many small kernels compiled and freed") {
+  for (int i = 0; i < 300; ++i) {
+    auto b = test::build("function FRep(x,y,z,t){ return x * " + std::to_string(i) + " + y; }");
+    REQUIRE(b->ok);
+    CHECK(test::eval1(*b, {1, 2}) == static_cast<float>(i + 2));
+  }
+}

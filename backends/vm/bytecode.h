@@ -54,6 +54,7 @@ struct VmFunction {
   std::string name;
   uint32_t num_params = 0;
   uint32_t num_results = 1;
+  bool recursive = false;  // calls of it count against the call-depth budget
   uint32_t num_regs = 0;
   uint32_t num_arrays = 0;
   std::vector<std::string> array_names;

@@ -29,6 +29,7 @@ class FunctionCompiler {
     out_.name = fn_.name;
     out_.num_params = fn_.num_params;
     out_.num_results = fn_.num_results;
+    out_.recursive = fn_.recursive;
     out_.num_arrays = static_cast<uint32_t>(fn_.arrays.size());
     out_.array_names = fn_.arrays;
     lo_ = backend::compute_intervals(fn_);

@@ -113,6 +113,26 @@ inline void batched(const VInst& v, float* R, uint32_t L, const Mask* m, bool fu
   for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? tmp[i] : d[i];
 }
 
+// The same for a binary one; an immediate operand is broadcast into a scratch lane vector.
+inline void batched2(const VInst& v, float* R, uint32_t L, const Mask* m, bool full,
+                     void (*fn)(const float*, const float*, float*, size_t)) {
+  alignas(64) float ia[kChunkLanes], ib[kChunkLanes], tmp[kChunkLanes];
+  const float* a = R + size_t(v.a) * L;
+  const float* b = R + size_t(v.b) * L;
+  if (v.kinds & 1) {
+    std::fill_n(ia, L, v.imm_a);
+    a = ia;
+  }
+  if (v.kinds & 2) {
+    std::fill_n(ib, L, v.imm_b);
+    b = ib;
+  }
+  float* d = R + size_t(v.dst) * L;
+  fn(a, b, full ? d : tmp, L);
+  if (!full)
+    for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? tmp[i] : d[i];
+}
+
 class Executor {
  public:
   Executor(const VmProgram& p, const Budgets& b) : p_(p), budgets_(b) {}
@@ -264,8 +284,8 @@ bool Executor::exec(Frame& fr, const VInst& v, const Mask* m, bool full, Runtime
     case Op::Mod: binary(v, R, L, m, full, [](float a, float b) { return M::mod(a, b); }); return true;
     case Op::Min: binary(v, R, L, m, full, [](float a, float b) { return M::min(a, b); }); return true;
     case Op::Max: binary(v, R, L, m, full, [](float a, float b) { return M::max(a, b); }); return true;
-    case Op::Pow: binary(v, R, L, m, full, [](float a, float b) { return M::pow(a, b); }); return true;
-    case Op::Atan2: binary(v, R, L, m, full, [](float a, float b) { return M::atan2(a, b); }); return true;
+    case Op::Pow: batched2(v, R, L, m, full, M::FS_ISA::pow_batch); return true;
+    case Op::Atan2: batched2(v, R, L, m, full, M::FS_ISA::atan2_batch); return true;
     case Op::Eq: binary(v, R, L, m, full, [](float a, float b) { return M::eq(a, b); }); return true;
     case Op::Ne: binary(v, R, L, m, full, [](float a, float b) { return M::ne(a, b); }); return true;
     case Op::Lt: binary(v, R, L, m, full, [](float a, float b) { return M::lt(a, b); }); return true;
@@ -281,14 +301,14 @@ bool Executor::exec(Frame& fr, const VInst& v, const Mask* m, bool full, Runtime
     case Op::Sign: unary(v, R, L, m, full, [](float a) { return M::sign(a); }); return true;
     case Op::Not: unary(v, R, L, m, full, [](float a) { return M::not_(a); }); return true;
     case Op::Truth: unary(v, R, L, m, full, [](float a) { return M::truth(a); }); return true;
-    case Op::Log10: unary(v, R, L, m, full, [](float a) { return M::log10(a); }); return true;
-    case Op::Tan: unary(v, R, L, m, full, [](float a) { return M::tan(a); }); return true;
-    case Op::Asin: unary(v, R, L, m, full, [](float a) { return M::asin(a); }); return true;
-    case Op::Acos: unary(v, R, L, m, full, [](float a) { return M::acos(a); }); return true;
-    case Op::Atan: unary(v, R, L, m, full, [](float a) { return M::atan(a); }); return true;
-    case Op::Sinh: unary(v, R, L, m, full, [](float a) { return M::sinh(a); }); return true;
-    case Op::Cosh: unary(v, R, L, m, full, [](float a) { return M::cosh(a); }); return true;
-    case Op::Tanh: unary(v, R, L, m, full, [](float a) { return M::tanh(a); }); return true;
+    case Op::Log10: batched(v, R, L, m, full, M::FS_ISA::log10_batch); return true;
+    case Op::Tan: batched(v, R, L, m, full, M::FS_ISA::tan_batch); return true;
+    case Op::Asin: batched(v, R, L, m, full, M::FS_ISA::asin_batch); return true;
+    case Op::Acos: batched(v, R, L, m, full, M::FS_ISA::acos_batch); return true;
+    case Op::Atan: batched(v, R, L, m, full, M::FS_ISA::atan_batch); return true;
+    case Op::Sinh: batched(v, R, L, m, full, M::FS_ISA::sinh_batch); return true;
+    case Op::Cosh: batched(v, R, L, m, full, M::FS_ISA::cosh_batch); return true;
+    case Op::Tanh: batched(v, R, L, m, full, M::FS_ISA::tanh_batch); return true;
     case Op::Sin: batched(v, R, L, m, full, M::FS_ISA::sin_batch); return true;
     case Op::Cos: batched(v, R, L, m, full, M::FS_ISA::cos_batch); return true;
     case Op::Exp: batched(v, R, L, m, full, M::FS_ISA::exp_batch); return true;
@@ -379,24 +399,27 @@ bool Executor::lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err)
 }
 
 // A user call for lane i runs the callee alone (one lane): recursion never diverges a batch.
+// Only calls of recursive functions count against the depth budget (others are bounded by the
+// program text, and the optimiser inlines them).
 bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
   LaneEnv& env = *fr.env[i];
-  if (env.depth + 1 > budgets_.max_call_depth) {
+  const VmFunction& callee = p_.functions[v.c];
+  if (callee.recursive && env.depth + 1 > budgets_.max_call_depth) {
     err = {"call depth budget exceeded: more than " + std::to_string(budgets_.max_call_depth) + " nested calls", v.line};
     return false;
   }
-  const VmFunction& callee = p_.functions[v.c];
   std::vector<float> regs(std::max<uint32_t>(callee.num_regs, 1));
   Frame sub{&callee, regs.data(), 1, fr.env + i, fr.gmem + i, fr.gstride, {}, {}};
   init_frame(sub);
   const auto& args = fr.f->lists[v.aux];
   for (size_t k = 0; k < args.size(); ++k)
     if (callee.param_regs[k] != kNoReg) regs[callee.param_regs[k]] = fr.regs[size_t(args[k]) * fr.lanes + i];
-  ++env.depth;
+  uint32_t step = callee.recursive ? 1 : 0;
+  env.depth += step;
   std::vector<Mask> one(1, ~Mask{0});
   float result = __builtin_nanf("");
   bool ok = run(sub, one, nullptr, 0, &result, err);
-  --env.depth;
+  env.depth -= step;
   fr.regs[size_t(v.dst) * fr.lanes + i] = result;
   return ok;
 }

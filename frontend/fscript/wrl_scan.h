@@ -19,6 +19,12 @@ bool is_fscript_field(const std::string& name);
 
 std::vector<EmbeddedScript> scan_wrl(const std::string& text);
 
+// The affine fields of FTransform (translation, scale, center, rotation, scaleOrientation) hold
+// several expressions: separated by commas ("0.5*t, 0, 0"), or by white space when each is a
+// single token ("1 0 0"). Returns the components with their own positions.
+bool is_affine_field(const std::string& name);
+std::vector<EmbeddedScript> split_components(const EmbeddedScript& e);
+
 // The lines of a file, for carets under positions inside embedded strings.
 std::vector<std::string> split_lines(const std::string& text);
 

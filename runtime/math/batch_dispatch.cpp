@@ -16,5 +16,24 @@ FS_BATCH_DISPATCH(sin_batch)
 FS_BATCH_DISPATCH(cos_batch)
 FS_BATCH_DISPATCH(exp_batch)
 FS_BATCH_DISPATCH(log_batch)
+FS_BATCH_DISPATCH(tan_batch)
+FS_BATCH_DISPATCH(asin_batch)
+FS_BATCH_DISPATCH(acos_batch)
+FS_BATCH_DISPATCH(atan_batch)
+FS_BATCH_DISPATCH(sinh_batch)
+FS_BATCH_DISPATCH(cosh_batch)
+FS_BATCH_DISPATCH(tanh_batch)
+FS_BATCH_DISPATCH(log10_batch)
+
+#define FS_BATCH2_DISPATCH(name)                                          \
+  void name(const float* a, const float* b, float* out, size_t n) {       \
+    switch (active_isa()) {                                               \
+      case Isa::Base: return isa_base::name(a, b, out, n);                \
+      case Isa::Avx2: return isa_avx2::name(a, b, out, n);                \
+      case Isa::Avx512: return isa_avx512::name(a, b, out, n);            \
+    }                                                                     \
+  }
+FS_BATCH2_DISPATCH(pow_batch)
+FS_BATCH2_DISPATCH(atan2_batch)
 
 }  // namespace fscript::math

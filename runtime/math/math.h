@@ -67,11 +67,22 @@ float noise(float x, float y, float z);  // Ken Perlin's improved noise, in [-1,
 long array_index(float a, long length);
 
 // ---- batch twins for the vectorised paths: out[i] = f(a[i]) for i < n ----
-// sin, cos, exp and log use SIMD-friendly polynomial code (auto-vectorised: 4 lanes SSE,
-// 8 lanes when built for AVX2); the others loop over the scalar definition.
+// Vectorised lane code, compiled per ISA (isa.h): 4 lanes SSE2, 8 AVX2, 16 AVX-512. sin, cos, exp
+// and log evaluate float polynomials after a double-precision reduction (within 2 ulp of the
+// scalar definition); the others compute in double and round once (within 1 ulp).
 void sin_batch(const float* a, float* out, size_t n);
 void cos_batch(const float* a, float* out, size_t n);
 void exp_batch(const float* a, float* out, size_t n);
 void log_batch(const float* a, float* out, size_t n);
+void tan_batch(const float* a, float* out, size_t n);
+void asin_batch(const float* a, float* out, size_t n);
+void acos_batch(const float* a, float* out, size_t n);
+void atan_batch(const float* a, float* out, size_t n);
+void sinh_batch(const float* a, float* out, size_t n);
+void cosh_batch(const float* a, float* out, size_t n);
+void tanh_batch(const float* a, float* out, size_t n);
+void log10_batch(const float* a, float* out, size_t n);
+void pow_batch(const float* a, const float* b, float* out, size_t n);
+void atan2_batch(const float* y, const float* x, float* out, size_t n);
 
 }  // namespace fscript::math

@@ -156,7 +156,13 @@ bool check_embedded(const std::string& path, const std::vector<std::string>& lin
 int check_wrl(const std::string& path, const std::string& text, frontend::DiagnosticSink& diag) {
   std::vector<std::string> lines = frontend::split_lines(text);
   bool ok = true;
-  for (const auto& e : frontend::scan_wrl(text)) ok &= check_embedded(path, lines, e, diag);
+  for (const auto& e : frontend::scan_wrl(text)) {
+    if (!frontend::is_affine_field(e.field)) {
+      ok &= check_embedded(path, lines, e, diag);
+      continue;
+    }
+    for (const auto& c : frontend::split_components(e)) ok &= check_embedded(path, lines, c, diag);
+  }
   return ok ? kExitOk : kExitInput;
 }
 

@@ -10,3 +10,8 @@ function ok_depth(n) { if (n <= 0) return 0; return 1 + ok_depth(n - 1); }
 // run: big() error: sizes must be whole numbers from 0 to the budget of 100
 // run: ok_loop() == 500
 // run: ok_depth(40) == 40
+function chain3(x) { return chain2(x) + 1; }
+function chain2(x) { return chain1(x) + 1; }
+function chain1(x) { return x; }
+// Non-recursive calls never count against the depth budget, optimised (inlined) or not.
+// run: chain3(1) == 3

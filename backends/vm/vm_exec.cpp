@@ -142,6 +142,7 @@ class Executor {
  private:
   bool run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, size_t base, float* result, RuntimeError& err);
   bool exec(Frame& fr, const VInst& v, const Mask* m, bool full, RuntimeError& err);
+  bool exec_one(Frame& fr, const VInst& v, RuntimeError& err);
   bool lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err);
   bool call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err);
   bool array_slot(Frame& fr, const VInst& v, uint32_t i, int64_t*& off, int64_t*& len, std::string& name);
@@ -181,7 +182,7 @@ bool Executor::run_chunk(const float* const* in, float* const* out, size_t base,
   if (k.blocks.size() == 1) {  // straight-line kernel: one pass over the code, all lanes present
     const VBlock& vb = k.blocks[0];
     for (uint32_t i = vb.begin; i < vb.end; ++i)
-      if (!exec(fr, k.code[i], all.data(), true, err)) return false;
+      if (!(L == 1 ? exec_one(fr, k.code[i], err) : exec(fr, k.code[i], all.data(), true, err))) return false;
     for (size_t o = 0; o < vb.results.size(); ++o)
       std::memcpy(out[o] + base, fr.regs + size_t(vb.results[o]) * L, L * sizeof(float));
     return true;
@@ -233,8 +234,13 @@ bool Executor::run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, 
     uint32_t present = count[b];
     count[b] = 0;
     const VBlock& vb = f.blocks[b];
-    for (uint32_t k = vb.begin; k < vb.end; ++k)
-      if (!exec(fr, f.code[k], m.data(), full, err)) return false;
+    if (L == 1) {
+      for (uint32_t k = vb.begin; k < vb.end; ++k)
+        if (!exec_one(fr, f.code[k], err)) return false;
+    } else {
+      for (uint32_t k = vb.begin; k < vb.end; ++k)
+        if (!exec(fr, f.code[k], m.data(), full, err)) return false;
+    }
     size_t next = b + 1;
     switch (vb.term) {
       case Op::Jump:
@@ -325,6 +331,64 @@ bool Executor::exec(Frame& fr, const VInst& v, const Mask* m, bool full, Runtime
       return true;  // filled when the frame starts
     case Op::Const: case Op::Phi: case Op::Jump: case Op::Branch: case Op::Ret:
       return true;  // never emitted as instructions
+  }
+  return true;
+}
+
+// One lane (the one-point path and recursive calls): plain scalar code, no masks. Transcendentals
+// go through the same batch functions (n = 1), so a point gives the same bits either way.
+bool Executor::exec_one(Frame& fr, const VInst& v, RuntimeError& err) {
+  float* R = fr.regs;
+  namespace M = fscript::math;
+  namespace I = fscript::math::FS_ISA;
+  const float a = (v.kinds & 1) ? v.imm_a : (v.a != kNoReg ? R[v.a] : 0.0f);
+  const float b = (v.kinds & 2) ? v.imm_b : (v.b != kNoReg ? R[v.b] : 0.0f);
+  float* d = v.dst != kNoReg ? &R[v.dst] : nullptr;
+  switch (v.op) {
+    case Op::Add: *d = a + b; return true;
+    case Op::Sub: *d = a - b; return true;
+    case Op::Mul: *d = a * b; return true;
+    case Op::Div: *d = a / b; return true;
+    case Op::Mod: *d = M::mod(a, b); return true;
+    case Op::Min: *d = M::min(a, b); return true;
+    case Op::Max: *d = M::max(a, b); return true;
+    case Op::Eq: *d = M::eq(a, b); return true;
+    case Op::Ne: *d = M::ne(a, b); return true;
+    case Op::Lt: *d = M::lt(a, b); return true;
+    case Op::Le: *d = M::le(a, b); return true;
+    case Op::Gt: *d = M::gt(a, b); return true;
+    case Op::Ge: *d = M::ge(a, b); return true;
+    case Op::Neg: *d = -a; return true;
+    case Op::Abs: *d = M::abs(a); return true;
+    case Op::Sqrt: *d = M::sqrt(a); return true;
+    case Op::Floor: *d = M::floor(a); return true;
+    case Op::Ceil: *d = M::ceil(a); return true;
+    case Op::Round: *d = M::round(a); return true;
+    case Op::Sign: *d = M::sign(a); return true;
+    case Op::Not: *d = M::not_(a); return true;
+    case Op::Truth: *d = M::truth(a); return true;
+    case Op::Clamp: *d = M::clamp(a, b, R[v.c]); return true;
+    case Op::Select: *d = M::select(a, b, R[v.c]); return true;
+    case Op::Noise: *d = M::noise(a, b, R[v.c]); return true;
+    case Op::Pow: I::pow_batch(&a, &b, d, 1); return true;
+    case Op::Atan2: I::atan2_batch(&a, &b, d, 1); return true;
+    case Op::Sin: I::sin_batch(&a, d, 1); return true;
+    case Op::Cos: I::cos_batch(&a, d, 1); return true;
+    case Op::Tan: I::tan_batch(&a, d, 1); return true;
+    case Op::Exp: I::exp_batch(&a, d, 1); return true;
+    case Op::Log: I::log_batch(&a, d, 1); return true;
+    case Op::Log10: I::log10_batch(&a, d, 1); return true;
+    case Op::Asin: I::asin_batch(&a, d, 1); return true;
+    case Op::Acos: I::acos_batch(&a, d, 1); return true;
+    case Op::Atan: I::atan_batch(&a, d, 1); return true;
+    case Op::Sinh: I::sinh_batch(&a, d, 1); return true;
+    case Op::Cosh: I::cosh_batch(&a, d, 1); return true;
+    case Op::Tanh: I::tanh_batch(&a, d, 1); return true;
+    case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
+    case Op::Call: case Op::Tick:
+      return lane_op(fr, v, 0, err);
+    case Op::Param: case Op::Const: case Op::Phi: case Op::Jump: case Op::Branch: case Op::Ret:
+      return true;
   }
   return true;
 }

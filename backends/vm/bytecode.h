@@ -19,7 +19,7 @@
 
 namespace fscript::vm {
 
-constexpr uint32_t kChunkLanes = 256;
+constexpr uint32_t kChunkLanes = 512;
 constexpr uint32_t kNoReg = UINT32_MAX;
 
 struct VInst {

@@ -42,8 +42,9 @@ struct LaneEnv {
 // A function activation over `lanes` lanes.
 struct Frame {
   const VmFunction* f;
-  float* regs;       // f->num_regs * lanes
-  uint32_t lanes;
+  float* regs;       // register r of lane i is regs[r * stride + i]
+  uint32_t lanes;    // lanes present in this frame (the chunk's points, or 1)
+  uint32_t stride;   // K for the batch frame, 1 for a one-lane call frame
   LaneEnv** env;     // env[i]: lane i's state
   float* gmem;       // global g of lane i is gmem[g * gstride + i]
   uint32_t gstride;
@@ -56,82 +57,99 @@ std::string fmt(float v) {
   return b;
 }
 
+// Batch frames keep every register as kChunkLanes lanes, 64-byte aligned, and the lane loops
+// below always run all kChunkLanes lanes (lanes past the chunk's end compute garbage that is never
+// read): a fixed trip count and known alignment give clean vector code with no peeling.
+constexpr uint32_t K = kChunkLanes;
+static_assert(K % 16 == 0, "whole AVX-512 vectors per register");
+
+inline float* reg(float* R, uint32_t r) { return static_cast<float*>(__builtin_assume_aligned(R + size_t(r) * K, 64)); }
+
 template <class F>
-inline void binary(const VInst& v, float* R, uint32_t L, const Mask* m, bool full, F f) {
-  float* __restrict d = R + size_t(v.dst) * L;
-  const float* __restrict a = (v.kinds & 1) ? nullptr : R + size_t(v.a) * L;
-  const float* __restrict b = (v.kinds & 2) ? nullptr : R + size_t(v.b) * L;
+inline void binary(const VInst& v, float* R, const Mask* m, bool full, F f) {
+  float* __restrict d = reg(R, v.dst);
+  const float* __restrict a = (v.kinds & 1) ? nullptr : reg(R, v.a);
+  const float* __restrict b = (v.kinds & 2) ? nullptr : reg(R, v.b);
   const float ia = v.imm_a, ib = v.imm_b;
   switch (v.kinds) {
     case 0:
-      if (full) for (uint32_t i = 0; i < L; ++i) d[i] = f(a[i], b[i]);
-      else for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(a[i], b[i]) : d[i];
+      if (full) for (uint32_t i = 0; i < K; ++i) d[i] = f(a[i], b[i]);
+      else for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(a[i], b[i]) : d[i];
       break;
     case 1:
-      if (full) for (uint32_t i = 0; i < L; ++i) d[i] = f(ia, b[i]);
-      else for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(ia, b[i]) : d[i];
+      if (full) for (uint32_t i = 0; i < K; ++i) d[i] = f(ia, b[i]);
+      else for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(ia, b[i]) : d[i];
       break;
     case 2:
-      if (full) for (uint32_t i = 0; i < L; ++i) d[i] = f(a[i], ib);
-      else for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(a[i], ib) : d[i];
+      if (full) for (uint32_t i = 0; i < K; ++i) d[i] = f(a[i], ib);
+      else for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(a[i], ib) : d[i];
       break;
     default:
-      for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(ia, ib) : d[i];
+      for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(ia, ib) : d[i];
       break;
   }
 }
 
 template <class F>
-inline void unary(const VInst& v, float* R, uint32_t L, const Mask* m, bool full, F f) {
-  float* __restrict d = R + size_t(v.dst) * L;
-  const float* __restrict a = R + size_t(v.a) * L;
-  if (full) for (uint32_t i = 0; i < L; ++i) d[i] = f(a[i]);
-  else for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(a[i]) : d[i];
+inline void unary(const VInst& v, float* R, const Mask* m, bool full, F f) {
+  float* __restrict d = reg(R, v.dst);
+  const float* __restrict a = reg(R, v.a);
+  if (full) for (uint32_t i = 0; i < K; ++i) d[i] = f(a[i]);
+  else for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(a[i]) : d[i];
 }
 
 template <class F>
-inline void ternary(const VInst& v, float* R, uint32_t L, const Mask* m, bool full, F f) {
-  float* __restrict d = R + size_t(v.dst) * L;
-  const float* a = R + size_t(v.a) * L;
-  const float* b = R + size_t(v.b) * L;
-  const float* c = R + size_t(v.c) * L;
-  if (full) for (uint32_t i = 0; i < L; ++i) d[i] = f(a[i], b[i], c[i]);
-  else for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? f(a[i], b[i], c[i]) : d[i];
+inline void ternary(const VInst& v, float* R, const Mask* m, bool full, F f) {
+  float* __restrict d = reg(R, v.dst);
+  const float* a = reg(R, v.a);
+  const float* b = reg(R, v.b);
+  const float* c = reg(R, v.c);
+  if (full) for (uint32_t i = 0; i < K; ++i) d[i] = f(a[i], b[i], c[i]);
+  else for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(a[i], b[i], c[i]) : d[i];
 }
 
 // A transcendental with a SIMD batch twin: compute every lane, keep the present ones.
-inline void batched(const VInst& v, float* R, uint32_t L, const Mask* m, bool full,
-                    void (*fn)(const float*, float*, size_t)) {
-  float* d = R + size_t(v.dst) * L;
-  const float* a = R + size_t(v.a) * L;
+inline void batched(const VInst& v, float* R, const Mask* m, bool full, void (*fn)(const float*, float*, size_t)) {
+  float* d = reg(R, v.dst);
+  const float* a = reg(R, v.a);
   if (full) {
-    fn(a, d, L);
+    fn(a, d, K);
     return;
   }
-  alignas(64) float tmp[kChunkLanes];
-  fn(a, tmp, L);
-  for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? tmp[i] : d[i];
+  alignas(64) float tmp[K];
+  fn(a, tmp, K);
+  for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? tmp[i] : d[i];
 }
 
 // The same for a binary one; an immediate operand is broadcast into a scratch lane vector.
-inline void batched2(const VInst& v, float* R, uint32_t L, const Mask* m, bool full,
+inline void batched2(const VInst& v, float* R, const Mask* m, bool full,
                      void (*fn)(const float*, const float*, float*, size_t)) {
-  alignas(64) float ia[kChunkLanes], ib[kChunkLanes], tmp[kChunkLanes];
-  const float* a = R + size_t(v.a) * L;
-  const float* b = R + size_t(v.b) * L;
-  if (v.kinds & 1) {
-    std::fill_n(ia, L, v.imm_a);
-    a = ia;
-  }
-  if (v.kinds & 2) {
-    std::fill_n(ib, L, v.imm_b);
-    b = ib;
-  }
-  float* d = R + size_t(v.dst) * L;
-  fn(a, b, full ? d : tmp, L);
+  alignas(64) float ia[K], ib[K], tmp[K];
+  const float* a = (v.kinds & 1) ? ia : reg(R, v.a);
+  const float* b = (v.kinds & 2) ? ib : reg(R, v.b);
+  if (v.kinds & 1) std::fill_n(ia, K, v.imm_a);
+  if (v.kinds & 2) std::fill_n(ib, K, v.imm_b);
+  float* d = reg(R, v.dst);
+  fn(a, b, full ? d : tmp, K);
   if (!full)
-    for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? tmp[i] : d[i];
+    for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? tmp[i] : d[i];
 }
+
+// A 64-byte aligned, growable scratch buffer (one per thread).
+struct AlignedFloats {
+  float* p = nullptr;
+  size_t n = 0;
+  ~AlignedFloats() { std::free(p); }
+  float* get(size_t want) {
+    if (want > n) {
+      std::free(p);
+      n = (want + 15) / 16 * 16;
+      p = static_cast<float*>(std::aligned_alloc(64, n * sizeof(float)));
+      std::fill_n(p, n, 0.0f);
+    }
+    return p;
+  }
+};
 
 class Executor {
  public:
@@ -149,7 +167,7 @@ class Executor {
   void edge_moves(Frame& fr, const Edge& e, const Mask* m);
   static void init_frame(Frame& fr) {
     const VmFunction& f = *fr.f;
-    for (auto [r, v] : f.consts) std::fill_n(fr.regs + size_t(r) * fr.lanes, fr.lanes, v);
+    for (auto [r, v] : f.consts) std::fill_n(fr.regs + size_t(r) * fr.stride, fr.stride, v);
     fr.arr_off.assign(size_t(f.num_arrays) * fr.lanes, -1);
     fr.arr_len.assign(size_t(f.num_arrays) * fr.lanes, 0);
   }
@@ -161,46 +179,49 @@ class Executor {
 bool Executor::run_chunk(const float* const* in, float* const* out, size_t base, uint32_t L, RuntimeError& err) {
   thread_local std::vector<LaneEnv> envs;
   thread_local std::vector<LaneEnv*> env_ptrs;
-  thread_local std::vector<float> regs, gmem;
-  thread_local std::vector<Mask> all;
+  thread_local std::vector<float> gmem;
+  thread_local AlignedFloats regs;
+  thread_local std::vector<Mask> start;
   const VmFunction& k = p_.functions[p_.kernel];
   if (p_.needs_lane_state) {
-    envs.resize(kChunkLanes);
-    env_ptrs.resize(kChunkLanes);
+    envs.resize(K);
+    env_ptrs.resize(K);
     for (uint32_t i = 0; i < L; ++i) {
       envs[i].reset(p_.num_global_arrays);
       env_ptrs[i] = &envs[i];
     }
     gmem.assign(size_t(p_.num_globals) * L, __builtin_nanf(""));
   }
-  regs.resize(size_t(k.num_regs) * L);
-  Frame fr{&k, regs.data(), L, env_ptrs.data(), gmem.data(), L, {}, {}};
+  // One point (eval) runs as a one-lane frame with scalar code; a batch uses full K-lane registers.
+  uint32_t S = L == 1 ? 1 : K;
+  Frame fr{&k, regs.get(size_t(std::max<uint32_t>(k.num_regs, 1)) * S), L, S, env_ptrs.data(), gmem.data(), L, {}, {}};
   init_frame(fr);
   for (uint32_t p = 0; p < k.num_params; ++p)
-    if (k.param_regs[p] != kNoReg) std::memcpy(fr.regs + size_t(k.param_regs[p]) * L, in[p] + base, L * sizeof(float));
-  all.assign(L, ~Mask{0});
+    if (k.param_regs[p] != kNoReg) std::memcpy(fr.regs + size_t(k.param_regs[p]) * S, in[p] + base, L * sizeof(float));
+  start.assign(S, 0);
+  std::fill_n(start.begin(), L, ~Mask{0});
   if (k.blocks.size() == 1) {  // straight-line kernel: one pass over the code, all lanes present
     const VBlock& vb = k.blocks[0];
     for (uint32_t i = vb.begin; i < vb.end; ++i)
-      if (!(L == 1 ? exec_one(fr, k.code[i], err) : exec(fr, k.code[i], all.data(), true, err))) return false;
+      if (!(S == 1 ? exec_one(fr, k.code[i], err) : exec(fr, k.code[i], start.data(), true, err))) return false;
     for (size_t o = 0; o < vb.results.size(); ++o)
-      std::memcpy(out[o] + base, fr.regs + size_t(vb.results[o]) * L, L * sizeof(float));
+      std::memcpy(out[o] + base, fr.regs + size_t(vb.results[o]) * S, L * sizeof(float));
     return true;
   }
-  return run(fr, all, out, base, nullptr, err);
+  return run(fr, start, out, base, nullptr, err);
 }
 
 void Executor::edge_moves(Frame& fr, const Edge& e, const Mask* m) {
   if (e.moves.empty()) return;
-  uint32_t L = fr.lanes;
+  uint32_t S = fr.stride;
   thread_local std::vector<float> tmp;
-  tmp.resize(e.moves.size() * L);
+  tmp.resize(e.moves.size() * S);
   for (size_t k = 0; k < e.moves.size(); ++k)
-    std::memcpy(tmp.data() + k * L, fr.regs + size_t(e.moves[k].src) * L, L * sizeof(float));
+    std::memcpy(tmp.data() + k * S, fr.regs + size_t(e.moves[k].src) * S, S * sizeof(float));
   for (size_t k = 0; k < e.moves.size(); ++k) {
-    float* d = fr.regs + size_t(e.moves[k].dst) * L;
-    const float* s = tmp.data() + k * L;
-    for (uint32_t i = 0; i < L; ++i) d[i] = m[i] ? s[i] : d[i];
+    float* d = fr.regs + size_t(e.moves[k].dst) * S;
+    const float* s = tmp.data() + k * S;
+    for (uint32_t i = 0; i < S; ++i) d[i] = m[i] ? s[i] : d[i];
   }
 }
 
@@ -209,7 +230,7 @@ void Executor::edge_moves(Frame& fr, const Edge& e, const Mask* m) {
 bool Executor::run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, size_t base, float* result,
                    RuntimeError& err) {
   const VmFunction& f = *fr.f;
-  uint32_t L = fr.lanes;
+  uint32_t L = fr.stride;  // mask vectors cover every lane slot; slots past the chunk stay 0
   size_t nb = f.blocks.size();
   std::vector<Mask> pending(nb * L, 0);
   std::vector<uint32_t> count(nb, 0);
@@ -230,11 +251,11 @@ bool Executor::run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, 
     }
     std::copy_n(pending.begin() + static_cast<long>(b * L), L, m.begin());
     std::fill_n(pending.begin() + static_cast<long>(b * L), L, 0);
-    bool full = count[b] == L;
+    bool full = count[b] == fr.lanes;
     uint32_t present = count[b];
     count[b] = 0;
     const VBlock& vb = f.blocks[b];
-    if (L == 1) {
+    if (fr.stride == 1) {
       for (uint32_t k = vb.begin; k < vb.end; ++k)
         if (!exec_one(fr, f.code[k], err)) return false;
     } else {
@@ -262,7 +283,7 @@ bool Executor::run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, 
         break;
       }
       case Op::Ret:
-        for (uint32_t i = 0; i < L; ++i) {
+        for (uint32_t i = 0; i < fr.lanes; ++i) {
           if (!m[i]) continue;
           for (size_t o = 0; o < vb.results.size(); ++o) {
             float v = fr.regs[size_t(vb.results[o]) * L + i];
@@ -283,45 +304,45 @@ bool Executor::exec(Frame& fr, const VInst& v, const Mask* m, bool full, Runtime
   uint32_t L = fr.lanes;
   namespace M = fscript::math;
   switch (v.op) {
-    case Op::Add: binary(v, R, L, m, full, [](float a, float b) { return a + b; }); return true;
-    case Op::Sub: binary(v, R, L, m, full, [](float a, float b) { return a - b; }); return true;
-    case Op::Mul: binary(v, R, L, m, full, [](float a, float b) { return a * b; }); return true;
-    case Op::Div: binary(v, R, L, m, full, [](float a, float b) { return a / b; }); return true;
-    case Op::Mod: binary(v, R, L, m, full, [](float a, float b) { return M::mod(a, b); }); return true;
-    case Op::Min: binary(v, R, L, m, full, [](float a, float b) { return M::min(a, b); }); return true;
-    case Op::Max: binary(v, R, L, m, full, [](float a, float b) { return M::max(a, b); }); return true;
-    case Op::Pow: batched2(v, R, L, m, full, M::FS_ISA::pow_batch); return true;
-    case Op::Atan2: batched2(v, R, L, m, full, M::FS_ISA::atan2_batch); return true;
-    case Op::Eq: binary(v, R, L, m, full, [](float a, float b) { return M::eq(a, b); }); return true;
-    case Op::Ne: binary(v, R, L, m, full, [](float a, float b) { return M::ne(a, b); }); return true;
-    case Op::Lt: binary(v, R, L, m, full, [](float a, float b) { return M::lt(a, b); }); return true;
-    case Op::Le: binary(v, R, L, m, full, [](float a, float b) { return M::le(a, b); }); return true;
-    case Op::Gt: binary(v, R, L, m, full, [](float a, float b) { return M::gt(a, b); }); return true;
-    case Op::Ge: binary(v, R, L, m, full, [](float a, float b) { return M::ge(a, b); }); return true;
-    case Op::Neg: unary(v, R, L, m, full, [](float a) { return M::neg(a); }); return true;
-    case Op::Abs: unary(v, R, L, m, full, [](float a) { return M::abs(a); }); return true;
-    case Op::Sqrt: unary(v, R, L, m, full, [](float a) { return M::sqrt(a); }); return true;
-    case Op::Floor: unary(v, R, L, m, full, [](float a) { return M::floor(a); }); return true;
-    case Op::Ceil: unary(v, R, L, m, full, [](float a) { return M::ceil(a); }); return true;
-    case Op::Round: unary(v, R, L, m, full, [](float a) { return M::round(a); }); return true;
-    case Op::Sign: unary(v, R, L, m, full, [](float a) { return M::sign(a); }); return true;
-    case Op::Not: unary(v, R, L, m, full, [](float a) { return M::not_(a); }); return true;
-    case Op::Truth: unary(v, R, L, m, full, [](float a) { return M::truth(a); }); return true;
-    case Op::Log10: batched(v, R, L, m, full, M::FS_ISA::log10_batch); return true;
-    case Op::Tan: batched(v, R, L, m, full, M::FS_ISA::tan_batch); return true;
-    case Op::Asin: batched(v, R, L, m, full, M::FS_ISA::asin_batch); return true;
-    case Op::Acos: batched(v, R, L, m, full, M::FS_ISA::acos_batch); return true;
-    case Op::Atan: batched(v, R, L, m, full, M::FS_ISA::atan_batch); return true;
-    case Op::Sinh: batched(v, R, L, m, full, M::FS_ISA::sinh_batch); return true;
-    case Op::Cosh: batched(v, R, L, m, full, M::FS_ISA::cosh_batch); return true;
-    case Op::Tanh: batched(v, R, L, m, full, M::FS_ISA::tanh_batch); return true;
-    case Op::Sin: batched(v, R, L, m, full, M::FS_ISA::sin_batch); return true;
-    case Op::Cos: batched(v, R, L, m, full, M::FS_ISA::cos_batch); return true;
-    case Op::Exp: batched(v, R, L, m, full, M::FS_ISA::exp_batch); return true;
-    case Op::Log: batched(v, R, L, m, full, M::FS_ISA::log_batch); return true;
-    case Op::Clamp: ternary(v, R, L, m, full, [](float a, float b, float c) { return M::clamp(a, b, c); }); return true;
-    case Op::Select: ternary(v, R, L, m, full, [](float a, float b, float c) { return M::select(a, b, c); }); return true;
-    case Op::Noise: ternary(v, R, L, m, full, [](float a, float b, float c) { return M::noise(a, b, c); }); return true;
+    case Op::Add: binary(v, R, m, full, [](float a, float b) { return a + b; }); return true;
+    case Op::Sub: binary(v, R, m, full, [](float a, float b) { return a - b; }); return true;
+    case Op::Mul: binary(v, R, m, full, [](float a, float b) { return a * b; }); return true;
+    case Op::Div: binary(v, R, m, full, [](float a, float b) { return a / b; }); return true;
+    case Op::Mod: binary(v, R, m, full, [](float a, float b) { return M::mod(a, b); }); return true;
+    case Op::Min: binary(v, R, m, full, [](float a, float b) { return M::min(a, b); }); return true;
+    case Op::Max: binary(v, R, m, full, [](float a, float b) { return M::max(a, b); }); return true;
+    case Op::Pow: batched2(v, R, m, full, M::FS_ISA::pow_batch); return true;
+    case Op::Atan2: batched2(v, R, m, full, M::FS_ISA::atan2_batch); return true;
+    case Op::Eq: binary(v, R, m, full, [](float a, float b) { return M::eq(a, b); }); return true;
+    case Op::Ne: binary(v, R, m, full, [](float a, float b) { return M::ne(a, b); }); return true;
+    case Op::Lt: binary(v, R, m, full, [](float a, float b) { return M::lt(a, b); }); return true;
+    case Op::Le: binary(v, R, m, full, [](float a, float b) { return M::le(a, b); }); return true;
+    case Op::Gt: binary(v, R, m, full, [](float a, float b) { return M::gt(a, b); }); return true;
+    case Op::Ge: binary(v, R, m, full, [](float a, float b) { return M::ge(a, b); }); return true;
+    case Op::Neg: unary(v, R, m, full, [](float a) { return M::neg(a); }); return true;
+    case Op::Abs: unary(v, R, m, full, [](float a) { return M::abs(a); }); return true;
+    case Op::Sqrt: unary(v, R, m, full, [](float a) { return M::sqrt(a); }); return true;
+    case Op::Floor: unary(v, R, m, full, [](float a) { return M::floor(a); }); return true;
+    case Op::Ceil: unary(v, R, m, full, [](float a) { return M::ceil(a); }); return true;
+    case Op::Round: unary(v, R, m, full, [](float a) { return M::round(a); }); return true;
+    case Op::Sign: unary(v, R, m, full, [](float a) { return M::sign(a); }); return true;
+    case Op::Not: unary(v, R, m, full, [](float a) { return M::not_(a); }); return true;
+    case Op::Truth: unary(v, R, m, full, [](float a) { return M::truth(a); }); return true;
+    case Op::Log10: batched(v, R, m, full, M::FS_ISA::log10_batch); return true;
+    case Op::Tan: batched(v, R, m, full, M::FS_ISA::tan_batch); return true;
+    case Op::Asin: batched(v, R, m, full, M::FS_ISA::asin_batch); return true;
+    case Op::Acos: batched(v, R, m, full, M::FS_ISA::acos_batch); return true;
+    case Op::Atan: batched(v, R, m, full, M::FS_ISA::atan_batch); return true;
+    case Op::Sinh: batched(v, R, m, full, M::FS_ISA::sinh_batch); return true;
+    case Op::Cosh: batched(v, R, m, full, M::FS_ISA::cosh_batch); return true;
+    case Op::Tanh: batched(v, R, m, full, M::FS_ISA::tanh_batch); return true;
+    case Op::Sin: batched(v, R, m, full, M::FS_ISA::sin_batch); return true;
+    case Op::Cos: batched(v, R, m, full, M::FS_ISA::cos_batch); return true;
+    case Op::Exp: batched(v, R, m, full, M::FS_ISA::exp_batch); return true;
+    case Op::Log: batched(v, R, m, full, M::FS_ISA::log_batch); return true;
+    case Op::Clamp: ternary(v, R, m, full, [](float a, float b, float c) { return M::clamp(a, b, c); }); return true;
+    case Op::Select: ternary(v, R, m, full, [](float a, float b, float c) { return M::select(a, b, c); }); return true;
+    case Op::Noise: ternary(v, R, m, full, [](float a, float b, float c) { return M::noise(a, b, c); }); return true;
     case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
     case Op::Call: case Op::Tick:
       for (uint32_t i = 0; i < L; ++i)
@@ -409,8 +430,8 @@ bool Executor::array_slot(Frame& fr, const VInst& v, uint32_t i, int64_t*& off, 
 
 bool Executor::lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
   float* R = fr.regs;
-  uint32_t L = fr.lanes;
-  auto reg = [&](uint32_t r) -> float& { return R[size_t(r) * L + i]; };
+  uint32_t S = fr.stride;
+  auto reg = [&](uint32_t r) -> float& { return R[size_t(r) * S + i]; };
   LaneEnv& env = *fr.env[i];
   switch (v.op) {
     case Op::GLoad: reg(v.dst) = fr.gmem[size_t(v.aux) * fr.gstride + i]; return true;
@@ -473,18 +494,18 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
     return false;
   }
   std::vector<float> regs(std::max<uint32_t>(callee.num_regs, 1));
-  Frame sub{&callee, regs.data(), 1, fr.env + i, fr.gmem + i, fr.gstride, {}, {}};
+  Frame sub{&callee, regs.data(), 1, 1, fr.env + i, fr.gmem + i, fr.gstride, {}, {}};
   init_frame(sub);
   const auto& args = fr.f->lists[v.aux];
   for (size_t k = 0; k < args.size(); ++k)
-    if (callee.param_regs[k] != kNoReg) regs[callee.param_regs[k]] = fr.regs[size_t(args[k]) * fr.lanes + i];
+    if (callee.param_regs[k] != kNoReg) regs[callee.param_regs[k]] = fr.regs[size_t(args[k]) * fr.stride + i];
   uint32_t step = callee.recursive ? 1 : 0;
   env.depth += step;
   std::vector<Mask> one(1, ~Mask{0});
   float result = __builtin_nanf("");
   bool ok = run(sub, one, nullptr, 0, &result, err);
   env.depth -= step;
-  fr.regs[size_t(v.dst) * fr.lanes + i] = result;
+  fr.regs[size_t(v.dst) * fr.stride + i] = result;
   return ok;
 }
 

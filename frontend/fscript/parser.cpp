@@ -98,7 +98,23 @@ class Parser {
   }
   // Skips to a point where a statement can start; clears panic mode.
   void synchronize() {
+    int depth = 0;  // braces opened while skipping are skipped whole
     while (!at(Tok::Eof)) {
+      if (at(Tok::LBrace)) {
+        ++depth;
+        advance();
+        continue;
+      }
+      if (at(Tok::RBrace) && depth > 0) {
+        --depth;
+        advance();
+        if (depth == 0 && (at(Tok::RBrace) || cur().newline_before)) break;
+        continue;
+      }
+      if (depth > 0) {
+        advance();
+        continue;
+      }
       if (accept(Tok::Semi)) break;
       if (at(Tok::RBrace)) break;
       Tok k = cur().kind;
@@ -552,11 +568,12 @@ class Parser {
   }
 
   Expr* new_array() {
-    Expr* e = prog_->new_expr(ExprKind::NewArray, advance().span);
+    Span start = advance().span;
     if (!at(Tok::Ident) || text(cur().span) != "Array") {
       expected("'Array' after 'new'");
-      return e;
+      return error_expr();
     }
+    Expr* e = prog_->new_expr(ExprKind::NewArray, start);
     advance();
     expect(Tok::LParen, "after 'new Array'");
     e->kids = {at(Tok::RParen) ? prog_->new_expr(ExprKind::Number, cur().span) : expression()};

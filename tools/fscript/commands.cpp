@@ -8,7 +8,9 @@
 #include "backends/vm/vm_backend.h"
 #include "frontend/fscript/formatter.h"
 #include "frontend/fscript/parser.h"
-#include "frontend/fscript/wrl_scan.h"
+#include "frontend/fscript/embedded.h"
+#include "frontend/vrml/scene_scripts.h"
+#include "frontend/vrml/vrml_parser.h"
 #include "ir/passes/passes.h"
 #include "ir/text.h"
 
@@ -154,14 +156,15 @@ bool check_embedded(const std::string& path, const std::vector<std::string>& lin
 }
 
 int check_wrl(const std::string& path, const std::string& text, frontend::DiagnosticSink& diag) {
+  vrml::Scene scene;
+  bool ok = vrml::parse_scene(std::make_unique<frontend::SourceFile>(path, text), diag, scene);
   std::vector<std::string> lines = frontend::split_lines(text);
-  bool ok = true;
-  for (const auto& e : frontend::scan_wrl(text)) {
-    if (!frontend::is_affine_field(e.field)) {
-      ok &= check_embedded(path, lines, e, diag);
+  for (const auto& s : vrml::scene_scripts(scene)) {
+    if (!frontend::is_affine_field(s.script.field)) {
+      ok &= check_embedded(path, lines, s.script, diag);
       continue;
     }
-    for (const auto& c : frontend::split_components(e)) ok &= check_embedded(path, lines, c, diag);
+    for (const auto& c : frontend::split_components(s.script)) ok &= check_embedded(path, lines, c, diag);
   }
   return ok ? kExitOk : kExitInput;
 }

@@ -1,7 +1,6 @@
 #pragma once
-// A light scan of a .wrl file for the FScript texts in FVRML string fields (definition,
-// diffuseColor, operation, ...), with their positions in the .wrl. Enough for `fscript check`
-// until the full VRML97 parser (frontend/vrml) replaces it.
+// FScript texts embedded in .wrl files: a script with its position in the .wrl, the FVRML fields
+// that hold FScript, and the splitting of FTransform's affine fields into components.
 #include <string>
 #include <vector>
 
@@ -14,10 +13,8 @@ struct EmbeddedScript {
   uint32_t col = 1;
 };
 
-// The FVRML fields whose SFString values are FScript (the plug-in's PROTO file).
-bool is_fscript_field(const std::string& name);
-
-std::vector<EmbeddedScript> scan_wrl(const std::string& text);
+// The FVRML fields whose SFString values are FScript (the plug-in's PROTO file), by node type.
+bool is_fscript_field(const std::string& node_type, const std::string& field);
 
 // The affine fields of FTransform (translation, scale, center, rotation, scaleOrientation) hold
 // several expressions: separated by commas ("0.5*t, 0, 0"), or by white space when each is a

@@ -1,0 +1,111 @@
+#pragma once
+// The VRML97 scene graph as read from a file: nodes with their explicitly written fields (defaults
+// come from the node's interface), DEF/USE sharing, PROTO/EXTERNPROTO definitions and ROUTEs.
+// Everything needed to write the file back (frontend/vrml/writer) is kept.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "frontend/source.h"
+
+namespace fscript::vrml {
+
+enum class FieldType : uint8_t {
+#define FS_FIELD_TYPE(N, K, MF) N,
+#include "frontend/vrml/field_types.def"
+};
+
+const char* type_name(FieldType t);
+bool type_from_name(const std::string& name, FieldType& out);
+int numbers_per_element(FieldType t);  // 0: strings, nodes, images
+bool is_multi(FieldType t);
+FieldType single_of(FieldType t);  // MFVec3f -> SFVec3f
+
+enum class Access : uint8_t { Field, ExposedField, EventIn, EventOut };
+const char* access_name(Access a);
+
+struct Node;
+using NodePtr = std::shared_ptr<Node>;
+
+// A field value. Numeric types keep every component flattened in `nums` (SFBool as 0/1, SFImage
+// as width, height, components, pixels...); strings keep the span of each string's contents.
+struct Value {
+  FieldType type = FieldType::SFFloat;
+  std::vector<double> nums;
+  std::vector<std::string> strs;
+  std::vector<frontend::Span> str_spans;
+  std::vector<NodePtr> nodes;  // SFNode: one entry (nullptr for NULL); MFNode: the list
+  frontend::Span span;
+
+  size_t elements() const;  // MF element count (SF: 1)
+};
+
+struct FieldDecl {
+  std::string name;
+  FieldType type = FieldType::SFFloat;
+  Access access = Access::Field;
+  bool has_default = false;  // EXTERNPROTO and eventIn/eventOut declarations have none
+  Value default_value;
+  frontend::Span span;
+};
+
+// A node type's interface: a standard node, an FVRML node, or a PROTO/EXTERNPROTO.
+struct Interface {
+  std::string name;
+  std::vector<FieldDecl> fields;
+  const FieldDecl* find(const std::string& field) const;
+};
+
+struct FieldSlot {
+  std::string name;
+  Value value;
+  std::string is_ref;  // inside a PROTO body: "IS name" (value unused)
+  frontend::Span span;
+};
+
+struct ProtoDef;
+
+struct Node {
+  std::string type;                  // as written: "Transform", "FShape", "MyProto"
+  const Interface* iface = nullptr;  // fields allowed and their defaults
+  const ProtoDef* proto = nullptr;   // a user PROTO instance (expanded by the scene layer)
+  bool fvrml = false;                // one of the six FVRML nodes
+  std::string def_name;
+  std::vector<FieldSlot> fields;     // as written, in order
+  std::vector<FieldDecl> script_decls;  // a Script node's own interface declarations
+  frontend::Span span;
+
+  // The explicit value of `field`, else its default from the interface (nullptr if neither).
+  const Value* get(const std::string& field) const;
+  const FieldSlot* slot(const std::string& field) const;
+};
+
+struct Route {
+  std::string from_node, from_field, to_node, to_field;
+  frontend::Span span;
+};
+
+struct ProtoDef {
+  Interface iface;
+  bool external = false;
+  std::vector<std::string> urls;  // EXTERNPROTO
+  std::vector<NodePtr> body;      // PROTO
+  std::vector<Route> routes;
+  frontend::Span span;
+};
+
+struct Scene {
+  std::unique_ptr<frontend::SourceFile> file;
+  std::vector<NodePtr> roots;
+  std::vector<Route> routes;
+  std::vector<std::unique_ptr<ProtoDef>> protos;
+  std::map<std::string, NodePtr> defs;  // last DEF of each name at the top level
+  std::vector<std::string> header_comment;  // comment lines after the header, kept for the writer
+};
+
+// The standard node interfaces (VRML97 and FVRML), parsed once from nodes_vrml97.wrl.
+const Interface* standard_interface(const std::string& node_type);
+bool is_fvrml_node(const std::string& node_type);
+
+}  // namespace fscript::vrml

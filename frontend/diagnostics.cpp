@@ -10,6 +10,14 @@ void DiagnosticSink::report(const SourceFile& file, Severity sev, Span span, std
   d.pos = file.position(span.begin);
   d.message = std::move(message);
   d.line_text = file.line_text(span.begin);
+  d.caret_col = d.pos.col;
+  // A very long line (a megabyte expression, a minified scene) is shown as a window around the caret.
+  constexpr uint32_t kWindow = 160;
+  if (d.line_text.size() > 2 * kWindow) {
+    uint32_t from = d.caret_col > kWindow ? d.caret_col - kWindow : 1;
+    d.line_text = d.line_text.substr(from - 1, 2 * kWindow);
+    d.caret_col -= from - 1;
+  }
   LineCol end = file.position(span.end > span.begin ? span.end : span.begin + 1);
   d.length = end.line == d.pos.line && end.col > d.pos.col ? end.col - d.pos.col : 1;
   if (sev == Severity::Error) ++errors_;
@@ -41,10 +49,10 @@ std::string render(const Diagnostic& d) {
   if (d.pos.line == 0) return out;
   out += d.line_text + "\n";
   std::string caret;
-  for (uint32_t i = 1; i < d.pos.col && i <= d.line_text.size(); ++i)
+  for (uint32_t i = 1; i < d.caret_col && i <= d.line_text.size(); ++i)
     caret += d.line_text[i - 1] == '\t' ? '\t' : ' ';
   caret += '^';
-  uint32_t room = d.line_text.size() >= d.pos.col ? uint32_t(d.line_text.size()) - d.pos.col + 1 : 1;
+  uint32_t room = d.line_text.size() >= d.caret_col ? uint32_t(d.line_text.size()) - d.caret_col + 1 : 1;
   for (uint32_t i = 1; i < d.length && i < room; ++i) caret += '~';
   out += caret + "\n";
   return out;

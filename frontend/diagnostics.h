@@ -15,7 +15,8 @@ struct Diagnostic {
   std::string path;
   LineCol pos;
   std::string message;
-  std::string line_text;  // the source line, for the caret
+  std::string line_text;  // the source line (a window of it when very long), for the caret
+  uint32_t caret_col = 1; // column of the caret within line_text
   uint32_t length = 1;    // caret underline length
 };
 

@@ -72,7 +72,9 @@ class Parser {
   void skip_one() {
     if (!at(VTok::Eof)) ++pos_;
   }
-  void error(Span s, const std::string& m) { d_.error(f_, s, m); }
+  void error(Span s, const std::string& m) {
+    if (!fatal_) d_.error(f_, s, m);
+  }
   std::string describe(const VToken& t) const {
     switch (t.kind) {
       case VTok::Eof: return "end of file";
@@ -229,7 +231,8 @@ class Parser {
   NodePtr node(Scope& sc, int depth) {
     if (depth > kMaxNodeNesting) {
       error(cur().span, "nodes nested deeper than " + std::to_string(kMaxNodeNesting) + " levels");
-      pos_ = toks_.size() - 1;  // give up on the rest of the file
+      pos_ = toks_.size() - 1;  // give up on the rest of the file, silently
+      fatal_ = true;
       return nullptr;
     }
     if (at_id("USE")) {
@@ -340,6 +343,8 @@ class Parser {
     if (at_id("IS")) {
       slot.is_ref = is_reference(sc, n, name.text, decl->type, name.span);
     } else if (!value(sc, decl->type, slot.value, depth + 1, &n)) {
+      // Skip the rest of the bad value, unless the next token already starts the next field.
+      if (!at(VTok::RBrace) && !(at(VTok::Id) && find_field(n, cur().text))) skip_value();
       return;
     }
     for (auto& s : n.fields)
@@ -546,6 +551,7 @@ class Parser {
   Scene& out_;
   std::vector<VToken> toks_;
   size_t pos_ = 0;
+  bool fatal_ = false;
 };
 
 }  // namespace

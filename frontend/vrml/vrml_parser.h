@@ -9,7 +9,7 @@
 
 namespace fscript::vrml {
 
-constexpr int kMaxNodeNesting = 5000;  // deeper nesting is refused with an error, not a stack overflow
+constexpr int kMaxNodeNesting = 1000;  // deeper nesting is refused with an error, not a stack overflow
 
 // Parses `file` into `out`. Returns false when an error was reported (the scene then holds what
 // could be read).

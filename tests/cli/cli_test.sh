@@ -15,8 +15,9 @@ check() {
   shift 4
   n=$((n + 1))
   local out status
-  out=$("$@" 2>&1)
+  "$@" > "$T/out.txt" 2>&1
   status=$?
+  out=$(tr -d '\000' < "$T/out.txt")
   if [ "$status" != "$want" ]; then
     echo "FAIL $name: exit $status, wanted $want"; echo "$out" | head -20; fails=$((fails + 1)); return
   fi
@@ -100,6 +101,9 @@ FTransform { operation "union" translation "0.5*t, sin(t), 0" scale "1 1 1"
             2*t + oops" children [] }
 WRL
 check wrl-affine 1 'ftransform.wrl:4:19: error: unknown name .oops.' -- "$F" check "$T/ftransform.wrl"
+gzip -c "$T/scene.wrl" > "$T/scene.wrl.gz"
+check wrl-gzip 1 'scene.wrl.gz:4:23: error: unknown name' -- "$F" check "$T/scene.wrl.gz"
+check wrl-missing 1 'none.wrl: error: cannot read' -- "$F" check "$T/none.wrl"
 check wrl-positions 1 'scene.wrl:4:23: error: unknown name' -- "$F" check "$T/scene.wrl"
 check emit-ir 0 'fn @kernel\(4\) -> 1 kernel' -- "$F" emit-ir "$T/sphere.fs" --opt
 check emit-ir-passes 0 'fmul' -- "$F" emit-ir "$T/sphere.fs" --passes inline,fold

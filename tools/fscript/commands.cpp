@@ -1,6 +1,7 @@
 // fscript run, eval, check, emit-ir, emit-asm, fmt.
 #include "tools/fscript/commands.h"
 
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include "frontend/fscript/parser.h"
 #include "frontend/fscript/embedded.h"
 #include "frontend/vrml/scene_scripts.h"
+#include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "ir/passes/passes.h"
 #include "ir/text.h"
@@ -155,6 +157,11 @@ bool check_embedded(const std::string& path, const std::vector<std::string>& lin
   return true;
 }
 
+bool is_scene_path(const std::string& p) {
+  auto ends = [&](const char* e) { return p.size() >= std::strlen(e) && p.compare(p.size() - std::strlen(e), std::string::npos, e) == 0; };
+  return ends(".wrl") || ends(".wrl.gz") || ends(".wrz") || ends(".WRL");
+}
+
 int check_wrl(const std::string& path, const std::string& text, frontend::DiagnosticSink& diag) {
   vrml::Scene scene;
   bool ok = vrml::parse_scene(std::make_unique<frontend::SourceFile>(path, text), diag, scene);
@@ -175,12 +182,14 @@ int cmd_check(const std::vector<std::string>& files) {
   int rc = kExitOk;
   for (const auto& path : files) {
     std::string text;
-    if (!read_source(path, text)) {
+    bool is_wrl = is_scene_path(path);
+    std::string error;
+    if (is_wrl ? !vrml::read_scene_text(path, text, error) : !read_source(path, text)) {
+      if (is_wrl) std::cerr << path << ": error: " << error << "\n";
       rc = kExitInput;
       continue;
     }
     frontend::DiagnosticSink diag;
-    bool is_wrl = path.size() > 4 && path.substr(path.size() - 4) == ".wrl";
     if (is_wrl) {
       if (check_wrl(path, text, diag) != kExitOk) rc = kExitInput;
     } else {

@@ -1,0 +1,48 @@
+// Scene files on disk, with transparent gzip (zlib).
+#include "frontend/vrml/scene_file.h"
+
+#include <zlib.h>
+
+#include "frontend/source.h"
+
+namespace fscript::vrml {
+
+bool gunzip(const std::string& data, std::string& out, std::string& error) {
+  z_stream z{};
+  if (inflateInit2(&z, 16 + MAX_WBITS) != Z_OK) {
+    error = "cannot initialise zlib";
+    return false;
+  }
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  z.avail_in = static_cast<uInt>(data.size());
+  out.clear();
+  char buf[1 << 16];
+  int rc;
+  do {
+    z.next_out = reinterpret_cast<Bytef*>(buf);
+    z.avail_out = sizeof buf;
+    rc = inflate(&z, Z_NO_FLUSH);
+    if (rc != Z_OK && rc != Z_STREAM_END) {
+      inflateEnd(&z);
+      error = "corrupt gzip data";
+      return false;
+    }
+    out.append(buf, sizeof buf - z.avail_out);
+  } while (rc != Z_STREAM_END);
+  inflateEnd(&z);
+  return true;
+}
+
+bool read_scene_text(const std::string& path, std::string& text, std::string& error) {
+  std::string raw;
+  if (!frontend::read_file(path, raw, error)) {
+    error = "cannot read the file: " + error;
+    return false;
+  }
+  if (raw.size() >= 2 && static_cast<unsigned char>(raw[0]) == 0x1f && static_cast<unsigned char>(raw[1]) == 0x8b)
+    return gunzip(raw, text, error);
+  text = std::move(raw);
+  return true;
+}
+
+}  // namespace fscript::vrml

@@ -1,0 +1,155 @@
+// The VRML97 reader: field syntax, defaults, DEF/USE, PROTO/EXTERNPROTO/IS, ROUTE checks, the
+// FVRML nodes, and every kind of bad input (one run, exact positions, never a crash).
+#include <catch2/catch.hpp>
+
+#include "frontend/big_stack.h"
+#include "frontend/vrml/scene_scripts.h"
+#include "frontend/vrml/vrml_parser.h"
+
+using namespace fscript;
+
+namespace {
+
+struct Parsed {
+  frontend::DiagnosticSink diag;
+  vrml::Scene scene;
+  bool ok = false;
+  std::string text() const { return frontend::render_all(diag); }
+};
+
+std::unique_ptr<Parsed> parse(const std::string& body, bool with_header = true) {
+  auto p = std::make_unique<Parsed>();
+  std::string text = (with_header ? "#VRML V2.0 utf8\n" : "") + body;
+  frontend::run_with_big_stack(
+      [&] { p->ok = vrml::parse_scene(std::make_unique<frontend::SourceFile>("t.wrl", text), p->diag, p->scene); });
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("vrml: every field type with its syntax") {
+  auto p = parse(R"(
+    DEF T Transform { translation 1 2 3 rotation 0 1 0 1.57 scale 2,2,2
+      children [
+        Shape { geometry IndexedFaceSet { coordIndex [0 1 2 -1, 0x2 1 0 -1] solid FALSE creaseAngle .5
+                                         coord Coordinate { point [0 0 0, 1 0 0, 0 1 0] } }
+                appearance Appearance { material Material { diffuseColor 1 0 0 } } }
+        Shape { geometry Text { string ["a \"quoted\"
+two lines" "b"] } }
+      ] }
+    PixelTexture { image 2 1 3 0xFF0000 0x00FF00 }
+    Switch { whichChoice -1 choice USE T }
+    WorldInfo { info "single value for an MF field" }
+    TimeSensor { cycleInterval 2.5e0 loop TRUE }
+  )");
+  INFO(p->text());
+  REQUIRE(p->ok);
+  REQUIRE(p->scene.roots.size() == 5);
+  const vrml::Node& t = *p->scene.roots[0];
+  CHECK(t.get("translation")->nums == std::vector<double>{1, 2, 3});
+  CHECK(t.get("center")->nums == std::vector<double>{0, 0, 0});  // default
+  CHECK(t.get("children")->nodes.size() == 2);
+  const vrml::Node& ifs = *t.get("children")->nodes[0]->get("geometry")->nodes[0];
+  CHECK(ifs.get("coordIndex")->nums.size() == 8);
+  CHECK(ifs.get("coordIndex")->nums[4] == 2);
+  const vrml::Node& text = *t.get("children")->nodes[1]->get("geometry")->nodes[0];
+  CHECK(text.get("string")->strs[0] == "a \"quoted\"\ntwo lines");
+  CHECK(p->scene.roots[1]->get("image")->nums.size() == 5);
+  CHECK(p->scene.roots[2]->get("choice")->nodes[0].get() == &t);  // USE shares the node
+  CHECK(p->scene.roots[3]->get("info")->strs.size() == 1);
+}
+
+TEST_CASE("vrml: the FVRML nodes are built in, with the plug-in's defaults") {
+  auto p = parse(R"(FShape { geometry FGeometry { definition "0.7^2-x^2-y^2-z^2" } })");
+  INFO(p->text());
+  REQUIRE(p->ok);
+  const vrml::Node& shape = *p->scene.roots[0];
+  CHECK(shape.fvrml);
+  CHECK(shape.get("cycleInterval")->nums[0] == 1);
+  const vrml::Node& geo = *shape.get("geometry")->nodes[0];
+  CHECK(geo.get("resolution")->nums == std::vector<double>{50, 50, 50});
+  CHECK(geo.get("bboxSize")->nums == std::vector<double>{10, 10, 10});
+  auto scripts = vrml::scene_scripts(p->scene);
+  REQUIRE(scripts.size() == 1);
+  CHECK(scripts[0].script.line == 2);
+  CHECK(scripts[0].script.col == 43);
+}
+
+TEST_CASE("vrml: a file's own declaration of an FVRML node fixes its field types") {
+  auto p = parse(R"(EXTERNPROTO FTransform [ exposedField SFVec3f translation exposedField MFNode children ] "x.wrl#FTransform"
+    FTransform { translation 1 2 3 children [] })");
+  INFO(p->text());
+  REQUIRE(p->ok);
+  CHECK(p->scene.roots[0]->fvrml);
+  CHECK(p->scene.roots[0]->get("translation")->type == vrml::FieldType::SFVec3f);
+}
+
+TEST_CASE("vrml: PROTO with IS, and ROUTE checks") {
+  auto p = parse(R"(
+    PROTO Ball [ field SFFloat r 1 exposedField SFColor c 1 0 0 ] {
+      Shape { geometry Sphere { radius IS r } appearance Appearance { material Material { diffuseColor IS c } } }
+    }
+    DEF B Ball { r 2 }
+    DEF TS TimeSensor { loop TRUE }
+    DEF PI PositionInterpolator { key [0 1] keyValue [0 0 0, 1 1 1] }
+    DEF T Transform { }
+    ROUTE TS.fraction_changed TO PI.set_fraction
+    ROUTE PI.value_changed TO T.set_translation
+    ROUTE TS.cycleTime TO TS.startTime
+  )");
+  INFO(p->text());
+  REQUIRE(p->ok);
+  CHECK(p->scene.roots[0]->proto != nullptr);
+  CHECK(p->scene.routes.size() == 3);
+}
+
+TEST_CASE("vrml: errors name the field and the expected type, all in one run") {
+  auto p = parse("Transform { translation 1 2 }\nTransform { bogus 3 }\nNoSuchNode { }\nSphere { radius TRUE }\n");
+  CHECK(!p->ok);
+  std::string t = p->text();
+  INFO(t);
+  CHECK(t.find("t.wrl:2:29: error: expected 3 numbers (SFVec3f) for a field of 'Transform', found '}'") != std::string::npos);
+  CHECK(t.find("t.wrl:3:13: error: 'Transform' has no field 'bogus'") != std::string::npos);
+  CHECK(t.find("t.wrl:4:1: error: unknown node type 'NoSuchNode'") != std::string::npos);
+  CHECK(t.find("t.wrl:5:17: error: expected a number (SFFloat)") != std::string::npos);
+  CHECK(p->diag.error_count() == 4);
+}
+
+TEST_CASE("vrml: bad routes") {
+  auto p = parse(R"(DEF A TimeSensor { } DEF B Transform { }
+    ROUTE A.fraction_changed TO B.set_translation
+    ROUTE A.nothing TO B.set_translation
+    ROUTE C.time TO B.set_translation
+  )");
+  std::string t = p->text();
+  INFO(t);
+  CHECK(t.find("ROUTE connects SFFloat 'fraction_changed' to SFVec3f 'set_translation'") != std::string::npos);
+  CHECK(t.find("has no eventOut 'nothing'") != std::string::npos);
+  CHECK(t.find("ROUTE from 'C', which no DEF names") != std::string::npos);
+}
+
+TEST_CASE("vrml: hostile input never crashes") {
+  CHECK(!parse("Group { children [ Shape { } ", true)->ok);                      // truncated
+  CHECK(!parse("Group { children [ Shape { } ] ] }")->ok);                        // unbalanced
+  CHECK(!parse("Shape {", false)->ok);                                            // no header
+  auto deep = parse(std::string(100000, 'x').replace(0, 100000, "") + [] {
+    std::string s;
+    for (int i = 0; i < 100000; ++i) s += "Group { children [ ";
+    return s;
+  }());
+  CHECK(!deep->ok);
+  CHECK(deep->text().find("nested deeper than") != std::string::npos);
+  auto self = parse("PROTO P [ ] { P { } }\nP { }");
+  CHECK(!self->ok);
+  CHECK(self->text().find("unknown node type 'P'") != std::string::npos);
+  auto cyc = parse("DEF A Group { children [ USE A ] }");
+  CHECK(!cyc->ok);
+  CHECK(cyc->text().find("USE of 'A', which no DEF before it names") != std::string::npos);
+  auto huge = parse("Sphere { radius 1e999999 } Transform { translation 1e400 -1e400 0 }");
+  CHECK(huge->ok);  // out-of-range numbers read as infinities, as strtod does
+  auto utf = parse("WorldInfo { title \"bad \xff\xfe here\" }");
+  CHECK(!utf->ok);
+  CHECK(utf->text().find("invalid UTF-8") != std::string::npos);
+  auto enc = parse("BSCRYPT0@\x01\x02", false);
+  CHECK(enc->text().find("encrypted") != std::string::npos);
+}

@@ -101,7 +101,10 @@ struct Scene {
   std::vector<Route> routes;
   std::vector<std::unique_ptr<ProtoDef>> protos;
   std::map<std::string, NodePtr> defs;  // last DEF of each name at the top level
-  std::vector<std::string> header_comment;  // comment lines after the header, kept for the writer
+
+  // Top-level statements in file order, for the writer: (kind, index into roots/protos/routes).
+  enum class Kind : uint8_t { Node, Proto, Route };
+  std::vector<std::pair<Kind, size_t>> order;
 };
 
 // The standard node interfaces (VRML97 and FVRML), parsed once from nodes_vrml97.wrl.

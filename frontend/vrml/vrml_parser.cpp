@@ -51,7 +51,11 @@ class Parser {
     Scope top;
     while (!at(VTok::Eof)) {
       size_t p = pos_;
+      size_t nodes = out_.roots.size(), protos = out_.protos.size(), routes = out_.routes.size();
       statement(top, &out_.roots, &out_.routes);
+      for (size_t k = protos; k < out_.protos.size(); ++k) out_.order.push_back({Scene::Kind::Proto, k});
+      for (size_t k = nodes; k < out_.roots.size(); ++k) out_.order.push_back({Scene::Kind::Node, k});
+      for (size_t k = routes; k < out_.routes.size(); ++k) out_.order.push_back({Scene::Kind::Route, k});
       if (p == pos_) skip_one();
     }
     for (auto& [name, node] : top.defs) out_.defs[name] = node;
@@ -310,7 +314,14 @@ class Parser {
   void script_declaration(Scope& sc, Node& n) {
     FieldDecl d;
     if (!declaration(sc, true, d)) return;
-    if (at_id("IS")) is_reference(sc, n, d.name, d.type, cur().span);
+    if (at_id("IS")) {
+      FieldSlot slot;
+      slot.name = d.name;
+      slot.span = d.span;
+      slot.is_ref = is_reference(sc, n, d.name, d.type, cur().span);
+      d.has_default = false;
+      n.fields.push_back(std::move(slot));
+    }
     n.script_decls.push_back(std::move(d));
   }
 

@@ -153,3 +153,41 @@ TEST_CASE("vrml: hostile input never crashes") {
   auto enc = parse("BSCRYPT0@\x01\x02", false);
   CHECK(enc->text().find("encrypted") != std::string::npos);
 }
+
+#include <filesystem>
+
+#include "frontend/vrml/writer.h"
+
+TEST_CASE("vrml: write -> read gives the same graph, on a rich file and on every corpus file") {
+  std::vector<std::pair<std::string, std::string>> files = {{"inline", R"(#VRML V2.0 utf8
+PROTO Ball [ field SFFloat r 1 exposedField MFColor c [1 0 0, 0 1 0] eventIn SFBool go ] {
+  DEF S Script { field SFFloat k IS r eventIn SFBool go IS go url "javascript:" }
+  Shape { geometry Sphere { radius IS r } }
+}
+EXTERNPROTO Far [ field SFFloat r ] ["far.wrl#Far", "http://x/far.wrl"]
+DEF T Transform { translation 1 2 3.25 children [ DEF B Ball { r 2 } USE B Shape { geometry Text { string ["a\"b", "c\\d"] } } ] }
+PixelTexture { image 2 1 3 0xFF0000 0x00FF00 }
+DEF TS TimeSensor { cycleInterval 0.1 startTime 1e9 }
+ROUTE TS.cycleTime TO TS.set_startTime
+)"}};
+  std::string corpus = FS_CORPUS_DIR;
+  if (std::filesystem::exists(corpus))
+    for (const auto& e : std::filesystem::recursive_directory_iterator(corpus)) {
+      if (e.path().extension() != ".wrl") continue;
+      std::string text, err;
+      REQUIRE(frontend::read_file(e.path().string(), text, err));
+      if (text.rfind("BSCRYPT", 0) == 0) continue;
+      files.push_back({e.path().string(), text});
+    }
+  for (const auto& [name, text] : files) {
+    INFO(name);
+    frontend::DiagnosticSink d1, d2;
+    vrml::Scene a, b;
+    REQUIRE(vrml::parse_scene(std::make_unique<frontend::SourceFile>(name, text), d1, a));
+    std::string written = vrml::write_scene(a);
+    INFO(frontend::render_all(d2) << written);
+    REQUIRE(vrml::parse_scene(std::make_unique<frontend::SourceFile>("written.wrl", written), d2, b));
+    CHECK(vrml::compare_scenes(a, b) == "");
+    CHECK(vrml::write_scene(b) == written);
+  }
+}

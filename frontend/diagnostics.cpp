@@ -10,6 +10,8 @@ void DiagnosticSink::report(const SourceFile& file, Severity sev, Span span, std
   d.pos = file.position(span.begin);
   d.message = std::move(message);
   d.line_text = file.line_text(span.begin);
+  for (char& c : d.line_text)  // binary input must not reach the terminal
+    if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f) c = '?';
   d.caret_col = d.pos.col;
   // A very long line (a megabyte expression, a minified scene) is shown as a window around the caret.
   constexpr uint32_t kWindow = 160;

@@ -1,6 +1,8 @@
 // Entry-point kernel specifications.
 #include "frontend/fscript/entry.h"
 
+#include <algorithm>
+
 namespace fscript::frontend {
 namespace {
 
@@ -93,6 +95,45 @@ bool default_spec(const SemaResult& s, KernelSpec& spec, std::string& error) {
   error = "no entry point: define FRep(x, y, z[, t]), parametric_x/y/z(u, v, w[, t]) or parametric_r/g/b, "
           "or name a function with --entry";
   return false;
+}
+
+bool point_spec(const SemaResult& s, KernelSpec& spec, bool& rgb, std::string& error) {
+  spec = {};
+  for (const char* n : {"x", "y", "z", "u", "v", "w", "t"}) {
+    spec.input_names.push_back(n);
+    spec.input_globals.push_back({s.global_slot(n)});
+  }
+  auto assigned = [&](const char* n) {
+    return std::find(s.assigned_globals.begin(), s.assigned_globals.end(), n) != s.assigned_globals.end();
+  };
+  KernelOutput value;
+  value.name = "value";
+  value.constant = 0;
+  bool colour_functions = s.entry.colour[0] >= 0 || s.entry.colour[1] >= 0 || s.entry.colour[2] >= 0;
+  if (s.form == ScriptForm::Expression) {
+    value.global = static_cast<int>(s.globals.size());  // "$value"
+  } else if (s.entry.frep >= 0) {
+    value.function = s.entry.frep;
+    static const int kArgs[] = {0, 1, 2, 6};
+    for (size_t k = 0; k < s.functions[s.entry.frep].params.size(); ++k) value.args.push_back(kArgs[k]);
+  } else if (s.form == ScriptForm::Script && !colour_functions) {
+    error = "no entry point: a colour or texture script defines FRep(x, y, z[, t]) or parametric_r/g/b(u, v, w[, t])";
+    return false;
+  }
+  spec.outputs.push_back(value);
+  rgb = colour_functions || assigned("r") || assigned("g") || assigned("b");
+  for (int k = 0; k < 3; ++k) {
+    KernelOutput o;
+    o.name = std::string(1, "rgb"[k]);
+    if (s.entry.colour[k] >= 0) {
+      o.function = s.entry.colour[k];
+      for (size_t a = 0; a < s.functions[o.function].params.size(); ++a) o.args.push_back(static_cast<int>(3 + a));
+    } else {
+      o.global = s.global_slot(o.name);
+    }
+    spec.outputs.push_back(o);
+  }
+  return true;
 }
 
 bool function_spec(const SemaResult& s, const std::string& name, KernelSpec& spec, std::string& error) {

@@ -4,6 +4,7 @@
 set -u
 F="$1"
 SRC="$2"
+R="${3:-}"  # fvrml-run
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fails=0
@@ -160,6 +161,29 @@ if [ -d "$SRC/../shared/corpus" ]; then
 fi
 if [ -f "$SRC/../shared/data/prospero.fs" ]; then
   check prospero-256 0 '^8150 white pixels' -- "$F" render2d "$SRC/../shared/data/prospero.fs" --entry FRep --size 256 --bounds -1,1,-1,1
+fi
+
+# fvrml-run: the scene layer (--stats) on the paper's examples, the corpus and bad scenes.
+if [ -n "$R" ]; then
+  for w in "$SRC"/examples/paper/*.wrl; do
+    check "fvrml-run-stats $(basename "$w")" 0 '"shapes":\[\{' -- "$R" "$w" --stats
+    check "fscript-check $(basename "$w")" 0 '' -- "$F" check "$w"
+  done
+  check fvrml-run-time 0 '"fraction":0\.6' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --stats --time 3
+  check fvrml-run-fraction 0 '"t":0\.25' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --stats --fraction 0.25
+  check fvrml-run-kind 0 '"kind":"implicit"' -- "$R" "$SRC/examples/paper/figure6-blends.wrl" --stats
+  check fvrml-run-script-error 1 'scene.wrl:4:23: error: unknown name' -- "$R" "$T/scene.wrl" --stats
+  printf '#VRML V2.0 utf8\nTransform { translation 1 2 }\n' > "$T/badfield.wrl"
+  check fvrml-run-bad-field 1 'badfield.wrl:2:29: error: expected 3 numbers \(SFVec3f\)' -- "$R" "$T/badfield.wrl" --stats
+  check fvrml-run-no-stats 2 'ask for --stats' -- "$R" "$T/badfield.wrl"
+  check fvrml-run-bad-backend 2 "backend 'llvm' is not built" -- "$R" "$T/badfield.wrl" --stats --backend llvm
+  check fvrml-run-missing 1 'cannot read' -- "$R" "$T/none.wrl" --stats
+  if [ -d "$SRC/../shared/corpus" ]; then
+    while IFS= read -r -d '' w; do
+      head -c 7 "$w" | grep -q BSCRYPT && continue
+      check "fvrml-run-corpus $(basename "$w")" 0 '"shapes"' -- "$R" "$w" --stats
+    done < <(find "$SRC/../shared/corpus" -name '*.wrl' -print0)
+  fi
 fi
 
 echo "$((n - fails)) of $n CLI checks passed"

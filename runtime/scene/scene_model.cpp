@@ -1,0 +1,334 @@
+// Building the scene model: a walk over the scene graph that carries the Transform matrix and
+// the enclosing FTransform, compiling each FVRML node's scripts and evaluating its time.
+#include "runtime/scene/scene_model.h"
+
+#include <cmath>
+
+#include "frontend/fscript/compiler.h"
+#include "frontend/fscript/embedded.h"
+#include "frontend/fscript/entry.h"
+
+namespace fscript::scene {
+
+const char* kind_name(ShapeKind k) {
+  switch (k) {
+    case ShapeKind::Implicit: return "implicit";
+    case ShapeKind::Curve: return "parametric curve";
+    case ShapeKind::Surface: return "parametric surface";
+    case ShapeKind::Solid: return "parametric solid";
+  }
+  return "implicit";
+}
+
+Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
+
+Mat4 multiply(const Mat4& a, const Mat4& b) {
+  Mat4 r{};
+  for (int c = 0; c < 4; ++c)
+    for (int row = 0; row < 4; ++row)
+      for (int k = 0; k < 4; ++k) r[c * 4 + row] += a[k * 4 + row] * b[c * 4 + k];
+  return r;
+}
+
+namespace {
+
+Mat4 translate(const double v[3], double sign = 1) {
+  Mat4 m = identity();
+  for (int i = 0; i < 3; ++i) m[12 + i] = sign * v[i];
+  return m;
+}
+
+Mat4 rotate(const double r[4], double sign = 1) {
+  double x = r[0], y = r[1], z = r[2], a = sign * r[3];
+  double len = std::sqrt(x * x + y * y + z * z);
+  if (len == 0) return identity();
+  x /= len, y /= len, z /= len;
+  double c = std::cos(a), s = std::sin(a), t = 1 - c;
+  return {t * x * x + c,     t * x * y + s * z, t * x * z - s * y, 0, t * x * y - s * z, t * y * y + c,
+          t * y * z + s * x, 0,                 t * x * z + s * y, t * y * z - s * x, t * z * z + c, 0,
+          0,                 0,                 0,                 1};
+}
+
+Mat4 scale(const double v[3]) {
+  Mat4 m = identity();
+  m[0] = v[0], m[5] = v[1], m[10] = v[2];
+  return m;
+}
+
+}  // namespace
+
+Mat4 vrml_transform(const double t[3], const double r[4], const double s[3], const double sr[4], const double c[3]) {
+  Mat4 m = translate(t);
+  m = multiply(m, translate(c));
+  m = multiply(m, rotate(r));
+  m = multiply(m, rotate(sr));
+  m = multiply(m, scale(s));
+  m = multiply(m, rotate(sr, -1));
+  return multiply(m, translate(c, -1));
+}
+
+namespace {
+
+double num(const vrml::Node& n, const char* field, size_t k = 0, double fallback = 0) {
+  const vrml::Value* v = n.get(field);
+  return v && v->nums.size() > k ? v->nums[k] : fallback;
+}
+std::string str(const vrml::Node& n, const char* field) {
+  const vrml::Value* v = n.get(field);
+  return v && !v->strs.empty() ? v->strs[0] : "";
+}
+const vrml::Node* child(const vrml::Node& n, const char* field) {
+  const vrml::Value* v = n.get(field);
+  return v && !v->nodes.empty() ? v->nodes[0].get() : nullptr;
+}
+
+enum class Role { Geometry, Point, Operation };
+
+class Builder {
+ public:
+  Builder(const vrml::Scene& s, const ModelOptions& o, frontend::DiagnosticSink& d, SceneModel& out)
+      : scene_(s), opts_(o), diag_(d), out_(out) {
+    lines_ = frontend::split_lines(s.file->text());
+  }
+
+  bool run() {
+    size_t before = diag_.error_count();
+    for (const auto& r : scene_.roots) walk(r.get(), identity(), -1, 0);
+    return diag_.error_count() == before;
+  }
+
+ private:
+  // ---- scripts ----
+  // Compiles the script of `field` of `n`; false (with diagnostics) on error or if absent.
+  bool compile(const vrml::Node& n, const char* field, Role role, CompiledField& out, bool* implicit = nullptr,
+               const std::vector<std::string>& extra = {}) {
+    const vrml::FieldSlot* slot = n.slot(field);
+    const vrml::Value* v = n.get(field);
+    if (!v || v->type != vrml::FieldType::SFString || v->strs.empty() ||
+        v->strs[0].find_first_not_of(" \t\r\n") == std::string::npos)
+      return false;
+    frontend::LineCol lc = slot ? scene_.file->position(v->str_spans[0].begin) : frontend::LineCol{n.span.begin, 1};
+    auto file = std::make_unique<frontend::SourceFile>(scene_.file->path(), v->strs[0], lc.line, lc.col);
+    file->set_outer_lines(lines_);
+    frontend::Script s;
+    if (!frontend::load_script(std::move(file), diag_, s, extra)) return false;
+    frontend::KernelSpec spec;
+    std::string err;
+    bool ok = role == Role::Point ? frontend::point_spec(s.sema, spec, out.rgb, err)
+                                  : frontend::default_spec(s.sema, spec, err);
+    if (implicit) *implicit = s.sema.entry.frep >= 0 || s.sema.form == frontend::ScriptForm::Expression;
+    if (ok && role == Role::Geometry && !*implicit) ok = geometry_outputs(s.sema, spec, err);
+    if (!ok) {
+      diag_.error(*s.file, {0, 1}, "'" + std::string(field) + "' of " + n.type + ": " + err);
+      return false;
+    }
+    auto m = frontend::build_module(s, spec, diag_, {}, err);
+    auto be = backend::make_backend(opts_.backend);
+    if (!m || !be || !(out.kernel = be->compile(*m, opts_.budgets, err))) {
+      diag_.error(*s.file, {0, 1}, "cannot compile '" + std::string(field) + "': " + err);
+      return false;
+    }
+    out.field = field;
+    return true;
+  }
+
+  // A parametric geometry kernel returns exactly x, y, z (an assignment list may set only some).
+  static bool geometry_outputs(const frontend::SemaResult& s, frontend::KernelSpec& spec, std::string& err) {
+    if (s.form != frontend::ScriptForm::Assignments) return true;
+    spec.outputs.clear();
+    for (const char* n : {"x", "y", "z"}) {
+      frontend::KernelOutput o;
+      o.name = n;
+      o.global = s.global_slot(n);
+      spec.outputs.push_back(o);
+    }
+    (void)err;
+    return true;
+  }
+
+  // ---- time ----
+  // The fraction of a node with TimeSensor fields (FShape, FTransform): --fraction, else an
+  // external TimeSensor routed to set_fraction, else its own sensor (restarted by a routed cycleTime).
+  TimeSensorState time_of(const vrml::Node& n) {
+    if (opts_.fraction) {
+      TimeSensorState s;
+      s.ever_active = true;
+      s.fraction = *opts_.fraction;
+      return s;
+    }
+    TimeSensorFields own{num(n, "startTime"), num(n, "stopTime"), num(n, "cycleInterval", 0, 1),
+                         num(n, "loop") != 0, num(n, "enabled", 0, 1) != 0};
+    for (const auto& r : scene_.routes) {
+      if (r.to_node != n.def_name || n.def_name.empty()) continue;
+      auto src = scene_.defs.find(r.from_node);
+      if (src == scene_.defs.end() || src->second->type != "TimeSensor") continue;
+      TimeSensorState ext = evaluate_time_sensor(sensor_fields(*src->second), opts_.now);
+      if (r.to_field == "set_fraction" && r.from_field == "fraction_changed") return ext;
+      if ((r.to_field == "startTime" || r.to_field == "set_startTime") && r.from_field == "cycleTime" && ext.ever_active)
+        own.start_time = ext.cycle_time;
+    }
+    return evaluate_time_sensor(own, opts_.now);
+  }
+
+  static TimeSensorFields sensor_fields(const vrml::Node& ts) {
+    return {num(ts, "startTime"), num(ts, "stopTime"), num(ts, "cycleInterval", 0, 1), num(ts, "loop") != 0,
+            num(ts, "enabled", 0, 1) != 0};
+  }
+
+  void set_time(CompiledField& f, const vrml::Node& n, double fraction) {
+    f.span0 = num(n, "timeSpan", 0, 0);
+    f.span1 = num(n, "timeSpan", 1, 1);
+    f.t = node_time(fraction, f.span0, f.span1);
+  }
+
+  // ---- walk ----
+  void walk(const vrml::Node* n, const Mat4& m, int group, int depth) {
+    if (!n || depth > 10000) return;
+    if (n->type == "FShape") return shape(*n, m, group);
+    if (n->type == "FTransform") return ftransform(*n, m, group, depth);
+    Mat4 here = m;
+    if (n->type == "Transform") {
+      double t[3], r[4], s[3], sr[4], c[3];
+      for (int i = 0; i < 3; ++i) {
+        t[i] = num(*n, "translation", i);
+        s[i] = num(*n, "scale", i, 1);
+        c[i] = num(*n, "center", i);
+      }
+      for (int i = 0; i < 4; ++i) {
+        r[i] = num(*n, "rotation", i);
+        sr[i] = num(*n, "scaleOrientation", i);
+      }
+      here = multiply(m, vrml_transform(t, r, s, sr, c));
+    }
+    for (const char* f : {"children", "choice", "level"})
+      if (const vrml::Value* v = n->get(f))
+        for (const auto& c : v->nodes) walk(c.get(), here, group, depth + 1);
+  }
+
+  void ftransform(const vrml::Node& n, const Mat4& m, int parent, int depth) {
+    Group g;
+    g.node = &n;
+    g.parent = parent;
+    g.operation = str(n, "operation");
+    g.type = str(n, "type");
+    TimeSensorState ts = time_of(n);
+    g.fraction = ts.fraction;
+    int index = static_cast<int>(out_.groups.size());
+    if (g.type == "analytical") {
+      CompiledField f;
+      std::vector<std::string> extra = {"f", "g"};
+      for (int k = 1; k <= 16; ++k) extra.push_back("f" + std::to_string(k));
+      if (compile(n, "operation", Role::Operation, f, nullptr, extra)) {
+        set_time(f, n, ts.fraction);
+        g.op_kernel = std::move(f);
+      }
+    }
+    out_.groups.push_back(std::move(g));
+    if (parent >= 0) out_.groups[parent].groups.push_back(index);
+    if (const vrml::Value* v = n.get("children"))
+      for (const auto& c : v->nodes) walk(c.get(), m, index, depth + 1);
+  }
+
+  void shape(const vrml::Node& n, const Mat4& m, int group) {
+    Shape s;
+    s.fshape = &n;
+    s.group = group;
+    s.transform = m;
+    s.time = time_of(n);
+    s.fraction = s.time.fraction;
+    s.frames = static_cast<int>(num(n, "frames"));
+    const vrml::Node* geo = child(n, "geometry");
+    if (!geo || geo->type != "FGeometry") {
+      diag_.warning(*scene_.file, n.span, "FShape without an FGeometry: nothing to draw");
+      return;
+    }
+    s.geometry_node = geo;
+    bool implicit = true;
+    if (!compile(*geo, "definition", Role::Geometry, s.geometry, &implicit)) {
+      if (!geo->get("definition") || str(*geo, "definition").find_first_not_of(" \t\r\n") == std::string::npos)
+        diag_.error(*scene_.file, geo->span, "FGeometry has an empty definition");
+      return;
+    }
+    set_time(s.geometry, *geo, s.fraction);
+    std::string type = str(*geo, "type");
+    if (type == "implicit") implicit = true;
+    if (type == "parametric") implicit = false;
+    resolve_domain(s, *geo, implicit);
+    appearance(s, child(n, "appearance"));
+    if (group >= 0) out_.groups[group].shapes.push_back(static_cast<int>(out_.shapes.size()));
+    out_.shapes.push_back(std::move(s));
+  }
+
+  void resolve_domain(Shape& s, const vrml::Node& geo, bool implicit) {
+    const vrml::Value* res = geo.get("resolution");
+    size_t dims = res ? res->nums.size() : 3;
+    for (int k = 0; k < 3; ++k) {
+      double r = res && !res->nums.empty() ? res->nums[std::min<size_t>(k, res->nums.size() - 1)] : 50;
+      s.resolution[k] = std::max(1, static_cast<int>(std::lround(r * opts_.resolution_scale)));
+    }
+    if (implicit) {
+      s.kind = ShapeKind::Implicit;
+      for (int k = 0; k < 3; ++k) {
+        double c = num(geo, "bboxCenter", k), size = num(geo, "bboxSize", k, 10);
+        s.domain[2 * k] = c - size / 2;
+        s.domain[2 * k + 1] = c + size / 2;
+      }
+      return;
+    }
+    std::string poly = s.fshape ? str(*s.fshape, "polygonizer") : "";
+    s.kind = (dims <= 1 || poly == "analytical_curve") ? ShapeKind::Curve : dims == 2 ? ShapeKind::Surface : ShapeKind::Solid;
+    // Parametric children of an FTransform share its parameters when they give none themselves.
+    const vrml::Value* p = geo.slot("parameters") ? geo.get("parameters") : nullptr;
+    for (int g = s.group; !p && g >= 0; g = out_.groups[g].parent)
+      if (out_.groups[g].node->slot("parameters")) p = out_.groups[g].node->get("parameters");
+    for (int k = 0; k < 3; ++k) {
+      // A parameter beyond the given pairs takes the lower bound of its pair (0 without one).
+      bool have_pair = p && p->nums.size() >= static_cast<size_t>(2 * k + 2);
+      bool have_lo = p && p->nums.size() >= static_cast<size_t>(2 * k + 1);
+      s.domain[2 * k] = have_lo ? p->nums[2 * k] : 0;
+      s.domain[2 * k + 1] = have_pair ? p->nums[2 * k + 1] : s.domain[2 * k];
+      int shape_dims = s.kind == ShapeKind::Curve ? 1 : s.kind == ShapeKind::Surface ? 2 : 3;
+      if (k >= shape_dims) s.domain[2 * k + 1] = s.domain[2 * k];
+    }
+  }
+
+  void appearance(Shape& s, const vrml::Node* app) {
+    if (!app) return;
+    if (const vrml::Node* mat = child(*app, "material"); mat && mat->type == "FMaterial") {
+      CompiledField c;
+      if (compile(*mat, "diffuseColor", Role::Point, c)) {
+        set_time(c, *mat, s.fraction);
+        s.colour = std::move(c);
+      }
+      for (const char* f : {"ambientIntensity", "emissiveColor", "shininess", "specularColor", "transparency"}) {
+        CompiledField o;
+        if (compile(*mat, f, Role::Point, o)) {
+          set_time(o, *mat, s.fraction);
+          s.material.push_back(std::move(o));
+        }
+      }
+    }
+    if (const vrml::Node* tex = child(*app, "texture3D"); tex && tex->type == "FTexture3D") {
+      CompiledField c;
+      if (compile(*tex, "definition", Role::Point, c)) {
+        set_time(c, *tex, s.fraction);
+        s.texture = std::move(c);
+      }
+    }
+  }
+
+  const vrml::Scene& scene_;
+  const ModelOptions& opts_;
+  frontend::DiagnosticSink& diag_;
+  SceneModel& out_;
+  std::vector<std::string> lines_;
+};
+
+}  // namespace
+
+bool build_scene_model(const vrml::Scene& scene, const ModelOptions& opts, frontend::DiagnosticSink& diag,
+                       SceneModel& out) {
+  return Builder(scene, opts, diag, out).run();
+}
+
+}  // namespace fscript::scene

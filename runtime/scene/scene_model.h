@@ -1,0 +1,83 @@
+#pragma once
+// The scene model: every FVRML node of a parsed scene resolved into what the shape pipeline
+// needs: the shape's kind, compiled kernels (geometry, 3D texture, colour), domain, resolution,
+// the FTransform tree above it, the enclosing Transforms, and the time state of every node at a
+// clock value (or a forced fraction).
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "backends/backend.h"
+#include "frontend/diagnostics.h"
+#include "frontend/vrml/scene_graph.h"
+#include "runtime/scene/time_model.h"
+
+namespace fscript::scene {
+
+enum class ShapeKind { Implicit, Curve, Surface, Solid };
+const char* kind_name(ShapeKind k);
+
+using Mat4 = std::array<double, 16>;  // column-major, as OpenGL
+Mat4 identity();
+Mat4 multiply(const Mat4& a, const Mat4& b);
+// The VRML97 Transform: T * C * R * SR * S * -SR * -C.
+Mat4 vrml_transform(const double t[3], const double r[4], const double s[3], const double sr[4], const double c[3]);
+
+// One compiled FScript field of a node.
+struct CompiledField {
+  std::string field;
+  std::unique_ptr<backend::Kernel> kernel;
+  bool rgb = false;  // colour: the script sets r, g, b (else its value goes through the pattern)
+  double span0 = 0, span1 = 1;  // the node's timeSpan
+  double t = 0;                 // the node's t at the evaluated time
+};
+
+struct Shape {
+  const vrml::Node* fshape = nullptr;
+  const vrml::Node* geometry_node = nullptr;
+  int group = -1;  // index of the FTransform directly above it, or -1
+  ShapeKind kind = ShapeKind::Implicit;
+  std::array<double, 6> domain{};  // implicit: x0 x1 y0 y1 z0 z1 (the box); parametric: u0 u1 v0 v1 w0 w1
+  std::array<int, 3> resolution{50, 50, 50};
+  CompiledField geometry;
+  std::optional<CompiledField> texture;  // FTexture3D
+  std::optional<CompiledField> colour;   // FMaterial.diffuseColor
+  std::vector<CompiledField> material;   // the other FMaterial strings
+  Mat4 transform = identity();
+  double fraction = 0;
+  TimeSensorState time;
+  int frames = 0;
+};
+
+// An FTransform: an operation over its children (shapes and nested FTransforms).
+struct Group {
+  const vrml::Node* node = nullptr;
+  int parent = -1;
+  std::string operation;  // "union", ... or the analytical expression
+  std::string type;
+  std::optional<CompiledField> op_kernel;  // type "analytical"
+  std::vector<int> shapes, groups;
+  double fraction = 0;
+};
+
+struct ModelOptions {
+  std::string backend = "vm";
+  backend::Budgets budgets;
+  double now = 0;                   // --time
+  std::optional<double> fraction;   // --fraction: every node as if set_fraction had been received
+  double resolution_scale = 1;
+};
+
+struct SceneModel {
+  std::vector<Shape> shapes;
+  std::vector<Group> groups;
+};
+
+// Builds the model. Every script is compiled with diagnostics at .wrl positions; returns false
+// when there was any error.
+bool build_scene_model(const vrml::Scene& scene, const ModelOptions& opts, frontend::DiagnosticSink& diag,
+                       SceneModel& out);
+
+}  // namespace fscript::scene

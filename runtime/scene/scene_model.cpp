@@ -7,6 +7,7 @@
 #include "frontend/fscript/compiler.h"
 #include "frontend/fscript/embedded.h"
 #include "frontend/fscript/entry.h"
+#include "frontend/vrml/instantiate.h"
 
 namespace fscript::scene {
 
@@ -186,6 +187,15 @@ class Builder {
     if (!n || depth > 10000) return;
     if (n->type == "FShape") return shape(*n, m, group);
     if (n->type == "FTransform") return ftransform(*n, m, group, depth);
+    if (n->proto) {  // a user PROTO: its first body node is what the instance is (VRML97 4.8.3)
+      auto body = vrml::instantiate(*n);
+      if (!body.empty()) {
+        const vrml::Node* first = body.front().get();
+        expanded_.push_back(std::move(body));  // kept alive: shapes point into it
+        walk(first, m, group, depth + 1);
+      }
+      return;
+    }
     Mat4 here = m;
     if (n->type == "Transform") {
       double t[3], r[4], s[3], sr[4], c[3];
@@ -322,6 +332,7 @@ class Builder {
   frontend::DiagnosticSink& diag_;
   SceneModel& out_;
   std::vector<std::string> lines_;
+  std::vector<std::vector<vrml::NodePtr>>& expanded_ = out_.expanded;
 };
 
 }  // namespace

@@ -73,6 +73,7 @@ struct ModelOptions {
 struct SceneModel {
   std::vector<Shape> shapes;
   std::vector<Group> groups;
+  std::vector<std::vector<vrml::NodePtr>> expanded;  // PROTO instances' bodies the shapes live in
 };
 
 // Builds the model. Every script is compiled with diagnostics at .wrl positions; returns false

@@ -175,6 +175,17 @@ if [ -n "$R" ]; then
   check fvrml-run-script-error 1 'scene.wrl:4:23: error: unknown name' -- "$R" "$T/scene.wrl" --stats
   printf '#VRML V2.0 utf8\nTransform { translation 1 2 }\n' > "$T/badfield.wrl"
   check fvrml-run-bad-field 1 'badfield.wrl:2:29: error: expected 3 numbers \(SFVec3f\)' -- "$R" "$T/badfield.wrl" --stats
+  cat > "$T/proto.wrl" <<'WRL'
+#VRML V2.0 utf8
+PROTO Ball [ field SFString f "0.5^2-x^2-y^2-z^2" field SFVec3f at 0 0 0 ] {
+  Transform { translation IS at children [ FShape { geometry FGeometry { definition IS f bboxSize 2 2 2 } } ] }
+}
+Ball { at 1 2 3 }
+Ball { f "0.25-x^2-y^2-zz^2" }
+WRL
+  check fvrml-run-proto-error 1 'proto.wrl:6:24: error: unknown name .zz.' -- "$R" "$T/proto.wrl" --stats
+  sed -i 's/zz/z/' "$T/proto.wrl"
+  check fvrml-run-proto 0 '"transform":\[1\.0,0\.0,0\.0,0\.0,0\.0,1\.0,0\.0,0\.0,0\.0,0\.0,1\.0,0\.0,1\.0,2\.0,3\.0,1\.0\]' -- "$R" "$T/proto.wrl" --stats
   check fvrml-run-no-stats 2 'ask for --stats' -- "$R" "$T/badfield.wrl"
   check fvrml-run-bad-backend 2 "backend 'llvm' is not built" -- "$R" "$T/badfield.wrl" --stats --backend llvm
   check fvrml-run-missing 1 'cannot read' -- "$R" "$T/none.wrl" --stats

@@ -270,6 +270,9 @@ class Parser {
     n->def_name = def_name;
     resolve_type(sc, *n, type.span);
     node_body(sc, *n, depth);
+    if (n->type == "Inline")
+      if (const Value* url = n->get("url"); url && !url->strs.empty())
+        d_.warning(f_, n->span, "Inline '" + url->strs[0] + "' is not fetched (no network); it stays a reference");
     if (!def_name.empty()) sc.defs[def_name] = n;  // after the body: a node cannot USE itself
     return n;
   }

@@ -133,6 +133,52 @@ class Builder {
     return true;
   }
 
+  // An affine field written as FScript components ("0.5*t, 0, 0"): one kernel per component.
+  bool affine(const vrml::Node& n, const char* field, double fraction, std::vector<CompiledField>& out) {
+    const vrml::Value* v = n.get(field);
+    if (!v || v->type != vrml::FieldType::SFString || v->strs.empty() || !n.slot(field)) return false;
+    frontend::EmbeddedScript whole;
+    whole.field = field;
+    whole.text = v->strs[0];
+    frontend::LineCol lc = scene_.file->position(v->str_spans[0].begin);
+    whole.line = lc.line;
+    whole.col = lc.col;
+    size_t want = std::string(field).find("otation") != std::string::npos || std::string(field) == "scaleOrientation" ? 4 : 3;
+    auto parts = frontend::split_components(whole);
+    if (parts.size() != want) {
+      auto file = std::make_unique<frontend::SourceFile>(scene_.file->path(), whole.text, whole.line, whole.col);
+      file->set_outer_lines(lines_);
+      diag_.error(*file, {0, 1}, "'" + std::string(field) + "' of FTransform needs " + std::to_string(want) +
+                                     " components, found " + std::to_string(parts.size()));
+      return false;
+    }
+    for (const auto& p : parts) {
+      CompiledField c;
+      if (!compile_text(p, c)) return false;
+      set_time(c, n, fraction);
+      out.push_back(std::move(c));
+    }
+    return true;
+  }
+
+  bool compile_text(const frontend::EmbeddedScript& e, CompiledField& out) {
+    auto file = std::make_unique<frontend::SourceFile>(scene_.file->path(), e.text, e.line, e.col);
+    file->set_outer_lines(lines_);
+    frontend::Script s;
+    if (!frontend::load_script(std::move(file), diag_, s)) return false;
+    frontend::KernelSpec spec;
+    std::string err;
+    if (!frontend::point_spec(s.sema, spec, out.rgb, err)) {
+      diag_.error(*s.file, {0, 1}, err);
+      return false;
+    }
+    auto m = frontend::build_module(s, spec, diag_, {}, err);
+    auto be = backend::make_backend(opts_.backend);
+    if (!m || !be || !(out.kernel = be->compile(*m, opts_.budgets, err))) return false;
+    out.field = e.field;
+    return true;
+  }
+
   // A parametric geometry kernel returns exactly x, y, z (an assignment list may set only some).
   static bool geometry_outputs(const frontend::SemaResult& s, frontend::KernelSpec& spec, std::string& err) {
     if (s.form != frontend::ScriptForm::Assignments) return true;
@@ -232,6 +278,10 @@ class Builder {
         set_time(f, n, ts.fraction);
         g.op_kernel = std::move(f);
       }
+    }
+    for (const char* f : {"translation", "rotation", "scale", "scaleOrientation", "center"}) {
+      std::vector<CompiledField> parts;
+      if (affine(n, f, ts.fraction, parts)) g.affine.push_back({f, std::move(parts)});
     }
     out_.groups.push_back(std::move(g));
     if (parent >= 0) out_.groups[parent].groups.push_back(index);

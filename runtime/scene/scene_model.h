@@ -58,6 +58,8 @@ struct Group {
   std::string operation;  // "union", ... or the analytical expression
   std::string type;
   std::optional<CompiledField> op_kernel;  // type "analytical"
+  // Affine fields given as FScript strings: one kernel per component (3 or 4), of t.
+  std::vector<std::pair<std::string, std::vector<CompiledField>>> affine;
   std::vector<int> shapes, groups;
   double fraction = 0;
 };

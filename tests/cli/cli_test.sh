@@ -186,6 +186,11 @@ WRL
   check fvrml-run-proto-error 1 'proto.wrl:6:24: error: unknown name .zz.' -- "$R" "$T/proto.wrl" --stats
   sed -i 's/zz/z/' "$T/proto.wrl"
   check fvrml-run-proto 0 '"transform":\[1\.0,0\.0,0\.0,0\.0,0\.0,1\.0,0\.0,0\.0,0\.0,0\.0,1\.0,0\.0,1\.0,2\.0,3\.0,1\.0\]' -- "$R" "$T/proto.wrl" --stats
+  printf '#VRML V2.0 utf8\nFTransform { translation "0.5*t, sin(t), 0" rotation "0 0 1 t" children [ FShape { geometry FGeometry { definition "1-x*x" } } ] }\nInline { url "o.wrl" }\n' > "$T/ft.wrl"
+  check fvrml-run-affine 0 '"affine":\{"rotation":4,"translation":3\}' -- "$R" "$T/ft.wrl" --stats
+  check fvrml-run-inline 0 "warning: Inline 'o.wrl' is not fetched" -- "$R" "$T/ft.wrl" --stats
+  printf '#VRML V2.0 utf8\nFTransform { translation "1 2" }\n' > "$T/ft2.wrl"
+  check fvrml-run-affine-count 1 'ft2.wrl:2:27: error: .translation. of FTransform needs 3 components, found 2' -- "$R" "$T/ft2.wrl" --stats
   check fvrml-run-no-stats 2 'ask for --stats' -- "$R" "$T/badfield.wrl"
   check fvrml-run-bad-backend 2 "backend 'llvm' is not built" -- "$R" "$T/badfield.wrl" --stats --backend llvm
   check fvrml-run-missing 1 'cannot read' -- "$R" "$T/none.wrl" --stats

@@ -42,9 +42,12 @@ nlohmann::json stats(const fscript::vrml::Scene& scene, const SceneModel& m, dou
     shapes.push_back(j);
   }
   nlohmann::json groups = nlohmann::json::array();
-  for (const auto& g : m.groups)
+  for (const auto& g : m.groups) {
+    nlohmann::json affine = nlohmann::json::object();
+    for (const auto& [field, parts] : g.affine) affine[field] = parts.size();
     groups.push_back({{"operation", g.operation}, {"type", g.type}, {"fraction", g.fraction}, {"shapes", g.shapes},
-                      {"ftransforms", g.groups}, {"parent", g.parent}});
+                      {"ftransforms", g.groups}, {"parent", g.parent}, {"affine", affine}});
+  }
   return {{"shapes", shapes}, {"ftransforms", groups}, {"parse_ms", parse_ms}, {"compile_ms", build_ms}};
 }
 

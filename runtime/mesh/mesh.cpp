@@ -1,0 +1,79 @@
+// Mesh helpers and the topology checks the tests and fvrml-meshdiff use.
+#include "runtime/mesh/mesh.h"
+
+#include <algorithm>
+#include <map>
+#include <unordered_map>
+
+namespace fscript::mesh {
+
+void Mesh::append(const Mesh& o) {
+  uint32_t base = static_cast<uint32_t>(positions.size());
+  bool had_normals = normals.size() == positions.size() && (!positions.empty() || !o.normals.empty());
+  bool had_colours = colours.size() == positions.size() && (!positions.empty() || !o.colours.empty());
+  positions.insert(positions.end(), o.positions.begin(), o.positions.end());
+  if (had_normals && o.normals.size() == o.positions.size()) normals.insert(normals.end(), o.normals.begin(), o.normals.end());
+  else normals.clear();
+  if (had_colours && o.colours.size() == o.positions.size()) colours.insert(colours.end(), o.colours.begin(), o.colours.end());
+  else colours.clear();
+  for (auto t : o.triangles) triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  for (const auto& l : o.polylines) {
+    polylines.emplace_back();
+    for (uint32_t i : l) polylines.back().push_back(i + base);
+  }
+}
+
+Topology topology(const Mesh& m) {
+  Topology t;
+  // Directed edge counts and, per undirected edge, how many triangles use it.
+  std::unordered_map<uint64_t, int> directed;
+  std::unordered_map<uint64_t, int> undirected;
+  auto key = [](uint32_t a, uint32_t b) { return (static_cast<uint64_t>(a) << 32) | b; };
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> fans(m.positions.size());
+  for (const auto& tri : m.triangles) {
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+      ++t.degenerate_triangles;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      uint32_t a = tri[k], b = tri[(k + 1) % 3];
+      ++directed[key(a, b)];
+      ++undirected[key(std::min(a, b), std::max(a, b))];
+      fans[tri[k]].push_back({tri[(k + 1) % 3], tri[(k + 2) % 3]});
+    }
+  }
+  t.watertight = true;
+  t.oriented = true;
+  for (const auto& [e, n] : undirected) {
+    if (n != 2) t.watertight = false;
+    if (n == 1) ++t.boundary_edges;
+  }
+  for (const auto& [e, n] : directed) {
+    if (n != 1) t.oriented = false;
+    uint32_t a = static_cast<uint32_t>(e >> 32), b = static_cast<uint32_t>(e);
+    if (!directed.count(key(b, a))) t.oriented = false;
+  }
+  // 2-manifold vertices: the triangles around each vertex form a single fan (walk the ring).
+  t.manifold = true;
+  size_t used_vertices = 0;
+  for (const auto& fan : fans) {
+    if (fan.empty()) continue;
+    ++used_vertices;
+    std::map<uint32_t, uint32_t> next;
+    for (auto [b, c] : fan) next[b] = c;
+    uint32_t start = fan[0].first, cur = start;
+    size_t steps = 0;
+    do {
+      auto it = next.find(cur);
+      if (it == next.end()) break;
+      cur = it->second;
+      ++steps;
+    } while (cur != start && steps <= fan.size());
+    if (steps != fan.size() || cur != start) t.manifold = false;
+  }
+  size_t faces = m.triangles.size() - t.degenerate_triangles;
+  t.euler = static_cast<long>(used_vertices) - static_cast<long>(undirected.size()) + static_cast<long>(faces);
+  return t;
+}
+
+}  // namespace fscript::mesh

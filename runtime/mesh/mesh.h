@@ -1,0 +1,36 @@
+#pragma once
+// The mesh type shared by polygonizers, writers, the renderer and fvrml-meshdiff: indexed
+// triangles (or polylines for curves) with optional per-vertex normals and colours.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fscript::mesh {
+
+using Vec3 = std::array<float, 3>;
+
+struct Mesh {
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;  // empty or one per position
+  std::vector<Vec3> colours;  // empty or one per position, each channel in [0, 1]
+  std::vector<std::array<uint32_t, 3>> triangles;
+  std::vector<std::vector<uint32_t>> polylines;  // curves
+
+  void append(const Mesh& other);  // concatenates (indices shifted)
+};
+
+// Topology report: every edge shared by exactly two triangles (watertight), each used once in
+// each direction (consistently oriented), no vertex whose triangles form more than one fan
+// (2-manifold), and V - E + F.
+struct Topology {
+  bool watertight = false;
+  bool oriented = false;
+  bool manifold = false;
+  long euler = 0;
+  size_t boundary_edges = 0;
+  size_t degenerate_triangles = 0;
+};
+Topology topology(const Mesh& m);
+
+}  // namespace fscript::mesh

@@ -1,0 +1,85 @@
+// The implicit polygonizer by its invariants: watertight, consistently oriented outward, 2-manifold,
+// Euler characteristic, vertices on the true surface, caps on the box faces.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "runtime/mesh/implicit.h"
+#include "tests/unit/helpers.h"
+
+using namespace fscript;
+
+static mesh::Mesh polygonize(const std::string& src, std::array<double, 6> box, int n, float t = 0) {
+  auto b = test::build(src);
+  REQUIRE(b->ok);
+  mesh::ImplicitJob job;
+  job.kernel = b->kernel.get();
+  job.box = box;
+  job.cells = {n, n, n};
+  job.t = t;
+  mesh::Mesh m;
+  backend::RuntimeError err;
+  REQUIRE(mesh::polygonize_implicit(job, m, err));
+  return m;
+}
+
+TEST_CASE("mesh: a sphere is a watertight oriented 2-manifold with Euler characteristic 2, on the surface") {
+  auto m = polygonize("function FRep(x,y,z,t){ return 0.7*0.7 - x*x - y*y - z*z; }", {-1, 1, -1, 1, -1, 1}, 40);
+  auto topo = mesh::topology(m);
+  CHECK(topo.watertight);
+  CHECK(topo.oriented);
+  CHECK(topo.manifold);
+  CHECK(topo.euler == 2);
+  double cell = 2.0 / 40, worst = 0;
+  int inward = 0;
+  for (size_t v = 0; v < m.positions.size(); ++v) {
+    const auto& p = m.positions[v];
+    double r = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    worst = std::max(worst, std::fabs(r - 0.7));
+    inward += (p[0] * m.normals[v][0] + p[1] * m.normals[v][1] + p[2] * m.normals[v][2]) < 0;
+  }
+  CHECK(worst < 0.01 * cell);
+  CHECK(inward == 0);
+  // Outward orientation: the signed volume of the triangles is positive and near 4/3 pi r^3.
+  double vol = 0;
+  for (const auto& t : m.triangles) {
+    const auto &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+    vol += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+  }
+  CHECK(vol == Approx(4.0 / 3 * M_PI * 0.343).epsilon(0.02));
+}
+
+TEST_CASE("mesh: a torus has Euler characteristic 0") {
+  auto m = polygonize("function FRep(x,y,z,t){ var q = sqrt(x*x+y*y) - 0.6; return 0.25*0.25 - q*q - z*z; }",
+                      {-1, 1, -1, 1, -0.5, 0.5}, 48);
+  auto topo = mesh::topology(m);
+  CHECK(topo.watertight);
+  CHECK(topo.oriented);
+  CHECK(topo.euler == 0);
+}
+
+TEST_CASE("mesh: a solid cut by the box is closed by caps on the box faces") {
+  auto m = polygonize("function FRep(x,y,z,t){ return 1 - x*x - y*y; }", {-0.5, 0.5, -0.5, 0.5, -0.5, 0.5}, 16);
+  auto topo = mesh::topology(m);
+  CHECK(topo.watertight);
+  CHECK(topo.oriented);
+  CHECK(topo.euler == 2);
+  int off_box = 0;
+  for (const auto& p : m.positions) {
+    double d = std::max({std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])});
+    off_box += std::fabs(d - 0.5) > 1e-6;
+  }
+  CHECK(off_box == 0);  // the whole surface is the box
+}
+
+TEST_CASE("mesh: two separate spheres, a thin plate, and time") {
+  auto two = polygonize("function FRep(x,y,z,t){ return max(0.09-(x-0.5)^2-y*y-z*z, 0.09-(x+0.5)^2-y*y-z*z); }",
+                        {-1, 1, -1, 1, -1, 1}, 40);
+  CHECK(mesh::topology(two).euler == 4);
+  auto thin = polygonize("function FRep(x,y,z,t){ return min(0.03 - abs(z), 0.5 - max(abs(x), abs(y))); }",
+                         {-1, 1, -1, 1, -1, 1}, 64);
+  CHECK(mesh::topology(thin).watertight);
+  auto grow = polygonize("function FRep(x,y,z,t){ return t*t - x*x - y*y - z*z; }", {-1, 1, -1, 1, -1, 1}, 20, 0.5f);
+  double r = std::sqrt(grow.positions[0][0] * grow.positions[0][0] + grow.positions[0][1] * grow.positions[0][1] +
+                       grow.positions[0][2] * grow.positions[0][2]);
+  CHECK(r == Approx(0.5).epsilon(0.001));
+}

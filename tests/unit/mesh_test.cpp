@@ -83,3 +83,48 @@ TEST_CASE("mesh: two separate spheres, a thin plate, and time") {
                        grow.positions[0][2] * grow.positions[0][2]);
   CHECK(r == Approx(0.5).epsilon(0.001));
 }
+
+#include "runtime/mesh/parametric.h"
+
+static mesh::Mesh sample(const std::string& src, mesh::ParametricKind kind, std::array<double, 6> dom, int n) {
+  auto b = test::build(src);
+  REQUIRE(b->ok);
+  mesh::ParametricJob job;
+  job.kernel = b->kernel.get();
+  job.kind = kind;
+  job.domain = dom;
+  job.intervals = {n, n, n};
+  mesh::Mesh m;
+  backend::RuntimeError err;
+  REQUIRE(mesh::polygonize_parametric(job, m, err));
+  return m;
+}
+
+TEST_CASE("mesh: a parametric sphere welds its seam and poles into a closed surface on the formula") {
+  auto m = sample("x=0.5*cos(2*pi*u)*sin(pi*v); y=0.5*sin(2*pi*u)*sin(pi*v); z=0.5*cos(pi*v);",
+                  mesh::ParametricKind::Surface, {0, 1, 0, 1, 0, 0}, 32);
+  auto topo = mesh::topology(m);
+  CHECK(topo.watertight);
+  CHECK(topo.euler == 2);
+  double worst = 0;
+  for (const auto& p : m.positions) worst = std::max(worst, std::fabs(std::sqrt(p[0]*p[0] + p[1]*p[1] + p[2]*p[2]) - 0.5));
+  CHECK(worst < 1e-5);
+}
+
+TEST_CASE("mesh: a parametric curve is a polyline of N+1 samples; a solid is its six faces") {
+  auto c = sample("x=u; y=u*u; z=0;", mesh::ParametricKind::Curve, {0, 1, 0, 0, 0, 0}, 10);
+  REQUIRE(c.polylines.size() == 1);
+  CHECK(c.polylines[0].size() == 11);
+  CHECK(c.positions[10][1] == 1.0f);
+  auto s = sample("x=u; y=v; z=w;", mesh::ParametricKind::Solid, {0, 1, 0, 2, 0, 3}, 4);
+  auto topo = mesh::topology(s);
+  CHECK(topo.watertight);
+  CHECK(topo.oriented);
+  CHECK(topo.euler == 2);
+  double vol = 0;  // outward faces give the positive volume 1 * 2 * 3
+  for (const auto& t : s.triangles) {
+    const auto &a = s.positions[t[0]], &b = s.positions[t[1]], &c = s.positions[t[2]];
+    vol += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+  }
+  CHECK(vol == Approx(6.0));
+}

@@ -1,0 +1,131 @@
+// Parametric sampling, welding and vertex normals.
+#include "runtime/mesh/parametric.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace fscript::mesh {
+namespace {
+
+bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>& uvw, std::vector<Vec3>& xyz,
+              backend::RuntimeError& err) {
+  size_t n = uvw.size();
+  std::vector<float> u(n), v(n), w(n), t(n, job.t), x(n), y(n), z(n);
+  for (size_t i = 0; i < n; ++i) u[i] = uvw[i][0], v[i] = uvw[i][1], w[i] = uvw[i][2];
+  const float* in[4] = {u.data(), v.data(), w.data(), t.data()};
+  float* out[3] = {x.data(), y.data(), z.data()};
+  if (!job.kernel->eval_batch(in, out, n, err)) return false;
+  xyz.resize(n);
+  for (size_t i = 0; i < n; ++i) xyz[i] = {x[i], y[i], z[i]};
+  return true;
+}
+
+float lerp(double a, double b, int i, int n) { return static_cast<float>(n > 0 ? a + (b - a) * i / n : a); }
+
+// One grid patch: axis a varies along rows, axis b along columns, the third fixed at `fixed`.
+void patch(const ParametricJob& job, int a, int b, int c, double fixed, bool flip, std::vector<std::array<float, 3>>& uvw,
+           std::vector<std::array<uint32_t, 3>>& tris) {
+  int na = job.intervals[a], nb = job.intervals[b];
+  uint32_t base = static_cast<uint32_t>(uvw.size());
+  for (int j = 0; j <= nb; ++j)
+    for (int i = 0; i <= na; ++i) {
+      std::array<float, 3> p{};
+      p[a] = lerp(job.domain[2 * a], job.domain[2 * a + 1], i, na);
+      p[b] = lerp(job.domain[2 * b], job.domain[2 * b + 1], j, nb);
+      p[c] = static_cast<float>(fixed);
+      uvw.push_back(p);
+    }
+  for (int j = 0; j < nb; ++j)
+    for (int i = 0; i < na; ++i) {
+      uint32_t p00 = base + j * (na + 1) + i, p10 = p00 + 1, p01 = p00 + (na + 1), p11 = p01 + 1;
+      if (!flip) {
+        tris.push_back({p00, p10, p11});
+        tris.push_back({p00, p11, p01});
+      } else {
+        tris.push_back({p00, p11, p10});
+        tris.push_back({p00, p01, p11});
+      }
+    }
+}
+
+}  // namespace
+
+bool polygonize_parametric(const ParametricJob& job, Mesh& out, backend::RuntimeError& err) {
+  out = Mesh{};
+  if (!job.kernel || job.kernel->num_outputs() < 3) {
+    err.message = "the parametric polygonizer needs a kernel giving x, y, z";
+    return false;
+  }
+  std::vector<std::array<float, 3>> uvw;
+  if (job.kind == ParametricKind::Curve) {
+    int n = std::max(1, job.intervals[0]);
+    out.polylines.emplace_back();
+    for (int i = 0; i <= n; ++i) {
+      uvw.push_back({lerp(job.domain[0], job.domain[1], i, n), static_cast<float>(job.domain[2]),
+                     static_cast<float>(job.domain[4])});
+      out.polylines[0].push_back(static_cast<uint32_t>(i));
+    }
+    return evaluate(job, uvw, out.positions, err);
+  }
+  if (job.kind == ParametricKind::Surface) {
+    patch(job, 0, 1, 2, job.domain[4], false, uvw, out.triangles);
+  } else {
+    for (int c = 0; c < 3; ++c) {
+      int a = (c + 1) % 3, b = (c + 2) % 3;
+      patch(job, a, b, c, job.domain[2 * c], true, uvw, out.triangles);
+      patch(job, a, b, c, job.domain[2 * c + 1], false, uvw, out.triangles);
+    }
+  }
+  if (!evaluate(job, uvw, out.positions, err)) return false;
+  float size = 0;
+  for (const auto& p : out.positions)
+    for (float v : p)
+      if (std::isfinite(v)) size = std::max(size, std::fabs(v));
+  weld(out, std::max(size, 1e-6f) * 1e-5f);
+  face_normals_to_vertices(out);
+  return true;
+}
+
+void weld(Mesh& m, float tol) {
+  // Quantise to the tolerance and merge points of the same cell (and its neighbours' exact match).
+  std::map<std::array<long long, 3>, uint32_t> cells;
+  std::vector<uint32_t> remap(m.positions.size());
+  std::vector<Vec3> kept;
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    std::array<long long, 3> key;
+    for (int a = 0; a < 3; ++a) key[a] = std::isfinite(m.positions[i][a]) ? std::llround(m.positions[i][a] / tol) : 0;
+    auto [it, fresh] = cells.try_emplace(key, static_cast<uint32_t>(kept.size()));
+    if (fresh) kept.push_back(m.positions[i]);
+    remap[i] = it->second;
+  }
+  std::vector<std::array<uint32_t, 3>> tris;
+  for (auto t : m.triangles) {
+    std::array<uint32_t, 3> r = {remap[t[0]], remap[t[1]], remap[t[2]]};
+    if (r[0] != r[1] && r[1] != r[2] && r[0] != r[2]) tris.push_back(r);
+  }
+  for (auto& l : m.polylines)
+    for (auto& v : l) v = remap[v];
+  m.positions = std::move(kept);
+  m.triangles = std::move(tris);
+  m.normals.clear();
+}
+
+void face_normals_to_vertices(Mesh& m) {
+  m.normals.assign(m.positions.size(), Vec3{0, 0, 0});
+  for (const auto& t : m.triangles) {
+    const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+    Vec3 n = {(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+              (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+              (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])};
+    for (uint32_t v : t)
+      for (int k = 0; k < 3; ++k) m.normals[v][k] += n[k];
+  }
+  for (auto& n : m.normals) {
+    float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (len > 0)
+      for (float& v : n) v /= len;
+  }
+}
+
+}  // namespace fscript::mesh

@@ -11,6 +11,9 @@ void Mesh::append(const Mesh& o) {
   uint32_t base = static_cast<uint32_t>(positions.size());
   bool had_normals = normals.size() == positions.size() && (!positions.empty() || !o.normals.empty());
   bool had_colours = colours.size() == positions.size() && (!positions.empty() || !o.colours.empty());
+  bool had_params = params.size() == positions.size() && (!positions.empty() || !o.params.empty());
+  if (had_params && o.params.size() == o.positions.size()) params.insert(params.end(), o.params.begin(), o.params.end());
+  else params.clear();
   positions.insert(positions.end(), o.positions.begin(), o.positions.end());
   if (had_normals && o.normals.size() == o.positions.size()) normals.insert(normals.end(), o.normals.begin(), o.normals.end());
   else normals.clear();

@@ -14,6 +14,7 @@ struct Mesh {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  // empty or one per position
   std::vector<Vec3> colours;  // empty or one per position, each channel in [0, 1]
+  std::vector<Vec3> params;   // parametric shapes: the (u, v, w) of each position
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<std::vector<uint32_t>> polylines;  // curves
 

@@ -21,6 +21,11 @@ bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>&
   return true;
 }
 
+void keep_params(const std::vector<std::array<float, 3>>& uvw, Mesh& m) {
+  m.params.clear();
+  for (const auto& p : uvw) m.params.push_back({p[0], p[1], p[2]});
+}
+
 float lerp(double a, double b, int i, int n) { return static_cast<float>(n > 0 ? a + (b - a) * i / n : a); }
 
 // One grid patch: axis a varies along rows, axis b along columns, the third fixed at `fixed`.
@@ -66,6 +71,7 @@ bool polygonize_parametric(const ParametricJob& job, Mesh& out, backend::Runtime
                      static_cast<float>(job.domain[4])});
       out.polylines[0].push_back(static_cast<uint32_t>(i));
     }
+    keep_params(uvw, out);
     return evaluate(job, uvw, out.positions, err);
   }
   if (job.kind == ParametricKind::Surface) {
@@ -78,6 +84,7 @@ bool polygonize_parametric(const ParametricJob& job, Mesh& out, backend::Runtime
     }
   }
   if (!evaluate(job, uvw, out.positions, err)) return false;
+  keep_params(uvw, out);
   float size = 0;
   for (const auto& p : out.positions)
     for (float v : p)
@@ -91,12 +98,16 @@ void weld(Mesh& m, float tol) {
   // Quantise to the tolerance and merge points of the same cell (and its neighbours' exact match).
   std::map<std::array<long long, 3>, uint32_t> cells;
   std::vector<uint32_t> remap(m.positions.size());
-  std::vector<Vec3> kept;
+  std::vector<Vec3> kept, kept_params;
+  bool params = m.params.size() == m.positions.size();
   for (size_t i = 0; i < m.positions.size(); ++i) {
     std::array<long long, 3> key;
     for (int a = 0; a < 3; ++a) key[a] = std::isfinite(m.positions[i][a]) ? std::llround(m.positions[i][a] / tol) : 0;
     auto [it, fresh] = cells.try_emplace(key, static_cast<uint32_t>(kept.size()));
-    if (fresh) kept.push_back(m.positions[i]);
+    if (fresh) {
+      kept.push_back(m.positions[i]);
+      if (params) kept_params.push_back(m.params[i]);
+    }
     remap[i] = it->second;
   }
   std::vector<std::array<uint32_t, 3>> tris;
@@ -107,6 +118,7 @@ void weld(Mesh& m, float tol) {
   for (auto& l : m.polylines)
     for (auto& v : l) v = remap[v];
   m.positions = std::move(kept);
+  if (params) m.params = std::move(kept_params);
   m.triangles = std::move(tris);
   m.normals.clear();
 }

@@ -355,6 +355,7 @@ class Builder {
   void appearance(Shape& s, const vrml::Node* app) {
     if (!app) return;
     if (const vrml::Node* mat = child(*app, "material"); mat && mat->type == "FMaterial") {
+      s.material_node = mat;
       CompiledField c;
       if (compile(*mat, "diffuseColor", Role::Point, c)) {
         set_time(c, *mat, s.fraction);

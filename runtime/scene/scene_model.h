@@ -37,6 +37,7 @@ struct CompiledField {
 struct Shape {
   const vrml::Node* fshape = nullptr;
   const vrml::Node* geometry_node = nullptr;
+  const vrml::Node* material_node = nullptr;  // the FMaterial (patternKey, patternColor)
   int group = -1;  // index of the FTransform directly above it, or -1
   ShapeKind kind = ShapeKind::Implicit;
   std::array<double, 6> domain{};  // implicit: x0 x1 y0 y1 z0 z1 (the box); parametric: u0 u1 v0 v1 w0 w1

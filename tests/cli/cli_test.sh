@@ -191,7 +191,24 @@ WRL
   check fvrml-run-inline 0 "warning: Inline 'o.wrl' is not fetched" -- "$R" "$T/ft.wrl" --stats
   printf '#VRML V2.0 utf8\nFTransform { translation "1 2" }\n' > "$T/ft2.wrl"
   check fvrml-run-affine-count 1 'ft2.wrl:2:27: error: .translation. of FTransform needs 3 components, found 2' -- "$R" "$T/ft2.wrl" --stats
-  check fvrml-run-no-stats 2 'ask for --stats' -- "$R" "$T/badfield.wrl"
+  printf '#VRML V2.0 utf8\nTransform { translation 1 0 0 children FShape { geometry FGeometry { definition "0.5^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [16] } } }\n' > "$T/ball.wrl"
+  for fmt in ply obj stl; do
+    check "fvrml-run-$fmt" 0 '"triangles":[1-9]' -- "$R" "$T/ball.wrl" -o "$T/ball.$fmt" --stats
+  done
+  head -c 3 "$T/ball.ply" | grep -q ply || { echo "FAIL ply-magic"; fails=$((fails + 1)); }
+  grep -q '^f ' "$T/ball.obj" || { echo "FAIL obj-faces"; fails=$((fails + 1)); }
+  python3 - "$T/ball.obj" <<'PY' || { echo "FAIL obj-translated"; fails=$((fails + 1)); }
+import sys
+xs = [float(l.split()[1]) for l in open(sys.argv[1]) if l.startswith('v ')]
+sys.exit(0 if abs(sum(xs) / len(xs) - 1.0) < 0.05 else 1)
+PY
+  check fvrml-run-format 2 "output format 'glb' is not built yet" -- "$R" "$T/ball.wrl" -o "$T/ball.glb"
+  check fvrml-run-unwritable 1 'cannot write' -- "$R" "$T/ball.wrl" -o "$T/no/dir/x.ply"
+  [ ! -e "$T/no/dir/x.ply" ] || { echo "FAIL half-written"; fails=$((fails + 1)); }
+  check fvrml-run-ftransform 1 'not polygonized yet' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l.ply"
+  [ ! -e "$T/l.ply" ] || { echo "FAIL no-output-on-error"; fails=$((fails + 1)); }
+  check fvrml-run-keep-going 1 'warning: FShapes under an FTransform' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l.ply" --keep-going
+  check fvrml-run-no-stats 2 'nothing to do' -- "$R" "$T/badfield.wrl"
   check fvrml-run-bad-backend 2 "backend 'llvm' is not built" -- "$R" "$T/badfield.wrl" --stats --backend llvm
   check fvrml-run-missing 1 'cannot read' -- "$R" "$T/none.wrl" --stats
   if [ -d "$SRC/../shared/corpus" ]; then

@@ -9,7 +9,9 @@
 #include "frontend/big_stack.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
+#include "runtime/mesh/mesh_io.h"
 #include "runtime/scene/scene_model.h"
+#include "runtime/scene/shape_mesh.h"
 
 namespace {
 
@@ -56,7 +58,8 @@ int run(int argc, char** argv) {
   std::string path;
   fscript::scene::ModelOptions opts;
   double fraction = -1;
-  bool want_stats = false;
+  bool want_stats = false, keep_going = false;
+  std::string output, format;
   opts.backend = fscript::backend::available_backends().front();
   app.add_option("SCENE", path, "the .wrl scene (plain or gzip)")->required();
   app.add_option("--backend", opts.backend, "evaluation backend (default: the fastest built)");
@@ -66,6 +69,9 @@ int run(int argc, char** argv) {
   app.add_option("--resolution-scale", opts.resolution_scale, "multiply every node's resolution")
       ->check(CLI::PositiveNumber);
   app.add_flag("--stats", want_stats, "print one JSON object describing the resolved scene on standard error");
+  app.add_option("-o,--output", output, "output file: .ply, .obj or .stl (all FVRML shapes merged, world coordinates)");
+  app.add_option("--format", format, "ply|obj|stl (default: from the output's extension)");
+  app.add_flag("--keep-going", keep_going, "write what succeeded when a shape fails");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -76,9 +82,19 @@ int run(int argc, char** argv) {
     std::cerr << "error: backend '" << opts.backend << "' is not built in this binary\n";
     return 2;
   }
-  if (!want_stats) {
-    std::cerr << "error: this build resolves scenes only; ask for --stats (mesh, picture and VRML output arrive "
-                 "with the polygonizers)\n";
+  if (format.empty() && !output.empty()) format = output.substr(output.find_last_of('.') + 1);
+  fscript::mesh::MeshFormat mesh_format = fscript::mesh::MeshFormat::Ply;
+  if (!output.empty()) {
+    if (format == "ply") mesh_format = fscript::mesh::MeshFormat::Ply;
+    else if (format == "obj") mesh_format = fscript::mesh::MeshFormat::Obj;
+    else if (format == "stl") mesh_format = fscript::mesh::MeshFormat::Stl;
+    else {
+      std::cerr << "error: output format '" << format << "' is not built yet (this build writes ply, obj and stl)\n";
+      return 2;
+    }
+  }
+  if (!want_stats && output.empty()) {
+    std::cerr << "error: nothing to do: give -o OUT.ply|obj|stl and/or --stats\n";
     return 2;
   }
   auto t0 = Clock::now();
@@ -97,8 +113,46 @@ int run(int argc, char** argv) {
   double build_ms = ms_since(t1);
   std::cerr << fscript::frontend::render_all(diag);
   if (!ok) return 1;
-  std::cerr << stats(scene, model, parse_ms, build_ms).dump() << "\n";
-  return 0;
+  auto t2 = Clock::now();
+  fscript::mesh::Mesh all;
+  std::vector<std::pair<size_t, size_t>> counts;
+  bool failed = false;
+  if (!output.empty()) {
+    for (const auto& s : model.shapes) {
+      fscript::mesh::Mesh m;
+      fscript::backend::RuntimeError err;
+      fscript::frontend::LineCol lc = scene.file->position(s.fshape->span.begin);
+      std::string where = path + ":" + std::to_string(lc.line) + ": ";
+      if (s.group >= 0) {
+        std::cerr << where << (keep_going ? "warning: " : "error: ")
+                  << "FShapes under an FTransform are not polygonized yet (operations come next)\n";
+        failed = true;
+      } else if (!fscript::scene::mesh_shape(s, m, err)) {
+        std::cerr << where << (keep_going ? "warning: " : "error: ") << err.message
+                  << (err.line ? " (script line " + std::to_string(err.line) + ")" : "") << "\n";
+        failed = true;
+      }
+      counts.push_back({m.positions.size(), m.triangles.size()});
+      all.append(m);
+    }
+    if (failed && !keep_going) return 1;
+    std::string error;
+    if (!fscript::mesh::write_mesh(all, mesh_format, output, error)) {
+      std::cerr << "error: " << error << "\n";
+      return 1;
+    }
+  }
+  double mesh_ms = ms_since(t2);
+  if (want_stats) {
+    auto j = stats(scene, model, parse_ms, build_ms);
+    for (size_t i = 0; i < counts.size() && i < j["shapes"].size(); ++i) {
+      j["shapes"][i]["vertices"] = counts[i].first;
+      j["shapes"][i]["triangles"] = counts[i].second;
+    }
+    j["polygonize_ms"] = mesh_ms;
+    std::cerr << j.dump() << "\n";
+  }
+  return failed ? 1 : 0;
 }
 
 }  // namespace

@@ -1,0 +1,15 @@
+#pragma once
+// A resolved shape to a mesh in world coordinates: the polygonizer its kind calls for, vertex
+// colours from FMaterial.diffuseColor (r, g, b, or the value through patternKey/patternColor like a
+// VRML ColorInterpolator), and the enclosing Transforms applied.
+#include "runtime/mesh/mesh.h"
+#include "runtime/scene/scene_model.h"
+
+namespace fscript::scene {
+
+bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err);
+
+// The pattern map: piecewise linear over keys, clamped at the ends; no pattern: a grey level.
+mesh::Vec3 pattern_colour(const vrml::Node* material, float value);
+
+}  // namespace fscript::scene

@@ -1,6 +1,7 @@
 // Constant folding through runtime/math (so a folded value equals the run-time one bit for bit),
 // plus identities that are exact in IEEE arithmetic up to the sign of zero, which the language
 // leaves unspecified: x*1, x/1, x+0, x-0, --x, select on a constant or on equal arms.
+#include <algorithm>
 #include <vector>
 
 #include "ir/eval.h"
@@ -26,6 +27,7 @@ Inst* identity(Inst* i) {
       if (is_const(a[0], 0.0f)) return a[1];
       return nullptr;
     case Op::Sub: return is_const(a[1], 0.0f) ? a[0] : nullptr;
+    case Op::Pow: return is_const(a[1], 1.0f) ? a[0] : nullptr;
     case Op::Neg: return a[0]->op == Op::Neg ? a[0]->args[0] : nullptr;
     case Op::Select:
       if (a[1] == a[2]) return a[1];
@@ -51,6 +53,49 @@ Inst* identity(Inst* i) {
   }
 }
 
+// x^k for a small constant integer k becomes multiplications (x^2 = x*x exactly: one rounding, as
+// the correctly rounded pow; x^3 and x^4 round twice, within the transcendental ulp bound), x^1 is
+// x, x^0 is 1 (also for NaN, as Math.pow), x^-1 is 1/x (exact). Rewrites `i` in place.
+bool reduce_pow(Function& fn, Inst* i) {
+  if (i->op != Op::Pow || i->args[1]->op != Op::Const) return false;
+  float k = i->args[1]->imm;
+  Inst* x = i->args[0];
+  auto square = [&] {
+    Inst* s = fn.make(Op::Mul);
+    s->args = {x, x};
+    s->block = i->block;
+    auto& v = i->block->insts;
+    v.insert(std::find(v.begin(), v.end(), i), s);
+    return s;
+  };
+  if (k == 2) {
+    i->op = Op::Mul;
+    i->args = {x, x};
+  } else if (k == 3) {
+    i->op = Op::Mul;
+    i->args = {square(), x};
+  } else if (k == 4) {
+    Inst* s = square();
+    i->op = Op::Mul;
+    i->args = {s, s};
+  } else if (k == 0) {
+    i->op = Op::Const;
+    i->imm = 1;
+    i->args.clear();
+  } else if (k == -1) {
+    Inst* one = fn.make(Op::Const);
+    one->imm = 1;
+    one->block = i->block;
+    auto& v = i->block->insts;
+    v.insert(std::find(v.begin(), v.end(), i), one);
+    i->op = Op::Div;
+    i->args = {one, x};
+  } else {
+    return false;
+  }
+  return true;
+}
+
 // cbr on a constant becomes br; the untaken successor loses this predecessor.
 bool fold_branch(Block* b) {
   Inst* t = b->terminator();
@@ -70,9 +115,15 @@ bool run_const_fold(Function& fn) {
   std::vector<Inst*> rep(fn.next_value, nullptr);
   bool changed = false;
   for (auto& b : fn.blocks) {
-    for (Inst* i : b->insts) {
+    for (size_t n = 0; n < b->insts.size(); ++n) {
+      Inst* i = b->insts[n];
       for (auto& a : i->args)
         while (rep[a->id]) a = rep[a->id];
+      if (reduce_pow(fn, i)) {
+        rep.resize(fn.next_value, nullptr);
+        changed = true;
+        n = static_cast<size_t>(std::find(b->insts.begin(), b->insts.end(), i) - b->insts.begin());
+      }
       if (Inst* r = identity(i); r && r != i) {
         rep[i->id] = r;
         changed = true;

@@ -94,12 +94,26 @@ class Polygonizer {
 
   std::array<int, 3> corner(int i, int j, int k, int c) const { return {i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)}; }
 
-  // The vertex on the edge between grid points a and b (one inside, one outside), shared by key.
+  // Every tetrahedron edge joins a grid point to one of its 7 neighbours p + d, d in {0,1}^3 \ 0
+  // (the Kuhn split orders each tetrahedron's corners componentwise). Edge vertices are cached per
+  // (lower point, direction) in two z-layers, swapped as the march moves up: no hash map.
+  static int direction(const std::array<int, 3>& d) { return d[0] + 2 * d[1] + 4 * d[2] - 1; }
+  uint32_t& edge_slot(const std::array<int, 3>& lo, int dir) {
+    size_t p = static_cast<size_t>(lo[1] + 1) * (g_.nx + 2) + static_cast<size_t>(lo[0] + 1);
+    auto& layer = lo[2] == layer_z_ ? layer_lo_ : layer_hi_;
+    return layer[p * 7 + dir];
+  }
+
+  // The vertex on the edge between grid points a and b (one inside, one outside).
   uint32_t edge_vertex(const std::array<int, 3>& a, const std::array<int, 3>& b) {
-    size_t ia = g_.index(a[0], a[1], a[2]), ib = g_.index(b[0], b[1], b[2]);
-    uint64_t key = ia < ib ? (static_cast<uint64_t>(ia) << 32) | ib : (static_cast<uint64_t>(ib) << 32) | ia;
-    auto [it, fresh] = edge_index_.try_emplace(key, static_cast<uint32_t>(out_.positions.size()));
-    if (!fresh) return it->second;
+    bool a_low = a[0] <= b[0] && a[1] <= b[1] && a[2] <= b[2];
+    const std::array<int, 3>& lo = a_low ? a : b;
+    const std::array<int, 3>& hi = a_low ? b : a;
+    uint32_t& slot = edge_slot(lo, direction({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}));
+    if (slot != kNone) return slot;
+    slot = static_cast<uint32_t>(out_.positions.size());
+    (lo[2] == layer_z_ ? dirty_lo_ : dirty_hi_).push_back(&slot - (lo[2] == layer_z_ ? layer_lo_ : layer_hi_).data());
+    size_t ia = g_.index(a[0], a[1], a[2]);
     Edge e;
     e.in = inside(ia) ? a : b;
     e.out = inside(ia) ? b : a;
@@ -110,7 +124,7 @@ class Polygonizer {
     e.t = static_cast<float>(std::clamp(t, 0.0, 1.0));
     edges_.push_back(e);
     out_.positions.push_back(position(e, e.t));
-    return it->second;
+    return slot;
   }
 
   struct Edge {
@@ -129,21 +143,32 @@ class Polygonizer {
   }
 
   void march() {
-    for (int k = -1; k < g_.nz; ++k)
-      for (int j = -1; j < g_.ny; ++j)
-        for (int i = -1; i < g_.nx; ++i) cube(i, j, k);
-  }
-
-  void cube(int i, int j, int k) {
-    bool in[8];
-    int count = 0;
-    for (int c = 0; c < 8; ++c) {
-      auto p = corner(i, j, k, c);
-      in[c] = inside(g_.index(p[0], p[1], p[2]));
-      count += in[c];
+    size_t plane = static_cast<size_t>(g_.nx + 2) * (g_.ny + 2);
+    layer_lo_.assign(plane * 7, kNone);
+    layer_hi_.assign(plane * 7, kNone);
+    const size_t row = static_cast<size_t>(g_.nx + 2);
+    // quad[p]: bits for p, p+x, p+y, p+x+y inside; a cube's 8 corners are quad(k) | quad(k+1) << 4.
+    std::vector<uint8_t> in(values_.size(), 0), quad(values_.size(), 0);
+    for (size_t p = 0; p < values_.size(); ++p) in[p] = values_[p] > 0;
+    for (size_t p = 0; p + row + 1 < values_.size(); ++p)
+      quad[p] = static_cast<uint8_t>(in[p] | in[p + 1] << 1 | in[p + row] << 2 | in[p + row + 1] << 3);
+    for (int k = -1; k < g_.nz; ++k) {
+      layer_z_ = k;
+      for (int j = -1; j < g_.ny; ++j) {
+        size_t base = g_.index(-1, j, k);
+        for (int i = -1; i < g_.nx; ++i, ++base) {
+          unsigned mask = quad[base] | quad[base + plane] << 4;
+          if (mask == 0 || mask == 0xFF) continue;  // no surface in this cube
+          bool corners[8];
+          for (int c = 0; c < 8; ++c) corners[c] = (mask >> c) & 1;
+          for (const auto& tet : kTets) tetrahedron(i, j, k, tet, corners);
+        }
+      }
+      std::swap(layer_lo_, layer_hi_);  // the upper layer becomes the lower one
+      std::swap(dirty_lo_, dirty_hi_);
+      for (size_t d : dirty_hi_) layer_hi_[d] = kNone;
+      dirty_hi_.clear();
     }
-    if (count == 0 || count == 8) return;
-    for (const auto& tet : kTets) tetrahedron(i, j, k, tet, in);
   }
 
   void tetrahedron(int i, int j, int k, const int (&tet)[4], const bool (&in)[8]) {
@@ -251,7 +276,10 @@ class Polygonizer {
   Evaluator eval_;
   Grid g_;
   std::vector<float> values_;
-  std::unordered_map<uint64_t, uint32_t> edge_index_;
+  static constexpr uint32_t kNone = UINT32_MAX;
+  std::vector<uint32_t> layer_lo_, layer_hi_;  // edge vertices by (lower point, direction) in z-layers k, k+1
+  std::vector<size_t> dirty_lo_, dirty_hi_;    // slots set in each layer, reset when it is reused
+  int layer_z_ = 0;
   std::vector<Edge> edges_;  // edges_[v] made vertex v
 };
 

@@ -202,6 +202,8 @@ import sys
 xs = [float(l.split()[1]) for l in open(sys.argv[1]) if l.startswith('v ')]
 sys.exit(0 if abs(sum(xs) / len(xs) - 1.0) < 0.05 else 1)
 PY
+  check fvrml-run-png 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.png" --width 64 --height 48
+  head -c 8 "$T/ball.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' || { echo "FAIL fvrml-run-png-magic"; fails=$((fails + 1)); }
   check fvrml-run-format 2 "output format 'glb' is not built yet" -- "$R" "$T/ball.wrl" -o "$T/ball.glb"
   check fvrml-run-unwritable 1 'cannot write' -- "$R" "$T/ball.wrl" -o "$T/no/dir/x.ply"
   [ ! -e "$T/no/dir/x.ply" ] || { echo "FAIL half-written"; fails=$((fails + 1)); }

@@ -10,6 +10,8 @@
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "runtime/mesh/mesh_io.h"
+#include "runtime/render/png.h"
+#include "runtime/render/raster.h"
 #include "runtime/scene/scene_model.h"
 #include "runtime/scene/shape_mesh.h"
 
@@ -72,6 +74,9 @@ int run(int argc, char** argv) {
   app.add_option("-o,--output", output, "output file: .ply, .obj or .stl (all FVRML shapes merged, world coordinates)");
   app.add_option("--format", format, "ply|obj|stl (default: from the output's extension)");
   app.add_flag("--keep-going", keep_going, "write what succeeded when a shape fails");
+  uint32_t width = 800, height = 600;
+  app.add_option("--width", width, "picture width in pixels (png)")->check(CLI::Range(16u, 8192u));
+  app.add_option("--height", height, "picture height in pixels (png)")->check(CLI::Range(16u, 8192u));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -84,12 +89,13 @@ int run(int argc, char** argv) {
   }
   if (format.empty() && !output.empty()) format = output.substr(output.find_last_of('.') + 1);
   fscript::mesh::MeshFormat mesh_format = fscript::mesh::MeshFormat::Ply;
-  if (!output.empty()) {
+  bool png = format == "png";
+  if (!output.empty() && !png) {
     if (format == "ply") mesh_format = fscript::mesh::MeshFormat::Ply;
     else if (format == "obj") mesh_format = fscript::mesh::MeshFormat::Obj;
     else if (format == "stl") mesh_format = fscript::mesh::MeshFormat::Stl;
     else {
-      std::cerr << "error: output format '" << format << "' is not built yet (this build writes ply, obj and stl)\n";
+      std::cerr << "error: output format '" << format << "' is not built yet (this build writes ply, obj, stl and png)\n";
       return 2;
     }
   }
@@ -137,7 +143,15 @@ int run(int argc, char** argv) {
     }
     if (failed && !keep_going) return 1;
     std::string error;
-    if (!fscript::mesh::write_mesh(all, mesh_format, output, error)) {
+    if (png) {
+      fscript::render::RenderOptions ro;
+      ro.width = width;
+      ro.height = height;
+      if (!fscript::render::write_png(output, ro.width, ro.height, 3, fscript::render::render(all, ro), error)) {
+        std::cerr << "error: " << error << "\n";
+        return 1;
+      }
+    } else if (!fscript::mesh::write_mesh(all, mesh_format, output, error)) {
       std::cerr << "error: " << error << "\n";
       return 1;
     }

@@ -1,0 +1,31 @@
+#pragma once
+// The software renderer: triangles and polylines of a mesh drawn with a z-buffer, per-vertex
+// colours and normals, Phong shading (headlight plus a key light) and supersampled anti-aliasing.
+// The camera frames the mesh automatically, or comes from the scene's Viewpoint.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "runtime/mesh/mesh.h"
+
+namespace fscript::render {
+
+struct Camera {
+  std::array<double, 3> position{0, 0, 10};
+  std::array<double, 4> orientation{0, 0, 1, 0};  // VRML SFRotation
+  double field_of_view = 0.785398;
+};
+
+struct RenderOptions {
+  uint32_t width = 800, height = 600;
+  int supersample = 3;                           // samples per pixel per axis
+  std::optional<Camera> camera;                  // none: frame the mesh from the front-right-top
+  std::array<float, 3> background{1, 1, 1};
+  std::array<float, 3> default_colour{0.8f, 0.8f, 0.8f};  // the Material default diffuseColor
+};
+
+// RGB pixels, row-major from the top row.
+std::vector<uint8_t> render(const mesh::Mesh& m, const RenderOptions& opts);
+
+}  // namespace fscript::render

@@ -97,6 +97,24 @@ bool default_spec(const SemaResult& s, KernelSpec& spec, std::string& error) {
   return false;
 }
 
+bool named_inputs_spec(const SemaResult& s, const std::vector<std::string>& names, KernelSpec& spec,
+                       std::string& error) {
+  if (s.form != ScriptForm::Expression) {
+    error = "an operation is one expression of f, g (f1, f2, ...) and t, such as \"f*(1-t)+g*t\"";
+    return false;
+  }
+  spec = {};
+  for (const auto& n : names) {
+    spec.input_names.push_back(n);
+    spec.input_globals.push_back({s.global_slot(n)});
+  }
+  KernelOutput o;
+  o.name = "value";
+  o.global = static_cast<int>(s.globals.size());  // "$value"
+  spec.outputs.push_back(o);
+  return true;
+}
+
 bool point_spec(const SemaResult& s, KernelSpec& spec, bool& rgb, std::string& error) {
   spec = {};
   for (const char* n : {"x", "y", "z", "u", "v", "w", "t"}) {

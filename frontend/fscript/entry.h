@@ -20,6 +20,11 @@ bool function_spec(const SemaResult& sema, const std::string& name, KernelSpec& 
 // FRep(x, y, z[, t]) as a 4-input, 1-output kernel (x, y, z, t).
 bool frep_spec(const SemaResult& sema, KernelSpec& spec, std::string& error);
 
+// Inputs that each set the global of the same name (an FTransform operation: f, g, f1..., t);
+// the output is the value of the expression-form script.
+bool named_inputs_spec(const SemaResult& sema, const std::vector<std::string>& names, KernelSpec& spec,
+                       std::string& error);
+
 // A kernel of a surface point for colours and textures: 7 inputs (x, y, z, u, v, w, t), each
 // setting its global, and 4 outputs (value, r, g, b). The value is FRep's result or the
 // expression's; r, g, b come from parametric_r/g/b or from the globals the script assigns.

@@ -24,35 +24,27 @@ struct Grid {
   double coord(int axis, int i) const { return lo[axis] + (i + 0.5) * h[axis]; }
 };
 
-// Evaluates the kernel at many points (x, y, z), batch by batch.
+// Evaluates the field at many points, batch by batch.
 class Evaluator {
  public:
-  Evaluator(const backend::Kernel& k, float t) : k_(k), t_(t) {}
+  explicit Evaluator(const Field& f) : f_(f) {}
   bool run(const std::vector<float>& xs, const std::vector<float>& ys, const std::vector<float>& zs,
            std::vector<float>& out, backend::RuntimeError& err) {
-    size_t n = xs.size();
-    out.resize(n);
-    std::vector<float> ts(std::min(n, kBatch), t_);
-    std::vector<float> extra(std::min(n, kBatch) * k_.num_outputs());
-    for (size_t b = 0; b < n; b += kBatch) {
-      size_t m = std::min(kBatch, n - b);
-      const float* in[4] = {xs.data() + b, ys.data() + b, zs.data() + b, ts.data()};
-      std::vector<float*> outs(k_.num_outputs());
-      outs[0] = out.data() + b;
-      for (size_t o = 1; o < outs.size(); ++o) outs[o] = extra.data() + o * kBatch;
-      if (!k_.eval_batch(in, outs.data(), m, err)) return false;
+    out.resize(xs.size());
+    for (size_t b = 0; b < xs.size(); b += kBatch) {
+      size_t m = std::min(kBatch, xs.size() - b);
+      if (!f_.eval(xs.data() + b, ys.data() + b, zs.data() + b, m, out.data() + b, err)) return false;
     }
     return true;
   }
 
  private:
-  const backend::Kernel& k_;
-  float t_;
+  const Field& f_;
 };
 
 class Polygonizer {
  public:
-  Polygonizer(const ImplicitJob& job, Mesh& out) : job_(job), out_(out), eval_(*job.kernel, job.t) {
+  Polygonizer(const ImplicitJob& job, Mesh& out) : job_(job), out_(out), eval_(*job.field) {
     g_.nx = std::max(1, job.cells[0]);
     g_.ny = std::max(1, job.cells[1]);
     g_.nz = std::max(1, job.cells[2]);
@@ -287,11 +279,22 @@ class Polygonizer {
 
 bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backend::RuntimeError& err) {
   out = Mesh{};
-  if (!job.kernel || job.kernel->num_inputs() < 3) {
-    err.message = "the implicit polygonizer needs an FRep kernel (x, y, z, t)";
+  if (!job.field) {
+    err.message = "the implicit polygonizer needs a field";
     return false;
   }
   return Polygonizer(job, out).run(err);
+}
+
+bool KernelField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
+                       backend::RuntimeError& err) const {
+  std::vector<float> ts(n, t_);
+  std::vector<float> extra(k_.num_outputs() > 1 ? n * (k_.num_outputs() - 1) : 0);
+  const float* in[4] = {x, y, z, ts.data()};
+  std::vector<float*> outs(k_.num_outputs());
+  outs[0] = out;
+  for (size_t o = 1; o < outs.size(); ++o) outs[o] = extra.data() + (o - 1) * n;
+  return k_.eval_batch(in, outs.data(), n, err);
 }
 
 }  // namespace fscript::mesh

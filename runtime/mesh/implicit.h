@@ -9,15 +9,15 @@
 #include <array>
 
 #include "backends/backend.h"
+#include "runtime/mesh/field.h"
 #include "runtime/mesh/mesh.h"
 
 namespace fscript::mesh {
 
 struct ImplicitJob {
-  const backend::Kernel* kernel = nullptr;  // FRep kernel: inputs (x, y, z, t), output f (inside >= 0)
+  const Field* field = nullptr;             // f(x, y, z), inside where f > 0
   std::array<double, 6> box{};              // x0 x1 y0 y1 z0 z1
   std::array<int, 3> cells{50, 50, 50};     // samples per axis inside the box
-  float t = 0;
   int refine_steps = 3;
 };
 

@@ -115,8 +115,9 @@ class Builder {
     if (!frontend::load_script(std::move(file), diag_, s, extra)) return false;
     frontend::KernelSpec spec;
     std::string err;
-    bool ok = role == Role::Point ? frontend::point_spec(s.sema, spec, out.rgb, err)
-                                  : frontend::default_spec(s.sema, spec, err);
+    bool ok = role == Role::Point       ? frontend::point_spec(s.sema, spec, out.rgb, err)
+              : role == Role::Operation ? frontend::named_inputs_spec(s.sema, operation_inputs(), spec, err)
+                                        : frontend::default_spec(s.sema, spec, err);
     if (implicit) *implicit = s.sema.entry.frep >= 0 || s.sema.form == frontend::ScriptForm::Expression;
     if (ok && role == Role::Geometry && !*implicit) ok = geometry_outputs(s.sema, spec, err);
     if (!ok) {
@@ -177,6 +178,13 @@ class Builder {
     if (!m || !be || !(out.kernel = be->compile(*m, opts_.budgets, err))) return false;
     out.field = e.field;
     return true;
+  }
+
+  static std::vector<std::string> operation_inputs() {
+    std::vector<std::string> names = {"f", "g"};
+    for (int k = 1; k <= kMaxOperands; ++k) names.push_back("f" + std::to_string(k));
+    names.push_back("t");
+    return names;
   }
 
   // A parametric geometry kernel returns exactly x, y, z (an assignment list may set only some).
@@ -272,8 +280,8 @@ class Builder {
     int index = static_cast<int>(out_.groups.size());
     if (g.type == "analytical") {
       CompiledField f;
-      std::vector<std::string> extra = {"f", "g"};
-      for (int k = 1; k <= 16; ++k) extra.push_back("f" + std::to_string(k));
+      std::vector<std::string> extra = operation_inputs();
+      extra.pop_back();  // t is a standard global already
       if (compile(n, "operation", Role::Operation, f, nullptr, extra)) {
         set_time(f, n, ts.fraction);
         g.op_kernel = std::move(f);
@@ -284,7 +292,10 @@ class Builder {
       if (affine(n, f, ts.fraction, parts)) g.affine.push_back({f, std::move(parts)});
     }
     out_.groups.push_back(std::move(g));
-    if (parent >= 0) out_.groups[parent].groups.push_back(index);
+    if (parent >= 0) {
+      out_.groups[parent].groups.push_back(index);
+      out_.groups[parent].children.push_back({true, index});
+    }
     if (const vrml::Value* v = n.get("children"))
       for (const auto& c : v->nodes) walk(c.get(), m, index, depth + 1);
   }
@@ -315,7 +326,10 @@ class Builder {
     if (type == "parametric") implicit = false;
     resolve_domain(s, *geo, implicit);
     appearance(s, child(n, "appearance"));
-    if (group >= 0) out_.groups[group].shapes.push_back(static_cast<int>(out_.shapes.size()));
+    if (group >= 0) {
+      out_.groups[group].shapes.push_back(static_cast<int>(out_.shapes.size()));
+      out_.groups[group].children.push_back({false, static_cast<int>(out_.shapes.size())});
+    }
     out_.shapes.push_back(std::move(s));
   }
 

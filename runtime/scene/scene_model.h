@@ -52,6 +52,9 @@ struct Shape {
   int frames = 0;
 };
 
+// An analytical FTransform operation sees f, g (first and second child) and f1 ... f16.
+constexpr int kMaxOperands = 16;
+
 // An FTransform: an operation over its children (shapes and nested FTransforms).
 struct Group {
   const vrml::Node* node = nullptr;
@@ -62,6 +65,7 @@ struct Group {
   // Affine fields given as FScript strings: one kernel per component (3 or 4), of t.
   std::vector<std::pair<std::string, std::vector<CompiledField>>> affine;
   std::vector<int> shapes, groups;
+  std::vector<std::pair<bool, int>> children;  // in file order: (is a group, index)
   double fraction = 0;
 };
 

@@ -6,6 +6,7 @@
 
 #include "runtime/mesh/implicit.h"
 #include "runtime/mesh/parametric.h"
+#include "runtime/scene/shape_field.h"
 
 namespace fscript::scene {
 
@@ -90,11 +91,11 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err) {
   }
   bool ok;
   if (s.kind == ShapeKind::Implicit) {
+    ShapeField field(s);
     mesh::ImplicitJob job;
-    job.kernel = s.geometry.kernel.get();
+    job.field = &field;
     job.box = s.domain;
     job.cells = s.resolution;
-    job.t = static_cast<float>(s.geometry.t);
     ok = mesh::polygonize_implicit(job, out, err);
   } else {
     mesh::ParametricJob job;
@@ -108,6 +109,24 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err) {
   }
   if (!ok || !colour_vertices(s, out, err)) return false;
   transform(s.transform, out);
+  return true;
+}
+
+bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err) {
+  GroupField field(m, group);
+  std::string why;
+  if (!field.valid(why)) {
+    err.message = why;
+    return false;
+  }
+  mesh::ImplicitJob job;
+  job.field = &field;
+  job.box = field.box();
+  job.cells = field.cells();
+  if (!mesh::polygonize_implicit(job, out, err)) return false;
+  const Shape* first = field.first_shape();
+  if (first && !colour_vertices(*first, out, err)) return false;
+  if (first) transform(first->transform, out);
   return true;
 }
 

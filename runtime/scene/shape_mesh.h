@@ -9,6 +9,10 @@ namespace fscript::scene {
 
 bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err);
 
+// A top-level FTransform: its combined implicit field polygonized over the union of the children's
+// boxes, coloured by its first shape's material.
+bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err);
+
 // The pattern map: piecewise linear over keys, clamped at the ends; no pattern: a grey level.
 mesh::Vec3 pattern_colour(const vrml::Node* material, float value);
 

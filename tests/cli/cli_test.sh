@@ -207,9 +207,9 @@ PY
   check fvrml-run-format 2 "output format 'glb' is not built yet" -- "$R" "$T/ball.wrl" -o "$T/ball.glb"
   check fvrml-run-unwritable 1 'cannot write' -- "$R" "$T/ball.wrl" -o "$T/no/dir/x.ply"
   [ ! -e "$T/no/dir/x.ply" ] || { echo "FAIL half-written"; fails=$((fails + 1)); }
-  check fvrml-run-ftransform 1 'not polygonized yet' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l.ply"
+  check fvrml-run-ftransform 1 'operations over parametric shapes' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l.ply"
   [ ! -e "$T/l.ply" ] || { echo "FAIL no-output-on-error"; fails=$((fails + 1)); }
-  check fvrml-run-keep-going 1 'warning: FShapes under an FTransform' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l.ply" --keep-going
+  check fvrml-run-keep-going 1 'warning: FTransform: operations over parametric' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l.ply" --keep-going
   check fvrml-run-no-stats 2 'nothing to do' -- "$R" "$T/badfield.wrl"
   check fvrml-run-bad-backend 2 "backend 'llvm' is not built" -- "$R" "$T/badfield.wrl" --stats --backend llvm
   check fvrml-run-missing 1 'cannot read' -- "$R" "$T/none.wrl" --stats

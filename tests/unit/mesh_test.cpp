@@ -11,11 +11,11 @@ using namespace fscript;
 static mesh::Mesh polygonize(const std::string& src, std::array<double, 6> box, int n, float t = 0) {
   auto b = test::build(src);
   REQUIRE(b->ok);
+  mesh::KernelField field(*b->kernel, t);
   mesh::ImplicitJob job;
-  job.kernel = b->kernel.get();
+  job.field = &field;
   job.box = box;
   job.cells = {n, n, n};
-  job.t = t;
   mesh::Mesh m;
   backend::RuntimeError err;
   REQUIRE(mesh::polygonize_implicit(job, m, err));

@@ -130,15 +130,27 @@ int run(int argc, char** argv) {
       fscript::frontend::LineCol lc = scene.file->position(s.fshape->span.begin);
       std::string where = path + ":" + std::to_string(lc.line) + ": ";
       if (s.group >= 0) {
-        std::cerr << where << (keep_going ? "warning: " : "error: ")
-                  << "FShapes under an FTransform are not polygonized yet (operations come next)\n";
-        failed = true;
-      } else if (!fscript::scene::mesh_shape(s, m, err)) {
+        counts.push_back({0, 0});  // meshed with its FTransform below
+        continue;
+      }
+      if (!fscript::scene::mesh_shape(s, m, err)) {
         std::cerr << where << (keep_going ? "warning: " : "error: ") << err.message
                   << (err.line ? " (script line " + std::to_string(err.line) + ")" : "") << "\n";
         failed = true;
       }
       counts.push_back({m.positions.size(), m.triangles.size()});
+      all.append(m);
+    }
+    for (size_t g = 0; g < model.groups.size(); ++g) {
+      if (model.groups[g].parent >= 0) continue;
+      fscript::mesh::Mesh m;
+      fscript::backend::RuntimeError err;
+      if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err)) {
+        fscript::frontend::LineCol lc = scene.file->position(model.groups[g].node->span.begin);
+        std::cerr << path << ":" << lc.line << ": " << (keep_going ? "warning: " : "error: ")
+                  << "FTransform: " << err.message << "\n";
+        failed = true;
+      }
       all.append(m);
     }
     if (failed && !keep_going) return 1;

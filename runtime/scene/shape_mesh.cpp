@@ -84,7 +84,7 @@ void transform(const Mat4& t, mesh::Mesh& m) {
 
 }  // namespace
 
-bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err) {
+bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, bool world) {
   if (!s.geometry.kernel) {
     err.message = "the shape has no compiled geometry";
     return false;
@@ -108,11 +108,11 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err) {
     ok = mesh::polygonize_parametric(job, out, err);
   }
   if (!ok || !colour_vertices(s, out, err)) return false;
-  transform(s.transform, out);
+  if (world) transform(s.transform, out);
   return true;
 }
 
-bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err) {
+bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err, bool world) {
   GroupField field(m, group);
   std::string why;
   if (!field.valid(why)) {
@@ -126,7 +126,7 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::Runtim
   if (!mesh::polygonize_implicit(job, out, err)) return false;
   const Shape* first = field.first_shape();
   if (first && !colour_vertices(*first, out, err)) return false;
-  if (first) transform(first->transform, out);
+  if (first && world) transform(first->transform, out);
   return true;
 }
 

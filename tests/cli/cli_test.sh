@@ -210,13 +210,19 @@ PY
   check fvrml-run-ftransform 1 'operations over parametric shapes' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l.ply"
   [ ! -e "$T/l.ply" ] || { echo "FAIL no-output-on-error"; fails=$((fails + 1)); }
   check fvrml-run-keep-going 1 'warning: FTransform: operations over parametric' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l.ply" --keep-going
-  check fvrml-run-no-stats 2 'nothing to do' -- "$R" "$T/badfield.wrl"
+  check fvrml-run-wrl-stdout 0 'geometry IndexedFaceSet' -- "$R" "$T/ball.wrl"
+  for w in "$SRC"/examples/paper/figure1-morphing.wrl "$SRC"/examples/paper/figure6-blends.wrl; do
+    check "fvrml-run-wrl $(basename "$w")" 0 '' -- "$R" "$w" -o "$T/out.wrl" --resolution-scale 0.2
+    check "fvrml-run-wrl-reads $(basename "$w")" 0 '' -- "$F" check "$T/out.wrl"
+    grep -q 'FShape\|FGeometry\|ROUTE Time.fraction_changed TO shape' "$T/out.wrl" && { echo "FAIL FVRML nodes left in $(basename "$w")"; fails=$((fails + 1)); }
+  done
   check fvrml-run-bad-backend 2 "backend 'llvm' is not built" -- "$R" "$T/badfield.wrl" --stats --backend llvm
   check fvrml-run-missing 1 'cannot read' -- "$R" "$T/none.wrl" --stats
   if [ -d "$SRC/../shared/corpus" ]; then
     while IFS= read -r -d '' w; do
       head -c 7 "$w" | grep -q BSCRYPT && continue
-      check "fvrml-run-corpus $(basename "$w")" 0 '"shapes"' -- "$R" "$w" --stats
+      check "fvrml-run-corpus $(basename "$w")" 0 '"shapes"' -- "$R" "$w" --stats -o "$T/c.wrl" --resolution-scale 0.3 --keep-going
+      check "fvrml-run-corpus-reads $(basename "$w")" 0 '' -- "$F" check "$T/c.wrl"
     done < <(find "$SRC/../shared/corpus" -name '*.wrl' -print0)
   fi
 fi

@@ -1,7 +1,11 @@
 // fvrml-run: reads an FVRML scene, runs the time model and resolves every FVRML node. This first
 // stage reports the result (`--stats`); meshes, files and pictures come with the polygonizers.
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <map>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -14,6 +18,7 @@
 #include "runtime/render/raster.h"
 #include "runtime/scene/scene_model.h"
 #include "runtime/scene/shape_mesh.h"
+#include "runtime/scene/vrml_export.h"
 
 namespace {
 
@@ -21,6 +26,23 @@ using Clock = std::chrono::steady_clock;
 using fscript::scene::SceneModel;
 
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// Writes through a temporary file and a rename: never half a file.
+bool write_text(const std::string& path, const std::string& text, std::string& error) {
+  std::string tmp = path + ".tmp";
+  FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) {
+    error = "cannot write '" + path + "': " + std::strerror(errno);
+    return false;
+  }
+  bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  ok = (std::fclose(f) == 0) && ok && std::rename(tmp.c_str(), path.c_str()) == 0;
+  if (!ok) {
+    error = "cannot write '" + path + "': " + std::strerror(errno);
+    std::remove(tmp.c_str());
+  }
+  return ok;
+}
 
 nlohmann::json field_json(const fscript::scene::CompiledField& f) {
   return {{"field", f.field}, {"timeSpan", {f.span0, f.span1}}, {"t", f.t}};
@@ -88,9 +110,10 @@ int run(int argc, char** argv) {
     return 2;
   }
   if (format.empty() && !output.empty()) format = output.substr(output.find_last_of('.') + 1);
+  if (format.empty()) format = "wrl";
   fscript::mesh::MeshFormat mesh_format = fscript::mesh::MeshFormat::Ply;
-  bool png = format == "png";
-  if (!output.empty() && !png) {
+  bool png = format == "png", wrl = format == "wrl";
+  if (!png && !wrl) {
     if (format == "ply") mesh_format = fscript::mesh::MeshFormat::Ply;
     else if (format == "obj") mesh_format = fscript::mesh::MeshFormat::Obj;
     else if (format == "stl") mesh_format = fscript::mesh::MeshFormat::Stl;
@@ -99,10 +122,7 @@ int run(int argc, char** argv) {
       return 2;
     }
   }
-  if (!want_stats && output.empty()) {
-    std::cerr << "error: nothing to do: give -o OUT.ply|obj|stl and/or --stats\n";
-    return 2;
-  }
+  bool write_output = !output.empty() || !want_stats;  // no -o: VRML97 on standard output
   auto t0 = Clock::now();
   std::string text, error;
   if (!fscript::vrml::read_scene_text(path, text, error)) {
@@ -123,7 +143,44 @@ int run(int argc, char** argv) {
   fscript::mesh::Mesh all;
   std::vector<std::pair<size_t, size_t>> counts;
   bool failed = false;
-  if (!output.empty()) {
+  if (write_output && wrl) {
+    std::map<const fscript::vrml::Node*, fscript::mesh::Mesh> meshes;
+    for (const auto& s : model.shapes) {
+      fscript::backend::RuntimeError err;
+      fscript::mesh::Mesh m;
+      if (s.group >= 0) continue;
+      if (!fscript::scene::mesh_shape(s, m, err, false)) {
+        fscript::frontend::LineCol lc = scene.file->position(s.fshape->span.begin);
+        std::cerr << path << ":" << lc.line << ": " << (keep_going ? "warning: " : "error: ") << err.message << "\n";
+        failed = true;
+        continue;
+      }
+      counts.push_back({m.positions.size(), m.triangles.size()});
+      meshes[s.fshape] = std::move(m);
+    }
+    for (size_t g = 0; g < model.groups.size(); ++g) {
+      if (model.groups[g].parent >= 0) continue;
+      fscript::backend::RuntimeError err;
+      fscript::mesh::Mesh m;
+      if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, false)) {
+        fscript::frontend::LineCol lc = scene.file->position(model.groups[g].node->span.begin);
+        std::cerr << path << ":" << lc.line << ": " << (keep_going ? "warning: " : "error: ") << "FTransform: "
+                  << err.message << "\n";
+        failed = true;
+        continue;
+      }
+      meshes[model.groups[g].node] = std::move(m);
+    }
+    if (failed && !keep_going) return 1;
+    std::string text = fscript::scene::export_vrml(scene, meshes);
+    std::string error;
+    if (output.empty() || output == "-") {
+      std::cout << text;
+    } else if (!write_text(output, text, error)) {
+      std::cerr << "error: " << error << "\n";
+      return 1;
+    }
+  } else if (write_output) {
     for (const auto& s : model.shapes) {
       fscript::mesh::Mesh m;
       fscript::backend::RuntimeError err;

@@ -5,6 +5,7 @@ set -u
 F="$1"
 SRC="$2"
 R="${3:-}"  # fvrml-run
+D="${4:-}"  # fvrml-meshdiff
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fails=0
@@ -225,6 +226,20 @@ PY
       check "fvrml-run-corpus-reads $(basename "$w")" 0 '' -- "$F" check "$T/c.wrl"
     done < <(find "$SRC/../shared/corpus" -name '*.wrl' -print0)
   fi
+fi
+
+# fvrml-meshdiff: known answers, formats, bad input.
+if [ -n "$D" ] && [ -n "$R" ]; then
+  printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1-x^2-y^2-z^2" bboxSize 3 3 3 resolution [24] } }\n' > "$T/r1.wrl"
+  printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1.1^2-x^2-y^2-z^2" bboxSize 3 3 3 resolution [24] } }\n' > "$T/r11.wrl"
+  "$R" "$T/r1.wrl" -o "$T/r1.ply" && "$R" "$T/r11.wrl" -o "$T/r11.stl" && "$R" "$T/r1.wrl" -o "$T/r1.obj"
+  check meshdiff-spheres 0 '"hausdorff": 0\.1' -- "$D" "$T/r1.ply" "$T/r11.stl"
+  check meshdiff-watertight 0 '"watertight": true' -- "$D" "$T/r1.obj" "$T/r11.stl"
+  check meshdiff-euler 0 '"euler": 2' -- "$D" "$T/r1.ply" "$T/r1.obj"
+  check meshdiff-missing 1 'cannot read' -- "$D" "$T/none.ply" "$T/r1.ply"
+  printf 'not a mesh' > "$T/bad.ply"
+  check meshdiff-bad 1 'bad.ply: error: not a PLY file' -- "$D" "$T/bad.ply" "$T/r1.ply"
+  check meshdiff-usage 2 '' -- "$D" "$T/r1.ply"
 fi
 
 echo "$((n - fails)) of $n CLI checks passed"

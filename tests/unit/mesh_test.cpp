@@ -128,3 +128,36 @@ TEST_CASE("mesh: a parametric curve is a polyline of N+1 samples; a solid is its
   }
   CHECK(vol == Approx(6.0));
 }
+
+#include "runtime/mesh/distance.h"
+#include "runtime/mesh/mesh_io.h"
+#include "runtime/mesh/mesh_read.h"
+
+TEST_CASE("mesh: distances with known answers, and every writer read back") {
+  auto small = polygonize("function FRep(x,y,z,t){ return 1 - x*x - y*y - z*z; }", {-1.5, 1.5, -1.5, 1.5, -1.5, 1.5}, 40);
+  auto big = polygonize("function FRep(x,y,z,t){ return 1.21 - x*x - y*y - z*z; }", {-1.5, 1.5, -1.5, 1.5, -1.5, 1.5}, 40);
+  auto d = mesh::mesh_distances(small, big);
+  CHECK(d.hausdorff == Approx(0.1).epsilon(0.05));
+  CHECK(d.chamfer == Approx(0.1).epsilon(0.02));
+  auto self = mesh::mesh_distances(small, small);
+  CHECK(self.hausdorff < 1e-4);
+  mesh::Mesh shifted = small;
+  for (auto& p : shifted.positions) p[0] += 0.25f;
+  CHECK(mesh::mesh_distances(small, shifted).hausdorff == Approx(0.25).epsilon(0.05));
+  for (auto [fmt, name] : {std::pair{mesh::MeshFormat::Ply, "a.ply"}, {mesh::MeshFormat::Obj, "a.obj"},
+                           {mesh::MeshFormat::Stl, "a.stl"}}) {
+    mesh::Mesh back;
+    std::string err;
+    INFO(name << ": " << err);
+    REQUIRE(mesh::parse_mesh(mesh::encode_mesh(small, fmt), name, back, err));
+    CHECK(back.triangles.size() == small.triangles.size());
+    CHECK(mesh::topology(back).watertight);
+    CHECK(mesh::mesh_distances(small, back).hausdorff < 1e-5);
+  }
+  mesh::Mesh bad;
+  std::string err;
+  CHECK(!mesh::parse_mesh("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n1\n", "x.ply", bad, err));
+  CHECK(!mesh::parse_mesh("v 0 0 0\nf 1 2 3\n", "x.obj", bad, err));
+  CHECK(err.find("refers to vertex") != std::string::npos);
+  CHECK(!mesh::parse_mesh("garbage", "x.stl", bad, err));
+}

@@ -56,33 +56,39 @@ class Polygonizer {
   }
 
   bool run(backend::RuntimeError& err) {
-    if (!sample(err)) return false;
-    march();
-    return refine(err) && compute_normals(err);
+    return march(err) && refine(err) && compute_normals(err);
   }
 
  private:
-  // Function values on the grid; the padding is -1 (outside).
-  bool sample(backend::RuntimeError& err) {
-    values_.assign(static_cast<size_t>(g_.nx + 2) * (g_.ny + 2) * (g_.nz + 2), -1.0f);
-    std::vector<float> xs, ys, zs, f;
-    for (int k = 0; k < g_.nz; ++k) {
-      xs.clear(), ys.clear(), zs.clear();
-      for (int j = 0; j < g_.ny; ++j)
-        for (int i = 0; i < g_.nx; ++i) {
-          xs.push_back(static_cast<float>(g_.coord(0, i)));
-          ys.push_back(static_cast<float>(g_.coord(1, j)));
-          zs.push_back(static_cast<float>(g_.coord(2, k)));
-        }
-      if (!eval_.run(xs, ys, zs, f, err)) return false;
-      size_t p = 0;
-      for (int j = 0; j < g_.ny; ++j)
-        for (int i = 0; i < g_.nx; ++i) values_[g_.index(i, j, k)] = f[p++];
+  // Two z-layers of function values at a time: the memory is two planes, not the whole grid.
+  size_t plane_size() const { return static_cast<size_t>(g_.nx + 2) * (g_.ny + 2); }
+  size_t in_plane(int i, int j) const { return static_cast<size_t>(j + 1) * (g_.nx + 2) + static_cast<size_t>(i + 1); }
+
+  // Values of layer k (the padding, k outside [0, nz) or i, j outside, is -1: outside).
+  bool sample_layer(int k, std::vector<float>& plane, backend::RuntimeError& err) {
+    plane.assign(plane_size(), -1.0f);
+    if (k < 0 || k >= g_.nz) return true;
+    xs_.clear(), ys_.clear(), zs_.clear();
+    float z = static_cast<float>(g_.coord(2, k));
+    for (int j = 0; j < g_.ny; ++j) {
+      float y = static_cast<float>(g_.coord(1, j));
+      for (int i = 0; i < g_.nx; ++i) {
+        xs_.push_back(static_cast<float>(g_.coord(0, i)));
+        ys_.push_back(y);
+        zs_.push_back(z);
+      }
     }
+    if (!eval_.run(xs_, ys_, zs_, f_, err)) return false;
+    size_t p = 0;
+    for (int j = 0; j < g_.ny; ++j)
+      for (int i = 0; i < g_.nx; ++i) plane[in_plane(i, j)] = f_[p++];
     return true;
   }
 
-  bool inside(size_t idx) const { return values_[idx] > 0; }  // NaN and 0 are outside
+  float value(const std::array<int, 3>& p) const {
+    const auto& plane = p[2] == layer_z_ ? values_lo_ : values_hi_;
+    return plane[in_plane(p[0], p[1])];
+  }
 
   std::array<int, 3> corner(int i, int j, int k, int c) const { return {i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)}; }
 
@@ -105,12 +111,12 @@ class Polygonizer {
     if (slot != kNone) return slot;
     slot = static_cast<uint32_t>(out_.positions.size());
     (lo[2] == layer_z_ ? dirty_lo_ : dirty_hi_).push_back(&slot - (lo[2] == layer_z_ ? layer_lo_ : layer_hi_).data());
-    size_t ia = g_.index(a[0], a[1], a[2]);
     Edge e;
-    e.in = inside(ia) ? a : b;
-    e.out = inside(ia) ? b : a;
-    e.fin = values_[g_.index(e.in[0], e.in[1], e.in[2])];
-    e.fout = values_[g_.index(e.out[0], e.out[1], e.out[2])];
+    bool a_in = value(a) > 0;  // NaN and 0 are outside
+    e.in = a_in ? a : b;
+    e.out = a_in ? b : a;
+    e.fin = value(e.in);
+    e.fout = value(e.out);
     e.cap = g_.padding(e.out[0], e.out[1], e.out[2]);
     double t = e.cap ? 0.5 : (std::isfinite(e.fout) ? e.fin / (e.fin - e.fout) : 0.5);
     e.t = static_cast<float>(std::clamp(t, 0.0, 1.0));
@@ -134,33 +140,47 @@ class Polygonizer {
     return p;
   }
 
-  void march() {
-    size_t plane = static_cast<size_t>(g_.nx + 2) * (g_.ny + 2);
-    layer_lo_.assign(plane * 7, kNone);
-    layer_hi_.assign(plane * 7, kNone);
+  // quad[p]: bits for p, p+x, p+y, p+x+y inside, for one layer.
+  void quads(const std::vector<float>& plane, std::vector<uint8_t>& quad) const {
     const size_t row = static_cast<size_t>(g_.nx + 2);
-    // quad[p]: bits for p, p+x, p+y, p+x+y inside; a cube's 8 corners are quad(k) | quad(k+1) << 4.
-    std::vector<uint8_t> in(values_.size(), 0), quad(values_.size(), 0);
-    for (size_t p = 0; p < values_.size(); ++p) in[p] = values_[p] > 0;
-    for (size_t p = 0; p + row + 1 < values_.size(); ++p)
-      quad[p] = static_cast<uint8_t>(in[p] | in[p + 1] << 1 | in[p + row] << 2 | in[p + row + 1] << 3);
+    quad.assign(plane.size(), 0);
+    for (size_t p = 0; p + row + 1 < plane.size(); ++p)
+      quad[p] = static_cast<uint8_t>((plane[p] > 0) | (plane[p + 1] > 0) << 1 | (plane[p + row] > 0) << 2 |
+                                     (plane[p + row + 1] > 0) << 3);
+  }
+
+  bool march(backend::RuntimeError& err) {
+    layer_lo_.assign(plane_size() * 7, kNone);
+    layer_hi_.assign(plane_size() * 7, kNone);
+    std::vector<uint8_t> quad_lo, quad_hi;
+    if (!sample_layer(-1, values_lo_, err) || !sample_layer(0, values_hi_, err)) return false;
+    quads(values_lo_, quad_lo);
+    quads(values_hi_, quad_hi);
     for (int k = -1; k < g_.nz; ++k) {
       layer_z_ = k;
       for (int j = -1; j < g_.ny; ++j) {
-        size_t base = g_.index(-1, j, k);
+        size_t base = in_plane(-1, j);
         for (int i = -1; i < g_.nx; ++i, ++base) {
-          unsigned mask = quad[base] | quad[base + plane] << 4;
+          unsigned mask = quad_lo[base] | quad_hi[base] << 4;
           if (mask == 0 || mask == 0xFF) continue;  // no surface in this cube
           bool corners[8];
           for (int c = 0; c < 8; ++c) corners[c] = (mask >> c) & 1;
           for (const auto& tet : kTets) tetrahedron(i, j, k, tet, corners);
         }
       }
-      std::swap(layer_lo_, layer_hi_);  // the upper layer becomes the lower one
+      // Move up one layer: the upper values, masks and edge cache become the lower ones.
+      std::swap(layer_lo_, layer_hi_);
       std::swap(dirty_lo_, dirty_hi_);
       for (size_t d : dirty_hi_) layer_hi_[d] = kNone;
       dirty_hi_.clear();
+      std::swap(values_lo_, values_hi_);
+      std::swap(quad_lo, quad_hi);
+      if (k + 1 < g_.nz) {
+        if (!sample_layer(k + 2, values_hi_, err)) return false;
+        quads(values_hi_, quad_hi);
+      }
     }
+    return true;
   }
 
   void tetrahedron(int i, int j, int k, const int (&tet)[4], const bool (&in)[8]) {
@@ -267,7 +287,8 @@ class Polygonizer {
   Mesh& out_;
   Evaluator eval_;
   Grid g_;
-  std::vector<float> values_;
+  std::vector<float> values_lo_, values_hi_;  // function values of z-layers k and k+1
+  std::vector<float> xs_, ys_, zs_, f_;        // sampling scratch
   static constexpr uint32_t kNone = UINT32_MAX;
   std::vector<uint32_t> layer_lo_, layer_hi_;  // edge vertices by (lower point, direction) in z-layers k, k+1
   std::vector<size_t> dirty_lo_, dirty_hi_;    // slots set in each layer, reset when it is reused

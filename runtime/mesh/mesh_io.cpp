@@ -1,7 +1,8 @@
 // Mesh writers.
 #include "runtime/mesh/mesh_io.h"
 
-#include <cerrno>
+#include "frontend/source.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -98,21 +99,7 @@ std::string encode_mesh(const Mesh& m, MeshFormat f) {
 }
 
 bool write_mesh(const Mesh& m, MeshFormat f, const std::string& path, std::string& error) {
-  std::string bytes = encode_mesh(m, f);
-  std::string tmp = path + ".tmp";
-  FILE* file = std::fopen(tmp.c_str(), "wb");
-  if (!file) {
-    error = "cannot write '" + path + "': " + std::strerror(errno);
-    return false;
-  }
-  bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
-  ok = (std::fclose(file) == 0) && ok;
-  if (ok && std::rename(tmp.c_str(), path.c_str()) != 0) ok = false;
-  if (!ok) {
-    error = "cannot write '" + path + "': " + std::strerror(errno);
-    std::remove(tmp.c_str());
-  }
-  return ok;
+  return frontend::write_file_atomic(path, encode_mesh(m, f), error);
 }
 
 }  // namespace fscript::mesh

@@ -27,23 +27,6 @@ using fscript::scene::SceneModel;
 
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-// Writes through a temporary file and a rename: never half a file.
-bool write_text(const std::string& path, const std::string& text, std::string& error) {
-  std::string tmp = path + ".tmp";
-  FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) {
-    error = "cannot write '" + path + "': " + std::strerror(errno);
-    return false;
-  }
-  bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  ok = (std::fclose(f) == 0) && ok && std::rename(tmp.c_str(), path.c_str()) == 0;
-  if (!ok) {
-    error = "cannot write '" + path + "': " + std::strerror(errno);
-    std::remove(tmp.c_str());
-  }
-  return ok;
-}
-
 nlohmann::json field_json(const fscript::scene::CompiledField& f) {
   return {{"field", f.field}, {"timeSpan", {f.span0, f.span1}}, {"t", f.t}};
 }
@@ -176,7 +159,7 @@ int run(int argc, char** argv) {
     std::string error;
     if (output.empty() || output == "-") {
       std::cout << text;
-    } else if (!write_text(output, text, error)) {
+    } else if (!fscript::frontend::write_file_atomic(output, text, error)) {
       std::cerr << "error: " << error << "\n";
       return 1;
     }

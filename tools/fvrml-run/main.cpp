@@ -1,10 +1,8 @@
 // fvrml-run: reads an FVRML scene, runs the time model and resolves every FVRML node. This first
 // stage reports the result (`--stats`); meshes, files and pictures come with the polygonizers.
 #include <CLI/CLI.hpp>
-#include <cerrno>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <map>
 #include <iostream>
 #include <nlohmann/json.hpp>

@@ -19,6 +19,7 @@ struct ImplicitJob {
   std::array<double, 6> box{};              // x0 x1 y0 y1 z0 z1
   std::array<int, 3> cells{50, 50, 50};     // samples per axis inside the box
   int refine_steps = 3;
+  int threads = 1;  // z-slabs marched in parallel; the output is the same bytes for any count
 };
 
 // Polygonizes; returns false with a runtime error from the kernel (budget, bounds).

@@ -84,7 +84,7 @@ void transform(const Mat4& t, mesh::Mesh& m) {
 
 }  // namespace
 
-bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, bool world) {
+bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, bool world, int threads) {
   if (!s.geometry.kernel) {
     err.message = "the shape has no compiled geometry";
     return false;
@@ -96,6 +96,7 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, boo
     job.field = &field;
     job.box = s.domain;
     job.cells = s.resolution;
+    job.threads = threads;
     ok = mesh::polygonize_implicit(job, out, err);
   } else {
     mesh::ParametricJob job;
@@ -112,7 +113,8 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, boo
   return true;
 }
 
-bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err, bool world) {
+bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err, bool world,
+                int threads) {
   GroupField field(m, group);
   std::string why;
   if (!field.valid(why)) {
@@ -123,6 +125,7 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::Runtim
   job.field = &field;
   job.box = field.box();
   job.cells = field.cells();
+  job.threads = threads;
   if (!mesh::polygonize_implicit(job, out, err)) return false;
   const Shape* first = field.first_shape();
   if (first && !colour_vertices(*first, out, err)) return false;

@@ -9,11 +9,12 @@ namespace fscript::scene {
 
 // `world`: apply the enclosing Transforms (files of meshes); false keeps the shape's own
 // coordinates (the VRML97 output keeps the Transform nodes).
-bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, bool world = true);
+bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, bool world = true, int threads = 1);
 
 // A top-level FTransform: its combined implicit field polygonized over the union of the children's
 // boxes, coloured by its first shape's material.
-bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err, bool world = true);
+bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err, bool world = true,
+                int threads = 1);
 
 // The pattern map: piecewise linear over keys, clamped at the ends; no pattern: a grey level.
 mesh::Vec3 pattern_colour(const vrml::Node* material, float value);

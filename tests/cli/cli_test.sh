@@ -203,6 +203,9 @@ import sys
 xs = [float(l.split()[1]) for l in open(sys.argv[1]) if l.startswith('v ')]
 sys.exit(0 if abs(sum(xs) / len(xs) - 1.0) < 0.05 else 1)
 PY
+  check fvrml-run-threads1 0 '' -- "$R" "$SRC/examples/paper/figure6-blends.wrl" -o "$T/t1.ply" --threads 1 --resolution-scale 0.3
+  check fvrml-run-threads2 0 '' -- "$R" "$SRC/examples/paper/figure6-blends.wrl" -o "$T/t2.ply" --threads 2 --resolution-scale 0.3
+  cmp -s "$T/t1.ply" "$T/t2.ply" || { echo "FAIL fvrml-run-threads-identical"; fails=$((fails + 1)); }
   check fvrml-run-png 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.png" --width 64 --height 48
   head -c 8 "$T/ball.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' || { echo "FAIL fvrml-run-png-magic"; fails=$((fails + 1)); }
   check fvrml-run-format 2 "output format 'glb' is not built yet" -- "$R" "$T/ball.wrl" -o "$T/ball.glb"

@@ -161,3 +161,32 @@ TEST_CASE("mesh: distances with known answers, and every writer read back") {
   CHECK(err.find("refers to vertex") != std::string::npos);
   CHECK(!mesh::parse_mesh("garbage", "x.stl", bad, err));
 }
+
+TEST_CASE("mesh: the same mesh, vertex for vertex, for 1, 2 and 5 threads") {
+  auto b = test::build("function FRep(x,y,z,t){ var k = 6.283185307179586*2.0; "
+                       "return min(sin(x*k)*cos(y*k)+sin(y*k)*cos(z*k)+sin(z*k)*cos(x*k), 0.9^2-x*x-y*y-z*z); }");
+  REQUIRE(b->ok);
+  mesh::KernelField field(*b->kernel, 0);
+  mesh::Mesh ref;
+  for (int threads : {1, 2, 5}) {
+    mesh::ImplicitJob job;
+    job.field = &field;
+    job.box = {-1, 1, -1, 1, -1, 1};
+    job.cells = {48, 48, 48};
+    job.threads = threads;
+    mesh::Mesh m;
+    backend::RuntimeError err;
+    REQUIRE(mesh::polygonize_implicit(job, m, err));
+    auto topo = mesh::topology(m);
+    CHECK(topo.watertight);
+    CHECK(topo.oriented);
+    if (threads == 1) {
+      ref = m;
+      continue;
+    }
+    INFO(threads << " threads");
+    CHECK(m.positions == ref.positions);
+    CHECK(m.triangles == ref.triangles);
+    CHECK(m.normals == ref.normals);
+  }
+}

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <map>
+#include <thread>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -78,6 +79,9 @@ int run(int argc, char** argv) {
   app.add_option("--format", format, "ply|obj|stl (default: from the output's extension)");
   app.add_flag("--keep-going", keep_going, "write what succeeded when a shape fails");
   uint32_t width = 800, height = 600;
+  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  app.add_option("--threads", threads, "worker threads (default: all cores); the output is the same for any count")
+      ->check(CLI::Range(1, 256));
   app.add_option("--width", width, "picture width in pixels (png)")->check(CLI::Range(16u, 8192u));
   app.add_option("--height", height, "picture height in pixels (png)")->check(CLI::Range(16u, 8192u));
   try {
@@ -130,7 +134,7 @@ int run(int argc, char** argv) {
       fscript::backend::RuntimeError err;
       fscript::mesh::Mesh m;
       if (s.group >= 0) continue;
-      if (!fscript::scene::mesh_shape(s, m, err, false)) {
+      if (!fscript::scene::mesh_shape(s, m, err, false, threads)) {
         fscript::frontend::LineCol lc = scene.file->position(s.fshape->span.begin);
         std::cerr << path << ":" << lc.line << ": " << (keep_going ? "warning: " : "error: ") << err.message << "\n";
         failed = true;
@@ -143,7 +147,7 @@ int run(int argc, char** argv) {
       if (model.groups[g].parent >= 0) continue;
       fscript::backend::RuntimeError err;
       fscript::mesh::Mesh m;
-      if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, false)) {
+      if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, false, threads)) {
         fscript::frontend::LineCol lc = scene.file->position(model.groups[g].node->span.begin);
         std::cerr << path << ":" << lc.line << ": " << (keep_going ? "warning: " : "error: ") << "FTransform: "
                   << err.message << "\n";
@@ -171,7 +175,7 @@ int run(int argc, char** argv) {
         counts.push_back({0, 0});  // meshed with its FTransform below
         continue;
       }
-      if (!fscript::scene::mesh_shape(s, m, err)) {
+      if (!fscript::scene::mesh_shape(s, m, err, true, threads)) {
         std::cerr << where << (keep_going ? "warning: " : "error: ") << err.message
                   << (err.line ? " (script line " + std::to_string(err.line) + ")" : "") << "\n";
         failed = true;
@@ -183,7 +187,7 @@ int run(int argc, char** argv) {
       if (model.groups[g].parent >= 0) continue;
       fscript::mesh::Mesh m;
       fscript::backend::RuntimeError err;
-      if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err)) {
+      if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, true, threads)) {
         fscript::frontend::LineCol lc = scene.file->position(model.groups[g].node->span.begin);
         std::cerr << path << ":" << lc.line << ": " << (keep_going ? "warning: " : "error: ")
                   << "FTransform: " << err.message << "\n";

@@ -2,6 +2,7 @@
 #include "runtime/mesh/mesh_io.h"
 
 #include "frontend/source.h"
+#include "runtime/mesh/gltf.h"
 
 #include <cmath>
 #include <cstdio>
@@ -94,6 +95,7 @@ std::string encode_mesh(const Mesh& m, MeshFormat f) {
     case MeshFormat::Ply: return ply(m);
     case MeshFormat::Obj: return obj(m);
     case MeshFormat::Stl: return stl(m);
+    case MeshFormat::Glb: return encode_glb(m);
   }
   return "";
 }

@@ -7,7 +7,7 @@
 
 namespace fscript::mesh {
 
-enum class MeshFormat { Ply, Obj, Stl };
+enum class MeshFormat { Ply, Obj, Stl, Glb };
 
 bool write_mesh(const Mesh& m, MeshFormat f, const std::string& path, std::string& error);
 std::string encode_mesh(const Mesh& m, MeshFormat f);  // the file's bytes

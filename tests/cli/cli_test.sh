@@ -208,7 +208,18 @@ PY
   cmp -s "$T/t1.ply" "$T/t2.ply" || { echo "FAIL fvrml-run-threads-identical"; fails=$((fails + 1)); }
   check fvrml-run-png 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.png" --width 64 --height 48
   head -c 8 "$T/ball.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' || { echo "FAIL fvrml-run-png-magic"; fails=$((fails + 1)); }
-  check fvrml-run-format 2 "output format 'glb' is not built yet" -- "$R" "$T/ball.wrl" -o "$T/ball.glb"
+  check fvrml-run-glb 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.glb"
+  head -c 4 "$T/ball.glb" | grep -q glTF || { echo "FAIL glb-magic"; fails=$((fails + 1)); }
+  # The Khronos glTF validator, when dev.sh test could install it (npm).
+  if command -v node > /dev/null && [ -d "${GLTF_VALIDATOR_DIR:-/nonexistent}/gltf-validator" ]; then
+    for w in "$T/ball.wrl" "$SRC"/examples/paper/figure1-morphing.wrl "$SRC"/examples/paper/figure6-blends.wrl; do
+      "$R" "$w" -o "$T/v.glb" --resolution-scale 0.3 2> /dev/null
+      check "gltf-validator $(basename "$w")" 0 '"numErrors":0,"numWarnings":0' -- node "$SRC/tests/clients/gltf_validate.mjs" "$T/v.glb"
+    done
+  else
+    echo "note: the Khronos glTF validator is not installed; its checks were skipped"
+  fi
+  check fvrml-run-format 2 "output format 'gltf' is not built yet" -- "$R" "$T/ball.wrl" -o "$T/ball.gltf"
   check fvrml-run-unwritable 1 'cannot write' -- "$R" "$T/ball.wrl" -o "$T/no/dir/x.ply"
   [ ! -e "$T/no/dir/x.ply" ] || { echo "FAIL half-written"; fails=$((fails + 1)); }
   check fvrml-run-ftransform 1 'operations over parametric shapes' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l.ply"

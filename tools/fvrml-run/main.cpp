@@ -75,8 +75,8 @@ int run(int argc, char** argv) {
   app.add_option("--resolution-scale", opts.resolution_scale, "multiply every node's resolution")
       ->check(CLI::PositiveNumber);
   app.add_flag("--stats", want_stats, "print one JSON object describing the resolved scene on standard error");
-  app.add_option("-o,--output", output, "output file: .ply, .obj or .stl (all FVRML shapes merged, world coordinates)");
-  app.add_option("--format", format, "ply|obj|stl (default: from the output's extension)");
+  app.add_option("-o,--output", output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
+  app.add_option("--format", format, "wrl|glb|ply|obj|stl|png (default: from the output's extension; wrl)");
   app.add_flag("--keep-going", keep_going, "write what succeeded when a shape fails");
   uint32_t width = 800, height = 600;
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -102,8 +102,9 @@ int run(int argc, char** argv) {
     if (format == "ply") mesh_format = fscript::mesh::MeshFormat::Ply;
     else if (format == "obj") mesh_format = fscript::mesh::MeshFormat::Obj;
     else if (format == "stl") mesh_format = fscript::mesh::MeshFormat::Stl;
+    else if (format == "glb") mesh_format = fscript::mesh::MeshFormat::Glb;
     else {
-      std::cerr << "error: output format '" << format << "' is not built yet (this build writes ply, obj, stl and png)\n";
+      std::cerr << "error: output format '" << format << "' is not built yet (this build writes wrl, glb, ply, obj, stl and png)\n";
       return 2;
     }
   }

@@ -206,6 +206,10 @@ PY
   check fvrml-run-threads1 0 '' -- "$R" "$SRC/examples/paper/figure6-blends.wrl" -o "$T/t1.ply" --threads 1 --resolution-scale 0.3
   check fvrml-run-threads2 0 '' -- "$R" "$SRC/examples/paper/figure6-blends.wrl" -o "$T/t2.ply" --threads 2 --resolution-scale 0.3
   cmp -s "$T/t1.ply" "$T/t2.ply" || { echo "FAIL fvrml-run-threads-identical"; fails=$((fails + 1)); }
+  check fvrml-run-frames 0 '"frames":\[' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 3 -o "$T/fr.ply" --stats --resolution-scale 0.3
+  for k in 0 1 2; do [ -s "$T/fr-$k.ply" ] || { echo "FAIL frames file $k"; fails=$((fails + 1)); }; done
+  check fvrml-run-sheet 0 '' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 4 -o "$T/sheet.png" --width 64 --height 64
+  check fvrml-run-frames-wrl 2 'animated VRML97 output is not built yet' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 4
   check fvrml-run-png 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.png" --width 64 --height 48
   head -c 8 "$T/ball.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' || { echo "FAIL fvrml-run-png-magic"; fails=$((fails + 1)); }
   check fvrml-run-glb 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.glb"

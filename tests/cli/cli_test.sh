@@ -210,6 +210,8 @@ PY
   for k in 0 1 2; do [ -s "$T/fr-$k.ply" ] || { echo "FAIL frames file $k"; fails=$((fails + 1)); }; done
   check fvrml-run-sheet 0 '' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 4 -o "$T/sheet.png" --width 64 --height 64
   check fvrml-run-frames-wrl 2 'animated VRML97 output is not built yet' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 4
+  printf '#VRML V2.0 utf8\nViewpoint { position 0 0 3 }\nFShape { geometry FGeometry { definition "0.5^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [16] } }\n' > "$T/vp.wrl"
+  check fvrml-run-viewpoint 0 '' -- "$R" "$T/vp.wrl" -o "$T/vp.png" --width 64 --height 64
   check fvrml-run-png 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.png" --width 64 --height 48
   head -c 8 "$T/ball.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' || { echo "FAIL fvrml-run-png-magic"; fails=$((fails + 1)); }
   check fvrml-run-glb 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.glb"
@@ -258,6 +260,9 @@ if [ -n "$D" ] && [ -n "$R" ]; then
   printf 'not a mesh' > "$T/bad.ply"
   check meshdiff-bad 1 'bad.ply: error: not a PLY file' -- "$D" "$T/bad.ply" "$T/r1.ply"
   check meshdiff-usage 2 '' -- "$D" "$T/r1.ply"
+  check fvrml-run-check 0 '"hausdorff":0\.1' -- "$R" "$T/r1.wrl" --check "$T/r11.stl"
+  check fvrml-run-check-self 0 '"hausdorff":([0-9.]+e-1[0-9]|0[,}])' -- "$R" "$T/r1.wrl" --check "$T/r1.ply"
+  check fvrml-run-check-missing 1 'none.ply: error: cannot read' -- "$R" "$T/r1.wrl" --check "$T/none.ply"
 fi
 
 echo "$((n - fails)) of $n CLI checks passed"

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -15,7 +16,9 @@
 #include "frontend/big_stack.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
+#include "runtime/mesh/distance.h"
 #include "runtime/mesh/mesh_io.h"
+#include "runtime/mesh/mesh_read.h"
 #include "runtime/render/png.h"
 #include "runtime/render/raster.h"
 #include "runtime/scene/scene_model.h"
@@ -32,7 +35,7 @@ namespace mesh = fscript::mesh;
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 struct Options {
-  std::string path, output, format;
+  std::string path, output, format, check;
   fscript::scene::ModelOptions model;
   double fraction = -1;
   int frames = 0, threads = 1;
@@ -120,6 +123,42 @@ nlohmann::json stats(const vrml::Scene& scene, const SceneModel& m, const Meshed
   return {{"shapes", shapes}, {"ftransforms", groups}};
 }
 
+// The camera of the scene's first Viewpoint at the top level (VRML97 binds the first one), if any.
+std::optional<fscript::render::Camera> viewpoint(const vrml::Scene& scene) {
+  for (const auto& n : scene.roots) {
+    if (!n || n->type != "Viewpoint") continue;
+    fscript::render::Camera c;
+    const vrml::Value* p = n->get("position");
+    const vrml::Value* r = n->get("orientation");
+    const vrml::Value* f = n->get("fieldOfView");
+    for (int k = 0; k < 3 && p && k < static_cast<int>(p->nums.size()); ++k) c.position[k] = p->nums[k];
+    for (int k = 0; k < 4 && r && k < static_cast<int>(r->nums.size()); ++k) c.orientation[k] = r->nums[k];
+    if (f && !f->nums.empty() && f->nums[0] > 0 && f->nums[0] < 3.1) c.field_of_view = f->nums[0];
+    return c;
+  }
+  return std::nullopt;
+}
+
+// --check REF: distances between the frame's mesh and a reference mesh, as JSON on standard output.
+bool check_against(const std::string& ref, const mesh::Mesh& all) {
+  mesh::Mesh reference;
+  std::string error;
+  if (!mesh::read_mesh(ref, reference, error)) {
+    std::cerr << ref << ": error: " << error << "\n";
+    return false;
+  }
+  auto d = mesh::mesh_distances(all, reference);
+  double diag = mesh::bbox_diagonal(all);
+  auto t = mesh::topology(all);
+  nlohmann::json j = {{"hausdorff", d.hausdorff}, {"chamfer", d.chamfer},
+                      {"hausdorff_relative", diag > 0 ? d.hausdorff / diag : 0.0},
+                      {"chamfer_relative", diag > 0 ? d.chamfer / diag : 0.0},
+                      {"vertices", all.positions.size()}, {"triangles", all.triangles.size()},
+                      {"watertight", t.watertight}, {"manifold", t.manifold}, {"euler", t.euler}};
+  std::cout << j.dump() << "\n";
+  return true;
+}
+
 // "out.ply", frame 3 of 12 -> "out-03.ply".
 std::string numbered(const std::string& path, int frame, int frames) {
   size_t dot = path.find_last_of('.');
@@ -160,8 +199,13 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
   if (!build(l, model, o.model, true)) return 1;
   st["compile_ms"] = ms_since(t1);
   auto t2 = Clock::now();
-  bool write = !o.output.empty() || !o.stats;
+  bool write = !o.output.empty() || (!o.stats && o.check.empty());
   Meshed meshed;
+  if (!o.check.empty()) {
+    meshed = mesh_scene(o, l.scene, model, true);
+    if (meshed.failed && !o.keep_going) return 1;
+    if (!check_against(o.check, merged(meshed))) return 1;
+  }
   if (write) {
     meshed = mesh_scene(o, l.scene, model, o.format != "wrl");
     if (meshed.failed && !o.keep_going) return 1;
@@ -173,6 +217,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
     } else if (o.format == "png") {
       fscript::render::RenderOptions ro;
       ro.width = o.width, ro.height = o.height;
+      ro.camera = viewpoint(l.scene);
       if (!fscript::render::write_png(o.output, ro.width, ro.height, 3, fscript::render::render(merged(meshed), ro), error))
         return std::cerr << "error: " << error << "\n", 1;
     } else if (!write_frame(o, o.output, merged(meshed))) {
@@ -240,6 +285,7 @@ int run(int argc, char** argv) {
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
   app.add_option("--format", o.format, "wrl|glb|ply|obj|stl|png (default: from the output's extension; wrl)");
   app.add_flag("--keep-going", o.keep_going, "write what succeeded when a shape fails");
+  app.add_option("--check", o.check, "compare the mesh with the reference mesh REF (ply, obj, stl): distances as JSON");
   app.add_option("--width", o.width, "picture width in pixels (png)")->check(CLI::Range(16u, 8192u));
   app.add_option("--height", o.height, "picture height in pixels (png)")->check(CLI::Range(16u, 8192u));
   app.add_option("--threads", o.threads, "worker threads (default: all cores); the output is the same for any count")

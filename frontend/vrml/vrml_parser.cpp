@@ -172,17 +172,25 @@ class Parser {
     expect(VTok::RBracket, "']' to close the interface");
   }
 
-  // proto -> 'PROTO' id '[' decl* ']' '{' statement* '}'
-  void proto(Scope& sc) {
-    Span start = advance().span;
+  // The keyword, the name and the interface, shared by PROTO (with defaults) and EXTERNPROTO.
+  std::unique_ptr<ProtoDef> proto_header(Scope& sc, bool external) {
     auto def = std::make_unique<ProtoDef>();
-    def->span = start;
+    def->external = external;
+    def->span = advance().span;
     if (!at(VTok::Id)) {
-      error(cur().span, "expected a PROTO name, found " + describe(cur()));
-      return;
+      error(cur().span, std::string("expected ") + (external ? "an EXTERNPROTO" : "a PROTO") + " name, found " +
+                            describe(cur()));
+      return nullptr;
     }
     def->iface.name = advance().text;
-    interface(sc, def->iface, true);
+    interface(sc, def->iface, !external);
+    return def;
+  }
+
+  // proto -> 'PROTO' id '[' decl* ']' '{' statement* '}'
+  void proto(Scope& sc) {
+    auto def = proto_header(sc, false);
+    if (!def) return;
     Scope body;
     body.parent = &sc;
     body.proto = def.get();
@@ -200,16 +208,9 @@ class Parser {
 
   // externproto -> 'EXTERNPROTO' id '[' decl* ']' mfstring
   void externproto(Scope& sc) {
-    Span start = advance().span;
-    auto def = std::make_unique<ProtoDef>();
-    def->external = true;
-    def->span = start;
-    if (!at(VTok::Id)) {
-      error(cur().span, "expected an EXTERNPROTO name, found " + describe(cur()));
-      return;
-    }
-    def->iface.name = advance().text;
-    interface(sc, def->iface, false);
+    auto def = proto_header(sc, true);
+    if (!def) return;
+    Span start = def->span;
     Value urls;
     if (value(sc, FieldType::MFString, urls, 1)) def->urls = urls.strs;
     if (!is_fvrml_node(def->iface.name))

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <thread>
 
 namespace fscript::mesh {
@@ -18,6 +19,73 @@ constexpr size_t kBatch = 8192;
 constexpr uint32_t kNone = UINT32_MAX;
 constexpr uint32_t kPlaceholder = 0x80000000u;  // ids from here on name a vertex of the slab below
 
+// The 19 edges of the Kuhn split of a cube (corner bits: 1 = +x, 2 = +y, 4 = +z) are the pairs
+// (lo, lo | d) with lo & d == 0 and d != 0; for each of the 256 inside/outside corner masks the
+// table lists the triangles as triples of those edges, oriented from the inside corners toward the
+// outside ones. Orientation is decided once here on the unit cube with vertices at edge midpoints:
+// a positive scaling of the axes keeps the sign, so it holds for every cell and every refinement.
+struct CubeTable {
+  uint8_t lo[19], dir[19];
+  uint32_t used[256];                       // bit e: edge e carries a vertex
+  uint8_t count[256];                       // triangles
+  std::array<std::array<uint8_t, 3>, 12> tris[256];
+
+  CubeTable() {
+    int id[8][8], n = 0;
+    for (int l = 0; l < 8; ++l)
+      for (int d = 1; d < 8; ++d)
+        if (!(l & d) && (l | d) < 8) lo[n] = static_cast<uint8_t>(l), dir[n] = static_cast<uint8_t>(d), id[l][l | d] = n++;
+    for (int mask = 0; mask < 256; ++mask) {
+      used[mask] = 0, count[mask] = 0;
+      for (const auto& tet : kTets) add_tet(mask, tet, id);
+    }
+  }
+
+ private:
+  static std::array<double, 3> corner(int c) { return {double(c & 1), double((c >> 1) & 1), double((c >> 2) & 1)}; }
+
+  void add_tet(int mask, const int (&tet)[4], const int (&id)[8][8]) {
+    int ins[4], outs[4], ni = 0, no = 0;
+    for (int v : tet) ((mask >> v) & 1 ? ins[ni++] : outs[no++]) = v;
+    if (ni == 0 || ni == 4) return;
+    auto edge = [&](int a, int b) { return id[a & b][a | b]; };  // tet corners are nested: a & b is the lower
+    if (ni == 1 || ni == 3) {
+      int apex = ni == 1 ? ins[0] : outs[0];
+      int* others = ni == 1 ? outs : ins;
+      emit(mask, edge(apex, others[0]), edge(apex, others[1]), edge(apex, others[2]), ins, ni, outs, no);
+      return;
+    }
+    int a = edge(ins[0], outs[0]), b = edge(ins[0], outs[1]), c = edge(ins[1], outs[1]), d = edge(ins[1], outs[0]);
+    emit(mask, a, b, c, ins, ni, outs, no);
+    emit(mask, a, c, d, ins, ni, outs, no);
+  }
+
+  std::array<double, 3> midpoint(int e) const {
+    auto a = corner(lo[e]), b = corner(lo[e] | dir[e]);
+    return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
+  }
+
+  void emit(int mask, int a, int b, int c, const int* ins, int ni, const int* outs, int no) {
+    std::array<double, 3> dir_out{0, 0, 0};
+    for (int k = 0; k < 3; ++k) {
+      for (int v = 0; v < no; ++v) dir_out[k] += corner(outs[v])[k] / no;
+      for (int v = 0; v < ni; ++v) dir_out[k] -= corner(ins[v])[k] / ni;
+    }
+    auto pa = midpoint(a), pb = midpoint(b), pc = midpoint(c);
+    double nrm[3] = {(pb[1] - pa[1]) * (pc[2] - pa[2]) - (pb[2] - pa[2]) * (pc[1] - pa[1]),
+                     (pb[2] - pa[2]) * (pc[0] - pa[0]) - (pb[0] - pa[0]) * (pc[2] - pa[2]),
+                     (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pb[1] - pa[1]) * (pc[0] - pa[0])};
+    bool keep = nrm[0] * dir_out[0] + nrm[1] * dir_out[1] + nrm[2] * dir_out[2] >= 0;
+    tris[mask][count[mask]++] = {uint8_t(a), uint8_t(keep ? b : c), uint8_t(keep ? c : b)};
+    used[mask] |= 1u << a | 1u << b | 1u << c;
+  }
+};
+
+const CubeTable& cube_table() {
+  static const CubeTable table;
+  return table;
+}
+
 struct Grid {
   int nx, ny, nz;  // samples inside the box per axis
   double lo[3], h[3];
@@ -27,29 +95,24 @@ struct Grid {
   size_t in_plane(int i, int j) const { return static_cast<size_t>(j + 1) * (nx + 2) + static_cast<size_t>(i + 1); }
 };
 
-bool evaluate(const Field& f, const std::vector<float>& xs, const std::vector<float>& ys, const std::vector<float>& zs,
-              std::vector<float>& out, backend::RuntimeError& err) {
-  out.resize(xs.size());
-  for (size_t b = 0; b < xs.size(); b += kBatch) {
-    size_t m = std::min(kBatch, xs.size() - b);
-    if (!f.eval(xs.data() + b, ys.data() + b, zs.data() + b, m, out.data() + b, err)) return false;
-  }
+bool evaluate(const Field& f, const float* xs, const float* ys, const float* zs, size_t n, float* out,
+              backend::RuntimeError& err) {
+  for (size_t b = 0; b < n; b += kBatch)
+    if (!f.eval(xs + b, ys + b, zs + b, std::min(kBatch, n - b), out + b, err)) return false;
   return true;
 }
 
-// The grid edge a vertex lies on: from an inside point to an outside one.
+// The grid edge a vertex lies on: from the inside point `in` one step to the outside point.
 struct Edge {
-  std::array<int, 3> in, out;
-  float fin, fout, t;
+  int32_t in[3];
+  int8_t step[3];
   bool cap;  // the outside point is padding: the vertex sits on the box face
+  float fin, fout, t;
 };
 
-Vec3 position(const Grid& g, const Edge& e, float t) {
+inline Vec3 position(const Grid& g, const Edge& e, float t) {
   Vec3 p;
-  for (int a = 0; a < 3; ++a) {
-    double pin = g.coord(a, e.in[a]), pout = g.coord(a, e.out[a]);
-    p[a] = static_cast<float>(pin + t * (pout - pin));
-  }
+  for (int a = 0; a < 3; ++a) p[a] = static_cast<float>(g.coord(a, e.in[a]) + t * e.step[a] * g.h[a]);
   return p;
 }
 
@@ -63,7 +126,10 @@ class Slab {
     size_t plane = g_.plane_size();
     cache_lo_.assign(plane * 7, kNone);
     cache_hi_.assign(plane * 7, kNone);
-    std::vector<uint8_t> quad_lo, quad_hi;
+    values_lo_.assign(plane, -1.0f);
+    values_hi_.assign(plane, -1.0f);
+    plane_coordinates();
+    std::vector<uint8_t> quad_lo(plane, 0), quad_hi(plane, 0);
     if (!sample(k0_, values_lo_, err) || !sample(k0_ + 1, values_hi_, err)) return false;
     quads(values_lo_, quad_lo);
     quads(values_hi_, quad_hi);
@@ -72,11 +138,12 @@ class Slab {
       for (int j = -1; j < g_.ny; ++j) {
         size_t base = g_.in_plane(-1, j);
         for (int i = -1; i < g_.nx; ++i, ++base) {
+          if (i + 8 <= g_.nx && uniform8(quad_lo.data() + base, quad_hi.data() + base)) {
+            i += 7, base += 7;  // eight cubes with no surface
+            continue;
+          }
           unsigned mask = quad_lo[base] | quad_hi[base] << 4;
-          if (mask == 0 || mask == 0xFF) continue;  // no surface in this cube
-          bool corners[8];
-          for (int c = 0; c < 8; ++c) corners[c] = (mask >> c) & 1;
-          for (const auto& tet : kTets) tetrahedron(i, j, k, tet, corners);
+          if (mask != 0 && mask != 0xFF) cube(i, j, base, mask);
         }
       }
       // Move up one layer: the upper values, masks and edge cache become the lower ones.
@@ -94,136 +161,104 @@ class Slab {
     return true;
   }
 
-  std::vector<Vec3> positions;
   std::vector<Edge> edges;                       // edges[v] made local vertex v
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<size_t> boundary;                  // placeholder n names cache slot boundary[n] of plane k0
   const std::vector<uint32_t>& top_cache() const { return cache_lo_; }  // plane k1's slots, after run()
 
  private:
-  bool sample(int k, std::vector<float>& plane, backend::RuntimeError& err) {
-    plane.assign(g_.plane_size(), -1.0f);
-    if (k < 0 || k >= g_.nz) return true;
-    xs_.clear(), ys_.clear(), zs_.clear();
-    float z = static_cast<float>(g_.coord(2, k));
-    for (int j = 0; j < g_.ny; ++j) {
-      float y = static_cast<float>(g_.coord(1, j));
-      for (int i = 0; i < g_.nx; ++i) {
-        xs_.push_back(static_cast<float>(g_.coord(0, i)));
-        ys_.push_back(y);
-        zs_.push_back(z);
-      }
-    }
-    if (!evaluate(f_, xs_, ys_, zs_, f_out_, err)) return false;
+  // The x and y of every sample of a plane, row by row; only z changes from plane to plane.
+  void plane_coordinates() {
+    size_t n = static_cast<size_t>(g_.nx) * g_.ny;
+    xs_.resize(n), ys_.resize(n), zs_.resize(n), f_out_.resize(n);
     size_t p = 0;
     for (int j = 0; j < g_.ny; ++j)
-      for (int i = 0; i < g_.nx; ++i) plane[g_.in_plane(i, j)] = f_out_[p++];
+      for (int i = 0; i < g_.nx; ++i, ++p)
+        xs_[p] = static_cast<float>(g_.coord(0, i)), ys_[p] = static_cast<float>(g_.coord(1, j));
+  }
+
+  // Fills the inside of `plane` with f on layer k; the padding ring stays at -1 (outside).
+  bool sample(int k, std::vector<float>& plane, backend::RuntimeError& err) {
+    if (k < 0 || k >= g_.nz) {
+      std::fill(plane.begin(), plane.end(), -1.0f);
+      return true;
+    }
+    std::fill(zs_.begin(), zs_.end(), static_cast<float>(g_.coord(2, k)));
+    if (!evaluate(f_, xs_.data(), ys_.data(), zs_.data(), xs_.size(), f_out_.data(), err)) return false;
+    for (int j = 0; j < g_.ny; ++j)
+      std::copy_n(f_out_.data() + static_cast<size_t>(j) * g_.nx, g_.nx, plane.data() + g_.in_plane(0, j));
     return true;
   }
 
-  // quad[p]: bits for p, p+x, p+y, p+x+y inside (NaN and 0 are outside).
-  void quads(const std::vector<float>& plane, std::vector<uint8_t>& quad) const {
+  // quad[p]: bits for p, p+x, p+y, p+x+y inside (NaN and 0 are outside). Two flat passes over
+  // bytes, which the compiler vectorizes.
+  void quads(const std::vector<float>& plane, std::vector<uint8_t>& quad) {
+    const size_t row = static_cast<size_t>(g_.nx + 2), n = plane.size();
+    inside_.resize(n + row + 1);
+    uint8_t* in = inside_.data();
+    const float* v = plane.data();
+    for (size_t p = 0; p < n; ++p) in[p] = v[p] > 0;
+    std::fill(in + n, in + n + row + 1, uint8_t{0});
+    uint8_t* q = quad.data();
+    for (size_t p = 0; p < n; ++p)
+      q[p] = static_cast<uint8_t>(in[p] | in[p + 1] << 1 | in[p + row] << 2 | in[p + row + 1] << 3);
+  }
+
+  // Eight consecutive cubes all outside or all inside.
+  static bool uniform8(const uint8_t* lo, const uint8_t* hi) {
+    uint64_t a, b;
+    std::memcpy(&a, lo, 8);
+    std::memcpy(&b, hi, 8);
+    return (a | b) == 0 || (a == 0x0F0F0F0F0F0F0F0Full && b == a);
+  }
+
+  void cube(int i, int j, size_t base, unsigned mask) {
+    const CubeTable& t = cube_table();
+    uint32_t v[19];
+    for (uint32_t used = t.used[mask]; used; used &= used - 1) {
+      int e = __builtin_ctz(used);
+      v[e] = edge_vertex(i, j, base, t.lo[e], t.dir[e]);
+    }
+    for (int q = 0; q < t.count[mask]; ++q) {
+      const auto& tri = t.tris[mask][q];
+      triangles.push_back({v[tri[0]], v[tri[1]], v[tri[2]]});
+    }
+  }
+
+  // The vertex on the grid edge from corner `lo` of cube (i, j, z_) in direction d: cached per
+  // (grid point, direction) in the two current z-layers.
+  uint32_t edge_vertex(int i, int j, size_t base, int lo, int d) {
     const size_t row = static_cast<size_t>(g_.nx + 2);
-    quad.assign(plane.size(), 0);
-    for (size_t p = 0; p + row + 1 < plane.size(); ++p)
-      quad[p] = static_cast<uint8_t>((plane[p] > 0) | (plane[p + 1] > 0) << 1 | (plane[p + row] > 0) << 2 |
-                                     (plane[p + row + 1] > 0) << 3);
-  }
-
-  float value(const std::array<int, 3>& p) const {
-    return (p[2] == z_ ? values_lo_ : values_hi_)[g_.in_plane(p[0], p[1])];
-  }
-
-  std::array<int, 3> corner(int i, int j, int k, int c) const { return {i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)}; }
-
-  // Every tetrahedron edge joins a grid point to a neighbour p + d, d in {0,1}^3 \ 0 (the Kuhn
-  // split orders each tetrahedron's corners componentwise): vertices are cached per (lower point,
-  // direction) in the two current z-layers.
-  uint32_t edge_vertex(const std::array<int, 3>& a, const std::array<int, 3>& b) {
-    bool a_low = a[0] <= b[0] && a[1] <= b[1] && a[2] <= b[2];
-    const std::array<int, 3>& lo = a_low ? a : b;
-    const std::array<int, 3>& hi = a_low ? b : a;
-    int dir = (hi[0] - lo[0]) + 2 * (hi[1] - lo[1]) + 4 * (hi[2] - lo[2]) - 1;
-    bool low_layer = lo[2] == z_;
-    size_t index = g_.in_plane(lo[0], lo[1]) * 7 + dir;
+    size_t point = base + (lo & 1) + ((lo >> 1) & 1) * row;
+    bool low_layer = !(lo & 4);
+    size_t index = point * 7 + static_cast<size_t>(d - 1);
     uint32_t& slot = (low_layer ? cache_lo_ : cache_hi_)[index];
     if (slot != kNone) return slot;
     (low_layer ? dirty_lo_ : dirty_hi_).push_back(index);
-    if (low_layer && lo[2] == k0_ && k0_ > -1 && dir < 3) {  // on the plane the slab below owns
+    if (low_layer && z_ == k0_ && k0_ > -1 && d < 4) {  // on the plane the slab below owns
       slot = kPlaceholder | static_cast<uint32_t>(boundary.size());
       boundary.push_back(index);
       return slot;
     }
-    slot = static_cast<uint32_t>(positions.size());
+    slot = static_cast<uint32_t>(edges.size());
+    int a[3] = {i + (lo & 1), j + ((lo >> 1) & 1), z_ + ((lo >> 2) & 1)};
+    size_t other = point + (d & 1) + ((d >> 1) & 1) * row;
+    float fa = (low_layer ? values_lo_ : values_hi_)[point];
+    float fb = (low_layer && !(d & 4) ? values_lo_ : values_hi_)[other];
     Edge e;
-    bool a_in = value(a) > 0;
-    e.in = a_in ? a : b;
-    e.out = a_in ? b : a;
-    e.fin = value(e.in);
-    e.fout = value(e.out);
-    e.cap = g_.padding(e.out[0], e.out[1], e.out[2]);
-    double t = e.cap ? 0.5 : (std::isfinite(e.fout) ? e.fin / (e.fin - e.fout) : 0.5);
+    int sign = fa > 0 ? 1 : -1;
+    for (int k = 0; k < 3; ++k) {
+      int dk = (d >> k) & 1;
+      e.in[k] = fa > 0 ? a[k] : a[k] + dk;
+      e.step[k] = static_cast<int8_t>(sign * dk);
+    }
+    e.fin = fa > 0 ? fa : fb;
+    e.fout = fa > 0 ? fb : fa;
+    e.cap = g_.padding(e.in[0] + e.step[0], e.in[1] + e.step[1], e.in[2] + e.step[2]);
+    double t = e.cap ? 0.5 : (std::isfinite(e.fout) ? e.fin / (static_cast<double>(e.fin) - e.fout) : 0.5);
     e.t = static_cast<float>(std::clamp(t, 0.0, 1.0));
     edges.push_back(e);
-    positions.push_back(position(g_, e, e.t));
     return slot;
-  }
-
-  void tetrahedron(int i, int j, int k, const int (&tet)[4], const bool (&in)[8]) {
-    std::array<int, 3> p[4];
-    int ins[4], outs[4], ni = 0, no = 0;
-    for (int v = 0; v < 4; ++v) {
-      p[v] = corner(i, j, k, tet[v]);
-      if (in[tet[v]]) ins[ni++] = v;
-      else outs[no++] = v;
-    }
-    if (ni == 0 || ni == 4) return;
-    if (ni == 1 || ni == 3) {
-      int apex = ni == 1 ? ins[0] : outs[0];
-      int* others = ni == 1 ? outs : ins;
-      uint32_t a = edge_vertex(p[apex], p[others[0]]), b = edge_vertex(p[apex], p[others[1]]),
-               c = edge_vertex(p[apex], p[others[2]]);
-      emit(a, b, c, p, ins, ni, outs, no);
-      return;
-    }
-    // Two in, two out: a quad of the four crossing edges, split into two triangles.
-    uint32_t a = edge_vertex(p[ins[0]], p[outs[0]]), b = edge_vertex(p[ins[0]], p[outs[1]]),
-             c = edge_vertex(p[ins[1]], p[outs[1]]), d = edge_vertex(p[ins[1]], p[outs[0]]);
-    emit(a, b, c, p, ins, ni, outs, no);
-    emit(a, c, d, p, ins, ni, outs, no);
-  }
-
-  // Faces point from the inside corners toward the outside ones (outward normals).
-  void emit(uint32_t a, uint32_t b, uint32_t c, const std::array<int, 3> (&p)[4], const int* ins, int ni,
-            const int* outs, int no) {
-    std::array<double, 3> dir = {0, 0, 0}, pa, pb, pc;
-    for (int a2 = 0; a2 < 3; ++a2) {
-      for (int v = 0; v < no; ++v) dir[a2] += g_.coord(a2, p[outs[v]][a2]) / no;
-      for (int v = 0; v < ni; ++v) dir[a2] -= g_.coord(a2, p[ins[v]][a2]) / ni;
-    }
-    pa = approx(a), pb = approx(b), pc = approx(c);
-    double n[3] = {(pb[1] - pa[1]) * (pc[2] - pa[2]) - (pb[2] - pa[2]) * (pc[1] - pa[1]),
-                   (pb[2] - pa[2]) * (pc[0] - pa[0]) - (pb[0] - pa[0]) * (pc[2] - pa[2]),
-                   (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pb[1] - pa[1]) * (pc[0] - pa[0])};
-    double dot = n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2];
-    if (dot >= 0) triangles.push_back({a, b, c});
-    else triangles.push_back({a, c, b});
-  }
-
-  // The midpoint of the vertex's grid edge: orientation only, and the same whether the vertex is
-  // this slab's or a placeholder, so every thread count decides every triangle alike.
-  std::array<double, 3> approx(uint32_t v) const {
-    if (!(v & kPlaceholder)) {
-      const Edge& e = edges[v];
-      std::array<double, 3> m;
-      for (int a = 0; a < 3; ++a) m[a] = 0.5 * (g_.coord(a, e.in[a]) + g_.coord(a, e.out[a]));
-      return m;
-    }
-    size_t slot = boundary[v & ~kPlaceholder];
-    size_t point = slot / 7;
-    int dir = static_cast<int>(slot % 7) + 1;
-    int i = static_cast<int>(point % (g_.nx + 2)) - 1, j = static_cast<int>(point / (g_.nx + 2)) - 1;
-    return {g_.coord(0, i) + 0.5 * (dir & 1) * g_.h[0], g_.coord(1, j) + 0.5 * ((dir >> 1) & 1) * g_.h[1], g_.coord(2, k0_)};
   }
 
   const Grid& g_;
@@ -232,6 +267,7 @@ class Slab {
   std::vector<uint32_t> cache_lo_, cache_hi_;
   std::vector<size_t> dirty_lo_, dirty_hi_;
   std::vector<float> values_lo_, values_hi_, xs_, ys_, zs_, f_out_;
+  std::vector<uint8_t> inside_;
 };
 
 // Runs fn(begin, end) over [0, n) split into `threads` contiguous parts; false if any part fails.
@@ -252,35 +288,42 @@ bool split(size_t n, int threads, Fn fn, backend::RuntimeError& err) {
   return true;
 }
 
-// Regula falsi on the real function along each interior edge, every vertex in batches.
+// Regula falsi on the real function along each interior edge, in blocks of vertices so the
+// scratch arrays stay in cache; then every vertex gets its position.
 bool refine(const Grid& g, const Field& f, std::vector<Edge>& edges, Mesh& m, int steps, int threads,
             backend::RuntimeError& err) {
+  m.positions.resize(edges.size());
   return split(edges.size(), threads, [&](size_t b, size_t e, backend::RuntimeError& er) {
-    std::vector<size_t> todo;
-    for (size_t v = b; v < e; ++v)
-      if (!edges[v].cap && std::isfinite(edges[v].fout)) todo.push_back(v);
-    std::vector<float> lo(todo.size(), 0.0f), hi(todo.size(), 1.0f), flo(todo.size()), fhi(todo.size());
-    for (size_t q = 0; q < todo.size(); ++q) flo[q] = edges[todo[q]].fin, fhi[q] = edges[todo[q]].fout;
-    std::vector<float> xs, ys, zs, out;
-    for (int step = 0; step < steps && !todo.empty(); ++step) {
-      xs.clear(), ys.clear(), zs.clear();
-      for (size_t v : todo) {
-        Vec3 p = position(g, edges[v], edges[v].t);
-        xs.push_back(p[0]), ys.push_back(p[1]), zs.push_back(p[2]);
+    std::vector<uint32_t> todo;
+    std::vector<float> lo, hi, flo, fhi, xs, ys, zs, out;
+    for (size_t b0 = b; b0 < e; b0 += kBatch) {
+      size_t b1 = std::min(e, b0 + kBatch);
+      todo.clear();
+      for (size_t v = b0; v < b1; ++v)
+        if (!edges[v].cap && std::isfinite(edges[v].fout)) todo.push_back(static_cast<uint32_t>(v));
+      size_t n = todo.size();
+      lo.assign(n, 0.0f), hi.assign(n, 1.0f), flo.resize(n), fhi.resize(n);
+      xs.resize(n), ys.resize(n), zs.resize(n), out.resize(n);
+      for (size_t q = 0; q < n; ++q) flo[q] = edges[todo[q]].fin, fhi[q] = edges[todo[q]].fout;
+      for (int step = 0; step < steps && n > 0; ++step) {
+        for (size_t q = 0; q < n; ++q) {
+          Vec3 p = position(g, edges[todo[q]], edges[todo[q]].t);
+          xs[q] = p[0], ys[q] = p[1], zs[q] = p[2];
+        }
+        if (!evaluate(f, xs.data(), ys.data(), zs.data(), n, out.data(), er)) return false;
+        for (size_t q = 0; q < n; ++q) {
+          Edge& ed = edges[todo[q]];
+          float val = out[q], t = ed.t;
+          if (!std::isfinite(val)) continue;
+          if (val > 0) lo[q] = t, flo[q] = val;
+          else hi[q] = t, fhi[q] = val;
+          float denom = flo[q] - fhi[q];
+          float next = denom != 0 ? lo[q] + (hi[q] - lo[q]) * flo[q] / denom : 0.5f * (lo[q] + hi[q]);
+          ed.t = std::clamp(next, lo[q], hi[q]);
+        }
       }
-      if (!evaluate(f, xs, ys, zs, out, er)) return false;
-      for (size_t q = 0; q < todo.size(); ++q) {
-        Edge& ed = edges[todo[q]];
-        float val = out[q], t = ed.t;
-        if (!std::isfinite(val)) continue;
-        if (val > 0) lo[q] = t, flo[q] = val;
-        else hi[q] = t, fhi[q] = val;
-        float denom = flo[q] - fhi[q];
-        float next = denom != 0 ? lo[q] + (hi[q] - lo[q]) * flo[q] / denom : 0.5f * (lo[q] + hi[q]);
-        ed.t = std::clamp(next, lo[q], hi[q]);
-      }
+      for (size_t v = b0; v < b1; ++v) m.positions[v] = position(g, edges[v], edges[v].t);
     }
-    for (size_t v = b; v < e; ++v) m.positions[v] = position(g, edges[v], edges[v].t);
     return true;
   }, err);
 }
@@ -288,28 +331,31 @@ bool refine(const Grid& g, const Field& f, std::vector<Edge>& edges, Mesh& m, in
 // Normals: minus the gradient (central differences, a tenth of a cell); caps face outward.
 bool normals(const Grid& g, const Field& f, const std::vector<Edge>& edges, Mesh& m, int threads,
              backend::RuntimeError& err) {
-  m.normals.assign(m.positions.size(), Vec3{0, 0, 0});
+  m.normals.resize(m.positions.size());
+  constexpr size_t kBlock = kBatch / 6;
   return split(m.positions.size(), threads, [&](size_t b, size_t e, backend::RuntimeError& er) {
-    size_t n = e - b;
-    std::vector<float> xs, ys, zs, out;
-    for (int a = 0; a < 3; ++a)
-      for (int s = -1; s <= 1; s += 2)
-        for (size_t v = b; v < e; ++v) {
-          Vec3 p = m.positions[v];
-          p[a] += static_cast<float>(s * 0.1 * g.h[a]);
-          xs.push_back(p[0]), ys.push_back(p[1]), zs.push_back(p[2]);
+    std::vector<float> xs(6 * kBlock), ys(6 * kBlock), zs(6 * kBlock), out(6 * kBlock);
+    for (size_t b0 = b; b0 < e; b0 += kBlock) {
+      size_t n = std::min(kBlock, e - b0), p = 0;
+      for (int a = 0; a < 3; ++a)
+        for (int s = -1; s <= 1; s += 2)
+          for (size_t v = b0; v < b0 + n; ++v, ++p) {
+            Vec3 q = m.positions[v];
+            q[a] += static_cast<float>(s * 0.1 * g.h[a]);
+            xs[p] = q[0], ys[p] = q[1], zs[p] = q[2];
+          }
+      if (!evaluate(f, xs.data(), ys.data(), zs.data(), p, out.data(), er)) return false;
+      for (size_t q = 0; q < n; ++q) {
+        const Edge& ed = edges[b0 + q];
+        std::array<float, 3> d;
+        for (int a = 0; a < 3; ++a) d[a] = -(out[(2 * a + 1) * n + q] - out[2 * a * n + q]) / static_cast<float>(0.2 * g.h[a]);
+        float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (ed.cap || !(len > 0) || !std::isfinite(len)) {
+          for (int a = 0; a < 3; ++a) d[a] = static_cast<float>(ed.step[a]);
+          len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         }
-    if (!evaluate(f, xs, ys, zs, out, er)) return false;
-    for (size_t q = 0; q < n; ++q) {
-      const Edge& ed = edges[b + q];
-      std::array<float, 3> d;
-      for (int a = 0; a < 3; ++a) d[a] = -(out[(2 * a + 1) * n + q] - out[2 * a * n + q]) / static_cast<float>(0.2 * g.h[a]);
-      float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-      if (ed.cap || !(len > 0) || !std::isfinite(len)) {
-        for (int a = 0; a < 3; ++a) d[a] = static_cast<float>(ed.out[a] - ed.in[a]);
-        len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int a = 0; a < 3; ++a) m.normals[b0 + q][a] = d[a] / len;
       }
-      for (int a = 0; a < 3; ++a) m.normals[b + q][a] = d[a] / len;
     }
     return true;
   }, err);
@@ -317,13 +363,24 @@ bool normals(const Grid& g, const Field& f, const std::vector<Edge>& edges, Mesh
 
 // Concatenates the slabs in order, resolving each slab's placeholders against the one below.
 bool merge(std::vector<Slab>& slabs, Mesh& m, std::vector<Edge>& edges, backend::RuntimeError& err) {
-  std::vector<uint32_t> offset(slabs.size(), 0);
-  for (size_t s = 0; s < slabs.size(); ++s) {
-    offset[s] = static_cast<uint32_t>(m.positions.size());
-    m.positions.insert(m.positions.end(), slabs[s].positions.begin(), slabs[s].positions.end());
-    edges.insert(edges.end(), slabs[s].edges.begin(), slabs[s].edges.end());
+  if (slabs.size() == 1) {  // nothing to resolve
+    edges = std::move(slabs[0].edges);
+    m.triangles = std::move(slabs[0].triangles);
+    return true;
   }
-  for (size_t s = 0; s < slabs.size(); ++s)
+  std::vector<uint32_t> offset(slabs.size(), 0);
+  size_t vertices = 0, triangles = 0;
+  for (size_t s = 0; s < slabs.size(); ++s) {
+    offset[s] = static_cast<uint32_t>(vertices);
+    vertices += slabs[s].edges.size(), triangles += slabs[s].triangles.size();
+  }
+  edges.reserve(vertices);
+  m.triangles.reserve(triangles);
+  for (size_t s = 0; s < slabs.size(); ++s) {
+    edges.insert(edges.end(), slabs[s].edges.begin(), slabs[s].edges.end());
+    std::vector<Edge>().swap(slabs[s].edges);
+  }
+  for (size_t s = 0; s < slabs.size(); ++s) {
     for (auto t : slabs[s].triangles) {
       for (uint32_t& v : t) {
         if (!(v & kPlaceholder)) {
@@ -339,6 +396,8 @@ bool merge(std::vector<Slab>& slabs, Mesh& m, std::vector<Edge>& edges, backend:
       }
       m.triangles.push_back(t);
     }
+    std::vector<std::array<uint32_t, 3>>().swap(slabs[s].triangles);
+  }
   return true;
 }
 
@@ -377,14 +436,17 @@ bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backend::RuntimeErro
     }
   std::vector<Edge> edges;
   if (!merge(slabs, out, edges, err)) return false;
+  slabs.clear();
   return refine(g, *job.field, edges, out, job.refine_steps, job.threads, err) &&
          normals(g, *job.field, edges, out, job.threads, err);
 }
 
 bool KernelField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
                        backend::RuntimeError& err) const {
-  std::vector<float> ts(n, t_);
-  std::vector<float> extra(k_.num_outputs() > 1 ? n * (k_.num_outputs() - 1) : 0);
+  // Reused per thread: the polygonizer calls this for every plane and block.
+  thread_local std::vector<float> ts, extra;
+  ts.assign(n, t_);
+  extra.resize(k_.num_outputs() > 1 ? n * (k_.num_outputs() - 1) : 0);
   const float* in[4] = {x, y, z, ts.data()};
   std::vector<float*> outs(k_.num_outputs());
   outs[0] = out;

@@ -19,6 +19,7 @@ void Mesh::append(const Mesh& o) {
   else normals.clear();
   if (had_colours && o.colours.size() == o.positions.size()) colours.insert(colours.end(), o.colours.begin(), o.colours.end());
   else colours.clear();
+  triangles.reserve(triangles.size() + o.triangles.size());
   for (auto t : o.triangles) triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   for (const auto& l : o.polylines) {
     polylines.emplace_back();

@@ -28,16 +28,20 @@ std::string ply(const Mesh& m) {
   if (colours) s += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   s += "element face " + std::to_string(m.triangles.size()) + "\nproperty list uchar int vertex_indices\n";
   s += "end_header\n";
+  // Sized once and filled through a cursor: meshes of millions of triangles are common.
+  size_t header = s.size(), vertex = 12 + (normals ? 12 : 0) + (colours ? 3 : 0);
+  s.resize(header + m.positions.size() * vertex + m.triangles.size() * 13);
+  char* out = s.data() + header;
+  auto emit = [&out](const void* p, size_t n) { std::memcpy(out, p, n), out += n; };
   for (size_t i = 0; i < m.positions.size(); ++i) {
-    for (float v : m.positions[i]) put(s, v);
-    if (normals)
-      for (float v : m.normals[i]) put(s, v);
+    emit(m.positions[i].data(), 12);
+    if (normals) emit(m.normals[i].data(), 12);
     if (colours)
-      for (float v : m.colours[i]) put(s, static_cast<uint8_t>(std::lround(std::fmin(std::fmax(v, 0.0f), 1.0f) * 255)));
+      for (float v : m.colours[i]) *out++ = static_cast<char>(std::lround(std::fmin(std::fmax(v, 0.0f), 1.0f) * 255));
   }
   for (const auto& t : m.triangles) {
-    put(s, static_cast<uint8_t>(3));
-    for (uint32_t v : t) put(s, static_cast<int32_t>(v));
+    *out++ = 3;
+    emit(t.data(), 12);
   }
   return s;
 }

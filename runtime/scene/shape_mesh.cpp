@@ -66,6 +66,8 @@ bool colour_vertices(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err) 
 }
 
 void transform(const Mat4& t, mesh::Mesh& m) {
+  static const Mat4 identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  if (t == identity) return;
   for (auto& p : m.positions) {
     mesh::Vec3 q;
     for (int r = 0; r < 3; ++r)

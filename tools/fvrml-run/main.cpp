@@ -82,7 +82,9 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
   return out;
 }
 
-mesh::Mesh merged(const Meshed& m) {
+// All the frame's meshes in one (moved out of `m` when there is only one).
+mesh::Mesh merged(Meshed& m) {
+  if (m.by_node.size() == 1) return std::move(m.by_node.begin()->second);
   mesh::Mesh all;
   for (const auto& [node, part] : m.by_node) all.append(part);
   return all;
@@ -209,6 +211,8 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
   if (write) {
     meshed = mesh_scene(o, l.scene, model, o.format != "wrl");
     if (meshed.failed && !o.keep_going) return 1;
+    st["polygonize_ms"] = ms_since(t2);
+    t2 = Clock::now();
     std::string error;
     if (o.format == "wrl") {
       std::string text = fscript::scene::export_vrml(l.scene, meshed.by_node);
@@ -223,8 +227,10 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
     } else if (!write_frame(o, o.output, merged(meshed))) {
       return 1;
     }
+    st["write_ms"] = ms_since(t2);
+  } else {
+    st["polygonize_ms"] = ms_since(t2);
   }
-  st["polygonize_ms"] = ms_since(t2);
   nlohmann::json s = stats(l.scene, model, write ? &meshed : nullptr);
   st["shapes"] = s["shapes"], st["ftransforms"] = s["ftransforms"];
   return meshed.failed ? 1 : 0;

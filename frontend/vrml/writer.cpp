@@ -1,6 +1,7 @@
 // VRML97 writer and structural scene comparison.
 #include "frontend/vrml/writer.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,15 +11,12 @@
 namespace fscript::vrml {
 namespace {
 
-// The shortest text that reads back as the same double.
+// The shortest text that reads back as the same double (std::to_chars: meshes write millions).
 std::string number(double v) {
   if (std::isinf(v)) return v > 0 ? "1e999" : "-1e999";
   char buf[40];
-  for (int p = 6; p <= 17; ++p) {
-    std::snprintf(buf, sizeof buf, "%.*g", p, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
+  auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 std::string quoted(const std::string& s) {

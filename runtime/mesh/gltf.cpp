@@ -1,6 +1,7 @@
 // GLB writer: a JSON chunk (nlohmann-json) and a BIN chunk, both padded to 4 bytes.
 #include "runtime/mesh/gltf.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -36,17 +37,24 @@ int vec3_attribute(const std::vector<Vec3>& data, bool with_bounds, std::string&
   return static_cast<int>(j["accessors"].size()) - 1;
 }
 
-}  // namespace
+// A material for the mesh: white under per-vertex colours (COLOR_0 multiplies the base colour),
+// else the mesh's diffuse colour; transparency as alpha.
+int add_material(const Mesh& m, nlohmann::json& j) {
+  Material mat = m.material.value_or(Material{});
+  bool coloured = m.colours.size() == m.positions.size() && !m.positions.empty();
+  Vec3 base = coloured ? Vec3{1, 1, 1} : mat.diffuse;
+  float alpha = std::clamp(1.0f - mat.transparency, 0.0f, 1.0f);
+  nlohmann::json pbr = {{"baseColorFactor", {base[0], base[1], base[2], alpha}}, {"metallicFactor", 0.0},
+                        {"roughnessFactor", std::clamp(1.0f - mat.shininess, 0.0f, 1.0f)}};
+  nlohmann::json out = {{"pbrMetallicRoughness", pbr}, {"doubleSided", true}};
+  if (mat.emissive != Vec3{0, 0, 0}) out["emissiveFactor"] = {mat.emissive[0], mat.emissive[1], mat.emissive[2]};
+  if (alpha < 1) out["alphaMode"] = "BLEND";
+  j["materials"].push_back(out);
+  return static_cast<int>(j["materials"].size()) - 1;
+}
 
-std::string encode_glb(const Mesh& m) {
-  nlohmann::json j;
-  j["asset"] = {{"version", "2.0"}, {"generator", "fvrml-run"}};
-  j["scene"] = 0;
-  j["scenes"] = {{{"nodes", {0}}}};
-  j["nodes"] = {nlohmann::json::object()};
-  j["bufferViews"] = nlohmann::json::array();
-  j["accessors"] = nlohmann::json::array();
-  std::string bin;
+// Appends the mesh (attributes, indices, material); its index in "meshes", or -1 when empty.
+int add_mesh(const Mesh& m, std::string& bin, nlohmann::json& j) {
   std::vector<uint32_t> index;
   bool lines = m.triangles.empty() && !m.polylines.empty();
   if (lines) {
@@ -55,33 +63,93 @@ std::string encode_glb(const Mesh& m) {
   } else {
     for (const auto& t : m.triangles) index.insert(index.end(), t.begin(), t.end());
   }
-  if (!m.positions.empty() && !index.empty()) {
-    nlohmann::json attrs;
-    attrs["POSITION"] = vec3_attribute(m.positions, true, bin, j);
-    if (!lines && m.normals.size() == m.positions.size()) {
-      std::vector<Vec3> unit = m.normals;
-      for (auto& n : unit) {
-        float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        n = len > 0 && std::isfinite(len) ? Vec3{n[0] / len, n[1] / len, n[2] / len} : Vec3{0, 0, 1};
-      }
-      attrs["NORMAL"] = vec3_attribute(unit, false, bin, j);
+  if (m.positions.empty() || index.empty()) return -1;
+  nlohmann::json attrs;
+  attrs["POSITION"] = vec3_attribute(m.positions, true, bin, j);
+  if (!lines && m.normals.size() == m.positions.size()) {
+    std::vector<Vec3> unit = m.normals;
+    for (auto& n : unit) {
+      float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      n = len > 0 && std::isfinite(len) ? Vec3{n[0] / len, n[1] / len, n[2] / len} : Vec3{0, 0, 1};
     }
-    if (m.colours.size() == m.positions.size()) attrs["COLOR_0"] = vec3_attribute(m.colours, false, bin, j);
-    size_t offset = bin.size();
-    for (uint32_t i : index) put(bin, i);
-    j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bin.size() - offset},
-                                {"target", kElementBuffer}});
-    j["accessors"].push_back({{"bufferView", j["bufferViews"].size() - 1}, {"componentType", kUint},
-                              {"count", index.size()}, {"type", "SCALAR"}});
-    j["materials"] = {{{"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}}, {"metallicFactor", 0.0},
-                                                 {"roughnessFactor", 0.8}}},
-                       {"doubleSided", true}}};
-    j["meshes"] = {{{"primitives", {{{"attributes", attrs}, {"indices", j["accessors"].size() - 1},
-                                     {"mode", lines ? 1 : 4}, {"material", 0}}}}}};
-    j["nodes"][0]["mesh"] = 0;
+    attrs["NORMAL"] = vec3_attribute(unit, false, bin, j);
   }
+  if (m.colours.size() == m.positions.size()) attrs["COLOR_0"] = vec3_attribute(m.colours, false, bin, j);
+  size_t offset = bin.size();
+  for (uint32_t i : index) put(bin, i);
+  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bin.size() - offset},
+                              {"target", kElementBuffer}});
+  j["accessors"].push_back({{"bufferView", j["bufferViews"].size() - 1}, {"componentType", kUint},
+                            {"count", index.size()}, {"type", "SCALAR"}});
+  int material = add_material(m, j);
+  j["meshes"].push_back({{"primitives", {{{"attributes", attrs}, {"indices", j["accessors"].size() - 1},
+                                           {"mode", lines ? 1 : 4}, {"material", material}}}}});
+  return static_cast<int>(j["meshes"].size()) - 1;
+}
+
+// Plain floats (animation keys) as an accessor without a buffer-view target.
+int float_accessor(const std::vector<float>& data, const char* type, bool with_bounds, std::string& bin,
+                   nlohmann::json& j) {
+  size_t offset = bin.size();
+  for (float v : data) put(bin, v);
+  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bin.size() - offset}});
+  size_t per = std::string(type) == "VEC3" ? 3 : 1;
+  nlohmann::json acc = {{"bufferView", j["bufferViews"].size() - 1}, {"componentType", kFloat},
+                        {"count", data.size() / per}, {"type", type}};
+  if (with_bounds) acc["min"] = {*std::min_element(data.begin(), data.end())},
+                   acc["max"] = {*std::max_element(data.begin(), data.end())};
+  j["accessors"].push_back(acc);
+  return static_cast<int>(j["accessors"].size()) - 1;
+}
+
+// Frames as sibling nodes under one parent; a STEP animation of their scales shows frame k during
+// [k T / N, (k + 1) T / N) and hides the others (scale 0). A last key at T repeats the first, so
+// the animation lasts exactly one cycle.
+void add_animation(const GltfAnimation& a, std::string& bin, nlohmann::json& j) {
+  size_t n = a.frames.size();
+  if (n == 0) return;
+  nlohmann::json parent = {{"name", a.name.empty() ? "animation" : a.name}, {"children", nlohmann::json::array()}};
+  std::vector<float> times;
+  for (size_t k = 0; k <= n; ++k) times.push_back(static_cast<float>(a.cycle_interval * k / n));
+  int input = float_accessor(times, "SCALAR", true, bin, j);
+  nlohmann::json samplers = nlohmann::json::array(), channels = nlohmann::json::array();
+  for (size_t f = 0; f < n; ++f) {
+    nlohmann::json node = {{"name", "frame " + std::to_string(f)}};
+    if (int mesh = add_mesh(a.frames[f], bin, j); mesh >= 0) node["mesh"] = mesh;
+    float shown = f == 0 ? 1.0f : 0.0f;
+    node["scale"] = {shown, shown, shown};
+    j["nodes"].push_back(node);
+    size_t index = j["nodes"].size() - 1;
+    parent["children"].push_back(index);
+    std::vector<float> scales;
+    for (size_t k = 0; k <= n; ++k) {
+      float v = (k % n) == f ? 1.0f : 0.0f;
+      scales.insert(scales.end(), {v, v, v});
+    }
+    samplers.push_back({{"input", input}, {"output", float_accessor(scales, "VEC3", false, bin, j)},
+                        {"interpolation", "STEP"}});
+    channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", index}, {"path", "scale"}}}});
+  }
+  j["nodes"].push_back(parent);
+  j["scenes"][0]["nodes"].push_back(j["nodes"].size() - 1);
+  j["animations"].push_back({{"name", parent["name"]}, {"samplers", samplers}, {"channels", channels}});
+}
+
+}  // namespace
+
+std::string encode_glb(const Mesh& m, const std::vector<GltfAnimation>& animations) {
+  nlohmann::json j;
+  j["asset"] = {{"version", "2.0"}, {"generator", "fvrml-run"}};
+  j["scene"] = 0;
+  j["scenes"] = {{{"nodes", {0}}}};
+  j["nodes"] = {nlohmann::json::object()};
+  for (const char* k : {"bufferViews", "accessors", "meshes", "materials", "animations"}) j[k] = nlohmann::json::array();
+  std::string bin;
+  if (int mesh = add_mesh(m, bin, j); mesh >= 0) j["nodes"][0]["mesh"] = mesh;
+  for (const auto& a : animations) add_animation(a, bin, j);
+  for (const char* k : {"bufferViews", "accessors", "meshes", "materials", "animations"})
+    if (j[k].empty()) j.erase(k);
   if (!bin.empty()) j["buffers"] = {{{"byteLength", bin.size()}}};
-  else j.erase("bufferViews"), j.erase("accessors");
   std::string json = j.dump();
   while (json.size() % 4) json += ' ';
   while (bin.size() % 4) bin += '\0';

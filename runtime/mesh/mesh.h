@@ -3,12 +3,20 @@
 // triangles (or polylines for curves) with optional per-vertex normals and colours.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace fscript::mesh {
 
 using Vec3 = std::array<float, 3>;
+
+// The standard VRML97 Material of a shape (FMaterial's strings evaluated once per frame).
+struct Material {
+  Vec3 diffuse{0.8f, 0.8f, 0.8f}, emissive{0, 0, 0}, specular{0, 0, 0};
+  float ambient_intensity = 0.2f, shininess = 0.2f, transparency = 0;
+  bool operator==(const Material&) const = default;
+};
 
 struct Mesh {
   std::vector<Vec3> positions;
@@ -17,6 +25,7 @@ struct Mesh {
   std::vector<Vec3> params;   // parametric shapes: the (u, v, w) of each position
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<std::vector<uint32_t>> polylines;  // curves
+  std::optional<Material> material;              // none: the viewer's default
 
   void append(const Mesh& other);  // concatenates (indices shifted)
 };

@@ -1,7 +1,9 @@
 #pragma once
 // The software renderer: triangles and polylines of a mesh drawn with a z-buffer, per-vertex
-// colours and normals, Phong shading (headlight plus a key light) and supersampled anti-aliasing.
-// The camera frames the mesh automatically, or comes from the scene's Viewpoint.
+// colours and normals, Phong shading with the mesh's material and supersampled anti-aliasing.
+// Lights: the scene's DirectionalLights and the headlight by the VRML97 lighting model, or, when the
+// scene has no lights, a headlight plus a key light. The camera frames the mesh automatically, or
+// comes from the scene's Viewpoint.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -17,12 +19,19 @@ struct Camera {
   double field_of_view = 0.785398;
 };
 
+struct Light {  // a VRML97 DirectionalLight in world coordinates
+  std::array<float, 3> direction{0, 0, -1}, colour{1, 1, 1};
+  float intensity = 1, ambient = 0;
+};
+
 struct RenderOptions {
   uint32_t width = 800, height = 600;
   int supersample = 3;                           // samples per pixel per axis
   std::optional<Camera> camera;                  // none: frame the mesh from the front-right-top
   std::array<float, 3> background{1, 1, 1};
   std::array<float, 3> default_colour{0.8f, 0.8f, 0.8f};  // the Material default diffuseColor
+  std::vector<Light> lights;                     // the scene's; none: the built-in key light
+  bool headlight = true;                         // NavigationInfo.headlight
 };
 
 // RGB pixels, row-major from the top row.

@@ -65,6 +65,32 @@ bool colour_vertices(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err) 
   return true;
 }
 
+// FMaterial's other strings, evaluated once per frame at the centre of the shape's domain (the
+// VRML97 Material holds one value per shape): scalars take the script's value, colours its r, g, b
+// (or the value as a grey level). No FMaterial: no material (the viewer's default).
+bool evaluate_material(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err) {
+  if (!s.material_node) return true;
+  mesh::Material mat;
+  for (const auto& f : s.material) {
+    float centre[3];
+    for (int a = 0; a < 3; ++a) centre[a] = static_cast<float>(0.5 * (s.domain[2 * a] + s.domain[2 * a + 1]));
+    float t = static_cast<float>(f.t), out[4] = {0, 0, 0, 0};
+    const float* in[7] = {&centre[0], &centre[1], &centre[2], &centre[0], &centre[1], &centre[2], &t};
+    float* outs[4] = {&out[0], &out[1], &out[2], &out[3]};
+    if (!f.kernel->eval_batch(in, outs, 1, err)) return false;
+    auto unit = [](float v) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f; };
+    mesh::Vec3 colour = f.rgb ? mesh::Vec3{unit(out[1]), unit(out[2]), unit(out[3])}
+                              : mesh::Vec3{unit(out[0]), unit(out[0]), unit(out[0])};
+    if (f.field == "ambientIntensity") mat.ambient_intensity = unit(out[0]);
+    else if (f.field == "shininess") mat.shininess = unit(out[0]);
+    else if (f.field == "transparency") mat.transparency = unit(out[0]);
+    else if (f.field == "emissiveColor") mat.emissive = colour;
+    else if (f.field == "specularColor") mat.specular = colour;
+  }
+  m.material = mat;
+  return true;
+}
+
 void transform(const Mat4& t, mesh::Mesh& m) {
   static const Mat4 identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   if (t == identity) return;
@@ -110,7 +136,7 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, boo
     job.t = static_cast<float>(s.geometry.t);
     ok = mesh::polygonize_parametric(job, out, err);
   }
-  if (!ok || !colour_vertices(s, out, err)) return false;
+  if (!ok || !colour_vertices(s, out, err) || !evaluate_material(s, out, err)) return false;
   if (world) transform(s.transform, out);
   return true;
 }
@@ -130,7 +156,7 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::Runtim
   job.threads = threads;
   if (!mesh::polygonize_implicit(job, out, err)) return false;
   const Shape* first = field.first_shape();
-  if (first && !colour_vertices(*first, out, err)) return false;
+  if (first && (!colour_vertices(*first, out, err) || !evaluate_material(*first, out, err))) return false;
   if (first && world) transform(first->transform, out);
   return true;
 }

@@ -1,11 +1,12 @@
 // VRML97 export by copying the scene graph with replacements, then the ordinary writer.
 #include "runtime/scene/vrml_export.h"
 
+#include <charconv>
 #include <cstdlib>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
-#include "frontend/fscript/formatter.h"
 #include "frontend/vrml/writer.h"
 
 namespace fscript::scene {
@@ -44,13 +45,33 @@ Value node_value(NodePtr n) {
   return v;
 }
 
+double tidy(float v) {
+  char buf[32];
+  auto r = std::to_chars(buf, buf + sizeof buf - 1, v);
+  *r.ptr = '\0';
+  return std::strtod(buf, nullptr);
+}
+
 // Each float as the double of its shortest decimal text, so the file stays short and reads
 // back as the same float.
 Value vec3s(const std::vector<mesh::Vec3>& p, FieldType t) {
   std::vector<double> nums;
+  nums.reserve(3 * p.size());
   for (const auto& v : p)
-    for (float c : v) nums.push_back(std::strtod(frontend::shortest_float(c).c_str(), nullptr));
+    for (float c : v) nums.push_back(tidy(c));
   return numbers(t, nums);
+}
+
+NodePtr material_node(const mesh::Material& v) {
+  NodePtr mat = make("Material");
+  auto colour = [](const mesh::Vec3& c) { return numbers(FieldType::SFColor, {tidy(c[0]), tidy(c[1]), tidy(c[2])}); };
+  set(*mat, "diffuseColor", colour(v.diffuse));
+  set(*mat, "ambientIntensity", numbers(FieldType::SFFloat, {tidy(v.ambient_intensity)}));
+  set(*mat, "emissiveColor", colour(v.emissive));
+  set(*mat, "specularColor", colour(v.specular));
+  set(*mat, "shininess", numbers(FieldType::SFFloat, {tidy(v.shininess)}));
+  set(*mat, "transparency", numbers(FieldType::SFFloat, {tidy(v.transparency)}));
+  return mat;
 }
 
 // A Shape for the mesh: faces (or lines for curves), colours per vertex, normals per vertex.
@@ -58,9 +79,7 @@ NodePtr shape_node(const mesh::Mesh& m, const std::string& def_name) {
   NodePtr shape = make("Shape");
   shape->def_name = def_name;
   NodePtr app = make("Appearance");
-  NodePtr mat = make("Material");
-  set(*mat, "diffuseColor", numbers(FieldType::SFColor, {0.8, 0.8, 0.8}));
-  set(*app, "material", node_value(mat));
+  set(*app, "material", node_value(material_node(m.material.value_or(mesh::Material{}))));
   set(*shape, "appearance", node_value(app));
   bool lines = m.triangles.empty() && !m.polylines.empty();
   NodePtr geo = make(lines ? "IndexedLineSet" : "IndexedFaceSet");
@@ -92,16 +111,57 @@ NodePtr shape_node(const mesh::Mesh& m, const std::string& def_name) {
   return shape;
 }
 
+Value strings(std::vector<std::string> strs) {
+  Value v;
+  v.type = FieldType::MFString;
+  v.strs = std::move(strs);
+  v.str_spans.resize(v.strs.size());
+  return v;
+}
+
+vrml::FieldDecl decl(const std::string& name, FieldType type, vrml::Access access, std::optional<Value> value = {}) {
+  vrml::FieldDecl d;
+  d.name = name, d.type = type, d.access = access;
+  if (value) d.has_default = true, d.default_value = std::move(*value);
+  return d;
+}
+
+// The Script that turns a fraction into a frame: JavaScript for most browsers, CastleScript for
+// view3dscene (a browser uses the first url it can run, VRML97 6.40).
+NodePtr frame_script(int frames) {
+  NodePtr script = make("Script");
+  script->script_decls.push_back(decl("set_fraction", FieldType::SFFloat, vrml::Access::EventIn));
+  script->script_decls.push_back(decl("frame_changed", FieldType::SFInt32, vrml::Access::EventOut));
+  script->script_decls.push_back(decl("frames", FieldType::SFInt32, vrml::Access::Field,
+                                      numbers(FieldType::SFInt32, {double(frames)})));
+  set(*script, "url", strings({"javascript:\n"
+                               "function set_fraction(f, t) {\n"
+                               "  var i = Math.floor(f * frames);\n"
+                               "  frame_changed = i < 0 ? 0 : (i >= frames ? frames - 1 : i);\n"
+                               "}",
+                               "castlescript:\n"
+                               "function set_fraction(f, t)\n"
+                               "  frame_changed := max(0, min(frames - 1, floor(f * frames)))"}));
+  return script;
+}
+
 class Exporter {
  public:
-  explicit Exporter(const std::map<const Node*, mesh::Mesh>& meshes) : meshes_(meshes) {}
+  Exporter(const vrml::Scene& in, const std::map<const Node*, mesh::Mesh>& meshes,
+           const std::map<const Node*, Animation>& animations)
+      : in_(in), meshes_(meshes), animations_(animations) {}
+
+  std::vector<vrml::Route> routes;  // those of the animations
 
   NodePtr copy(const NodePtr& n) {
     if (!n) return nullptr;
     auto it = done_.find(n.get());
     if (it != done_.end()) return it->second;
     NodePtr c;
-    if (auto m = meshes_.find(n.get()); m != meshes_.end()) {
+    if (auto a = animations_.find(n.get()); a != animations_.end()) {
+      c = animated(a->second, n->def_name);
+      if (!n->def_name.empty()) replaced_names_.insert(n->def_name);
+    } else if (auto m = meshes_.find(n.get()); m != meshes_.end()) {
       c = shape_node(m->second, n->def_name);
       if (!n->def_name.empty()) replaced_names_.insert(n->def_name);
     } else if (n->fvrml) {
@@ -118,18 +178,70 @@ class Exporter {
   }
 
   bool replaced(const std::string& def_name) const { return replaced_names_.count(def_name) != 0; }
+  // A ROUTE into an animated node's set_fraction now reaches its Script, which has its name.
+  bool kept(const vrml::Route& r) const {
+    return r.to_field == "set_fraction" && scripts_.count(r.to_node) && !replaced(r.from_node);
+  }
 
  private:
+  // Group { Switch { frames } TimeSensor Script } and the ROUTEs between them.
+  NodePtr animated(const Animation& a, const std::string& def_name) {
+    std::string base = def_name.empty() ? fresh("FVRML") : def_name;
+    NodePtr sw = make("Switch");
+    sw->def_name = fresh(base + "_frames");
+    set(*sw, "whichChoice", numbers(FieldType::SFInt32, {double(a.initial)}));
+    Value choice;
+    choice.type = FieldType::MFNode;
+    for (size_t i = 0; i < a.frames->size(); ++i) {
+      mesh::Mesh m;
+      choice.nodes.push_back(a.frames->peek(i, m) ? shape_node(m, "") : make("Group"));
+    }
+    set(*sw, "choice", choice);
+    NodePtr script = frame_script(static_cast<int>(a.frames->size()));
+    script->def_name = def_name.empty() ? fresh(base + "_player") : def_name;
+    scripts_.insert(script->def_name);
+    NodePtr group = make("Group");
+    Value children;
+    children.type = FieldType::MFNode;
+    children.nodes = {sw, script};
+    if (!a.external) {
+      NodePtr clock = make("TimeSensor");
+      clock->def_name = fresh(base + "_clock");
+      set(*clock, "startTime", numbers(FieldType::SFTime, {a.timing.start_time}));
+      set(*clock, "stopTime", numbers(FieldType::SFTime, {a.timing.stop_time}));
+      set(*clock, "cycleInterval", numbers(FieldType::SFTime, {a.timing.cycle_interval}));
+      set(*clock, "loop", numbers(FieldType::SFBool, {a.timing.loop ? 1.0 : 0.0}));
+      set(*clock, "enabled", numbers(FieldType::SFBool, {a.timing.enabled ? 1.0 : 0.0}));
+      children.nodes.push_back(clock);
+      routes.push_back({clock->def_name, "fraction_changed", script->def_name, "set_fraction", {}});
+    }
+    routes.push_back({script->def_name, "frame_changed", sw->def_name, "set_whichChoice", {}});
+    set(*group, "children", children);
+    return group;
+  }
+
+  // A DEF name used nowhere in the input or the output so far.
+  std::string fresh(const std::string& want) {
+    std::string name = want;
+    for (int k = 2; in_.defs.count(name) || used_.count(name); ++k) name = want + "_" + std::to_string(k);
+    used_.insert(name);
+    return name;
+  }
+
+  const vrml::Scene& in_;
   const std::map<const Node*, mesh::Mesh>& meshes_;
+  const std::map<const Node*, Animation>& animations_;
+  std::unordered_set<std::string> used_, scripts_;
   std::unordered_map<const Node*, NodePtr> done_;
   std::unordered_set<std::string> replaced_names_;
 };
 
 }  // namespace
 
-std::string export_vrml(const vrml::Scene& in, const std::map<const Node*, mesh::Mesh>& meshes) {
+std::string export_vrml(const vrml::Scene& in, const std::map<const Node*, mesh::Mesh>& meshes,
+                        const std::map<const Node*, Animation>& animations) {
   vrml::Scene out;
-  Exporter ex(meshes);
+  Exporter ex(in, meshes, animations);
   for (auto [kind, i] : in.order) {
     switch (kind) {
       case vrml::Scene::Kind::Proto:
@@ -147,9 +259,13 @@ std::string export_vrml(const vrml::Scene& in, const std::map<const Node*, mesh:
   for (auto [kind, i] : in.order) {
     if (kind != vrml::Scene::Kind::Route) continue;
     const vrml::Route& r = in.routes[i];
-    if (ex.replaced(r.from_node) || ex.replaced(r.to_node)) continue;
+    if ((ex.replaced(r.from_node) || ex.replaced(r.to_node)) && !ex.kept(r)) continue;
     out.routes.push_back(r);
     out.order.push_back({kind, out.routes.size() - 1});
+  }
+  for (const auto& r : ex.routes) {
+    out.routes.push_back(r);
+    out.order.push_back({vrml::Scene::Kind::Route, out.routes.size() - 1});
   }
   return vrml::write_scene(out);
 }

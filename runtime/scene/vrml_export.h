@@ -2,17 +2,29 @@
 // The VRML97 output: the same scene with every FShape (and every top-level FTransform) replaced by
 // a standard Shape holding an IndexedFaceSet (per-vertex colours and normals) or an IndexedLineSet,
 // the FVRML PROTO declarations and the ROUTEs to replaced nodes dropped, everything else kept.
-// One frame: the scene at the model's clock value.
+// An animated node becomes a Group of its frames under a Switch, a TimeSensor with the node's own
+// timing and a small Script (JavaScript, with a CastleScript twin for browsers without JavaScript)
+// that turns the fraction into the frame; a TimeSensor routed to the node's set_fraction drives the
+// Script instead, which takes over the node's DEF name so such ROUTEs stay valid.
 #include <map>
 #include <string>
 
+#include "runtime/mesh/frame_cache.h"
 #include "runtime/mesh/mesh.h"
 #include "runtime/scene/scene_model.h"
 
 namespace fscript::scene {
 
+struct Animation {
+  const mesh::FrameCache* frames = nullptr;  // frame i at fraction i / N, every frame cached
+  TimeSensorFields timing;                   // the node's own cycle
+  bool external = false;                     // a TimeSensor routed to the node's set_fraction drives it
+  int initial = 0;                           // the frame shown before the first event
+};
+
 // `meshes`: the mesh of each replaced node (an FShape or a top-level FTransform), in the node's
-// own coordinates. Returns the text of the file.
-std::string export_vrml(const vrml::Scene& in, const std::map<const vrml::Node*, mesh::Mesh>& meshes);
+// own coordinates; `animations`: the replaced nodes shown as frames. Returns the text of the file.
+std::string export_vrml(const vrml::Scene& in, const std::map<const vrml::Node*, mesh::Mesh>& meshes,
+                        const std::map<const vrml::Node*, Animation>& animations = {});
 
 }  // namespace fscript::scene

@@ -209,7 +209,22 @@ PY
   check fvrml-run-frames 0 '"frames":\[' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 3 -o "$T/fr.ply" --stats --resolution-scale 0.3
   for k in 0 1 2; do [ -s "$T/fr-$k.ply" ] || { echo "FAIL frames file $k"; fails=$((fails + 1)); }; done
   check fvrml-run-sheet 0 '' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 4 -o "$T/sheet.png" --width 64 --height 64
-  check fvrml-run-frames-wrl 2 'animated VRML97 output is not built yet' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 4
+  check fvrml-run-frames-needs-o 2 'needs -o' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 3 --format ply
+  # Animated VRML97: the frames under a Switch, a TimeSensor with the node's timing, a Script.
+  check fvrml-run-frames-wrl 0 '"bytes_per_triangle":' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 4 -o "$T/anim.wrl" --resolution-scale 0.3 --stats
+  for want in 'Switch \{' 'whichChoice 0' 'TimeSensor \{' 'Script \{' 'eventIn SFFloat set_fraction' \
+              'ROUTE [A-Za-z_0-9]+\.frame_changed TO [A-Za-z_0-9]+\.set_whichChoice' 'fraction_changed TO'; do
+    grep -qE "$want" "$T/anim.wrl" || { echo "FAIL animated wrl lacks /$want/"; fails=$((fails + 1)); }
+  done
+  [ "$(grep -c 'geometry IndexedFaceSet' "$T/anim.wrl")" = 4 ] || { echo "FAIL animated wrl: 4 frames wanted"; fails=$((fails + 1)); }
+  check fvrml-run-frames-wrl-reads 0 '' -- "$F" check "$T/anim.wrl"
+  # A node with frames whose shape does not move stays one static shape.
+  check fvrml-run-frames-constant 0 '"constant":true' -- "$R" "$T/ball.wrl" --frames 3 -o "$T/still.wrl" --stats
+  grep -q 'Switch' "$T/still.wrl" && { echo "FAIL a constant animation became a Switch"; fails=$((fails + 1)); }
+  # The file's own `frames 10` animates by default.
+  check fvrml-run-frames-field 0 '"frames":10' -- "$R" "$SRC/examples/paper/figure6-blends.wrl" -o "$T/f6.wrl" --resolution-scale 0.15 --stats
+  grep -q 'Switch' "$T/f6.wrl" || { echo "FAIL figure 6 is not animated"; fails=$((fails + 1)); }
+  check fvrml-run-frames-glb 0 '"animations":\[\{' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 4 -o "$T/anim.glb" --resolution-scale 0.3 --stats
   printf '#VRML V2.0 utf8\nViewpoint { position 0 0 3 }\nFShape { geometry FGeometry { definition "0.5^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [16] } }\n' > "$T/vp.wrl"
   check fvrml-run-viewpoint 0 '' -- "$R" "$T/vp.wrl" -o "$T/vp.png" --width 64 --height 64
   check fvrml-run-png 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.png" --width 64 --height 48
@@ -219,9 +234,10 @@ PY
   # The Khronos glTF validator, when dev.sh test could install it (npm).
   if command -v node > /dev/null && [ -d "${GLTF_VALIDATOR_DIR:-/nonexistent}/gltf-validator" ]; then
     for w in "$T/ball.wrl" "$SRC"/examples/paper/figure1-morphing.wrl "$SRC"/examples/paper/figure6-blends.wrl; do
-      "$R" "$w" -o "$T/v.glb" --resolution-scale 0.3 2> /dev/null
+      "$R" "$w" -o "$T/v.glb" --resolution-scale 0.2 2> /dev/null
       check "gltf-validator $(basename "$w")" 0 '"numErrors":0,"numWarnings":0' -- node "$SRC/tests/clients/gltf_validate.mjs" "$T/v.glb"
     done
+    check "gltf-validator animated" 0 '"numErrors":0,"numWarnings":0' -- node "$SRC/tests/clients/gltf_validate.mjs" "$T/anim.glb"
   else
     echo "note: the Khronos glTF validator is not installed; its checks were skipped"
   fi

@@ -1,6 +1,6 @@
 // fvrml-run: reads an FVRML scene, runs the time model, meshes every FVRML shape and writes VRML97,
-// glTF, PLY, OBJ, STL or a PNG picture; `--frames N` samples N fractions of the cycle (numbered
-// mesh files, or a contact sheet for PNG); `--stats` reports the resolved scene as JSON.
+// glTF, PLY, OBJ, STL or a PNG picture; animated shapes become frames (VRML97 Switch, glTF
+// animation, numbered mesh files or a contact sheet); `--stats` reports the resolved scene as JSON.
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
@@ -24,71 +24,10 @@
 #include "runtime/scene/scene_model.h"
 #include "runtime/scene/shape_mesh.h"
 #include "runtime/scene/vrml_export.h"
+#include "tools/fvrml-run/run.h"
 
+namespace fvrml_run {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-using fscript::scene::SceneModel;
-namespace vrml = fscript::vrml;
-namespace mesh = fscript::mesh;
-
-double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-struct Options {
-  std::string path, output, format, check;
-  fscript::scene::ModelOptions model;
-  double fraction = -1;
-  int frames = 0, threads = 1;
-  bool stats = false, keep_going = false;
-  uint32_t width = 800, height = 600;
-};
-
-// The meshes of one frame: per replaced node (FShape or top-level FTransform) and per shape.
-struct Meshed {
-  std::map<const vrml::Node*, mesh::Mesh> by_node;
-  std::vector<std::pair<size_t, size_t>> counts;  // vertices, triangles per shape
-  bool failed = false;
-};
-
-void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, const std::string& what) {
-  fscript::frontend::LineCol lc = scene.file->position(n->span.begin);
-  std::cerr << o.path << ":" << lc.line << ": " << (o.keep_going ? "warning: " : "error: ") << what << "\n";
-}
-
-// Meshes every shape outside an FTransform and every top-level FTransform; `world` applies the
-// enclosing Transforms (mesh files and pictures) or not (the VRML97 output keeps them).
-Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& model, bool world) {
-  Meshed out;
-  for (const auto& s : model.shapes) {
-    mesh::Mesh m;
-    fscript::backend::RuntimeError err;
-    if (s.group < 0 && !fscript::scene::mesh_shape(s, m, err, world, o.threads)) {
-      report(o, scene, s.fshape, err.message + (err.line ? " (script line " + std::to_string(err.line) + ")" : ""));
-      out.failed = true;
-    }
-    out.counts.push_back({m.positions.size(), m.triangles.size()});
-    if (s.group < 0) out.by_node[s.fshape] = std::move(m);
-  }
-  for (size_t g = 0; g < model.groups.size(); ++g) {
-    if (model.groups[g].parent >= 0) continue;
-    mesh::Mesh m;
-    fscript::backend::RuntimeError err;
-    if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, world, o.threads)) {
-      report(o, scene, model.groups[g].node, "FTransform: " + err.message);
-      out.failed = true;
-    }
-    out.by_node[model.groups[g].node] = std::move(m);
-  }
-  return out;
-}
-
-// All the frame's meshes in one (moved out of `m` when there is only one).
-mesh::Mesh merged(Meshed& m) {
-  if (m.by_node.size() == 1) return std::move(m.by_node.begin()->second);
-  mesh::Mesh all;
-  for (const auto& [node, part] : m.by_node) all.append(part);
-  return all;
-}
 
 nlohmann::json field_json(const fscript::scene::CompiledField& f) {
   return {{"field", f.field}, {"timeSpan", {f.span0, f.span1}}, {"t", f.t}};
@@ -125,22 +64,6 @@ nlohmann::json stats(const vrml::Scene& scene, const SceneModel& m, const Meshed
   return {{"shapes", shapes}, {"ftransforms", groups}};
 }
 
-// The camera of the scene's first Viewpoint at the top level (VRML97 binds the first one), if any.
-std::optional<fscript::render::Camera> viewpoint(const vrml::Scene& scene) {
-  for (const auto& n : scene.roots) {
-    if (!n || n->type != "Viewpoint") continue;
-    fscript::render::Camera c;
-    const vrml::Value* p = n->get("position");
-    const vrml::Value* r = n->get("orientation");
-    const vrml::Value* f = n->get("fieldOfView");
-    for (int k = 0; k < 3 && p && k < static_cast<int>(p->nums.size()); ++k) c.position[k] = p->nums[k];
-    for (int k = 0; k < 4 && r && k < static_cast<int>(r->nums.size()); ++k) c.orientation[k] = r->nums[k];
-    if (f && !f->nums.empty() && f->nums[0] > 0 && f->nums[0] < 3.1) c.field_of_view = f->nums[0];
-    return c;
-  }
-  return std::nullopt;
-}
-
 // --check REF: distances between the frame's mesh and a reference mesh, as JSON on standard output.
 bool check_against(const std::string& ref, const mesh::Mesh& all) {
   mesh::Mesh reference;
@@ -161,39 +84,6 @@ bool check_against(const std::string& ref, const mesh::Mesh& all) {
   return true;
 }
 
-// "out.ply", frame 3 of 12 -> "out-03.ply".
-std::string numbered(const std::string& path, int frame, int frames) {
-  size_t dot = path.find_last_of('.');
-  int digits = static_cast<int>(std::to_string(std::max(1, frames - 1)).size());
-  char num[16];
-  std::snprintf(num, sizeof num, "-%0*d", digits, frame);
-  return dot == std::string::npos ? path + num : path.substr(0, dot) + num + path.substr(dot);
-}
-
-bool write_frame(const Options& o, const std::string& path, const mesh::Mesh& all) {
-  std::string error;
-  mesh::MeshFormat f = o.format == "ply" ? mesh::MeshFormat::Ply : o.format == "obj" ? mesh::MeshFormat::Obj
-                     : o.format == "stl" ? mesh::MeshFormat::Stl : mesh::MeshFormat::Glb;
-  if (!mesh::write_mesh(all, f, path, error)) {
-    std::cerr << "error: " << error << "\n";
-    return false;
-  }
-  return true;
-}
-
-struct Loaded {
-  fscript::frontend::DiagnosticSink diag;
-  vrml::Scene scene;
-};
-
-// Builds the model; diagnostics are printed the first time only (frames repeat the same ones).
-bool build(Loaded& l, SceneModel& model, const fscript::scene::ModelOptions& mo, bool print) {
-  bool ok = fscript::scene::build_scene_model(l.scene, mo, l.diag, model);
-  if (print || !ok) std::cerr << fscript::frontend::render_all(l.diag);
-  l.diag.clear();
-  return ok;
-}
-
 // One frame: VRML97 to a file or standard output, a mesh file, or a picture.
 int single(const Options& o, Loaded& l, nlohmann::json& st) {
   auto t1 = Clock::now();
@@ -204,12 +94,18 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
   bool write = !o.output.empty() || (!o.stats && o.check.empty());
   Meshed meshed;
   if (!o.check.empty()) {
-    meshed = mesh_scene(o, l.scene, model, true);
+    meshed = mesh_scene(o, l.scene, model, true, o.threads);
     if (meshed.failed && !o.keep_going) return 1;
     if (!check_against(o.check, merged(meshed))) return 1;
   }
+  if (write && !tracks(o, model).empty()) {
+    int rc = animated(o, l, model, st);
+    nlohmann::json s = stats(l.scene, model, nullptr);
+    st["shapes"] = s["shapes"], st["ftransforms"] = s["ftransforms"];
+    return rc;
+  }
   if (write) {
-    meshed = mesh_scene(o, l.scene, model, o.format != "wrl");
+    meshed = mesh_scene(o, l.scene, model, o.format != "wrl", o.threads);
     if (meshed.failed && !o.keep_going) return 1;
     st["polygonize_ms"] = ms_since(t2);
     t2 = Clock::now();
@@ -219,9 +115,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
       if (o.output.empty() || o.output == "-") std::cout << text;
       else if (!fscript::frontend::write_file_atomic(o.output, text, error)) return std::cerr << "error: " << error << "\n", 1;
     } else if (o.format == "png") {
-      fscript::render::RenderOptions ro;
-      ro.width = o.width, ro.height = o.height;
-      ro.camera = viewpoint(l.scene);
+      fscript::render::RenderOptions ro = render_options(o, l.scene, o.width, o.height);
       if (!fscript::render::write_png(o.output, ro.width, ro.height, 3, fscript::render::render(merged(meshed), ro), error))
         return std::cerr << "error: " << error << "\n", 1;
     } else if (!write_frame(o, o.output, merged(meshed))) {
@@ -234,43 +128,6 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
   nlohmann::json s = stats(l.scene, model, write ? &meshed : nullptr);
   st["shapes"] = s["shapes"], st["ftransforms"] = s["ftransforms"];
   return meshed.failed ? 1 : 0;
-}
-
-// --frames N: fractions i/N. Mesh formats get numbered files; PNG a contact sheet of all frames.
-int frames(const Options& o, Loaded& l, nlohmann::json& st) {
-  auto t2 = Clock::now();
-  int cols = static_cast<int>(std::ceil(std::sqrt(o.frames))), rows = (o.frames + cols - 1) / cols;
-  uint32_t tw = std::max<uint32_t>(16, o.width / cols), th = std::max<uint32_t>(16, o.height / rows);
-  std::vector<uint8_t> sheet(size_t(tw) * cols * th * rows * 3, 255);
-  nlohmann::json per_frame = nlohmann::json::array();
-  bool failed = false;
-  for (int f = 0; f < o.frames; ++f) {
-    fscript::scene::ModelOptions mo = o.model;
-    mo.fraction = static_cast<double>(f) / o.frames;
-    SceneModel model;
-    if (!build(l, model, mo, f == 0)) return 1;
-    Meshed meshed = mesh_scene(o, l.scene, model, true);
-    failed |= meshed.failed;
-    if (meshed.failed && !o.keep_going) return 1;
-    mesh::Mesh all = merged(meshed);
-    per_frame.push_back({{"fraction", *mo.fraction}, {"vertices", all.positions.size()}, {"triangles", all.triangles.size()}});
-    if (o.format != "png") {
-      if (!write_frame(o, numbered(o.output, f, o.frames), all)) return 1;
-      continue;
-    }
-    fscript::render::RenderOptions ro;
-    ro.width = tw, ro.height = th;
-    auto px = fscript::render::render(all, ro);
-    int cx = f % cols, cy = f / cols;
-    for (uint32_t y = 0; y < th; ++y)
-      std::copy_n(px.begin() + size_t(y) * tw * 3, tw * 3, sheet.begin() + ((size_t(cy) * th + y) * tw * cols + size_t(cx) * tw) * 3);
-  }
-  std::string error;
-  if (o.format == "png" && !fscript::render::write_png(o.output, tw * cols, th * rows, 3, sheet, error))
-    return std::cerr << "error: " << error << "\n", 1;
-  st["frames"] = per_frame;
-  st["polygonize_ms"] = ms_since(t2);
-  return failed ? 1 : 0;
 }
 
 int run(int argc, char** argv) {
@@ -313,8 +170,9 @@ int run(int argc, char** argv) {
     std::cerr << "error: output format '" << o.format << "' is not built yet (this build writes wrl, glb, ply, obj, stl and png)\n";
     return 2;
   }
-  if (o.frames > 0 && (o.output.empty() || o.format == "wrl")) {
-    std::cerr << "error: --frames needs -o with a mesh or png format (animated VRML97 output is not built yet)\n";
+  bool animation = o.format == "wrl" || o.format == "glb";
+  if (o.frames > 0 && !animation && o.output.empty()) {
+    std::cerr << "error: --frames with " << o.format << " needs -o (the frames go to numbered files)\n";
     return 2;
   }
   auto t0 = Clock::now();
@@ -330,15 +188,16 @@ int run(int argc, char** argv) {
     std::cerr << fscript::frontend::render_all(l.diag);
     return 1;
   }
-  int rc = o.frames > 0 ? frames(o, l, st) : single(o, l, st);
+  int rc = o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
   if (o.stats && rc == 0) std::cerr << st.dump() << "\n";
   return rc;
 }
 
 }  // namespace
+}  // namespace fvrml_run
 
 int main(int argc, char** argv) {
   int rc = 0;
-  fscript::frontend::run_with_big_stack([&] { rc = run(argc, argv); });
+  fscript::frontend::run_with_big_stack([&] { rc = fvrml_run::run(argc, argv); });
   return rc;
 }

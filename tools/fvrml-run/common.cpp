@@ -1,0 +1,143 @@
+// The steps every fvrml-run output shares: meshing a frame, merging, building the model, writing
+// mesh files, and the picture's camera and lights from the scene.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <mutex>
+
+#include "runtime/mesh/mesh_io.h"
+#include "runtime/scene/shape_mesh.h"
+#include "tools/fvrml-run/run.h"
+
+namespace fvrml_run {
+
+void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, const std::string& what) {
+  static std::mutex lock;  // frames are meshed in parallel
+  std::lock_guard<std::mutex> hold(lock);
+  fscript::frontend::LineCol lc = scene.file->position(n->span.begin);
+  std::cerr << o.path << ":" << lc.line << ": " << (o.keep_going ? "warning: " : "error: ") << what << "\n";
+}
+
+Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& model, bool world, int threads,
+                  const std::set<const vrml::Node*>& skip) {
+  Meshed out;
+  for (const auto& s : model.shapes) {
+    mesh::Mesh m;
+    fscript::backend::RuntimeError err;
+    bool mine = s.group < 0 && !skip.count(s.fshape);
+    if (mine && !fscript::scene::mesh_shape(s, m, err, world, threads)) {
+      report(o, scene, s.fshape, err.message + (err.line ? " (script line " + std::to_string(err.line) + ")" : ""));
+      out.failed = true;
+    }
+    out.counts.push_back({m.positions.size(), m.triangles.size()});
+    if (mine) out.by_node[s.fshape] = std::move(m);
+  }
+  for (size_t g = 0; g < model.groups.size(); ++g) {
+    if (model.groups[g].parent >= 0 || skip.count(model.groups[g].node)) continue;
+    mesh::Mesh m;
+    fscript::backend::RuntimeError err;
+    if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, world, threads)) {
+      report(o, scene, model.groups[g].node, "FTransform: " + err.message);
+      out.failed = true;
+    }
+    out.by_node[model.groups[g].node] = std::move(m);
+  }
+  return out;
+}
+
+mesh::Mesh merged(Meshed& m) {
+  if (m.by_node.size() == 1) return std::move(m.by_node.begin()->second);
+  mesh::Mesh all;
+  for (const auto& [node, part] : m.by_node) all.append(part);
+  return all;
+}
+
+bool build(Loaded& l, SceneModel& model, const fscript::scene::ModelOptions& mo, bool print) {
+  bool ok = fscript::scene::build_scene_model(l.scene, mo, l.diag, model);
+  if (print || !ok) std::cerr << fscript::frontend::render_all(l.diag);
+  l.diag.clear();
+  return ok;
+}
+
+std::string numbered(const std::string& path, int frame, int frames) {
+  size_t dot = path.find_last_of('.');
+  int digits = static_cast<int>(std::to_string(std::max(1, frames - 1)).size());
+  char num[16];
+  std::snprintf(num, sizeof num, "-%0*d", digits, frame);
+  return dot == std::string::npos ? path + num : path.substr(0, dot) + num + path.substr(dot);
+}
+
+bool write_frame(const Options& o, const std::string& path, const mesh::Mesh& all) {
+  std::string error;
+  mesh::MeshFormat f = o.format == "ply" ? mesh::MeshFormat::Ply : o.format == "obj" ? mesh::MeshFormat::Obj
+                     : o.format == "stl" ? mesh::MeshFormat::Stl : mesh::MeshFormat::Glb;
+  if (!mesh::write_mesh(all, f, path, error)) {
+    std::cerr << "error: " << error << "\n";
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+void numbers(const vrml::Node& n, const char* field, double* out, int count) {
+  const vrml::Value* v = n.get(field);
+  for (int k = 0; v && k < count && k < static_cast<int>(v->nums.size()); ++k) out[k] = v->nums[k];
+}
+
+// DirectionalLights in the scene's grouping nodes, turned by the enclosing Transforms' rotations.
+void lights(const vrml::Node* n, const fscript::scene::Mat4& m, std::vector<fscript::render::Light>& out, int depth) {
+  if (!n || depth > 1000) return;
+  if (n->type == "DirectionalLight") {
+    double dir[3] = {0, 0, -1}, colour[3] = {1, 1, 1}, intensity = 1, ambient = 0, on = 1;
+    numbers(*n, "direction", dir, 3), numbers(*n, "color", colour, 3), numbers(*n, "intensity", &intensity, 1);
+    numbers(*n, "ambientIntensity", &ambient, 1), numbers(*n, "on", &on, 1);
+    if (on == 0) return;
+    fscript::render::Light l;
+    for (int r = 0; r < 3; ++r) {
+      l.direction[r] = static_cast<float>(m[r] * dir[0] + m[4 + r] * dir[1] + m[8 + r] * dir[2]);
+      l.colour[r] = static_cast<float>(colour[r]);
+    }
+    l.intensity = static_cast<float>(intensity), l.ambient = static_cast<float>(ambient);
+    out.push_back(l);
+    return;
+  }
+  fscript::scene::Mat4 here = m;
+  if (n->type == "Transform") {
+    double t[3] = {0, 0, 0}, r[4] = {0, 0, 1, 0}, s[3] = {1, 1, 1}, sr[4] = {0, 0, 1, 0}, c[3] = {0, 0, 0};
+    numbers(*n, "translation", t, 3), numbers(*n, "rotation", r, 4), numbers(*n, "scale", s, 3);
+    numbers(*n, "scaleOrientation", sr, 4), numbers(*n, "center", c, 3);
+    here = fscript::scene::multiply(m, fscript::scene::vrml_transform(t, r, s, sr, c));
+  }
+  if (n->type == "Transform" || n->type == "Group" || n->type == "Anchor" || n->type == "Collision")
+    if (const vrml::Value* v = n->get("children"))
+      for (const auto& c : v->nodes) lights(c.get(), here, out, depth + 1);
+}
+
+}  // namespace
+
+fscript::render::RenderOptions render_options(const Options&, const vrml::Scene& scene, uint32_t width,
+                                              uint32_t height) {
+  fscript::render::RenderOptions ro;
+  ro.width = width, ro.height = height;
+  for (const auto& n : scene.roots) {
+    if (n && n->type == "Viewpoint" && !ro.camera) {  // VRML97 binds the first one
+      fscript::render::Camera c;
+      double p[3] = {0, 0, 10}, r[4] = {0, 0, 1, 0}, f = 0.785398;
+      numbers(*n, "position", p, 3), numbers(*n, "orientation", r, 4), numbers(*n, "fieldOfView", &f, 1);
+      for (int k = 0; k < 3; ++k) c.position[k] = p[k];
+      for (int k = 0; k < 4; ++k) c.orientation[k] = r[k];
+      if (f > 0 && f < 3.1) c.field_of_view = f;
+      ro.camera = c;
+    }
+    if (n && n->type == "NavigationInfo") {
+      double head = 1;
+      numbers(*n, "headlight", &head, 1);
+      ro.headlight = head != 0;
+    }
+    lights(n.get(), fscript::scene::identity(), ro.lights, 0);
+  }
+  return ro;
+}
+
+}  // namespace fvrml_run

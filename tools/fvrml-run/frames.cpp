@@ -1,0 +1,203 @@
+// Frames: numbered mesh files or a contact sheet for `--frames N`, and animated VRML97 / glTF,
+// where each animated node's frames go through the frame cache (frames polygonized in parallel).
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <iostream>
+#include <thread>
+
+#include "frontend/source.h"
+#include "runtime/mesh/frame_cache.h"
+#include "runtime/mesh/gltf.h"
+#include "runtime/render/png.h"
+#include "runtime/scene/shape_mesh.h"
+#include "runtime/scene/vrml_export.h"
+#include "tools/fvrml-run/run.h"
+
+namespace fvrml_run {
+namespace {
+
+constexpr int kMaxFrames = 1000;  // a file's `frames` beyond this is clamped (the CLI's own limit)
+
+// Runs fn(i) for i < n on `threads` workers, each taking every threads-th index; false when any
+// call failed (the others still finish theirs).
+template <class Fn>
+bool parallel_for(int n, int threads, Fn fn) {
+  int t = std::max(1, std::min(threads, n));
+  std::atomic<bool> ok{true};
+  auto worker = [&](int w) {
+    for (int i = w; i < n; i += t)
+      if (!fn(i)) ok = false;
+  };
+  std::vector<std::thread> pool;
+  for (int w = 1; w < t; ++w) pool.emplace_back(worker, w);
+  worker(0);
+  for (auto& th : pool) th.join();
+  return ok;
+}
+
+// The scene at fractions i / n, built one after another so diagnostics stay in order (printed
+// once, with the first).
+bool frame_models(const Options& o, Loaded& l, int n, std::vector<SceneModel>& out, bool print_first) {
+  out.resize(n);
+  for (int f = 0; f < n; ++f) {
+    fscript::scene::ModelOptions mo = o.model;
+    mo.fraction = static_cast<double>(f) / n;
+    if (!build(l, out[f], mo, print_first && f == 0)) return false;
+  }
+  return true;
+}
+
+double number(const vrml::Node& n, const char* field, double fallback) {
+  const vrml::Value* v = n.get(field);
+  return v && !v->nums.empty() ? v->nums[0] : fallback;
+}
+
+fscript::scene::TimeSensorFields timing(const vrml::Node& n) {
+  return {number(n, "startTime", 0), number(n, "stopTime", 0), number(n, "cycleInterval", 1),
+          number(n, "loop", 0) != 0, number(n, "enabled", 1) != 0};
+}
+
+bool externally_driven(const vrml::Scene& scene, const vrml::Node& n) {
+  if (n.def_name.empty()) return false;
+  for (const auto& r : scene.routes)
+    if (r.to_node == n.def_name && r.to_field == "set_fraction") return true;
+  return false;
+}
+
+// Writes text to OUT, or to standard output for "-" or no -o.
+bool write_text(const Options& o, const std::string& text) {
+  if (o.output.empty() || o.output == "-") {
+    std::cout << text;
+    return true;
+  }
+  std::string error;
+  if (fscript::frontend::write_file_atomic(o.output, text, error)) return true;
+  std::cerr << "error: " << error << "\n";
+  return false;
+}
+
+}  // namespace
+
+int frames(const Options& o, Loaded& l, nlohmann::json& st) {
+  auto t2 = Clock::now();
+  std::vector<SceneModel> models;
+  if (!frame_models(o, l, o.frames, models, true)) return 1;
+  int cols = static_cast<int>(std::ceil(std::sqrt(o.frames))), rows = (o.frames + cols - 1) / cols;
+  uint32_t tw = std::max<uint32_t>(16, o.width / cols), th = std::max<uint32_t>(16, o.height / rows);
+  std::vector<uint8_t> sheet(size_t(tw) * cols * th * rows * 3, 255);
+  std::vector<nlohmann::json> per_frame(o.frames);
+  int parallel = std::min(o.threads, o.frames), per = std::max(1, o.threads / parallel);
+  std::atomic<bool> failed{false};
+  bool ok = parallel_for(o.frames, parallel, [&](int f) {
+    Meshed meshed = mesh_scene(o, l.scene, models[f], true, per);
+    if (meshed.failed) {
+      failed = true;
+      if (!o.keep_going) return false;
+    }
+    mesh::Mesh all = merged(meshed);
+    per_frame[f] = {{"fraction", static_cast<double>(f) / o.frames}, {"vertices", all.positions.size()},
+                    {"triangles", all.triangles.size()}};
+    if (o.format != "png") return write_frame(o, numbered(o.output, f, o.frames), all);
+    auto px = fscript::render::render(all, render_options(o, l.scene, tw, th));
+    int cx = f % cols, cy = f / cols;
+    for (uint32_t y = 0; y < th; ++y)
+      std::copy_n(px.begin() + size_t(y) * tw * 3, tw * 3, sheet.begin() + ((size_t(cy) * th + y) * tw * cols + size_t(cx) * tw) * 3);
+    return true;
+  });
+  if (!ok) return 1;
+  std::string error;
+  if (o.format == "png" && !fscript::render::write_png(o.output, tw * cols, th * rows, 3, sheet, error))
+    return std::cerr << "error: " << error << "\n", 1;
+  st["frames"] = per_frame;
+  st["polygonize_ms"] = ms_since(t2);
+  return failed ? 1 : 0;
+}
+
+std::vector<Track> tracks(const Options& o, const SceneModel& model) {
+  std::vector<Track> out;
+  if (o.format != "wrl" && o.format != "glb") return out;
+  auto count = [&](double own) { return o.frames > 0 ? o.frames : std::clamp(static_cast<int>(own), 0, kMaxFrames); };
+  for (size_t i = 0; i < model.shapes.size(); ++i) {
+    const auto& s = model.shapes[i];
+    if (s.group < 0 && count(s.frames) > 0) out.push_back({s.fshape, false, static_cast<int>(i), count(s.frames)});
+  }
+  for (size_t g = 0; g < model.groups.size(); ++g) {
+    const auto& grp = model.groups[g];
+    int n = count(number(*grp.node, "frames", 0));
+    if (grp.parent < 0 && n > 0) out.push_back({grp.node, true, static_cast<int>(g), n});
+  }
+  return out;
+}
+
+int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::json& st) {
+  auto t2 = Clock::now();
+  bool world = o.format != "wrl", failed = false;
+  std::vector<Track> ts = tracks(o, model);
+  std::set<const vrml::Node*> skip;
+  for (const auto& t : ts) skip.insert(t.node);
+  Meshed meshed = mesh_scene(o, l.scene, model, world, o.threads, skip);
+  if (meshed.failed && !o.keep_going) return 1;
+  failed |= meshed.failed;
+  std::map<int, std::vector<SceneModel>> models;  // per frame count
+  std::vector<std::unique_ptr<mesh::FrameCache>> caches;
+  std::map<const vrml::Node*, fscript::scene::Animation> animations;
+  std::vector<mesh::GltfAnimation> gltf;
+  nlohmann::json report_json = nlohmann::json::array();
+  for (const auto& t : ts) {
+    if (!models.count(t.frames) && !frame_models(o, l, t.frames, models[t.frames], false)) return 1;
+    const auto& ms = models[t.frames];
+    int parallel = std::min(o.threads, t.frames), per = std::max(1, o.threads / parallel);
+    caches.push_back(std::make_unique<mesh::FrameCache>(
+        t.frames, [&ms, t, per, world](size_t i, mesh::Mesh& out, fscript::backend::RuntimeError& err) {
+          return t.group ? fscript::scene::mesh_group(ms[i], t.index, out, err, world, per)
+                         : fscript::scene::mesh_shape(ms[i].shapes[t.index], out, err, world, per);
+        }));
+    mesh::FrameCache& cache = *caches.back();
+    fscript::backend::RuntimeError err;
+    if (!cache.fill(parallel, err)) {
+      report(o, l.scene, t.node, err.message + (err.line ? " (script line " + std::to_string(err.line) + ")" : ""));
+      if (!o.keep_going) return 1;
+      failed = true;
+      continue;
+    }
+    double fraction = t.group ? model.groups[t.index].fraction : model.shapes[t.index].fraction;
+    int initial = std::clamp(static_cast<int>(std::floor(fraction * t.frames)), 0, t.frames - 1);
+    report_json.push_back({{"line", l.scene.file->position(t.node->span.begin).line}, {"frames", t.frames},
+                           {"triangles", cache.triangles()}, {"cache_bytes", cache.bytes()},
+                           {"bytes_per_triangle", cache.triangles() ? double(cache.bytes()) / cache.triangles() : 0.0},
+                           {"constant", cache.all_same()}});
+    if (cache.all_same()) {  // nothing moves: one frame, shown as a static shape
+      mesh::Mesh m;
+      cache.peek(0, m);
+      meshed.by_node[t.node] = std::move(m);
+      continue;
+    }
+    if (!world) {
+      animations[t.node] = {&cache, timing(*t.node), externally_driven(l.scene, *t.node), initial};
+      continue;
+    }
+    mesh::GltfAnimation a;
+    a.name = t.node->def_name.empty() ? "line " + std::to_string(l.scene.file->position(t.node->span.begin).line)
+                                      : t.node->def_name;
+    a.cycle_interval = timing(*t.node).cycle_interval;
+    a.frames.resize(cache.size());
+    for (size_t i = 0; i < cache.size(); ++i) cache.peek(i, a.frames[i]);
+    gltf.push_back(std::move(a));
+  }
+  st["polygonize_ms"] = ms_since(t2);
+  st["animations"] = report_json;
+  auto t3 = Clock::now();
+  bool written = false;
+  if (world) {
+    std::string error;
+    written = fscript::frontend::write_file_atomic(o.output, mesh::encode_glb(merged(meshed), gltf), error);
+    if (!written) std::cerr << "error: " << error << "\n";
+  } else {
+    written = write_text(o, fscript::scene::export_vrml(l.scene, meshed.by_node, animations));
+  }
+  st["write_ms"] = ms_since(t3);
+  return !written || failed ? 1 : 0;
+}
+
+}  // namespace fvrml_run

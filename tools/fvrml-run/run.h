@@ -1,0 +1,92 @@
+#pragma once
+// What the parts of fvrml-run share: the options, the loaded scene, the meshes of one frame, and
+// the steps every output goes through.
+#include <chrono>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "frontend/diagnostics.h"
+#include "frontend/vrml/scene_graph.h"
+#include "runtime/mesh/mesh.h"
+#include "runtime/render/raster.h"
+#include "runtime/scene/scene_model.h"
+
+namespace fvrml_run {
+
+using Clock = std::chrono::steady_clock;
+using fscript::scene::SceneModel;
+namespace vrml = fscript::vrml;
+namespace mesh = fscript::mesh;
+
+inline double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+struct Options {
+  std::string path, output, format, check;
+  fscript::scene::ModelOptions model;
+  double fraction = -1;
+  int frames = 0, threads = 1;
+  bool stats = false, keep_going = false;
+  uint32_t width = 800, height = 600;
+};
+
+struct Loaded {
+  fscript::frontend::DiagnosticSink diag;
+  vrml::Scene scene;
+};
+
+// The meshes of one frame: per replaced node (FShape or top-level FTransform) and per shape.
+struct Meshed {
+  std::map<const vrml::Node*, mesh::Mesh> by_node;
+  std::vector<std::pair<size_t, size_t>> counts;  // vertices, triangles per shape
+  bool failed = false;
+};
+
+// Prints a shape's failure at its line: an error, or a warning under --keep-going.
+void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, const std::string& what);
+
+// Meshes every shape outside an FTransform and every top-level FTransform except those in `skip`;
+// `world` applies the enclosing Transforms (mesh files and pictures) or not (the VRML97 output keeps
+// them); `threads` per shape.
+Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& model, bool world, int threads,
+                  const std::set<const vrml::Node*>& skip = {});
+
+// All the frame's meshes in one (moved out of `m` when there is only one).
+mesh::Mesh merged(Meshed& m);
+
+// Builds the model; diagnostics are printed the first time only (frames repeat the same ones).
+bool build(Loaded& l, SceneModel& model, const fscript::scene::ModelOptions& mo, bool print);
+
+// "out.ply", frame 3 of 12 -> "out-03.ply".
+std::string numbered(const std::string& path, int frame, int frames);
+
+// Writes a mesh file in the format of the options; prints the error.
+bool write_frame(const Options& o, const std::string& path, const mesh::Mesh& all);
+
+// The camera of the scene's first top-level Viewpoint, its DirectionalLights, its headlight.
+fscript::render::RenderOptions render_options(const Options& o, const vrml::Scene& scene, uint32_t width,
+                                              uint32_t height);
+
+// --frames N with a mesh format or PNG: numbered files, or a contact sheet.
+int frames(const Options& o, Loaded& l, nlohmann::json& st);
+
+// VRML97 or glTF of a scene with animated nodes (FShape / top-level FTransform with frames N > 0,
+// or every one under --frames N): each becomes its frames, polygonized through a frame cache.
+// `model` is the scene at the clock; the static nodes are meshed from it.
+int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::json& st);
+
+// The animated nodes of the model (empty when the output is not VRML97 or glTF).
+struct Track {
+  const vrml::Node* node = nullptr;
+  bool group = false;  // a top-level FTransform (model.groups[index]), else model.shapes[index]
+  int index = 0;
+  int frames = 0;
+};
+std::vector<Track> tracks(const Options& o, const SceneModel& model);
+
+}  // namespace fvrml_run

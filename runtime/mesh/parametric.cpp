@@ -11,13 +11,44 @@ namespace {
 bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>& uvw, std::vector<Vec3>& xyz,
               backend::RuntimeError& err) {
   size_t n = uvw.size();
-  std::vector<float> u(n), v(n), w(n), t(n, job.t), x(n), y(n), z(n);
+  std::vector<float> u(n), v(n), w(n), x(n), y(n), z(n);
   for (size_t i = 0; i < n; ++i) u[i] = uvw[i][0], v[i] = uvw[i][1], w[i] = uvw[i][2];
-  const float* in[4] = {u.data(), v.data(), w.data(), t.data()};
-  float* out[3] = {x.data(), y.data(), z.data()};
-  if (!job.kernel->eval_batch(in, out, n, err)) return false;
+  if (!job.field->eval(u.data(), v.data(), w.data(), n, x.data(), y.data(), z.data(), err)) return false;
   xyz.resize(n);
   for (size_t i = 0; i < n; ++i) xyz[i] = {x[i], y[i], z[i]};
+  return true;
+}
+
+// dP/du x dP/dv by central differences at each vertex's (u, v), a hundredth of an interval apart;
+// kept where the cross product is clearly non-zero and agrees in side with the faces' normal
+// (face_normals_to_vertices ran first), so poles and creases keep the face average.
+bool derivative_normals(const ParametricJob& job, Mesh& m, backend::RuntimeError& err) {
+  size_t n = m.positions.size();
+  double hu = 0.01 * (job.domain[1] - job.domain[0]) / std::max(1, job.intervals[0]);
+  double hv = 0.01 * (job.domain[3] - job.domain[2]) / std::max(1, job.intervals[1]);
+  if (n == 0 || m.params.size() != n || !(hu > 0) || !(hv > 0)) return true;
+  std::vector<std::array<float, 3>> uvw;
+  uvw.reserve(4 * n);
+  for (int k = 0; k < 4; ++k)
+    for (const auto& p : m.params) {
+      std::array<float, 3> q = {p[0], p[1], p[2]};
+      q[k / 2] += static_cast<float>((k % 2 ? 1 : -1) * (k / 2 ? hv : hu));
+      uvw.push_back(q);
+    }
+  std::vector<Vec3> xyz;
+  if (!evaluate(job, uvw, xyz, err)) return false;
+  for (size_t i = 0; i < n; ++i) {
+    Vec3 du, dv;
+    for (int a = 0; a < 3; ++a) du[a] = xyz[n + i][a] - xyz[i][a], dv[a] = xyz[3 * n + i][a] - xyz[2 * n + i][a];
+    Vec3 c = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2], du[0] * dv[1] - du[1] * dv[0]};
+    float len = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    float scale = std::sqrt(du[0] * du[0] + du[1] * du[1] + du[2] * du[2]) *
+                  std::sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
+    const Vec3& face = m.normals[i];
+    if (!(len > 1e-3f * scale) || !std::isfinite(len)) continue;
+    Vec3 d = {c[0] / len, c[1] / len, c[2] / len};
+    if (d[0] * face[0] + d[1] * face[1] + d[2] * face[2] > 0.5f) m.normals[i] = d;
+  }
   return true;
 }
 
@@ -56,10 +87,18 @@ void patch(const ParametricJob& job, int a, int b, int c, double fixed, bool fli
 
 }  // namespace
 
+bool KernelParametric::eval(const float* u, const float* v, const float* w, size_t n, float* x, float* y, float* z,
+                            backend::RuntimeError& err) const {
+  std::vector<float> t(n, t_);
+  const float* in[4] = {u, v, w, t.data()};
+  float* out[3] = {x, y, z};
+  return k_.eval_batch(in, out, n, err);
+}
+
 bool polygonize_parametric(const ParametricJob& job, Mesh& out, backend::RuntimeError& err) {
   out = Mesh{};
-  if (!job.kernel || job.kernel->num_outputs() < 3) {
-    err.message = "the parametric polygonizer needs a kernel giving x, y, z";
+  if (!job.field) {
+    err.message = "the parametric polygonizer needs a map (u, v, w) -> (x, y, z)";
     return false;
   }
   std::vector<std::array<float, 3>> uvw;
@@ -91,7 +130,7 @@ bool polygonize_parametric(const ParametricJob& job, Mesh& out, backend::Runtime
       if (std::isfinite(v)) size = std::max(size, std::fabs(v));
   weld(out, std::max(size, 1e-6f) * 1e-5f);
   face_normals_to_vertices(out);
-  return true;
+  return job.kind != ParametricKind::Surface || derivative_normals(job, out, err);
 }
 
 void weld(Mesh& m, float tol) {

@@ -2,6 +2,8 @@
 // Parametric shapes sampled on their (u, v, w) domain through Kernel batches: a curve is a
 // polyline of N+1 samples, a surface an (N+1) x (M+1) grid of two triangles per cell, a solid the
 // six faces of its (u, v, w) box. Coincident grid points along seams and poles are welded.
+// Surface normals come from the derivatives (central differences of the map, dP/du x dP/dv), or
+// from the faces where that cross product vanishes (poles) and on solids.
 #include <array>
 
 #include "backends/backend.h"
@@ -11,12 +13,32 @@ namespace fscript::mesh {
 
 enum class ParametricKind { Curve, Surface, Solid };
 
+// A map (u, v, w) -> (x, y, z) evaluated in batches: one kernel at a fixed t, or a combination
+// built by the scene layer (an FTransform's per-coordinate operation).
+class ParametricField {
+ public:
+  virtual ~ParametricField() = default;
+  virtual bool eval(const float* u, const float* v, const float* w, size_t n, float* x, float* y, float* z,
+                    backend::RuntimeError& err) const = 0;
+};
+
+// A parametric kernel: inputs (u, v, w, t), outputs (x, y, z).
+class KernelParametric : public ParametricField {
+ public:
+  KernelParametric(const backend::Kernel& k, float t) : k_(k), t_(t) {}
+  bool eval(const float* u, const float* v, const float* w, size_t n, float* x, float* y, float* z,
+            backend::RuntimeError& err) const override;
+
+ private:
+  const backend::Kernel& k_;
+  float t_;
+};
+
 struct ParametricJob {
-  const backend::Kernel* kernel = nullptr;  // inputs (u, v, w, t), outputs (x, y, z)
+  const ParametricField* field = nullptr;
   ParametricKind kind = ParametricKind::Surface;
   std::array<double, 6> domain{};           // u0 u1 v0 v1 w0 w1
   std::array<int, 3> intervals{50, 50, 50};
-  float t = 0;
 };
 
 bool polygonize_parametric(const ParametricJob& job, Mesh& out, backend::RuntimeError& err);

@@ -1,5 +1,7 @@
 // Scene fields. Set operations fold left over the children: union max, intersection min,
 // subtraction min(f, -g), blends f + g +- sqrt(f^2 + g^2) + a0 / (1 + (f/a1)^2 + (g/a2)^2).
+// An FTransform's affine matrix M moves its result: implicit children are evaluated at M^-1 p,
+// parametric results are mapped by M.
 #include "runtime/scene/shape_field.h"
 
 #include <algorithm>
@@ -24,7 +26,73 @@ bool ShapeField::eval(const float* x, const float* y, const float* z, size_t n, 
   return true;
 }
 
+namespace {
+
+// The components of one affine field: compiled FScript (evaluated at t, the point kernel's value),
+// numbers, or the default.
+bool affine_values(const Group& g, const char* field, size_t count, const double* fallback, double* out,
+                   backend::RuntimeError& err) {
+  for (const auto& [name, parts] : g.affine) {
+    if (name != field) continue;
+    for (size_t k = 0; k < count; ++k) {
+      if (k >= parts.size()) {
+        out[k] = fallback[k];
+        continue;
+      }
+      float zero = 0, t = static_cast<float>(parts[k].t), o[4] = {0, 0, 0, 0};
+      const float* in[7] = {&zero, &zero, &zero, &zero, &zero, &zero, &t};
+      float* outs[4] = {&o[0], &o[1], &o[2], &o[3]};
+      if (!parts[k].kernel->eval_batch(in, outs, 1, err)) return false;
+      out[k] = o[0];
+    }
+    return true;
+  }
+  const vrml::Value* v = g.node->get(field);
+  bool numbers = v && v->type != vrml::FieldType::SFString;
+  for (size_t k = 0; k < count; ++k) out[k] = numbers && v->nums.size() > k ? v->nums[k] : fallback[k];
+  return true;
+}
+
+void apply(const Mat4& m, float& x, float& y, float& z) {
+  double p[3] = {x, y, z}, q[3];
+  for (int r = 0; r < 3; ++r) q[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+  x = static_cast<float>(q[0]), y = static_cast<float>(q[1]), z = static_cast<float>(q[2]);
+}
+
+}  // namespace
+
+bool group_matrix(const Group& g, Mat4& out, backend::RuntimeError& err) {
+  static const double zero[3] = {0, 0, 0}, one[3] = {1, 1, 1}, no_turn[4] = {0, 0, 1, 0};
+  double t[3], r[4], s[3], sr[4], c[3];
+  if (!affine_values(g, "translation", 3, zero, t, err) || !affine_values(g, "rotation", 4, no_turn, r, err) ||
+      !affine_values(g, "scale", 3, one, s, err) || !affine_values(g, "scaleOrientation", 4, no_turn, sr, err) ||
+      !affine_values(g, "center", 3, zero, c, err))
+    return false;
+  out = vrml_transform(t, r, s, sr, c);
+  return true;
+}
+
+bool invert_affine(const Mat4& m, Mat4& out) {
+  // m[col * 4 + row]; the 3x3 part [[a b c] [d e f] [g h i]] by its adjugate.
+  double a = m[0], b = m[4], c = m[8], d = m[1], e = m[5], f = m[9], g = m[2], h = m[6], i = m[10];
+  double det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
+  if (!std::isfinite(det) || std::fabs(det) < 1e-300) return false;
+  double inv[3][3] = {{(e * i - f * h) / det, -(b * i - c * h) / det, (b * f - c * e) / det},
+                      {-(d * i - f * g) / det, (a * i - c * g) / det, -(a * f - c * d) / det},
+                      {(d * h - e * g) / det, -(a * h - b * g) / det, (a * e - b * d) / det}};
+  out = identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int col = 0; col < 3; ++col) out[col * 4 + r] = inv[r][col];
+    out[12 + r] = -(inv[r][0] * m[12] + inv[r][1] * m[13] + inv[r][2] * m[14]);
+  }
+  return true;
+}
+
 GroupField::GroupField(const SceneModel& m, int group) : m_(m), g_(m.groups[group]) {
+  backend::RuntimeError err;
+  if (!group_matrix(g_, matrix_, err)) invalid_ = "the FTransform's affine fields: " + err.message;
+  else if (!invert_affine(matrix_, inverse_)) invalid_ = "the FTransform's scale is zero: it has no volume";
+  moved_ = matrix_ != identity();
   for (auto [is_group, index] : g_.children) {
     if (is_group) {
       auto f = std::make_unique<GroupField>(m, index);
@@ -35,7 +103,7 @@ GroupField::GroupField(const SceneModel& m, int group) : m_(m), g_(m.groups[grou
     } else {
       const Shape& s = m.shapes[index];
       if (s.kind != ShapeKind::Implicit)
-        invalid_ = "operations over parametric shapes (per coordinate) are not built yet";
+        invalid_ = "an FTransform cannot mix implicit and parametric children";
       shapes_.push_back(&s);
       kids_.push_back(std::make_unique<ShapeField>(s));
     }
@@ -50,12 +118,23 @@ bool GroupField::valid(std::string& why) const {
 
 std::array<double, 6> GroupField::box() const {
   std::array<double, 6> b = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
-  for (const Shape* s : shapes_)
-    for (int a = 0; a < 3; ++a) {
-      b[2 * a] = std::min(b[2 * a], s->domain[2 * a]);
-      b[2 * a + 1] = std::max(b[2 * a + 1], s->domain[2 * a + 1]);
-    }
-  return b;
+  auto grow = [&b](const std::array<double, 6>& d) {
+    for (int a = 0; a < 3; ++a) b[2 * a] = std::min(b[2 * a], d[2 * a]), b[2 * a + 1] = std::max(b[2 * a + 1], d[2 * a + 1]);
+  };
+  size_t k = 0;
+  for (auto [is_group, index] : g_.children) {  // nested boxes come back in this group's frame
+    if (k >= kids_.size()) break;
+    grow(is_group ? static_cast<const GroupField&>(*kids_[k]).box() : m_.shapes[index].domain);
+    ++k;
+  }
+  if (!moved_ || b[0] > b[1]) return b;
+  std::array<double, 6> moved = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
+  for (int corner = 0; corner < 8; ++corner) {
+    float p[3] = {float(b[corner & 1]), float(b[2 + ((corner >> 1) & 1)]), float(b[4 + ((corner >> 2) & 1)])};
+    apply(matrix_, p[0], p[1], p[2]);
+    for (int a = 0; a < 3; ++a) moved[2 * a] = std::min(moved[2 * a], double(p[a])), moved[2 * a + 1] = std::max(moved[2 * a + 1], double(p[a]));
+  }
+  return moved;
 }
 
 std::array<int, 3> GroupField::cells() const {
@@ -69,6 +148,12 @@ const Shape* GroupField::first_shape() const { return shapes_.empty() ? nullptr 
 
 bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
                       backend::RuntimeError& err) const {
+  std::vector<float> lx, ly, lz;
+  if (moved_) {  // the children live in the FTransform's own frame
+    lx.assign(x, x + n), ly.assign(y, y + n), lz.assign(z, z + n);
+    for (size_t i = 0; i < n; ++i) apply(inverse_, lx[i], ly[i], lz[i]);
+    x = lx.data(), y = ly.data(), z = lz.data();
+  }
   std::vector<std::vector<float>> vals(kids_.size(), std::vector<float>(n));
   for (size_t k = 0; k < kids_.size(); ++k)
     if (!kids_[k]->eval(x, y, z, n, vals[k].data(), err)) return false;
@@ -100,6 +185,89 @@ bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, 
         out[i] = math::max(f, g);  // union (and any unknown name, reported when the model was built)
       }
     }
+  return true;
+}
+
+bool parametric_group(const SceneModel& m, int group) {
+  const Group& g = m.groups[group];
+  bool any = false;
+  for (auto [is_group, index] : g.children) {
+    if (is_group ? !parametric_group(m, index) : m.shapes[index].kind == ShapeKind::Implicit) return false;
+    any = true;
+  }
+  return any;
+}
+
+GroupParametric::GroupParametric(const SceneModel& m, int group) : g_(m.groups[group]) {
+  backend::RuntimeError err;
+  if (!group_matrix(g_, matrix_, err)) invalid_ = "the FTransform's affine fields: " + err.message;
+  for (auto [is_group, index] : g_.children) {
+    if (is_group) {
+      auto f = std::make_unique<GroupParametric>(m, index);
+      std::string why;
+      if (!f->valid(why)) invalid_ = why;
+      for (const Shape* s : f->shapes_) shapes_.push_back(s);
+      kids_.push_back(std::move(f));
+    } else {
+      const Shape& s = m.shapes[index];
+      if (s.kind == ShapeKind::Implicit) invalid_ = "an FTransform cannot mix implicit and parametric children";
+      shapes_.push_back(&s);
+      kids_.push_back(std::make_unique<mesh::KernelParametric>(*s.geometry.kernel, static_cast<float>(s.geometry.t)));
+    }
+  }
+  if (kids_.empty()) invalid_ = "an FTransform without FShape children";
+  if (!g_.op_kernel && kids_.size() > 1)
+    invalid_ = "the set operation '" + (g_.operation.empty() ? std::string("union") : g_.operation) +
+               "' over parametric children has no single surface; use type \"analytical\"";
+}
+
+bool GroupParametric::valid(std::string& why) const {
+  why = invalid_;
+  return invalid_.empty();
+}
+
+ShapeKind GroupParametric::kind() const {
+  auto dims = [](ShapeKind k) { return k == ShapeKind::Curve ? 1 : k == ShapeKind::Surface ? 2 : 3; };
+  ShapeKind best = ShapeKind::Curve;
+  for (const Shape* s : shapes_)
+    if (dims(s->kind) > dims(best)) best = s->kind;
+  return best;
+}
+
+std::array<double, 6> GroupParametric::domain() const { return shapes_.empty() ? std::array<double, 6>{} : shapes_[0]->domain; }
+
+std::array<int, 3> GroupParametric::intervals() const {
+  std::array<int, 3> c = {1, 1, 1};
+  for (const Shape* s : shapes_)
+    for (int a = 0; a < 3; ++a) c[a] = std::max(c[a], s->resolution[a]);
+  return c;
+}
+
+bool GroupParametric::eval(const float* u, const float* v, const float* w, size_t n, float* x, float* y, float* z,
+                           backend::RuntimeError& err) const {
+  // vals[k][c]: coordinate c of child k.
+  std::vector<std::array<std::vector<float>, 3>> vals(kids_.size());
+  for (size_t k = 0; k < kids_.size(); ++k) {
+    for (auto& c : vals[k]) c.resize(n);
+    if (!kids_[k]->eval(u, v, w, n, vals[k][0].data(), vals[k][1].data(), vals[k][2].data(), err)) return false;
+  }
+  float* out[3] = {x, y, z};
+  for (int c = 0; c < 3; ++c) {
+    if (!g_.op_kernel) {
+      std::copy(vals[0][c].begin(), vals[0][c].end(), out[c]);
+      continue;
+    }
+    std::vector<float> zero(n, 0.0f), t(n, static_cast<float>(g_.op_kernel->t));
+    std::vector<const float*> in;
+    in.push_back(vals[0][c].data());
+    in.push_back(kids_.size() > 1 ? vals[1][c].data() : zero.data());
+    for (int k = 0; k < kMaxOperands; ++k) in.push_back(k < static_cast<int>(kids_.size()) ? vals[k][c].data() : zero.data());
+    in.push_back(t.data());
+    float* outs[1] = {out[c]};
+    if (!g_.op_kernel->kernel->eval_batch(in.data(), outs, n, err)) return false;
+  }
+  if (matrix_ != identity())
+    for (size_t i = 0; i < n; ++i) apply(matrix_, x[i], y[i], z[i]);
   return true;
 }
 

@@ -1,13 +1,22 @@
 #pragma once
-// Implicit fields of the scene: a shape's FRep with its 3D texture (displacement: f + d), and an
-// FTransform combining its children (set operations, blends, analytical operations).
+// Fields of the scene: a shape's FRep with its 3D texture (displacement: f + d); an FTransform
+// combining implicit children (set operations, blends, analytical operations) or parametric
+// children (its analytical operation on each coordinate); both moved by the FTransform's affine
+// fields (translation, rotation, scale, scaleOrientation, center) at its t.
 #include <memory>
 #include <vector>
 
 #include "runtime/mesh/field.h"
+#include "runtime/mesh/parametric.h"
 #include "runtime/scene/scene_model.h"
 
 namespace fscript::scene {
+
+// The FTransform's affine fields as a matrix (VRML97 Transform order): each field is FScript
+// components of t, numbers (a file that declares them SFVec3f / SFRotation), or the default.
+bool group_matrix(const Group& g, Mat4& out, backend::RuntimeError& err);
+// Inverse of an affine matrix; false when it is singular (a zero scale).
+bool invert_affine(const Mat4& m, Mat4& out);
 
 class ShapeField : public mesh::Field {
  public:
@@ -36,6 +45,33 @@ class GroupField : public mesh::Field {
   std::vector<std::unique_ptr<mesh::Field>> kids_;
   std::vector<const Shape*> shapes_;     // every shape below, for box and resolution
   std::string invalid_;
+  Mat4 matrix_ = identity(), inverse_ = identity();
+  bool moved_ = false;                   // matrix_ is not the identity
 };
+
+// An FTransform over parametric children: x = op(x1, x2, ...) with the same for y and z, every
+// child sampled at the same (u, v, w) (they share the FTransform's `parameters`), then moved by
+// the affine fields.
+class GroupParametric : public mesh::ParametricField {
+ public:
+  GroupParametric(const SceneModel& m, int group);
+  bool eval(const float* u, const float* v, const float* w, size_t n, float* x, float* y, float* z,
+            backend::RuntimeError& err) const override;
+  bool valid(std::string& why) const;
+  const Shape* first_shape() const { return shapes_.empty() ? nullptr : shapes_.front(); }
+  ShapeKind kind() const;                // the children's highest dimension
+  std::array<double, 6> domain() const;  // the first child's (u, v, w) domain
+  std::array<int, 3> intervals() const;  // the finest child resolution
+
+ private:
+  const Group& g_;
+  std::vector<std::unique_ptr<mesh::ParametricField>> kids_;
+  std::vector<const Shape*> shapes_;
+  std::string invalid_;
+  Mat4 matrix_ = identity();
+};
+
+// True when every shape below the group is parametric (false: all implicit, or mixed).
+bool parametric_group(const SceneModel& m, int group);
 
 }  // namespace fscript::scene

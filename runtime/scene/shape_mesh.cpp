@@ -91,23 +91,49 @@ bool evaluate_material(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err
   return true;
 }
 
+// A 3D texture on a parametric shape: each point moves by d(x, y, z, u, v, w, t) along its unit
+// normal; the normals are then taken from the moved faces.
+bool displace(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err) {
+  size_t n = m.positions.size();
+  if (!s.texture || n == 0 || m.normals.size() != n) return true;
+  std::vector<std::vector<float>> in(7, std::vector<float>(n));
+  for (size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) in[a][i] = m.positions[i][a], in[3 + a][i] = m.params.size() == n ? m.params[i][a] : 0.0f;
+  std::fill(in[6].begin(), in[6].end(), static_cast<float>(s.texture->t));
+  std::vector<float> d(n), r(n), g(n), b(n);
+  const float* ins[7] = {in[0].data(), in[1].data(), in[2].data(), in[3].data(), in[4].data(), in[5].data(), in[6].data()};
+  float* outs[4] = {d.data(), r.data(), g.data(), b.data()};
+  if (!s.texture->kernel->eval_batch(ins, outs, n, err)) return false;
+  for (size_t i = 0; i < n; ++i)
+    if (std::isfinite(d[i]))
+      for (int a = 0; a < 3; ++a) m.positions[i][a] += d[i] * m.normals[i][a];
+  mesh::face_normals_to_vertices(m);
+  return true;
+}
+
+// Positions by the matrix, normals by its inverse transpose (non-uniform scales bend them).
 void transform(const Mat4& t, mesh::Mesh& m) {
-  static const Mat4 identity = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  if (t == identity) return;
+  if (t == identity()) return;
   for (auto& p : m.positions) {
     mesh::Vec3 q;
     for (int r = 0; r < 3; ++r)
       q[r] = static_cast<float>(t[r] * p[0] + t[4 + r] * p[1] + t[8 + r] * p[2] + t[12 + r]);
     p = q;
   }
+  Mat4 inv;
+  if (!invert_affine(t, inv)) return;
   for (auto& n : m.normals) {
     mesh::Vec3 q;
-    for (int r = 0; r < 3; ++r) q[r] = static_cast<float>(t[r] * n[0] + t[4 + r] * n[1] + t[8 + r] * n[2]);
+    for (int r = 0; r < 3; ++r) q[r] = static_cast<float>(inv[r * 4] * n[0] + inv[r * 4 + 1] * n[1] + inv[r * 4 + 2] * n[2]);
     float len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
     if (len > 0)
       for (float& v : q) v /= len;
     n = q;
   }
+  // A mirroring matrix turns the faces inside out: keep them outward.
+  double det = t[0] * (t[5] * t[10] - t[9] * t[6]) - t[4] * (t[1] * t[10] - t[9] * t[2]) + t[8] * (t[1] * t[6] - t[5] * t[2]);
+  if (det < 0)
+    for (auto& tri : m.triangles) std::swap(tri[1], tri[2]);
 }
 
 }  // namespace
@@ -127,22 +153,76 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, boo
     job.threads = threads;
     ok = mesh::polygonize_implicit(job, out, err);
   } else {
+    mesh::KernelParametric map(*s.geometry.kernel, static_cast<float>(s.geometry.t));
     mesh::ParametricJob job;
-    job.kernel = s.geometry.kernel.get();
+    job.field = &map;
     job.kind = s.kind == ShapeKind::Curve ? mesh::ParametricKind::Curve
              : s.kind == ShapeKind::Surface ? mesh::ParametricKind::Surface : mesh::ParametricKind::Solid;
     job.domain = s.domain;
     job.intervals = s.resolution;
-    job.t = static_cast<float>(s.geometry.t);
-    ok = mesh::polygonize_parametric(job, out, err);
+    ok = mesh::polygonize_parametric(job, out, err) && (s.kind == ShapeKind::Curve || displace(s, out, err));
   }
   if (!ok || !colour_vertices(s, out, err) || !evaluate_material(s, out, err)) return false;
   if (world) transform(s.transform, out);
   return true;
 }
 
+namespace {
+
+// An FTransform over parametric children: a union is every child's mesh together (moved by the
+// FTransform's matrix); an analytical operation is one parametric map (GroupParametric).
+bool mesh_parametric_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err, int threads) {
+  const Group& g = m.groups[group];
+  std::string op = g.operation.empty() ? "union" : g.operation;
+  if (!g.op_kernel && op == "union" && g.children.size() > 1) {
+    Mat4 matrix;
+    if (!group_matrix(g, matrix, err)) return false;
+    for (auto [is_group, index] : g.children) {
+      mesh::Mesh part;
+      if (!(is_group ? mesh_group(m, index, part, err, false, threads) : mesh_shape(m.shapes[index], part, err, false, threads)))
+        return false;
+      transform(matrix, part);
+      out.append(part);
+    }
+    return true;
+  }
+  GroupParametric field(m, group);
+  std::string why;
+  if (!field.valid(why)) {
+    err.message = why;
+    return false;
+  }
+  mesh::ParametricJob job;
+  job.field = &field;
+  ShapeKind kind = field.kind();
+  job.kind = kind == ShapeKind::Curve ? mesh::ParametricKind::Curve
+           : kind == ShapeKind::Surface ? mesh::ParametricKind::Surface : mesh::ParametricKind::Solid;
+  job.domain = field.domain();
+  job.intervals = field.intervals();
+  const Shape* first = field.first_shape();
+  return mesh::polygonize_parametric(job, out, err) && colour_vertices(*first, out, err) &&
+         evaluate_material(*first, out, err);
+}
+
+const Shape* first_shape_below(const SceneModel& m, int group) {
+  for (auto [is_group, index] : m.groups[group].children) {
+    const Shape* s = is_group ? first_shape_below(m, index) : &m.shapes[index];
+    if (s) return s;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
 bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err, bool world,
                 int threads) {
+  out = mesh::Mesh{};
+  if (parametric_group(m, group)) {
+    if (!mesh_parametric_group(m, group, out, err, threads)) return false;
+    const Shape* first = first_shape_below(m, group);
+    if (first && world) transform(first->transform, out);
+    return true;
+  }
   GroupField field(m, group);
   std::string why;
   if (!field.valid(why)) {

@@ -244,9 +244,11 @@ PY
   check fvrml-run-format 2 "output format 'gltf' is not built yet" -- "$R" "$T/ball.wrl" -o "$T/ball.gltf"
   check fvrml-run-unwritable 1 'cannot write' -- "$R" "$T/ball.wrl" -o "$T/no/dir/x.ply"
   [ ! -e "$T/no/dir/x.ply" ] || { echo "FAIL half-written"; fails=$((fails + 1)); }
-  check fvrml-run-ftransform 1 'operations over parametric shapes' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l.ply"
+  check fvrml-run-listing1 0 '"triangles":[1-9]' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l1.ply" --stats
+  printf '#VRML V2.0 utf8\nFTransform { children [ FShape { geometry FGeometry { definition "x=u; y=v; z=0;" resolution [4 4] } }\n  FShape { geometry FGeometry { definition "0.5-x*x-y*y-z*z" } } ] }\nFShape { geometry FGeometry { definition "0.5-x*x-y*y-z*z" resolution [8] } }\n' > "$T/mixed.wrl"
+  check fvrml-run-ftransform 1 'mixed.wrl:2: error: FTransform: an FTransform cannot mix implicit and parametric children' -- "$R" "$T/mixed.wrl" -o "$T/l.ply"
   [ ! -e "$T/l.ply" ] || { echo "FAIL no-output-on-error"; fails=$((fails + 1)); }
-  check fvrml-run-keep-going 1 'warning: FTransform: operations over parametric' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l.ply" --keep-going
+  check fvrml-run-keep-going 1 'warning: FTransform: an FTransform cannot mix' -- "$R" "$T/mixed.wrl" -o "$T/l.ply" --keep-going
   check fvrml-run-wrl-stdout 0 'geometry IndexedFaceSet' -- "$R" "$T/ball.wrl"
   for w in "$SRC"/examples/paper/figure1-morphing.wrl "$SRC"/examples/paper/figure6-blends.wrl; do
     check "fvrml-run-wrl $(basename "$w")" 0 '' -- "$R" "$w" -o "$T/out.wrl" --resolution-scale 0.2

@@ -89,8 +89,9 @@ TEST_CASE("mesh: two separate spheres, a thin plate, and time") {
 static mesh::Mesh sample(const std::string& src, mesh::ParametricKind kind, std::array<double, 6> dom, int n) {
   auto b = test::build(src);
   REQUIRE(b->ok);
+  mesh::KernelParametric map(*b->kernel, 0);
   mesh::ParametricJob job;
-  job.kernel = b->kernel.get();
+  job.field = &map;
   job.kind = kind;
   job.domain = dom;
   job.intervals = {n, n, n};
@@ -109,6 +110,17 @@ TEST_CASE("mesh: a parametric sphere welds its seam and poles into a closed surf
   double worst = 0;
   for (const auto& p : m.positions) worst = std::max(worst, std::fabs(std::sqrt(p[0]*p[0] + p[1]*p[1] + p[2]*p[2]) - 0.5));
   CHECK(worst < 1e-5);
+  // Normals from the derivatives: dP/du x dP/dv points inward for this map; exact away from the
+  // poles, the face average at them.
+  double worst_side = 1, worst_exact = 1;
+  for (size_t i = 0; i < m.positions.size(); ++i) {
+    const auto &p = m.positions[i], &n = m.normals[i];
+    double d = -(p[0] * n[0] + p[1] * n[1] + p[2] * n[2]) / 0.5;
+    worst_side = std::min(worst_side, d);
+    if (std::fabs(p[2]) < 0.49) worst_exact = std::min(worst_exact, d);
+  }
+  CHECK(worst_side > 0.99);
+  CHECK(worst_exact > 0.99999);
 }
 
 TEST_CASE("mesh: a parametric curve is a polyline of N+1 samples; a solid is its six faces") {

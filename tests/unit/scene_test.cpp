@@ -102,3 +102,144 @@ TEST_CASE("scene: parametric kinds and domains from resolution and parameters") 
   CHECK(curve.positions.back()[1] == 4.0f);
   CHECK(surface.triangles.size() == 128);
 }
+
+namespace {
+mesh::Mesh group_mesh(const std::string& body, double fraction = 0) {
+  scene::ModelOptions o;
+  o.fraction = fraction;
+  auto l = load(body, o);
+  INFO(frontend::render_all(l->diag));
+  REQUIRE(l->ok);
+  mesh::Mesh m;
+  backend::RuntimeError err;
+  INFO(err.message);
+  REQUIRE(scene::mesh_group(l->model, 0, m, err));
+  return m;
+}
+
+std::array<double, 3> centroid(const mesh::Mesh& m) {
+  std::array<double, 3> c{0, 0, 0};
+  for (const auto& p : m.positions)
+    for (int a = 0; a < 3; ++a) c[a] += p[a] / m.positions.size();
+  return c;
+}
+}  // namespace
+
+TEST_CASE("scene: an analytical operation over parametric children works on each coordinate") {
+  // Two spheres of radius 0.3 and 0.7 on the same (u, v): the morph's points lie on a sphere of
+  // radius 0.3 (1 - t) + 0.7 t.
+  const char* body = R"W(FTransform { type "analytical" operation "f*(1-t)+g*t" parameters [0 1 0 1] children [
+      FShape { geometry FGeometry { resolution [24 24]
+        definition "x=0.3*cos(2*pi*u)*sin(pi*v); y=0.3*sin(2*pi*u)*sin(pi*v); z=0.3*cos(pi*v);" } }
+      FShape { geometry FGeometry { resolution [24 24]
+        definition "x=0.7*cos(2*pi*u)*sin(pi*v); y=0.7*sin(2*pi*u)*sin(pi*v); z=0.7*cos(pi*v);" } } ] })W";
+  for (double f : {0.0, 0.25, 1.0}) {
+    mesh::Mesh m = group_mesh(body, f);
+    INFO("fraction " << f);
+    double want = 0.3 * (1 - f) + 0.7 * f, worst = 0;
+    for (const auto& p : m.positions) worst = std::max(worst, std::fabs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - want));
+    CHECK(worst < 1e-5);
+    auto topo = mesh::topology(m);
+    CHECK(topo.watertight);  // seams and poles welded as for one shape
+    CHECK(topo.euler == 2);
+  }
+}
+
+TEST_CASE("scene: a union of parametric children is both surfaces; other set operations say why not") {
+  mesh::Mesh m = group_mesh(R"W(FTransform { translation "0, 0, 1" children [
+      FShape { geometry FGeometry { definition "x=u; y=v; z=0;" resolution [4 4] parameters [0 1 0 1] } }
+      FShape { geometry FGeometry { definition "x=u; y=v; z=1;" resolution [4 4] parameters [0 1 0 1] } } ] })W");
+  CHECK(m.triangles.size() == 64);
+  CHECK(centroid(m)[2] == Approx(1.5));  // both squares moved up by the FTransform's translation
+  auto l = load(R"W(FTransform { operation "intersection" children [
+      FShape { geometry FGeometry { definition "x=u; y=v; z=0;" resolution [4 4] parameters [0 1 0 1] } }
+      FShape { geometry FGeometry { definition "x=u; y=v; z=1;" resolution [4 4] parameters [0 1 0 1] } } ] }
+    FTransform { children [
+      FShape { geometry FGeometry { definition "x=u; y=v; z=0;" resolution [4 4] parameters [0 1 0 1] } }
+      FShape { geometry FGeometry { definition "0.5-x*x-y*y-z*z" } } ] })W");
+  REQUIRE(l->ok);
+  mesh::Mesh bad;
+  backend::RuntimeError err;
+  CHECK(!scene::mesh_group(l->model, 0, bad, err));
+  CHECK(err.message.find("'intersection' over parametric children") != std::string::npos);
+  CHECK(!scene::mesh_group(l->model, 1, bad, err));
+  CHECK(err.message.find("cannot mix implicit and parametric") != std::string::npos);
+}
+
+TEST_CASE("scene: an FTransform's affine fields move, turn and scale its result, and may follow t") {
+  // A ball of radius 0.3 moved by translation "t, 0, 0": at fraction 1 its centre is x = 1 and the
+  // box the polygonizer samples moved with it (the ball is whole).
+  mesh::Mesh moved = group_mesh(R"W(FTransform { translation "t, 0, 0" children [
+      FShape { geometry FGeometry { definition "0.3^2-x^2-y^2-z^2" bboxSize 1 1 1 resolution [24] } } ] })W", 1.0);
+  CHECK(centroid(moved)[0] == Approx(1.0).margin(1e-3));
+  CHECK(mean_radius(moved, 1.0) == Approx(0.3).epsilon(0.01));
+  CHECK(mesh::topology(moved).watertight);
+  CHECK(mesh::topology(moved).euler == 2);
+  // scale "2 1 1" makes an ellipsoid with semi-axes 0.6, 0.3, 0.3; numbers work as well as strings.
+  mesh::Mesh scaled = group_mesh(R"W(FTransform { scale "2 1 1" children [
+      FShape { geometry FGeometry { definition "0.3^2-x^2-y^2-z^2" bboxSize 1 1 1 resolution [32] } } ] })W");
+  double worst = 0;
+  for (const auto& p : scaled.positions) {
+    double e = std::sqrt((p[0] / 0.6) * (p[0] / 0.6) + (p[1] / 0.3) * (p[1] / 0.3) + (p[2] / 0.3) * (p[2] / 0.3));
+    worst = std::max(worst, std::fabs(e - 1));
+  }
+  CHECK(worst < 0.01);
+  // Normals of the stretched shape still point out of it.
+  int outward = 0;
+  for (size_t i = 0; i < scaled.positions.size(); ++i) {
+    const auto &p = scaled.positions[i], &n = scaled.normals[i];
+    outward += p[0] / 0.36 * n[0] + p[1] / 0.09 * n[1] + p[2] / 0.09 * n[2] > 0;
+  }
+  CHECK(outward == static_cast<int>(scaled.positions.size()));
+  // A quarter turn about z carries a ball at x = 0.5 to y = 0.5.
+  mesh::Mesh turned = group_mesh(R"W(FTransform { rotation "0 0 1 1.5707963" children [
+      FShape { geometry FGeometry { definition "0.2^2-(x-0.5)^2-y^2-z^2" bboxSize 2 2 2 resolution [32] } } ] })W");
+  CHECK(centroid(turned)[0] == Approx(0.0).margin(1e-3));
+  CHECK(centroid(turned)[1] == Approx(0.5).margin(1e-3));
+  // A zero scale has no volume: a clear error.
+  auto l = load(R"W(FTransform { scale "0 1 1" children [
+      FShape { geometry FGeometry { definition "0.3^2-x^2-y^2-z^2" } } ] })W");
+  REQUIRE(l->ok);
+  mesh::Mesh flat;
+  backend::RuntimeError err;
+  CHECK(!scene::mesh_group(l->model, 0, flat, err));
+  CHECK(err.message.find("scale is zero") != std::string::npos);
+}
+
+TEST_CASE("scene: a displacement texture on a parametric surface moves points along the normal") {
+  auto l = load(R"W(FShape {
+      appearance FAppearance { texture3D FTexture3D { definition "0.1" type "displacement" } }
+      geometry FGeometry { resolution [24 24] parameters [0 1 0 1]
+        definition "x=0.5*cos(2*pi*u)*sin(pi*v); y=0.5*sin(2*pi*u)*sin(pi*v); z=0.5*cos(pi*v);" } })W");
+  REQUIRE(l->ok);
+  mesh::Mesh m;
+  backend::RuntimeError err;
+  REQUIRE(scene::mesh_shape(l->model.shapes[0], m, err));
+  // dP/du x dP/dv points inward on this map, so +0.1 along the normal shrinks the sphere.
+  CHECK(mean_radius(m) == Approx(0.4).epsilon(0.01));
+}
+
+TEST_CASE("scene: FMaterial strings set the material; none leaves the viewer's default") {
+  auto l = load(R"W(FShape { appearance FAppearance { material FMaterial {
+        shininess "0.25+0.5*t" transparency "0.5" emissiveColor "r=1; g=0; b=0;" specularColor "0.3" } }
+      geometry FGeometry { definition "0.3^2-x^2-y^2-z^2" bboxSize 1 1 1 resolution [8] } }
+    FShape { geometry FGeometry { definition "0.3^2-x^2-y^2-z^2" bboxSize 1 1 1 resolution [8] } })W",
+                [] {
+                  scene::ModelOptions o;
+                  o.fraction = 1;
+                  return o;
+                }());
+  INFO(frontend::render_all(l->diag));
+  REQUIRE(l->ok);
+  mesh::Mesh a, b;
+  backend::RuntimeError err;
+  REQUIRE(scene::mesh_shape(l->model.shapes[0], a, err));
+  REQUIRE(scene::mesh_shape(l->model.shapes[1], b, err));
+  REQUIRE(a.material);
+  CHECK(a.material->shininess == Approx(0.75));
+  CHECK(a.material->transparency == Approx(0.5));
+  CHECK(a.material->emissive == mesh::Vec3{1, 0, 0});
+  CHECK(a.material->specular == mesh::Vec3{0.3f, 0.3f, 0.3f});
+  CHECK(a.material->diffuse == mesh::Vec3{0.8f, 0.8f, 0.8f});
+  CHECK(!b.material);
+}

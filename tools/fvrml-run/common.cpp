@@ -40,6 +40,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
       report(o, scene, model.groups[g].node, "FTransform: " + err.message);
       out.failed = true;
     }
+    out.group_counts[g] = {m.positions.size(), m.triangles.size()};
     out.by_node[model.groups[g].node] = std::move(m);
   }
   return out;

@@ -55,11 +55,15 @@ nlohmann::json stats(const vrml::Scene& scene, const SceneModel& m, const Meshed
     shapes.push_back(j);
   }
   nlohmann::json groups = nlohmann::json::array();
-  for (const auto& g : m.groups) {
+  for (size_t i = 0; i < m.groups.size(); ++i) {
+    const auto& g = m.groups[i];
     nlohmann::json affine = nlohmann::json::object();
     for (const auto& [field, parts] : g.affine) affine[field] = parts.size();
-    groups.push_back({{"operation", g.operation}, {"type", g.type}, {"fraction", g.fraction}, {"shapes", g.shapes},
-                      {"ftransforms", g.groups}, {"parent", g.parent}, {"affine", affine}});
+    nlohmann::json j = {{"operation", g.operation}, {"type", g.type}, {"fraction", g.fraction}, {"shapes", g.shapes},
+                        {"ftransforms", g.groups}, {"parent", g.parent}, {"affine", affine}};
+    if (meshed && meshed->group_counts.count(i))
+      j["vertices"] = meshed->group_counts.at(i).first, j["triangles"] = meshed->group_counts.at(i).second;
+    groups.push_back(j);
   }
   return {{"shapes", shapes}, {"ftransforms", groups}};
 }

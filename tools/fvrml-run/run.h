@@ -44,6 +44,7 @@ struct Loaded {
 struct Meshed {
   std::map<const vrml::Node*, mesh::Mesh> by_node;
   std::vector<std::pair<size_t, size_t>> counts;  // vertices, triangles per shape
+  std::map<size_t, std::pair<size_t, size_t>> group_counts;  // per top-level FTransform
   bool failed = false;
 };
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One entry point for setting up, building and testing, on a fresh Debian bookworm machine.
-#   ./dev.sh demo    install what is missing, build, render a bundled example to out/
+#   ./dev.sh demo    install what is missing, build, render the paper's Figure 1 to out/ (PNG, VRML97)
 #   ./dev.sh test    install what is missing, build, run every test (ctest)
 #   SANITIZE=1 ./dev.sh test   the same with AddressSanitizer + UndefinedBehaviorSanitizer
 #   ./dev.sh build   build only
@@ -57,8 +57,11 @@ case "$cmd" in
     ;;
   demo)
     mkdir -p out
-    "$BUILD_DIR/tools/fscript/fscript" render2d examples/blobs.fs --size 800x600 --bounds -2,2,-1.5,1.5 -o out/blobs.png
-    echo "wrote out/blobs.png"
+    run="$BUILD_DIR/tools/fvrml-run/fvrml-run"
+    "$run" examples/paper/figure1-morphing.wrl --fraction 0.5 -o out/figure1.png
+    "$run" examples/paper/figure1-morphing.wrl --frames 8 -o out/figure1.wrl
+    echo "wrote out/figure1.png (the paper's Figure 1 halfway through the morph) and out/figure1.wrl"
+    echo "(VRML97: the morph as 8 frames under a Switch driven by a TimeSensor; open it in any VRML97 browser)"
     ;;
   *) echo "usage: ./dev.sh demo|test|build" >&2; exit 2 ;;
 esac

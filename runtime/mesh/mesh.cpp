@@ -7,18 +7,30 @@
 
 namespace fscript::mesh {
 
+// Per-shape colours survive a merge: when only one side has vertex colours, or the two materials
+// differ, each side without colours gets its material's diffuse colour on every vertex. The first
+// material stays the merged mesh's.
 void Mesh::append(const Mesh& o) {
+  if (positions.empty() && triangles.empty() && polylines.empty()) {
+    *this = o;
+    return;
+  }
   uint32_t base = static_cast<uint32_t>(positions.size());
-  bool had_normals = normals.size() == positions.size() && (!positions.empty() || !o.normals.empty());
-  bool had_colours = colours.size() == positions.size() && (!positions.empty() || !o.colours.empty());
-  bool had_params = params.size() == positions.size() && (!positions.empty() || !o.params.empty());
-  if (had_params && o.params.size() == o.positions.size()) params.insert(params.end(), o.params.begin(), o.params.end());
+  size_t n = positions.size(), on = o.positions.size();
+  bool mine = colours.size() == n && n > 0, theirs = o.colours.size() == on && on > 0;
+  bool coloured = mine || theirs || material != o.material;
+  if (coloured && !mine) colours.assign(n, material.value_or(Material{}).diffuse);
+  if (coloured) {
+    if (theirs) colours.insert(colours.end(), o.colours.begin(), o.colours.end());
+    else colours.insert(colours.end(), on, o.material.value_or(Material{}).diffuse);
+  } else {
+    colours.clear();
+  }
+  if (normals.size() == n && o.normals.size() == on) normals.insert(normals.end(), o.normals.begin(), o.normals.end());
+  else normals.clear();
+  if (params.size() == n && o.params.size() == on) params.insert(params.end(), o.params.begin(), o.params.end());
   else params.clear();
   positions.insert(positions.end(), o.positions.begin(), o.positions.end());
-  if (had_normals && o.normals.size() == o.positions.size()) normals.insert(normals.end(), o.normals.begin(), o.normals.end());
-  else normals.clear();
-  if (had_colours && o.colours.size() == o.positions.size()) colours.insert(colours.end(), o.colours.begin(), o.colours.end());
-  else colours.clear();
   triangles.reserve(triangles.size() + o.triangles.size());
   for (auto t : o.triangles) triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   for (const auto& l : o.polylines) {

@@ -229,6 +229,11 @@ PY
   check fvrml-run-viewpoint 0 '' -- "$R" "$T/vp.wrl" -o "$T/vp.png" --width 64 --height 64
   check fvrml-run-png 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.png" --width 64 --height 48
   head -c 8 "$T/ball.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' || { echo "FAIL fvrml-run-png-magic"; fails=$((fails + 1)); }
+  # Pictures keep the standard geometry and the Background of the scene.
+  printf '#VRML V2.0 utf8\nBackground { skyColor 0 0 1 }\nShape { appearance Appearance { material Material { diffuseColor 1 0 0 } } geometry Box { } }\n' > "$T/box.wrl"
+  check fvrml-run-png-standard 0 '' -- "$R" "$T/box.wrl" -o "$T/box.png" --width 64 --height 48
+  check fvrml-run-png-sky 0 '"count": (1[0-9]{3}|[5-9][0-9]{2})' -- python3 "$SRC/tests/clients/png_probe.py" "$T/box.png" 0 0 255 8
+  check fvrml-run-png-box 0 '"count": ([2-9][0-9]{2}|1[0-9]{3})' -- python3 "$SRC/tests/clients/png_probe.py" "$T/box.png" 200 0 0 120
   check fvrml-run-glb 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.glb"
   head -c 4 "$T/ball.glb" | grep -q glTF || { echo "FAIL glb-magic"; fails=$((fails + 1)); }
   # The Khronos glTF validator, when dev.sh test could install it (npm).

@@ -243,3 +243,48 @@ TEST_CASE("scene: FMaterial strings set the material; none leaves the viewer's d
   CHECK(a.material->diffuse == mesh::Vec3{0.8f, 0.8f, 0.8f});
   CHECK(!b.material);
 }
+
+#include "runtime/scene/standard_geometry.h"
+
+TEST_CASE("scene: standard VRML97 geometry becomes meshes for pictures, with materials and Transforms") {
+  auto l = load(R"W(Background { skyColor 0 0 1 }
+    Transform { translation 2 0 0 children Shape {
+      appearance Appearance { material Material { diffuseColor 1 0 0 shininess 0.9 } }
+      geometry Box { size 2 4 6 } } }
+    Shape { geometry IndexedFaceSet { coord Coordinate { point [0 0 0, 1 0 0, 1 1 0, 0 1 0] }
+      coordIndex [0 1 2 3 -1] color Color { color [1 0 0, 0 1 0] } colorPerVertex FALSE colorIndex [1] } }
+    Shape { geometry IndexedLineSet { coord Coordinate { point [0 0 0, 1 0 0, 1 1 0] } coordIndex [0 1 2] } }
+    Switch { whichChoice 1 choice [ Shape { geometry Sphere { } } Shape { geometry Cone { } } ] }
+    Shape { geometry Cylinder { radius 0.5 } }
+    FShape { geometry FGeometry { definition "1-x*x-y*y-z*z" } })W");
+  REQUIRE(l->ok);
+  auto parts = scene::standard_meshes(l->scene);
+  REQUIRE(parts.size() == 5);  // the FShape is not standard; the Switch draws its chosen child only
+  const auto& box = parts[0];
+  CHECK(box.triangles.size() == 12);
+  mesh::Vec3 lo = box.positions[0], hi = lo;
+  for (const auto& p : box.positions)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+  CHECK(lo == mesh::Vec3{1, -2, -3});
+  CHECK(hi == mesh::Vec3{3, 2, 3});
+  REQUIRE(box.material);
+  CHECK(box.material->diffuse == mesh::Vec3{1, 0, 0});
+  CHECK(box.positions.size() == 24);  // flat faces: four vertices of its own each
+  CHECK(parts[1].triangles.size() == 2);
+  REQUIRE(parts[1].colours.size() == 4);
+  CHECK(parts[1].colours[0] == mesh::Vec3{0, 1, 0});  // colour 1 for the whole face
+  CHECK(parts[2].polylines.size() == 1);
+  CHECK(parts[2].polylines[0].size() == 3);
+  double cone_top = -1e9;
+  for (const auto& p : parts[3].positions) cone_top = std::max(cone_top, double(p[1]));
+  CHECK(cone_top == Approx(1.0));  // the Cone, height 2 about the origin
+  auto sky = scene::background_colour(l->scene);
+  REQUIRE(sky);
+  CHECK((*sky)[2] == 1.0f);
+  // Merging keeps each part's colour: the red box and the grey default stay apart.
+  mesh::Mesh all = parts[0];
+  all.append(parts[4]);
+  REQUIRE(all.colours.size() == all.positions.size());
+  CHECK(all.colours.front() == mesh::Vec3{1, 0, 0});
+  CHECK(all.colours.back() == mesh::Vec3{0.8f, 0.8f, 0.8f});
+}

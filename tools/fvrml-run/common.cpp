@@ -7,6 +7,7 @@
 
 #include "runtime/mesh/mesh_io.h"
 #include "runtime/scene/shape_mesh.h"
+#include "runtime/scene/standard_geometry.h"
 #include "tools/fvrml-run/run.h"
 
 namespace fvrml_run {
@@ -44,6 +45,12 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
     out.by_node[model.groups[g].node] = std::move(m);
   }
   return out;
+}
+
+mesh::Mesh picture(Meshed& m, const vrml::Scene& scene) {
+  mesh::Mesh all = merged(m);
+  for (const auto& part : fscript::scene::standard_meshes(scene)) all.append(part);
+  return all;
 }
 
 mesh::Mesh merged(Meshed& m) {
@@ -138,6 +145,7 @@ fscript::render::RenderOptions render_options(const Options&, const vrml::Scene&
     }
     lights(n.get(), fscript::scene::identity(), ro.lights, 0);
   }
+  if (auto sky = fscript::scene::background_colour(scene)) ro.background = *sky;
   return ro;
 }
 

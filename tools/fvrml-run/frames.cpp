@@ -95,7 +95,7 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
       failed = true;
       if (!o.keep_going) return false;
     }
-    mesh::Mesh all = merged(meshed);
+    mesh::Mesh all = o.format == "png" ? picture(meshed, l.scene) : merged(meshed);
     per_frame[f] = {{"fraction", static_cast<double>(f) / o.frames}, {"vertices", all.positions.size()},
                     {"triangles", all.triangles.size()}};
     if (o.format != "png") return write_frame(o, numbered(o.output, f, o.frames), all);

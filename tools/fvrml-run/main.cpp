@@ -120,7 +120,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
       else if (!fscript::frontend::write_file_atomic(o.output, text, error)) return std::cerr << "error: " << error << "\n", 1;
     } else if (o.format == "png") {
       fscript::render::RenderOptions ro = render_options(o, l.scene, o.width, o.height);
-      if (!fscript::render::write_png(o.output, ro.width, ro.height, 3, fscript::render::render(merged(meshed), ro), error))
+      if (!fscript::render::write_png(o.output, ro.width, ro.height, 3, fscript::render::render(picture(meshed, l.scene), ro), error))
         return std::cerr << "error: " << error << "\n", 1;
     } else if (!write_frame(o, o.output, merged(meshed))) {
       return 1;

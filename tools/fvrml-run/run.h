@@ -60,6 +60,9 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
 // All the frame's meshes in one (moved out of `m` when there is only one).
 mesh::Mesh merged(Meshed& m);
 
+// What a picture shows: the frame's meshes and the scene's standard VRML97 geometry.
+mesh::Mesh picture(Meshed& m, const vrml::Scene& scene);
+
 // Builds the model; diagnostics are printed the first time only (frames repeat the same ones).
 bool build(Loaded& l, SceneModel& model, const fscript::scene::ModelOptions& mo, bool print);
 

@@ -2,12 +2,33 @@
 // A scalar field f(x, y, z) evaluated in batches: what the implicit polygonizer samples. A field
 // is one FRep kernel at a fixed t, or a combination built by the scene layer (3D textures,
 // FTransform operations).
+#include <atomic>
+#include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "backends/backend.h"
 
 namespace fscript::mesh {
+
+// Time spent in function evaluation while meshing, summed over threads (reported by --stats):
+// every batch the polygonizers and colourings evaluate is timed by an EvalTimer.
+std::atomic<uint64_t>& evaluation_ns();
+
+class EvalTimer {
+ public:
+  EvalTimer() : start_(std::chrono::steady_clock::now()) {}
+  ~EvalTimer() {
+    auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_).count();
+    evaluation_ns().fetch_add(static_cast<uint64_t>(ns), std::memory_order_relaxed);
+  }
+  EvalTimer(const EvalTimer&) = delete;
+  EvalTimer& operator=(const EvalTimer&) = delete;
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
 
 class Field {
  public:

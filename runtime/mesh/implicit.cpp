@@ -97,6 +97,7 @@ struct Grid {
 
 bool evaluate(const Field& f, const float* xs, const float* ys, const float* zs, size_t n, float* out,
               backend::RuntimeError& err) {
+  EvalTimer timer;
   for (size_t b = 0; b < n; b += kBatch)
     if (!f.eval(xs + b, ys + b, zs + b, std::min(kBatch, n - b), out + b, err)) return false;
   return true;
@@ -439,6 +440,11 @@ bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backend::RuntimeErro
   slabs.clear();
   return refine(g, *job.field, edges, out, job.refine_steps, job.threads, err) &&
          normals(g, *job.field, edges, out, job.threads, err);
+}
+
+std::atomic<uint64_t>& evaluation_ns() {
+  static std::atomic<uint64_t> total{0};
+  return total;
 }
 
 bool KernelField::eval(const float* x, const float* y, const float* z, size_t n, float* out,

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 
+#include "runtime/mesh/field.h"
+
 namespace fscript::mesh {
 namespace {
 
@@ -13,6 +15,7 @@ bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>&
   size_t n = uvw.size();
   std::vector<float> u(n), v(n), w(n), x(n), y(n), z(n);
   for (size_t i = 0; i < n; ++i) u[i] = uvw[i][0], v[i] = uvw[i][1], w[i] = uvw[i][2];
+  EvalTimer timer;
   if (!job.field->eval(u.data(), v.data(), w.data(), n, x.data(), y.data(), z.data(), err)) return false;
   xyz.resize(n);
   for (size_t i = 0; i < n; ++i) xyz[i] = {x[i], y[i], z[i]};

@@ -50,7 +50,12 @@ bool colour_vertices(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err) 
   const float* ins[7];
   for (int k = 0; k < 7; ++k) ins[k] = in[k].data();
   float* outs[4] = {out[0].data(), out[1].data(), out[2].data(), out[3].data()};
-  if (!s.colour->kernel->eval_batch(ins, outs, n, err)) return false;
+  bool ok;
+  {
+    mesh::EvalTimer timer;
+    ok = s.colour->kernel->eval_batch(ins, outs, n, err);
+  }
+  if (!ok) return false;
   m.colours.resize(n);
   for (size_t i = 0; i < n; ++i) {
     if (s.colour->rgb) {
@@ -103,7 +108,10 @@ bool displace(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err) {
   std::vector<float> d(n), r(n), g(n), b(n);
   const float* ins[7] = {in[0].data(), in[1].data(), in[2].data(), in[3].data(), in[4].data(), in[5].data(), in[6].data()};
   float* outs[4] = {d.data(), r.data(), g.data(), b.data()};
-  if (!s.texture->kernel->eval_batch(ins, outs, n, err)) return false;
+  {
+    mesh::EvalTimer timer;
+    if (!s.texture->kernel->eval_batch(ins, outs, n, err)) return false;
+  }
   for (size_t i = 0; i < n; ++i)
     if (std::isfinite(d[i]))
       for (int a = 0; a < 3; ++a) m.positions[i][a] += d[i] * m.normals[i][a];

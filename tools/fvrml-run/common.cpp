@@ -5,12 +5,15 @@
 #include <iostream>
 #include <mutex>
 
+#include "runtime/mesh/field.h"
 #include "runtime/mesh/mesh_io.h"
 #include "runtime/scene/shape_mesh.h"
 #include "runtime/scene/standard_geometry.h"
 #include "tools/fvrml-run/run.h"
 
 namespace fvrml_run {
+
+double evaluation_ms_since(uint64_t ns0) { return (mesh::evaluation_ns().load() - ns0) / 1e6; }
 
 void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, const std::string& what) {
   static std::mutex lock;  // frames are meshed in parallel

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "frontend/source.h"
+#include "runtime/mesh/field.h"
 #include "runtime/mesh/frame_cache.h"
 #include "runtime/mesh/gltf.h"
 #include "runtime/render/png.h"
@@ -81,6 +82,7 @@ bool write_text(const Options& o, const std::string& text) {
 
 int frames(const Options& o, Loaded& l, nlohmann::json& st) {
   auto t2 = Clock::now();
+  uint64_t e0 = mesh::evaluation_ns().load();
   std::vector<SceneModel> models;
   if (!frame_models(o, l, o.frames, models, true)) return 1;
   int cols = static_cast<int>(std::ceil(std::sqrt(o.frames))), rows = (o.frames + cols - 1) / cols;
@@ -111,6 +113,7 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
     return std::cerr << "error: " << error << "\n", 1;
   st["frames"] = per_frame;
   st["polygonize_ms"] = ms_since(t2);
+  st["evaluation_ms"] = evaluation_ms_since(e0);
   return failed ? 1 : 0;
 }
 
@@ -132,6 +135,7 @@ std::vector<Track> tracks(const Options& o, const SceneModel& model) {
 
 int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::json& st) {
   auto t2 = Clock::now();
+  uint64_t e0 = mesh::evaluation_ns().load();
   bool world = o.format != "wrl", failed = false;
   std::vector<Track> ts = tracks(o, model);
   std::set<const vrml::Node*> skip;
@@ -186,6 +190,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     gltf.push_back(std::move(a));
   }
   st["polygonize_ms"] = ms_since(t2);
+  st["evaluation_ms"] = evaluation_ms_since(e0);
   st["animations"] = report_json;
   auto t3 = Clock::now();
   bool written = false;

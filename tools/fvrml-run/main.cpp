@@ -17,6 +17,7 @@
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "runtime/mesh/distance.h"
+#include "runtime/mesh/field.h"
 #include "runtime/mesh/mesh_io.h"
 #include "runtime/mesh/mesh_read.h"
 #include "runtime/render/png.h"
@@ -95,6 +96,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
   if (!build(l, model, o.model, true)) return 1;
   st["compile_ms"] = ms_since(t1);
   auto t2 = Clock::now();
+  uint64_t e0 = mesh::evaluation_ns().load();
   bool write = !o.output.empty() || (!o.stats && o.check.empty());
   Meshed meshed;
   if (!o.check.empty()) {
@@ -112,6 +114,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
     meshed = mesh_scene(o, l.scene, model, o.format != "wrl", o.threads);
     if (meshed.failed && !o.keep_going) return 1;
     st["polygonize_ms"] = ms_since(t2);
+    st["evaluation_ms"] = evaluation_ms_since(e0);
     t2 = Clock::now();
     std::string error;
     if (o.format == "wrl") {

@@ -26,6 +26,9 @@ inline double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
+// Milliseconds of function evaluation since `ns0` (summed over threads).
+double evaluation_ms_since(uint64_t ns0);
+
 struct Options {
   std::string path, output, format, check;
   fscript::scene::ModelOptions model;

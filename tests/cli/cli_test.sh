@@ -243,6 +243,18 @@ PY
       check "gltf-validator $(basename "$w")" 0 '"numErrors":0,"numWarnings":0' -- node "$SRC/tests/clients/gltf_validate.mjs" "$T/v.glb"
     done
     check "gltf-validator animated" 0 '"numErrors":0,"numWarnings":0' -- node "$SRC/tests/clients/gltf_validate.mjs" "$T/anim.glb"
+    # Every corpus file as glTF, validated in one run of the validator.
+    if [ -d "$SRC/../shared/corpus" ]; then
+      mkdir -p "$T/glb"
+      k=0
+      while IFS= read -r -d '' w; do
+        head -c 7 "$w" | grep -q BSCRYPT && continue
+        k=$((k + 1))
+        "$R" "$w" -o "$T/glb/$k.glb" --resolution-scale 0.2 --keep-going 2> /dev/null || true
+        [ -s "$T/glb/$k.glb" ] || { echo "FAIL no glb for $w"; fails=$((fails + 1)); }
+      done < <(find "$SRC/../shared/corpus" -name '*.wrl' -print0)
+      check "gltf-validator corpus ($k files)" 0 '' -- node "$SRC/tests/clients/gltf_validate.mjs" "$T"/glb/*.glb
+    fi
   else
     echo "note: the Khronos glTF validator is not installed; its checks were skipped"
   fi

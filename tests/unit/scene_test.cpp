@@ -288,3 +288,20 @@ TEST_CASE("scene: standard VRML97 geometry becomes meshes for pictures, with mat
   CHECK(all.colours.front() == mesh::Vec3{1, 0, 0});
   CHECK(all.colours.back() == mesh::Vec3{0.8f, 0.8f, 0.8f});
 }
+
+TEST_CASE("scene: a looping shape at several clock values follows its TimeSensor fields") {
+  auto radius_at = [](double now) {
+    scene::ModelOptions o;
+    o.now = now;
+    auto l = load(R"W(FShape { loop TRUE cycleInterval 2
+      geometry FGeometry { definition "(0.3+0.4*t)^2-x*x-y*y-z*z" bboxSize 2 2 2 resolution [32] } })W", o);
+    REQUIRE(l->ok);
+    mesh::Mesh m;
+    backend::RuntimeError err;
+    REQUIRE(scene::mesh_shape(l->model.shapes[0], m, err));
+    return mean_radius(m);
+  };
+  CHECK(radius_at(0.5) == Approx(0.4).epsilon(0.01));   // fraction 0.25
+  CHECK(radius_at(1.5) == Approx(0.6).epsilon(0.01));   // fraction 0.75
+  CHECK(radius_at(2.5) == Approx(0.4).epsilon(0.01));   // the second cycle
+}

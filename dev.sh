@@ -9,7 +9,7 @@ cd "$(dirname "$0")"
 
 PACKAGES=(cmake ninja-build g++ python3 catch2 nlohmann-json3-dev libcli11-dev libpng-dev libedit-dev)
 # For the tests only: a real VRML97 browser (view3dscene, run under a virtual X server).
-TEST_PACKAGES=(view3dscene xvfb xauth)
+TEST_PACKAGES=(view3dscene xvfb xauth binutils)
 
 install_missing() {
   local missing=()

@@ -1,0 +1,232 @@
+// x86-64 encoding: legacy prefix, REX, opcode, ModRM, SIB, displacement, immediate (Intel SDM
+// vol. 2, chapter 2). rsp/r12 as a base need a SIB byte; rbp/r13 as a base with no displacement
+// need an explicit disp8 of 0; rip-relative operands are resolved in finish().
+#include "backends/sse/x86.h"
+
+#include <cstring>
+
+namespace fscript::sse {
+namespace {
+
+uint8_t n(Gp g) { return static_cast<uint8_t>(g); }
+uint8_t n(Xmm x) { return static_cast<uint8_t>(x); }
+bool fits8(int32_t v) { return v >= -128 && v <= 127; }
+
+}  // namespace
+
+void Assembler::emit(uint8_t prefix, bool w, std::initializer_list<uint8_t> opcode, uint8_t reg, const Operand& rm,
+                     int imm_size, uint32_t imm) {
+  auto immediate = [&] {
+    for (int k = 0; k < imm_size; ++k) code_.push_back(static_cast<uint8_t>(imm >> (8 * k)));
+  };
+  if (prefix) code_.push_back(prefix);
+  uint8_t rex = 0x40 | (w ? 8 : 0) | ((reg >> 3) & 1) << 2;
+  if (rm.is_mem && rm.mem.label < 0) {
+    rex |= (n(rm.mem.index) >> 3 & 1) << 1;
+    rex |= n(rm.mem.base) >> 3 & 1;
+  } else if (!rm.is_mem) {
+    rex |= rm.reg >> 3 & 1;
+  }
+  if (rex != 0x40) code_.push_back(rex);
+  code_.insert(code_.end(), opcode.begin(), opcode.end());
+  uint8_t r3 = (reg & 7) << 3;
+  if (!rm.is_mem) {
+    code_.push_back(0xC0 | r3 | (rm.reg & 7));
+    immediate();
+    return;
+  }
+  const Mem& mem = rm.mem;
+  if (mem.label >= 0) {  // [rip + disp32]
+    code_.push_back(0x05 | r3);
+    size_t at = code_.size();
+    code_.insert(code_.end(), 4, 0);
+    immediate();
+    fixups_.push_back({at, code_.size(), mem.label});
+    return;
+  }
+  bool sib = mem.index != Gp::rsp || (n(mem.base) & 7) == 4;
+  uint8_t mod = mem.disp == 0 && (n(mem.base) & 7) != 5 ? 0x00 : fits8(mem.disp) ? 0x40 : 0x80;
+  code_.push_back(mod | r3 | (sib ? 4 : (n(mem.base) & 7)));
+  if (sib) {
+    uint8_t ss = mem.scale == 8 ? 3 : mem.scale == 4 ? 2 : mem.scale == 2 ? 1 : 0;
+    code_.push_back(static_cast<uint8_t>(ss << 6 | (n(mem.index) & 7) << 3 | (n(mem.base) & 7)));
+  }
+  if (mod == 0x40) code_.push_back(static_cast<uint8_t>(mem.disp));
+  if (mod == 0x80) {
+    uint32_t d = static_cast<uint32_t>(mem.disp);
+    for (int k = 0; k < 4; ++k) code_.push_back(static_cast<uint8_t>(d >> (8 * k)));
+  }
+  immediate();
+}
+
+void Assembler::sse(uint8_t prefix, std::initializer_list<uint8_t> opcode, Xmm d, const Operand& s, int imm8) {
+  emit(prefix, false, opcode, n(d), s, imm8 >= 0 ? 1 : 0, static_cast<uint32_t>(imm8));
+}
+
+// ---- SSE ----
+#define FS_SSE_DEFINE(name, prefix, ...)                                                        \
+  void Assembler::name(Xmm d, Xmm s) { sse(prefix, {__VA_ARGS__}, d, r(n(s))); }              \
+  void Assembler::name(Xmm d, const Mem& s) { sse(prefix, {__VA_ARGS__}, d, m(s)); }
+FS_SSE_DEFINE(addps, 0, 0x0F, 0x58)
+FS_SSE_DEFINE(subps, 0, 0x0F, 0x5C)
+FS_SSE_DEFINE(mulps, 0, 0x0F, 0x59)
+FS_SSE_DEFINE(divps, 0, 0x0F, 0x5E)
+FS_SSE_DEFINE(minps, 0, 0x0F, 0x5D)
+FS_SSE_DEFINE(maxps, 0, 0x0F, 0x5F)
+FS_SSE_DEFINE(sqrtps, 0, 0x0F, 0x51)
+FS_SSE_DEFINE(andps, 0, 0x0F, 0x54)
+FS_SSE_DEFINE(andnps, 0, 0x0F, 0x55)
+FS_SSE_DEFINE(orps, 0, 0x0F, 0x56)
+FS_SSE_DEFINE(xorps, 0, 0x0F, 0x57)
+FS_SSE_DEFINE(addss, 0xF3, 0x0F, 0x58)
+FS_SSE_DEFINE(subss, 0xF3, 0x0F, 0x5C)
+FS_SSE_DEFINE(mulss, 0xF3, 0x0F, 0x59)
+FS_SSE_DEFINE(divss, 0xF3, 0x0F, 0x5E)
+FS_SSE_DEFINE(minss, 0xF3, 0x0F, 0x5D)
+FS_SSE_DEFINE(maxss, 0xF3, 0x0F, 0x5F)
+FS_SSE_DEFINE(sqrtss, 0xF3, 0x0F, 0x51)
+FS_SSE_DEFINE(blendvps, 0x66, 0x0F, 0x38, 0x14)
+FS_SSE_DEFINE(cvtdq2ps, 0, 0x0F, 0x5B)
+FS_SSE_DEFINE(cvttps2dq, 0xF3, 0x0F, 0x5B)
+FS_SSE_DEFINE(cvtps2dq, 0x66, 0x0F, 0x5B)
+FS_SSE_DEFINE(pand, 0x66, 0x0F, 0xDB)
+FS_SSE_DEFINE(pandn, 0x66, 0x0F, 0xDF)
+FS_SSE_DEFINE(por, 0x66, 0x0F, 0xEB)
+FS_SSE_DEFINE(pxor, 0x66, 0x0F, 0xEF)
+FS_SSE_DEFINE(pcmpeqd, 0x66, 0x0F, 0x76)
+FS_SSE_DEFINE(paddd, 0x66, 0x0F, 0xFE)
+FS_SSE_DEFINE(psubd, 0x66, 0x0F, 0xFA)
+FS_SSE_DEFINE(ucomiss, 0, 0x0F, 0x2E)
+#undef FS_SSE_DEFINE
+
+void Assembler::cmpps(Xmm d, Xmm s, Pred p) { sse(0, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
+void Assembler::cmpps(Xmm d, const Mem& s, Pred p) { sse(0, {0x0F, 0xC2}, d, m(s), static_cast<int>(p)); }
+void Assembler::cmpss(Xmm d, Xmm s, Pred p) { sse(0xF3, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
+void Assembler::roundps(Xmm d, Xmm s, Rounding k) { sse(0x66, {0x0F, 0x3A, 0x08}, d, r(n(s)), static_cast<int>(k)); }
+void Assembler::roundss(Xmm d, Xmm s, Rounding k) { sse(0x66, {0x0F, 0x3A, 0x0A}, d, r(n(s)), static_cast<int>(k)); }
+void Assembler::shufps(Xmm d, Xmm s, uint8_t imm) { sse(0, {0x0F, 0xC6}, d, r(n(s)), imm); }
+void Assembler::pslld(Xmm d, uint8_t imm) { emit(0x66, false, {0x0F, 0x72}, 6, r(n(d)), 1, imm); }
+void Assembler::psrld(Xmm d, uint8_t imm) { emit(0x66, false, {0x0F, 0x72}, 2, r(n(d)), 1, imm); }
+void Assembler::psrad(Xmm d, uint8_t imm) { emit(0x66, false, {0x0F, 0x72}, 4, r(n(d)), 1, imm); }
+void Assembler::movaps(Xmm d, Xmm s) { sse(0, {0x0F, 0x28}, d, r(n(s))); }
+void Assembler::movaps(Xmm d, const Mem& s) { sse(0, {0x0F, 0x28}, d, m(s)); }
+void Assembler::movaps(const Mem& d, Xmm s) { sse(0, {0x0F, 0x29}, s, m(d)); }
+void Assembler::movups(Xmm d, const Mem& s) { sse(0, {0x0F, 0x10}, d, m(s)); }
+void Assembler::movups(const Mem& d, Xmm s) { sse(0, {0x0F, 0x11}, s, m(d)); }
+void Assembler::movss(Xmm d, const Mem& s) { sse(0xF3, {0x0F, 0x10}, d, m(s)); }
+void Assembler::movss(const Mem& d, Xmm s) { sse(0xF3, {0x0F, 0x11}, s, m(d)); }
+void Assembler::movd(Xmm d, Gp s) { emit(0x66, false, {0x0F, 0x6E}, n(d), r(n(s))); }
+void Assembler::movd(Gp d, Xmm s) { emit(0x66, false, {0x0F, 0x7E}, n(s), r(n(d))); }
+void Assembler::movmskps(Gp d, Xmm s) { emit(0, false, {0x0F, 0x50}, n(d), r(n(s))); }
+void Assembler::cvtsi2ss(Xmm d, Gp s) { emit(0xF3, true, {0x0F, 0x2A}, n(d), r(n(s))); }
+void Assembler::cvttss2si(Gp d, Xmm s) { emit(0xF3, true, {0x0F, 0x2C}, n(d), r(n(s))); }
+
+// ---- general purpose ----
+void Assembler::mov(Gp d, Gp s) { emit(0, true, {0x89}, n(s), r(n(d))); }
+void Assembler::mov(Gp d, const Mem& s) { emit(0, true, {0x8B}, n(d), m(s)); }
+void Assembler::mov(const Mem& d, Gp s) { emit(0, true, {0x89}, n(s), m(d)); }
+void Assembler::mov32(Gp d, const Mem& s) { emit(0, false, {0x8B}, n(d), m(s)); }
+void Assembler::mov32(const Mem& d, Gp s) { emit(0, false, {0x89}, n(s), m(d)); }
+void Assembler::lea(Gp d, const Mem& s) { emit(0, true, {0x8D}, n(d), m(s)); }
+void Assembler::add(Gp d, Gp s) { emit(0, true, {0x01}, n(s), r(n(d))); }
+void Assembler::sub(Gp d, Gp s) { emit(0, true, {0x29}, n(s), r(n(d))); }
+void Assembler::cmp(Gp a, Gp b) { emit(0, true, {0x39}, n(b), r(n(a))); }
+void Assembler::test(Gp a, Gp b) { emit(0, true, {0x85}, n(b), r(n(a))); }
+void Assembler::imul(Gp d, Gp s) { emit(0, true, {0x0F, 0xAF}, n(d), r(n(s))); }
+
+void Assembler::mov_imm(Gp d, uint64_t imm) {
+  if (imm <= 0xFFFFFFFFu) {  // mov r32, imm32 zero-extends
+    if (n(d) >= 8) code_.push_back(0x41);
+    code_.push_back(static_cast<uint8_t>(0xB8 + (n(d) & 7)));
+    for (int k = 0; k < 4; ++k) code_.push_back(static_cast<uint8_t>(imm >> (8 * k)));
+    return;
+  }
+  code_.push_back(static_cast<uint8_t>(0x48 | (n(d) >> 3)));
+  code_.push_back(static_cast<uint8_t>(0xB8 + (n(d) & 7)));
+  for (int k = 0; k < 8; ++k) code_.push_back(static_cast<uint8_t>(imm >> (8 * k)));
+}
+
+namespace {
+// The group-1 immediate forms: 83 /digit ib, or 81 /digit id.
+constexpr uint8_t kAdd = 0, kSub = 5, kCmp = 7;
+}  // namespace
+
+#define FS_GROUP1(name, digit)                                                                     \
+  void Assembler::name(Gp d, int32_t imm) {                                                        \
+    bool small = fits8(imm);                                                                       \
+    emit(0, true, {static_cast<uint8_t>(small ? 0x83 : 0x81)}, digit, r(n(d)), small ? 1 : 4,      \
+         static_cast<uint32_t>(imm));                                                              \
+  }                                                                                                \
+  void Assembler::name(const Mem& d, int32_t imm) {                                                \
+    bool small = fits8(imm);                                                                       \
+    emit(0, true, {static_cast<uint8_t>(small ? 0x83 : 0x81)}, digit, m(d), small ? 1 : 4,         \
+         static_cast<uint32_t>(imm));                                                              \
+  }
+FS_GROUP1(add, kAdd)
+FS_GROUP1(sub, kSub)
+FS_GROUP1(cmp, kCmp)
+#undef FS_GROUP1
+
+void Assembler::push(Gp g) {
+  if (n(g) >= 8) code_.push_back(0x41);
+  code_.push_back(static_cast<uint8_t>(0x50 + (n(g) & 7)));
+}
+void Assembler::pop(Gp g) {
+  if (n(g) >= 8) code_.push_back(0x41);
+  code_.push_back(static_cast<uint8_t>(0x58 + (n(g) & 7)));
+}
+void Assembler::call(Gp target) { emit(0, false, {0xFF}, 2, r(n(target))); }
+void Assembler::call(const Mem& target) { emit(0, false, {0xFF}, 2, m(target)); }
+void Assembler::ret() { code_.push_back(0xC3); }
+
+void Assembler::rel32(Label l) {
+  size_t at = code_.size();
+  code_.insert(code_.end(), 4, 0);
+  fixups_.push_back({at, code_.size(), l.id});
+}
+void Assembler::jmp(Label l) {
+  code_.push_back(0xE9);
+  rel32(l);
+}
+void Assembler::jcc(Cond c, Label l) {
+  code_.push_back(0x0F);
+  code_.push_back(static_cast<uint8_t>(0x80 + static_cast<uint8_t>(c)));
+  rel32(l);
+}
+
+// ---- labels and constants ----
+Label Assembler::new_label() {
+  label_pos_.push_back(-1);
+  return {static_cast<int>(label_pos_.size()) - 1};
+}
+void Assembler::bind(Label l) { label_pos_[l.id] = static_cast<int64_t>(code_.size()); }
+
+Label Assembler::constant(const std::array<uint32_t, 4>& bits) {
+  for (const auto& [value, label] : pool_)
+    if (value == bits) return {label};
+  Label l = new_label();
+  pool_.push_back({bits, l.id});
+  return l;
+}
+
+Label Assembler::constant_ps(float v) {
+  uint32_t b;
+  std::memcpy(&b, &v, 4);
+  return constant({b, b, b, b});
+}
+
+std::vector<uint8_t> Assembler::finish() {
+  while (code_.size() % 16) code_.push_back(0xCC);  // int3 padding: never executed
+  for (const auto& [value, label] : pool_) {
+    label_pos_[label] = static_cast<int64_t>(code_.size());
+    for (uint32_t word : value)
+      for (int k = 0; k < 4; ++k) code_.push_back(static_cast<uint8_t>(word >> (8 * k)));
+  }
+  for (const auto& f : fixups_) {
+    int32_t rel = static_cast<int32_t>(label_pos_[f.label] - static_cast<int64_t>(f.end));
+    std::memcpy(code_.data() + f.at, &rel, 4);
+  }
+  return code_;
+}
+
+}  // namespace fscript::sse

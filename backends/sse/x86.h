@@ -1,0 +1,141 @@
+#pragma once
+// An x86-64 encoder for the instructions the SSE backend emits: SSE/SSE2/SSE4.1 packed and scalar
+// single precision, the integer moves, arithmetic, compares, jumps and calls around them, with
+// REX prefixes and every ModRM/SIB/displacement form including rip-relative constants. Bytes go
+// into a buffer; labels are resolved and the 16-byte-aligned constant pool appended by finish().
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fscript::sse {
+
+enum class Gp : uint8_t { rax, rcx, rdx, rbx, rsp, rbp, rsi, rdi, r8, r9, r10, r11, r12, r13, r14, r15 };
+enum class Xmm : uint8_t { x0, x1, x2, x3, x4, x5, x6, x7, x8, x9, x10, x11, x12, x13, x14, x15 };
+
+// Condition codes of Jcc (the low nibble of 0F 8x).
+enum class Cond : uint8_t { O, NO, B, AE, E, NE, BE, A, S, NS, P, NP, L, GE, LE, G };
+// Predicates of CMPPS / CMPSS.
+enum class Pred : uint8_t { Eq, Lt, Le, Unord, Neq, Nlt, Nle, Ord };
+// Rounding modes of ROUNDPS / ROUNDSS (with the precision exception suppressed).
+enum class Rounding : uint8_t { Nearest = 8, Down = 9, Up = 10, Truncate = 11 };
+
+struct Label {
+  int id = -1;
+};
+
+// A memory operand: [base + index * scale + disp], or [rip + label] for the constant pool.
+struct Mem {
+  Gp base = Gp::rax;
+  Gp index = Gp::rsp;  // rsp: no index
+  uint8_t scale = 1;
+  int32_t disp = 0;
+  int label = -1;      // >= 0: rip-relative to this label
+  static Mem at(Gp base, int32_t disp = 0) { return {base, Gp::rsp, 1, disp, -1}; }
+  static Mem at(Gp base, Gp index, uint8_t scale, int32_t disp = 0) { return {base, index, scale, disp, -1}; }
+  static Mem rip(Label l) { return {Gp::rax, Gp::rsp, 1, 0, l.id}; }
+};
+
+class Assembler {
+ public:
+  // ---- SSE: packed and scalar single, register or memory source ----
+#define FS_SSE_BINARY(name)                 \
+  void name(Xmm d, Xmm s);                  \
+  void name(Xmm d, const Mem& s);
+  FS_SSE_BINARY(addps) FS_SSE_BINARY(subps) FS_SSE_BINARY(mulps) FS_SSE_BINARY(divps)
+  FS_SSE_BINARY(minps) FS_SSE_BINARY(maxps) FS_SSE_BINARY(sqrtps) FS_SSE_BINARY(andps)
+  FS_SSE_BINARY(andnps) FS_SSE_BINARY(orps) FS_SSE_BINARY(xorps)
+  FS_SSE_BINARY(addss) FS_SSE_BINARY(subss) FS_SSE_BINARY(mulss) FS_SSE_BINARY(divss)
+  FS_SSE_BINARY(minss) FS_SSE_BINARY(maxss) FS_SSE_BINARY(sqrtss)
+  FS_SSE_BINARY(blendvps)  // xmm0 is the implicit mask
+  FS_SSE_BINARY(cvtdq2ps) FS_SSE_BINARY(cvttps2dq) FS_SSE_BINARY(cvtps2dq)
+  FS_SSE_BINARY(pand) FS_SSE_BINARY(pandn) FS_SSE_BINARY(por) FS_SSE_BINARY(pxor)
+  FS_SSE_BINARY(pcmpeqd) FS_SSE_BINARY(paddd) FS_SSE_BINARY(psubd)
+  FS_SSE_BINARY(ucomiss)
+#undef FS_SSE_BINARY
+  void cmpps(Xmm d, Xmm s, Pred p);
+  void cmpps(Xmm d, const Mem& s, Pred p);
+  void cmpss(Xmm d, Xmm s, Pred p);
+  void roundps(Xmm d, Xmm s, Rounding r);
+  void roundss(Xmm d, Xmm s, Rounding r);
+  void shufps(Xmm d, Xmm s, uint8_t imm);
+  void pslld(Xmm d, uint8_t imm);
+  void psrld(Xmm d, uint8_t imm);
+  void psrad(Xmm d, uint8_t imm);
+  void movaps(Xmm d, Xmm s);
+  void movaps(Xmm d, const Mem& s);
+  void movaps(const Mem& d, Xmm s);
+  void movups(Xmm d, const Mem& s);
+  void movups(const Mem& d, Xmm s);
+  void movss(Xmm d, const Mem& s);
+  void movss(const Mem& d, Xmm s);
+  void movd(Xmm d, Gp s);    // 32 bits
+  void movd(Gp d, Xmm s);
+  void movmskps(Gp d, Xmm s);
+  void cvtsi2ss(Xmm d, Gp s);   // 64-bit integer source
+  void cvttss2si(Gp d, Xmm s);  // 64-bit integer result
+
+  // ---- general purpose (64-bit unless named 32) ----
+  void mov(Gp d, Gp s);
+  void mov(Gp d, const Mem& s);
+  void mov(const Mem& d, Gp s);
+  void mov32(Gp d, const Mem& s);
+  void mov32(const Mem& d, Gp s);
+  void mov_imm(Gp d, uint64_t imm);  // the shortest of mov r32, imm32 and mov r64, imm64
+  void lea(Gp d, const Mem& s);
+  void add(Gp d, Gp s);
+  void sub(Gp d, Gp s);
+  void cmp(Gp a, Gp b);
+  void test(Gp a, Gp b);
+  void imul(Gp d, Gp s);
+  void add(Gp d, int32_t imm);
+  void sub(Gp d, int32_t imm);
+  void cmp(Gp a, int32_t imm);
+  void add(const Mem& d, int32_t imm);  // qword
+  void sub(const Mem& d, int32_t imm);
+  void cmp(const Mem& a, int32_t imm);
+  void push(Gp r);
+  void pop(Gp r);
+  void call(Gp target);
+  void call(const Mem& target);
+  void ret();
+  void jmp(Label l);
+  void jcc(Cond c, Label l);
+
+  // ---- labels and constants ----
+  Label new_label();
+  void bind(Label l);
+  // A 16-byte constant in the pool (deduplicated); use with Mem::rip.
+  Label constant(const std::array<uint32_t, 4>& bits);
+  Label constant_ps(float v);  // four lanes of v
+  size_t size() const { return code_.size(); }
+  const std::vector<uint8_t>& bytes() const { return code_; }
+  // Resolves every label use, appends the constant pool; the code is then position-independent.
+  std::vector<uint8_t> finish();
+
+ private:
+  struct Operand {  // a register number (0..15) or memory
+    bool is_mem;
+    uint8_t reg;
+    Mem mem;
+  };
+  static Operand r(uint8_t reg) { return {false, reg, {}}; }
+  static Operand m(const Mem& mem) { return {true, 0, mem}; }
+  // [prefix] [REX] opcode... ModRM [SIB] [disp] [imm8]
+  void emit(uint8_t prefix, bool w, std::initializer_list<uint8_t> opcode, uint8_t reg, const Operand& rm,
+            int imm_size = 0, uint32_t imm = 0);
+  void sse(uint8_t prefix, std::initializer_list<uint8_t> opcode, Xmm d, const Operand& s, int imm8 = -1);
+  void rel32(Label l);
+
+  std::vector<uint8_t> code_;
+  std::vector<int64_t> label_pos_;                 // -1: unbound
+  struct Fixup {
+    size_t at;   // position of the 32-bit displacement
+    size_t end;  // the end of its instruction (displacements are relative to it)
+    int label;
+  };
+  std::vector<Fixup> fixups_;
+  std::vector<std::pair<std::array<uint32_t, 4>, int>> pool_;  // constant, label
+};
+
+}  // namespace fscript::sse

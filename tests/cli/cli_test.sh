@@ -83,7 +83,9 @@ check run-recursion 1 'rec.fs:1: error: call depth budget exceeded' -- "$F" run 
 printf 'function a(x) { return x; }\nfunction b(x) { return x; }\n' > "$T/two.fs"
 check run-no-entry 1 'no entry point' -- "$F" run "$T/two.fs"
 check run-unknown-entry 1 "no function named 'nope'" -- "$F" run "$T/rec.fs" --entry nope
-check backend-missing 2 "backend 'sse' is not built" -- "$F" run "$T/sphere.fs" --backend sse 0 0 0
+check backend-sse 0 '^0$' -- "$F" run "$T/sphere.fs" --backend sse 1 0 0
+check backend-sse-refuses 1 'straight-line kernels only' -- "$F" run "$T/loop.fs" --backend sse 0
+check backend-missing 2 "backend 'llvm' is not built" -- "$F" run "$T/sphere.fs" --backend llvm 0 0 0
 check usage-unknown-command 2 '' -- "$F" frobnicate
 check usage-render-size 2 'size' -- "$F" render2d "$T/sphere.fs" --size 0x5 --bounds -1,1,-1,1
 check usage-render-bounds 2 'bounds' -- "$F" render2d "$T/sphere.fs" --size 4 --bounds -1,1,1

@@ -37,8 +37,8 @@ class SseBackend : public backend::Backend {
   std::unique_ptr<backend::Kernel> compile(const ir::Module& m, const backend::Budgets& b, std::string& error) const override;
 };
 
-// The machine code of the module's kernel (for tests and emit-asm); empty with a message when the
-// kernel uses what this stage does not compile.
-std::vector<uint8_t> generate(const ir::Module& m, std::string& error);
+// The machine code of the module's kernel; empty with a message when the kernel uses what this
+// stage does not compile. `listing`, when given, receives the code as assembly text (emit-asm).
+std::vector<uint8_t> generate(const ir::Module& m, std::string& error, std::string* listing = nullptr);
 
 }  // namespace fscript::sse

@@ -60,6 +60,8 @@ class Codegen {
   }
 
   int slots_used() const { return next_slot_; }
+  void enable_listing() { a_.enable_listing(); }
+  std::string listing() const { return a_.listing(); }
   std::vector<uint8_t> finish() { return a_.finish(); }
 
  private:
@@ -373,7 +375,7 @@ class Codegen {
 
 }  // namespace
 
-std::vector<uint8_t> generate(const ir::Module& m, std::string& error) {
+std::vector<uint8_t> generate(const ir::Module& m, std::string& error, std::string* listing) {
   const ir::Function* fn = nullptr;
   for (const auto& f : m.functions)
     if (f->kernel) fn = f.get();
@@ -390,8 +392,11 @@ std::vector<uint8_t> generate(const ir::Module& m, std::string& error) {
   Codegen sizing(*fn, 0);
   if (!sizing.run(error)) return {};
   Codegen final_pass(*fn, sizing.slots_used());
+  if (listing) final_pass.enable_listing();
   if (!final_pass.run(error)) return {};
-  return final_pass.finish();
+  std::vector<uint8_t> code = final_pass.finish();
+  if (listing) *listing = final_pass.listing();
+  return code;
 }
 
 }  // namespace fscript::sse

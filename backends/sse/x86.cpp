@@ -3,6 +3,7 @@
 // need an explicit disp8 of 0; rip-relative operands are resolved in finish().
 #include "backends/sse/x86.h"
 
+#include <cstdio>
 #include <cstring>
 
 namespace fscript::sse {
@@ -64,9 +65,9 @@ void Assembler::sse(uint8_t prefix, std::initializer_list<uint8_t> opcode, Xmm d
 }
 
 // ---- SSE ----
-#define FS_SSE_DEFINE(name, prefix, ...)                                                        \
-  void Assembler::name(Xmm d, Xmm s) { sse(prefix, {__VA_ARGS__}, d, r(n(s))); }              \
-  void Assembler::name(Xmm d, const Mem& s) { sse(prefix, {__VA_ARGS__}, d, m(s)); }
+#define FS_SSE_DEFINE(name, prefix, ...)                                                          \
+  void Assembler::name(Xmm d, Xmm s) { list(#name, d, s), sse(prefix, {__VA_ARGS__}, d, r(n(s))); }       \
+  void Assembler::name(Xmm d, const Mem& s) { list(#name, d, s), sse(prefix, {__VA_ARGS__}, d, m(s)); }
 FS_SSE_DEFINE(addps, 0, 0x0F, 0x58)
 FS_SSE_DEFINE(subps, 0, 0x0F, 0x5C)
 FS_SSE_DEFINE(mulps, 0, 0x0F, 0x59)
@@ -99,42 +100,43 @@ FS_SSE_DEFINE(psubd, 0x66, 0x0F, 0xFA)
 FS_SSE_DEFINE(ucomiss, 0, 0x0F, 0x2E)
 #undef FS_SSE_DEFINE
 
-void Assembler::cmpps(Xmm d, Xmm s, Pred p) { sse(0, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
-void Assembler::cmpps(Xmm d, const Mem& s, Pred p) { sse(0, {0x0F, 0xC2}, d, m(s), static_cast<int>(p)); }
-void Assembler::cmpss(Xmm d, Xmm s, Pred p) { sse(0xF3, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
-void Assembler::roundps(Xmm d, Xmm s, Rounding k) { sse(0x66, {0x0F, 0x3A, 0x08}, d, r(n(s)), static_cast<int>(k)); }
-void Assembler::roundss(Xmm d, Xmm s, Rounding k) { sse(0x66, {0x0F, 0x3A, 0x0A}, d, r(n(s)), static_cast<int>(k)); }
-void Assembler::shufps(Xmm d, Xmm s, uint8_t imm) { sse(0, {0x0F, 0xC6}, d, r(n(s)), imm); }
-void Assembler::pslld(Xmm d, uint8_t imm) { emit(0x66, false, {0x0F, 0x72}, 6, r(n(d)), 1, imm); }
-void Assembler::psrld(Xmm d, uint8_t imm) { emit(0x66, false, {0x0F, 0x72}, 2, r(n(d)), 1, imm); }
-void Assembler::psrad(Xmm d, uint8_t imm) { emit(0x66, false, {0x0F, 0x72}, 4, r(n(d)), 1, imm); }
-void Assembler::movaps(Xmm d, Xmm s) { sse(0, {0x0F, 0x28}, d, r(n(s))); }
-void Assembler::movaps(Xmm d, const Mem& s) { sse(0, {0x0F, 0x28}, d, m(s)); }
-void Assembler::movaps(const Mem& d, Xmm s) { sse(0, {0x0F, 0x29}, s, m(d)); }
-void Assembler::movups(Xmm d, const Mem& s) { sse(0, {0x0F, 0x10}, d, m(s)); }
-void Assembler::movups(const Mem& d, Xmm s) { sse(0, {0x0F, 0x11}, s, m(d)); }
-void Assembler::movss(Xmm d, const Mem& s) { sse(0xF3, {0x0F, 0x10}, d, m(s)); }
-void Assembler::movss(const Mem& d, Xmm s) { sse(0xF3, {0x0F, 0x11}, s, m(d)); }
-void Assembler::movd(Xmm d, Gp s) { emit(0x66, false, {0x0F, 0x6E}, n(d), r(n(s))); }
-void Assembler::movd(Gp d, Xmm s) { emit(0x66, false, {0x0F, 0x7E}, n(s), r(n(d))); }
-void Assembler::movmskps(Gp d, Xmm s) { emit(0, false, {0x0F, 0x50}, n(d), r(n(s))); }
-void Assembler::cvtsi2ss(Xmm d, Gp s) { emit(0xF3, true, {0x0F, 0x2A}, n(d), r(n(s))); }
-void Assembler::cvttss2si(Gp d, Xmm s) { emit(0xF3, true, {0x0F, 0x2C}, n(d), r(n(s))); }
+void Assembler::cmpps(Xmm d, Xmm s, Pred p) { if (listing_on_) list(("cmp" + operand(p) + "ps").c_str(), d, s); sse(0, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
+void Assembler::cmpps(Xmm d, const Mem& s, Pred p) { if (listing_on_) list(("cmp" + operand(p) + "ps").c_str(), d, s); sse(0, {0x0F, 0xC2}, d, m(s), static_cast<int>(p)); }
+void Assembler::cmpss(Xmm d, Xmm s, Pred p) { if (listing_on_) list(("cmp" + operand(p) + "ss").c_str(), d, s); sse(0xF3, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
+void Assembler::roundps(Xmm d, Xmm s, Rounding k) { list("roundps", d, s, k); sse(0x66, {0x0F, 0x3A, 0x08}, d, r(n(s)), static_cast<int>(k)); }
+void Assembler::roundss(Xmm d, Xmm s, Rounding k) { list("roundss", d, s, k); sse(0x66, {0x0F, 0x3A, 0x0A}, d, r(n(s)), static_cast<int>(k)); }
+void Assembler::shufps(Xmm d, Xmm s, uint8_t imm) { list("shufps", d, s, imm); sse(0, {0x0F, 0xC6}, d, r(n(s)), imm); }
+void Assembler::pslld(Xmm d, uint8_t imm) { list("pslld", d, imm); emit(0x66, false, {0x0F, 0x72}, 6, r(n(d)), 1, imm); }
+void Assembler::psrld(Xmm d, uint8_t imm) { list("psrld", d, imm); emit(0x66, false, {0x0F, 0x72}, 2, r(n(d)), 1, imm); }
+void Assembler::psrad(Xmm d, uint8_t imm) { list("psrad", d, imm); emit(0x66, false, {0x0F, 0x72}, 4, r(n(d)), 1, imm); }
+void Assembler::movaps(Xmm d, Xmm s) { list("movaps", d, s); sse(0, {0x0F, 0x28}, d, r(n(s))); }
+void Assembler::movaps(Xmm d, const Mem& s) { list("movaps", d, s); sse(0, {0x0F, 0x28}, d, m(s)); }
+void Assembler::movaps(const Mem& d, Xmm s) { list("movaps", d, s); sse(0, {0x0F, 0x29}, s, m(d)); }
+void Assembler::movups(Xmm d, const Mem& s) { list("movups", d, s); sse(0, {0x0F, 0x10}, d, m(s)); }
+void Assembler::movups(const Mem& d, Xmm s) { list("movups", d, s); sse(0, {0x0F, 0x11}, s, m(d)); }
+void Assembler::movss(Xmm d, const Mem& s) { list("movss", d, s); sse(0xF3, {0x0F, 0x10}, d, m(s)); }
+void Assembler::movss(const Mem& d, Xmm s) { list("movss", d, s); sse(0xF3, {0x0F, 0x11}, s, m(d)); }
+void Assembler::movd(Xmm d, Gp s) { list("movd", d, s); emit(0x66, false, {0x0F, 0x6E}, n(d), r(n(s))); }
+void Assembler::movd(Gp d, Xmm s) { list("movd", d, s); emit(0x66, false, {0x0F, 0x7E}, n(s), r(n(d))); }
+void Assembler::movmskps(Gp d, Xmm s) { list("movmskps", d, s); emit(0, false, {0x0F, 0x50}, n(d), r(n(s))); }
+void Assembler::cvtsi2ss(Xmm d, Gp s) { list("cvtsi2ss", d, s); emit(0xF3, true, {0x0F, 0x2A}, n(d), r(n(s))); }
+void Assembler::cvttss2si(Gp d, Xmm s) { list("cvttss2si", d, s); emit(0xF3, true, {0x0F, 0x2C}, n(d), r(n(s))); }
 
 // ---- general purpose ----
-void Assembler::mov(Gp d, Gp s) { emit(0, true, {0x89}, n(s), r(n(d))); }
-void Assembler::mov(Gp d, const Mem& s) { emit(0, true, {0x8B}, n(d), m(s)); }
-void Assembler::mov(const Mem& d, Gp s) { emit(0, true, {0x89}, n(s), m(d)); }
-void Assembler::mov32(Gp d, const Mem& s) { emit(0, false, {0x8B}, n(d), m(s)); }
-void Assembler::mov32(const Mem& d, Gp s) { emit(0, false, {0x89}, n(s), m(d)); }
-void Assembler::lea(Gp d, const Mem& s) { emit(0, true, {0x8D}, n(d), m(s)); }
-void Assembler::add(Gp d, Gp s) { emit(0, true, {0x01}, n(s), r(n(d))); }
-void Assembler::sub(Gp d, Gp s) { emit(0, true, {0x29}, n(s), r(n(d))); }
-void Assembler::cmp(Gp a, Gp b) { emit(0, true, {0x39}, n(b), r(n(a))); }
-void Assembler::test(Gp a, Gp b) { emit(0, true, {0x85}, n(b), r(n(a))); }
-void Assembler::imul(Gp d, Gp s) { emit(0, true, {0x0F, 0xAF}, n(d), r(n(s))); }
+void Assembler::mov(Gp d, Gp s) { list("mov", d, s); emit(0, true, {0x89}, n(s), r(n(d))); }
+void Assembler::mov(Gp d, const Mem& s) { list("mov", d, s); emit(0, true, {0x8B}, n(d), m(s)); }
+void Assembler::mov(const Mem& d, Gp s) { list("mov", d, s); emit(0, true, {0x89}, n(s), m(d)); }
+void Assembler::mov32(Gp d, const Mem& s) { list("mov32", d, s); emit(0, false, {0x8B}, n(d), m(s)); }
+void Assembler::mov32(const Mem& d, Gp s) { list("mov32", d, s); emit(0, false, {0x89}, n(s), m(d)); }
+void Assembler::lea(Gp d, const Mem& s) { list("lea", d, s); emit(0, true, {0x8D}, n(d), m(s)); }
+void Assembler::add(Gp d, Gp s) { list("add", d, s); emit(0, true, {0x01}, n(s), r(n(d))); }
+void Assembler::sub(Gp d, Gp s) { list("sub", d, s); emit(0, true, {0x29}, n(s), r(n(d))); }
+void Assembler::cmp(Gp a, Gp b) { list("cmp", a, b); emit(0, true, {0x39}, n(b), r(n(a))); }
+void Assembler::test(Gp a, Gp b) { list("test", a, b); emit(0, true, {0x85}, n(b), r(n(a))); }
+void Assembler::imul(Gp d, Gp s) { list("imul", d, s); emit(0, true, {0x0F, 0xAF}, n(d), r(n(s))); }
 
 void Assembler::mov_imm(Gp d, uint64_t imm) {
+  list("mov", d, imm);
   if (imm <= 0xFFFFFFFFu) {  // mov r32, imm32 zero-extends
     if (n(d) >= 8) code_.push_back(0x41);
     code_.push_back(static_cast<uint8_t>(0xB8 + (n(d) & 7)));
@@ -153,11 +155,13 @@ constexpr uint8_t kAdd = 0, kSub = 5, kCmp = 7;
 
 #define FS_GROUP1(name, digit)                                                                     \
   void Assembler::name(Gp d, int32_t imm) {                                                        \
+    list(#name, d, imm);                                                                           \
     bool small = fits8(imm);                                                                       \
     emit(0, true, {static_cast<uint8_t>(small ? 0x83 : 0x81)}, digit, r(n(d)), small ? 1 : 4,      \
          static_cast<uint32_t>(imm));                                                              \
   }                                                                                                \
   void Assembler::name(const Mem& d, int32_t imm) {                                                \
+    list(#name, d, imm);                                                                           \
     bool small = fits8(imm);                                                                       \
     emit(0, true, {static_cast<uint8_t>(small ? 0x83 : 0x81)}, digit, m(d), small ? 1 : 4,         \
          static_cast<uint32_t>(imm));                                                              \
@@ -168,16 +172,18 @@ FS_GROUP1(cmp, kCmp)
 #undef FS_GROUP1
 
 void Assembler::push(Gp g) {
+  list("push", g);
   if (n(g) >= 8) code_.push_back(0x41);
   code_.push_back(static_cast<uint8_t>(0x50 + (n(g) & 7)));
 }
 void Assembler::pop(Gp g) {
+  list("pop", g);
   if (n(g) >= 8) code_.push_back(0x41);
   code_.push_back(static_cast<uint8_t>(0x58 + (n(g) & 7)));
 }
-void Assembler::call(Gp target) { emit(0, false, {0xFF}, 2, r(n(target))); }
-void Assembler::call(const Mem& target) { emit(0, false, {0xFF}, 2, m(target)); }
-void Assembler::ret() { code_.push_back(0xC3); }
+void Assembler::call(Gp target) { list("call", target); emit(0, false, {0xFF}, 2, r(n(target))); }
+void Assembler::call(const Mem& target) { list("call", target); emit(0, false, {0xFF}, 2, m(target)); }
+void Assembler::ret() { list("ret"); code_.push_back(0xC3); }
 
 void Assembler::rel32(Label l) {
   size_t at = code_.size();
@@ -185,10 +191,12 @@ void Assembler::rel32(Label l) {
   fixups_.push_back({at, code_.size(), l.id});
 }
 void Assembler::jmp(Label l) {
+  list("jmp", l);
   code_.push_back(0xE9);
   rel32(l);
 }
 void Assembler::jcc(Cond c, Label l) {
+  if (listing_on_) list(("j" + operand(c)).c_str(), l);
   code_.push_back(0x0F);
   code_.push_back(static_cast<uint8_t>(0x80 + static_cast<uint8_t>(c)));
   rel32(l);
@@ -199,7 +207,10 @@ Label Assembler::new_label() {
   label_pos_.push_back(-1);
   return {static_cast<int>(label_pos_.size()) - 1};
 }
-void Assembler::bind(Label l) { label_pos_[l.id] = static_cast<int64_t>(code_.size()); }
+void Assembler::bind(Label l) {
+  label_pos_[l.id] = static_cast<int64_t>(code_.size());
+  if (listing_on_) lines_.push_back({code_.size(), "L" + std::to_string(l.id) + ":"});
+}
 
 Label Assembler::constant(const std::array<uint32_t, 4>& bits) {
   for (const auto& [value, label] : pool_)
@@ -227,6 +238,69 @@ std::vector<uint8_t> Assembler::finish() {
     std::memcpy(code_.data() + f.at, &rel, 4);
   }
   return code_;
+}
+
+// ---- listing ----
+std::string Assembler::operand(Xmm x) { return "xmm" + std::to_string(n(x)); }
+std::string Assembler::operand(Gp g) {
+  static const char* kNames[] = {"rax", "rcx", "rdx", "rbx", "rsp", "rbp", "rsi", "rdi",
+                                 "r8",  "r9",  "r10", "r11", "r12", "r13", "r14", "r15"};
+  return kNames[n(g)];
+}
+std::string Assembler::operand(const Mem& m) {
+  if (m.label >= 0) return "[rip+L" + std::to_string(m.label) + "]";
+  std::string s = "[" + operand(m.base);
+  if (m.index != Gp::rsp) s += "+" + operand(m.index) + "*" + std::to_string(m.scale);
+  if (m.disp) s += (m.disp < 0 ? "-" : "+") + std::to_string(m.disp < 0 ? -static_cast<int64_t>(m.disp) : m.disp);
+  return s + "]";
+}
+std::string Assembler::operand(Pred p) {
+  static const char* kNames[] = {"eq", "lt", "le", "unord", "neq", "nlt", "nle", "ord"};
+  return kNames[static_cast<int>(p)];
+}
+std::string Assembler::operand(Rounding r) {
+  switch (r) {
+    case Rounding::Nearest: return "nearest";
+    case Rounding::Down: return "down";
+    case Rounding::Up: return "up";
+    case Rounding::Truncate: return "truncate";
+  }
+  return "?";
+}
+std::string Assembler::operand(Cond c) {
+  static const char* kNames[] = {"o", "no", "b", "ae", "e", "ne", "be", "a", "s", "ns", "p", "np", "l", "ge", "le", "g"};
+  return kNames[static_cast<int>(c)];
+}
+std::string Assembler::operand(Label l) { return "L" + std::to_string(l.id); }
+std::string Assembler::operand(int64_t v) { return std::to_string(v); }
+std::string Assembler::operand(uint64_t v) {
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "0x%llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+std::string Assembler::listing() const {
+  std::string out;
+  char buf[32];
+  for (const auto& [offset, text] : lines_) {
+    bool label = text.back() == ':';
+    std::snprintf(buf, sizeof buf, "%6zx  ", offset);
+    out += (label ? std::string() : std::string(buf)) + (label ? "" : "  ") + text + "\n";
+  }
+  for (const auto& [value, label] : pool_) {
+    if (label_pos_[label] < 0) continue;  // before finish()
+    float f[4];
+    std::memcpy(f, value.data(), 16);
+    std::snprintf(buf, sizeof buf, "%6llx  ", static_cast<unsigned long long>(label_pos_[label]));
+    out += "L" + std::to_string(label) + ":\n" + buf + "  .float";
+    for (int k = 0; k < 4; ++k) {
+      char num[40];
+      std::snprintf(num, sizeof num, "%s %.9g", k ? "," : "", f[k]);
+      out += num;
+    }
+    out += "\n";
+  }
+  return out;
 }
 
 }  // namespace fscript::sse

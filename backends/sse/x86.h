@@ -113,6 +113,11 @@ class Assembler {
   // Resolves every label use, appends the constant pool; the code is then position-independent.
   std::vector<uint8_t> finish();
 
+  // Assembly text of everything emitted (Intel operand order), for `fscript emit-asm`: turned on
+  // before emitting; after finish() it also lists the constant pool.
+  void enable_listing() { listing_on_ = true; }
+  std::string listing() const;
+
  private:
   struct Operand {  // a register number (0..15) or memory
     bool is_mem;
@@ -127,6 +132,31 @@ class Assembler {
   void sse(uint8_t prefix, std::initializer_list<uint8_t> opcode, Xmm d, const Operand& s, int imm8 = -1);
   void rel32(Label l);
 
+  // One listing line per instruction: its offset and text.
+  template <typename... Args>
+  void list(const char* mnemonic, const Args&... args) {
+    if (!listing_on_) return;
+    std::string text = mnemonic;
+    if constexpr (sizeof...(Args) > 0) {
+      const char* sep = " ";
+      ((text += sep, text += operand(args), sep = ", "), ...);
+    }
+    lines_.push_back({code_.size(), text});
+  }
+  static std::string operand(Xmm x);
+  static std::string operand(Gp g);
+  static std::string operand(const Mem& m);
+  static std::string operand(Pred p);
+  static std::string operand(Rounding r);
+  static std::string operand(Cond c);
+  static std::string operand(Label l);
+  static std::string operand(int64_t v);
+  static std::string operand(int32_t v) { return operand(static_cast<int64_t>(v)); }
+  static std::string operand(uint8_t v) { return operand(static_cast<int64_t>(v)); }
+  static std::string operand(uint64_t v);
+
+  bool listing_on_ = false;
+  std::vector<std::pair<size_t, std::string>> lines_;
   std::vector<uint8_t> code_;
   std::vector<int64_t> label_pos_;                 // -1: unbound
   struct Fixup {

@@ -84,6 +84,8 @@ printf 'function a(x) { return x; }\nfunction b(x) { return x; }\n' > "$T/two.fs
 check run-no-entry 1 'no entry point' -- "$F" run "$T/two.fs"
 check run-unknown-entry 1 "no function named 'nope'" -- "$F" run "$T/rec.fs" --entry nope
 check backend-sse 0 '^0$' -- "$F" run "$T/sphere.fs" --backend sse 1 0 0
+check emit-asm-sse 0 'mulps xmm[0-9]+, xmm[0-9]+' -- "$F" emit-asm "$T/sphere.fs" --backend sse
+check emit-asm-sse-pool 0 '\.float 1, 1, 1, 1' -- "$F" emit-asm "$T/sphere.fs" --backend sse
 check backend-sse-refuses 1 'straight-line kernels only' -- "$F" run "$T/loop.fs" --backend sse 0
 check backend-missing 2 "backend 'llvm' is not built" -- "$F" run "$T/sphere.fs" --backend llvm 0 0 0
 check usage-unknown-command 2 '' -- "$F" frobnicate

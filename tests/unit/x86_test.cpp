@@ -213,3 +213,23 @@ TEST_CASE("x86: code runs from W^X memory: (a + b) * 2 on four lanes") {
   CHECK(out[2] == 0.0f);
   CHECK(out[3] == 0.0f);
 }
+
+TEST_CASE("x86: the listing names every instruction, label and constant") {
+  Assembler a;
+  a.enable_listing();
+  Label top = a.new_label();
+  a.bind(top);
+  a.cmpps(Xmm::x1, Mem::at(Gp::rsp, Gp::rax, 4, -16), Pred::Le);
+  a.mulps(Xmm::x2, Mem::rip(a.constant_ps(0.5f)));
+  a.jcc(Cond::NE, top);
+  a.ret();
+  a.finish();
+  CHECK(a.listing() ==
+        "L0:\n"
+        "     0    cmpleps xmm1, [rsp+rax*4-16]\n"
+        "     6    mulps xmm2, [rip+L1]\n"
+        "     d    jne L0\n"
+        "    13    ret\n"
+        "L1:\n"
+        "    20    .float 0.5, 0.5, 0.5, 0.5\n");
+}

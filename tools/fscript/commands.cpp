@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "backends/sse/sse_backend.h"
 #include "backends/vm/vm_backend.h"
 #include "frontend/fscript/formatter.h"
 #include "frontend/fscript/parser.h"
@@ -246,6 +247,14 @@ int cmd_emit_asm(const Options& o, const std::string& file, const std::string& e
   Compiled c;
   if (int rc = compile_file(file, entry, o, c); rc != kExitOk) return rc;
   if (auto* vk = dynamic_cast<const vm::VmKernel*>(c.kernel.get())) std::cout << vm::disassemble(vk->program());
+  if (name == "sse") {
+    std::string error, text;
+    if (sse::generate(*c.module, error, &text).empty()) {
+      std::cerr << "error: " << error << "\n";
+      return kExitInput;
+    }
+    std::cout << text;
+  }
   return kExitOk;
 }
 

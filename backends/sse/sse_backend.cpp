@@ -5,25 +5,34 @@
 
 namespace fscript::sse {
 
-std::unique_ptr<backend::Kernel> SseBackend::compile(const ir::Module& m, const backend::Budgets&,
+std::unique_ptr<backend::Kernel> SseBackend::compile(const ir::Module& m, const backend::Budgets& budgets,
                                                      std::string& error) const {
   if (!__builtin_cpu_supports("sse4.1")) {  // roundps, blendvps
     error = "the sse backend needs a CPU with SSE4.1";
     return nullptr;
   }
-  std::vector<uint8_t> code = generate(m, error);
+  std::vector<uint8_t> code = generate(m, budgets, error);
   if (code.empty()) return nullptr;
   auto memory = CodeMemory::create(code, error);
   if (!memory) return nullptr;
   const ir::Function* fn = nullptr;
   for (const auto& f : m.functions)
     if (f->kernel) fn = f.get();
-  return std::make_unique<SseKernel>(std::move(memory), fn->num_params, fn->num_results);
+  return std::make_unique<SseKernel>(std::move(memory), fn->num_params, fn->num_results, budgets);
 }
 
-bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError&) const {
+// The same messages as the VM's.
+bool SseKernel::status(uint64_t code, backend::RuntimeError& err) const {
+  if (code == 0) return true;
+  err.line = static_cast<uint32_t>(code);
+  err.message = "loop iteration budget exceeded: more than " + std::to_string(budgets_.max_loop_iterations) +
+                " iterations in one evaluation";
+  return false;
+}
+
+bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const {
   size_t whole = n & ~size_t{3};
-  if (whole) fn()(inputs, outputs, 0, whole);
+  if (whole && !status(fn()(inputs, outputs, 0, whole), err)) return false;
   if (whole == n) return true;
   // The last one to three points, through four-lane copies.
   std::vector<float> in(4 * inputs_, 0.0f), out(4 * outputs_, 0.0f);
@@ -34,7 +43,7 @@ bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, si
     ip[k] = in.data() + 4 * k;
   }
   for (size_t k = 0; k < outputs_; ++k) op[k] = out.data() + 4 * k;
-  fn()(ip.data(), op.data(), 0, 4);
+  if (!status(fn()(ip.data(), op.data(), 0, 4), err)) return false;
   for (size_t k = 0; k < outputs_; ++k) std::copy_n(out.begin() + 4 * k, n - whole, outputs[k] + whole);
   return true;
 }

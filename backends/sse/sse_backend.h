@@ -1,10 +1,8 @@
 #pragma once
 // The SSE backend: the kernel function compiled to x86-64 machine code that evaluates four points
 // per iteration in xmm registers (packed single precision), our own encoder, register allocation
-// and W^X code memory. This stage compiles straight-line kernels (one block: what inlining,
-// global promotion and if-conversion leave of most scripts); a kernel with loops, branches left
-// after if-conversion, arrays, global memory or recursion is refused with a message naming the
-// operation (use --backend vm for those).
+// and W^X code memory. Branches and loops run masked (sse_compile.cpp); kernels that use arrays or
+// call recursive functions are refused with a message naming the operation (use --backend vm).
 #include <memory>
 
 #include "backends/backend.h"
@@ -12,13 +10,14 @@
 
 namespace fscript::sse {
 
-// The generated function: points [begin, end) of the batch, end - begin a multiple of 4.
-using KernelFn = void (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end);
+// The generated function: points [begin, end) of the batch, end - begin a multiple of 4. Returns 0,
+// or a runtime error: (kind << 32) | source line, kind 1 = the loop budget.
+using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end);
 
 class SseKernel : public backend::Kernel {
  public:
-  SseKernel(std::unique_ptr<CodeMemory> code, size_t inputs, size_t outputs)
-      : code_(std::move(code)), inputs_(inputs), outputs_(outputs) {}
+  SseKernel(std::unique_ptr<CodeMemory> code, size_t inputs, size_t outputs, const backend::Budgets& budgets)
+      : code_(std::move(code)), inputs_(inputs), outputs_(outputs), budgets_(budgets) {}
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
   bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const override;
@@ -27,8 +26,10 @@ class SseKernel : public backend::Kernel {
 
  private:
   KernelFn fn() const { return reinterpret_cast<KernelFn>(const_cast<uint8_t*>(code_->start())); }
+  bool status(uint64_t code, backend::RuntimeError& err) const;
   std::unique_ptr<CodeMemory> code_;
   size_t inputs_, outputs_;
+  backend::Budgets budgets_;
 };
 
 class SseBackend : public backend::Backend {
@@ -39,6 +40,7 @@ class SseBackend : public backend::Backend {
 
 // The machine code of the module's kernel; empty with a message when the kernel uses what this
 // stage does not compile. `listing`, when given, receives the code as assembly text (emit-asm).
-std::vector<uint8_t> generate(const ir::Module& m, std::string& error, std::string* listing = nullptr);
+std::vector<uint8_t> generate(const ir::Module& m, const backend::Budgets& budgets, std::string& error,
+                              std::string* listing = nullptr);
 
 }  // namespace fscript::sse

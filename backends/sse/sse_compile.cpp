@@ -1,16 +1,26 @@
-// SSA to x86-64 for straight-line kernels. Four points per iteration, one value per xmm register.
-// Registers are assigned while emitting, in instruction order: a free register if there is one,
-// else the value whose next use is farthest is spilled to its 16-byte stack slot (Belady's rule,
-// optimal for one block); spilled values and constants (rip-relative, from the pool) are read
-// straight from memory by the instructions that use them. xmm0 and xmm1 are scratch (xmm0 is
-// blendvps's implicit mask). Runtime calls (transcendentals, fmod, noise) go through the batch
-// functions of runtime/math on four lanes in stack slots; every live register is saved first.
+// SSA to x86-64, four points per iteration, one value per xmm register. Within a block, registers
+// are assigned while emitting: a free one if there is one, else the value whose next use in the
+// block is farthest is spilled to a 16-byte stack slot (Belady's rule); spilled values and
+// constants (rip-relative, from the pool) are read straight from memory. xmm0 and xmm1 are
+// scratch (xmm0 is blendvps's implicit mask). Runtime calls (transcendentals, fmod, noise) go
+// through runtime/math's batch functions on four lanes in stack slots, every live register saved.
+//
+// Control flow is masked, as in the VM: each block has a pending mask of the lanes waiting at it;
+// blocks run in reverse post-order, each for its pending lanes (skipped when none), and a back
+// edge that carried lanes jumps back to its target; the scan repeats until no lane waits. Values
+// used outside their block, phis and globals live in 16-byte home slots written under the
+// block's lane mask; phi moves are parallel copies on each edge under the edge's mask; loop
+// budgets are per-lane counters. A straight-line kernel without globals or ticks needs none of
+// this and runs as one pass.
 #include <algorithm>
+#include <climits>
 #include <cstring>
 #include <map>
 
+#include "backends/regalloc.h"
 #include "backends/sse/sse_backend.h"
 #include "backends/sse/x86.h"
+#include "ir/passes/passes.h"
 #include "runtime/math/math.h"
 
 namespace fscript::sse {
@@ -18,7 +28,7 @@ namespace {
 
 constexpr int kFirstReg = 2, kNumRegs = 16;
 constexpr int32_t kScratch = 0;  // call arguments at 0, 16, 32; result at 48
-constexpr int32_t kSlots = 64;   // spill slots from here, 16 bytes each
+constexpr int32_t kActive = 64, kEdge0 = 80, kEdge1 = 96, kCounters = 112, kFixed = 128;
 
 void mod_batch(const float* a, const float* b, float* out, size_t n) {
   for (size_t i = 0; i < n; ++i) out[i] = math::mod(a[i], b[i]);
@@ -27,7 +37,7 @@ void noise_batch(const float* x, const float* y, const float* z, float* out, siz
   for (size_t i = 0; i < n; ++i) out[i] = math::noise(x[i], y[i], z[i]);
 }
 
-// A source operand: a register or a memory location (spill slot or constant).
+// A source operand: a register or a memory location (spill or home slot, or constant).
 struct Src {
   bool mem;
   Xmm x;
@@ -38,24 +48,35 @@ struct Src {
 
 class Codegen {
  public:
-  Codegen(const ir::Function& fn, int frame_slots) : fn_(fn), frame_slots_(frame_slots) {}
+  Codegen(const ir::Function& fn, const backend::Budgets& budgets, int spill_slots)
+      : fn_(fn), budget_(static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, INT32_MAX - 1))),
+        spill_slots_(spill_slots) {}
 
   bool run(std::string& error) {
-    const ir::Block& b = *fn_.entry();
-    index_uses(b);
+    if (!layout(error)) return false;
     prologue();
     Label top = a_.new_label(), done = a_.new_label();
+    exit_ = a_.new_label();
+    for (size_t b = 0; b <= order_.size(); ++b) block_label_.push_back(a_.new_label());
     a_.bind(top);
     a_.cmp(Gp::r13, Gp::r14);
     a_.jcc(Cond::AE, done);
-    for (size_t pos = 0; pos < b.insts.size(); ++pos) {
-      if (!inst(*b.insts[pos], static_cast<int>(pos), error)) return false;
-      release_dead(*b.insts[pos], static_cast<int>(pos));
-    }
+    if (!straight_) start_group();
+    for (size_t b = 0; b < order_.size(); ++b)
+      if (!block(static_cast<int>(b), error)) return false;
+    a_.bind(block_label_[order_.size()]);
+    if (!straight_) finish_group();
     a_.add(Gp::r13, 16);
     a_.jmp(top);
     a_.bind(done);
+    a_.mov_imm(Gp::rax, 0);
+    a_.bind(exit_);
     epilogue();
+    for (const auto& [label, code] : traps_) {  // runtime errors: the code names the kind and line
+      a_.bind(label);
+      a_.mov_imm(Gp::rax, code);
+      a_.jmp(exit_);
+    }
     return true;
   }
 
@@ -65,14 +86,71 @@ class Codegen {
   std::vector<uint8_t> finish() { return a_.finish(); }
 
  private:
-  // ---- frame: rbx inputs, r12 outputs, r13 byte offset of the point, r14 end offset ----
-  int32_t frame_bytes() const { return kSlots + 16 * frame_slots_ + 8; }  // + 8: realigns after six pushes
+  // ---- layout: block order, positions, uses, homes ----
+  bool layout(std::string& error) {
+    for (const ir::Block* blk : backend::compute_intervals(fn_).blocks) order_.push_back(blk);
+    block_index_.assign(fn_.next_block, -1);
+    for (size_t b = 0; b < order_.size(); ++b) block_index_[order_[b]->id] = static_cast<int>(b);
+    uses_.assign(fn_.next_value, {});
+    def_block_.assign(fn_.next_value, -1);
+    cross_.assign(fn_.next_value, false);
+    int pos = 0;
+    bool memory = false;
+    for (size_t b = 0; b < order_.size(); ++b) {
+      block_start_.push_back(pos);
+      for (const ir::Inst* in : order_[b]->insts) {
+        if (in->defines_value()) def_block_[in->id] = static_cast<int>(b);
+        if (in->op == ir::Op::Phi) cross_[in->id] = true;
+        else
+          for (const ir::Inst* arg : in->args) uses_[arg->id].push_back(pos);
+        memory |= in->op == ir::Op::GLoad || in->op == ir::Op::GStore || in->op == ir::Op::Tick;
+        max_phis_ = std::max(max_phis_, in->op == ir::Op::Phi ? ++phis_here_ : (phis_here_ = 0));
+        ++pos;
+      }
+      phis_here_ = 0;
+      block_end_.push_back(pos);
+    }
+    // A phi's operand is used on its edge, at the end of the predecessor.
+    for (const ir::Block* blk : order_)
+      for (const ir::Inst* in : blk->insts) {
+        if (in->op != ir::Op::Phi) continue;
+        for (size_t k = 0; k < in->args.size(); ++k) {
+          int pred = block_index_[in->targets[k]->id];
+          uses_[in->args[k]->id].push_back(block_end_[pred] - 1);
+          cross_[in->args[k]->id] = true;
+        }
+      }
+    for (auto& u : uses_) std::sort(u.begin(), u.end());
+    for (uint32_t v = 0; v < fn_.next_value; ++v)
+      for (int u : uses_[v])
+        if (def_block_[v] >= 0 && (u < block_start_[def_block_[v]] || u >= block_end_[def_block_[v]])) cross_[v] = true;
+    straight_ = order_.size() == 1 && !memory;
+    // Frame: fixed slots, outputs, pending masks, globals, homes, phi temporaries, spills.
+    int32_t at = kFixed;
+    out_slot_ = at, at += 16 * static_cast<int32_t>(fn_.num_results);
+    pending_slot_ = at, at += 16 * static_cast<int32_t>(order_.size());
+    int globals = 0;
+    for (const ir::Block* blk : order_)
+      for (const ir::Inst* in : blk->insts)
+        if (in->op == ir::Op::GLoad || in->op == ir::Op::GStore) globals = std::max(globals, in->aux + 1);
+    global_slot_ = at, at += 16 * globals;
+    num_globals_ = globals;
+    home_.assign(fn_.next_value, -1);
+    for (uint32_t v = 0; v < fn_.next_value; ++v)
+      if (cross_[v] && !straight_) home_[v] = at, at += 16;
+    temp_slot_ = at, at += 16 * max_phis_;
+    spill_base_ = at;
+    (void)error;
+    return true;
+  }
+
+  int32_t frame_bytes() const { return spill_base_ + 16 * spill_slots_ + 8; }  // + 8 realigns after six pushes
   void prologue() {
     for (Gp g : {Gp::rbx, Gp::rbp, Gp::r12, Gp::r13, Gp::r14, Gp::r15}) a_.push(g);
     a_.sub(Gp::rsp, frame_bytes());
     a_.mov(Gp::rbx, Gp::rdi);
     a_.mov(Gp::r12, Gp::rsi);
-    a_.lea(Gp::r13, Mem::at(Gp::rdx, Gp::rdx, 2));  // 3 begin... then + begin: 4 begin
+    a_.lea(Gp::r13, Mem::at(Gp::rdx, Gp::rdx, 2));  // byte offsets: 4 * point index
     a_.add(Gp::r13, Gp::rdx);
     a_.lea(Gp::r14, Mem::at(Gp::rcx, Gp::rcx, 2));
     a_.add(Gp::r14, Gp::rcx);
@@ -82,43 +160,86 @@ class Codegen {
     for (Gp g : {Gp::r15, Gp::r14, Gp::r13, Gp::r12, Gp::rbp, Gp::rbx}) a_.pop(g);
     a_.ret();
   }
+  Mem at(int32_t offset) const { return Mem::at(Gp::rsp, offset); }
+  Mem pending(int b) const { return at(pending_slot_ + 16 * b); }
 
-  // ---- uses and liveness ----
-  void index_uses(const ir::Block& b) {
-    uses_.assign(fn_.next_value, {});
-    for (size_t pos = 0; pos < b.insts.size(); ++pos)
-      for (const ir::Inst* arg : b.insts[pos]->args) uses_[arg->id].push_back(static_cast<int>(pos));
-    reg_of_.assign(fn_.next_value, -1);
-    slot_of_.assign(fn_.next_value, -1);
-    held_.fill(-1);
+  // Each group of four points: every lane waits at the entry; counters zero; globals NaN.
+  void start_group() {
+    a_.pcmpeqd(Xmm::x0, Xmm::x0);
+    a_.movaps(pending(0), Xmm::x0);
+    a_.xorps(Xmm::x1, Xmm::x1);
+    for (size_t b = 1; b < order_.size(); ++b) a_.movaps(pending(static_cast<int>(b)), Xmm::x1);
+    a_.movaps(at(kCounters), Xmm::x1);
+    for (uint32_t k = 0; k < fn_.num_results; ++k) a_.movaps(at(out_slot_ + 16 * static_cast<int32_t>(k)), Xmm::x1);
+    if (num_globals_) a_.movaps(Xmm::x0, bits(0x7FC00000u));
+    for (int g = 0; g < num_globals_; ++g) a_.movaps(at(global_slot_ + 16 * g), Xmm::x0);
   }
-  int next_use(uint32_t v, int pos) const {  // first use after pos, or INT_MAX
+  // After the scan: lanes still waiting (sent back to an earlier block by a later one) rescan;
+  // otherwise the outputs go out.
+  void finish_group() {
+    a_.xorps(Xmm::x0, Xmm::x0);
+    for (size_t b = 0; b < order_.size(); ++b) a_.orps(Xmm::x0, pending(static_cast<int>(b)));
+    a_.movmskps(Gp::rax, Xmm::x0);
+    a_.test(Gp::rax, Gp::rax);
+    a_.jcc(Cond::NE, block_label_[0]);
+    for (uint32_t k = 0; k < fn_.num_results; ++k) {
+      a_.movaps(Xmm::x0, at(out_slot_ + 16 * static_cast<int32_t>(k)));
+      a_.mov(Gp::rax, Mem::at(Gp::r12, 8 * static_cast<int32_t>(k)));
+      a_.movups(Mem::at(Gp::rax, Gp::r13, 1), Xmm::x0);
+    }
+  }
+
+  bool block(int b, std::string& error) {
+    a_.bind(block_label_[b]);
+    cur_ = b;
+    held_.fill(-1);
+    reg_of_.assign(fn_.next_value, -1);
+    slot_of_ = home_;
+    if (!straight_) {  // run for the waiting lanes, or skip
+      a_.movaps(Xmm::x0, pending(b));
+      a_.movmskps(Gp::rax, Xmm::x0);
+      a_.test(Gp::rax, Gp::rax);
+      a_.jcc(Cond::E, block_label_[b + 1]);
+      a_.movaps(at(kActive), Xmm::x0);
+      a_.xorps(Xmm::x1, Xmm::x1);
+      a_.movaps(pending(b), Xmm::x1);
+    }
+    int pos = block_start_[b];
+    for (const ir::Inst* in : order_[b]->insts) {
+      if (in->op != ir::Op::Phi) {
+        if (!inst(*in, pos, error)) return false;
+        release_dead(*in, pos);
+      }
+      ++pos;
+    }
+    return true;
+  }
+
+  // ---- uses and liveness (within the current block) ----
+  int next_use(uint32_t v, int pos) const {  // first use after pos in this block, or INT_MAX
     const auto& u = uses_[v];
     auto it = std::upper_bound(u.begin(), u.end(), pos);
-    return it == u.end() ? INT32_MAX : *it;
+    return it == u.end() || *it >= block_end_[cur_] ? INT32_MAX : *it;
+  }
+  void drop(uint32_t v) {
+    if (reg_of_[v] < 0) return;
+    held_[reg_of_[v]] = -1;
+    reg_of_[v] = -1;
   }
   void release_dead(const ir::Inst& in, int pos) {
     for (const ir::Inst* arg : in.args)
-      if (next_use(arg->id, pos) == INT32_MAX && reg_of_[arg->id] >= 0) {
-        held_[reg_of_[arg->id]] = -1;
-        reg_of_[arg->id] = -1;
-      }
-    if (in.defines_value() && uses_[in.id].empty() && reg_of_[in.id] >= 0) {
-      held_[reg_of_[in.id]] = -1;
-      reg_of_[in.id] = -1;
-    }
+      if (next_use(arg->id, pos) == INT32_MAX) drop(arg->id);
+    if (in.defines_value() && next_use(in.id, pos) == INT32_MAX) drop(in.id);
   }
 
   // ---- registers ----
-  Mem slot_mem(int slot) const { return Mem::at(Gp::rsp, kSlots + 16 * slot); }
   void spill(int reg) {
     uint32_t v = static_cast<uint32_t>(held_[reg]);
     if (slot_of_[v] < 0) {
-      slot_of_[v] = next_slot_++;
-      a_.movaps(slot_mem(slot_of_[v]), static_cast<Xmm>(reg));
+      slot_of_[v] = spill_base_ + 16 * next_slot_++;
+      a_.movaps(at(slot_of_[v]), static_cast<Xmm>(reg));
     }
-    reg_of_[v] = -1;
-    held_[reg] = -1;
+    drop(v);
   }
   // A free register for the result of the instruction at pos; operands of that instruction stay.
   Xmm alloc(int pos) {
@@ -131,19 +252,68 @@ class Codegen {
     spill(best);
     return static_cast<Xmm>(best);
   }
+  // The result is in d; a value other blocks read also goes to its home, for this block's lanes.
   void define(const ir::Inst& in, Xmm d) {
     held_[static_cast<int>(d)] = static_cast<int>(in.id);
     reg_of_[in.id] = static_cast<int>(d);
+    if (home_[in.id] >= 0) masked_store(at(home_[in.id]), {false, d, {}}, at(kActive));
+  }
+  // dst = mask ? value : dst, lane by lane (a plain store in the entry block: every lane is there).
+  void masked_store(const Mem& dst, const Src& value, const Mem& mask) {
+    if (cur_ == 0 && mask.disp == kActive) {
+      if (value.mem) a_.movaps(Xmm::x1, value.m), a_.movaps(dst, Xmm::x1);
+      else a_.movaps(dst, value.x);
+      return;
+    }
+    a_.movaps(Xmm::x0, mask);
+    a_.movaps(Xmm::x1, dst);
+    FS_APPLY(blendvps, Xmm::x1, value);
+    a_.movaps(dst, Xmm::x1);
   }
   Src src(const ir::Inst* v) {
     if (v->op == ir::Op::Const) return {true, Xmm::x0, Mem::rip(a_.constant_ps(v->imm))};
     if (reg_of_[v->id] >= 0) return {false, static_cast<Xmm>(reg_of_[v->id]), {}};
-    return {true, Xmm::x0, slot_mem(slot_of_[v->id])};
+    return {true, Xmm::x0, at(slot_of_[v->id])};
   }
   Mem k(float v) { return Mem::rip(a_.constant_ps(v)); }
   Mem bits(uint32_t b) { return Mem::rip(a_.constant({b, b, b, b})); }
   void load(Xmm d, const Src& s) {
     if (s.mem || s.x != d) FS_APPLY(movaps, d, s);
+  }
+
+  // ---- edges: phi moves as a parallel copy under the edge's mask, then the lanes wait at s ----
+  void edge(const ir::Block* to, const Mem& mask) {
+    const ir::Block* from = order_[cur_];
+    std::vector<const ir::Inst*> phis;
+    for (const ir::Inst* in : to->insts)
+      if (in->op == ir::Op::Phi) phis.push_back(in);
+    for (size_t k = 0; k < phis.size(); ++k)
+      for (size_t j = 0; j < phis[k]->args.size(); ++j)
+        if (phis[k]->targets[j] == from) {
+          Src s = src(phis[k]->args[j]);
+          if (s.mem) a_.movaps(Xmm::x1, s.m), s = {false, Xmm::x1, {}};
+          a_.movaps(at(temp_slot_ + 16 * static_cast<int32_t>(k)), s.x);
+        }
+    for (size_t k = 0; k < phis.size(); ++k)
+      masked_store(at(home_[phis[k]->id]), {true, Xmm::x0, at(temp_slot_ + 16 * static_cast<int32_t>(k))}, mask);
+    int t = block_index_[to->id];
+    a_.movaps(Xmm::x1, pending(t));
+    a_.orps(Xmm::x1, mask);
+    a_.movaps(pending(t), Xmm::x1);
+  }
+  // After both edges: a back edge that carried lanes jumps to its target.
+  void back_edge(const ir::Block* to, const Mem& mask) {
+    int t = block_index_[to->id];
+    if (t > cur_) return;  // forward: the scan gets there
+    a_.movaps(Xmm::x0, mask);
+    a_.movmskps(Gp::rax, Xmm::x0);
+    a_.test(Gp::rax, Gp::rax);
+    a_.jcc(Cond::NE, block_label_[t]);
+  }
+  Label trap(uint32_t kind, uint32_t line) {
+    Label l = a_.new_label();
+    traps_.push_back({l, (static_cast<uint64_t>(kind) << 32) | line});
+    return l;
   }
 
   // ---- semantics (runtime/math/math.h, lane by lane) ----
@@ -199,7 +369,7 @@ class Codegen {
 
   bool unsupported(const ir::Inst& in, std::string& error) {
     error = std::string("the sse backend does not compile '") + ir::mnemonic(in.op) +
-            "' yet (it compiles straight-line kernels: no loops, arrays, global memory or recursion); use --backend vm";
+            "' yet (arrays and calls of recursive functions); use --backend vm";
     return false;
   }
 
@@ -350,32 +520,99 @@ class Codegen {
       case Op::Ret:
         for (size_t o = 0; o < in.args.size(); ++o) {
           Src s = src(in.args[o]);
+          if (!straight_) {  // lanes return at different times: collect under the block's mask
+            masked_store(at(out_slot_ + 16 * static_cast<int32_t>(o)), s, at(kActive));
+            continue;
+          }
           if (s.mem) a_.movaps(Xmm::x0, s.m), s = {false, Xmm::x0, {}};
           a_.mov(Gp::rax, Mem::at(Gp::r12, 8 * static_cast<int32_t>(o)));
           a_.movups(Mem::at(Gp::rax, Gp::r13, 1), s.x);
         }
         return true;
-      case Op::Phi: case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore:
-      case Op::ALen: case Op::Call: case Op::Tick: case Op::Jump: case Op::Branch:
+      case Op::Jump:
+        a_.movaps(Xmm::x0, at(kActive));
+        a_.movaps(at(kEdge0), Xmm::x0);
+        edge(in.targets[0], at(kEdge0));
+        back_edge(in.targets[0], at(kEdge0));
+        return true;
+      case Op::Branch: {  // lanes where the condition is truthy take targets[0]
+        truthy_mask(arg(0));
+        a_.movaps(Xmm::x1, at(kActive));
+        a_.andps(Xmm::x1, Xmm::x0);
+        a_.movaps(at(kEdge0), Xmm::x1);
+        a_.andnps(Xmm::x0, at(kActive));
+        a_.movaps(at(kEdge1), Xmm::x0);
+        edge(in.targets[0], at(kEdge0));
+        edge(in.targets[1], at(kEdge1));
+        bool first_back = block_index_[in.targets[0]->id] <= block_index_[in.targets[1]->id];
+        back_edge(in.targets[first_back ? 0 : 1], at(first_back ? kEdge0 : kEdge1));
+        back_edge(in.targets[first_back ? 1 : 0], at(first_back ? kEdge1 : kEdge0));
+        return true;
+      }
+      case Op::Tick: {  // per-lane iteration counters (int32): counter - mask adds one per active lane
+        a_.movaps(Xmm::x0, at(kCounters));
+        a_.psubd(Xmm::x0, at(kActive));
+        a_.movaps(at(kCounters), Xmm::x0);
+        a_.pcmpgtd(Xmm::x0, bits(static_cast<uint32_t>(budget_)));
+        a_.movmskps(Gp::rax, Xmm::x0);
+        a_.test(Gp::rax, Gp::rax);
+        a_.jcc(Cond::NE, trap(1, in.line));
+        return true;
+      }
+      case Op::GLoad: {
+        Xmm d = alloc(pos);
+        a_.movaps(d, at(global_slot_ + 16 * in.aux));
+        define(in, d);
+        return true;
+      }
+      case Op::GStore:
+        masked_store(at(global_slot_ + 16 * in.aux), arg(0), at(kActive));
+        return true;
+      case Op::Phi: return true;  // its home is written on the incoming edges
+      case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen: case Op::Call:
         return unsupported(in, error);
     }
     return unsupported(in, error);
   }
 
   const ir::Function& fn_;
-  int frame_slots_;
+  int32_t budget_;
+  int spill_slots_;
   Assembler a_;
+  Label exit_;
+  std::vector<Label> block_label_;  // one per block in order, then the end of the scan
+  std::vector<std::pair<Label, uint64_t>> traps_;
+  std::vector<const ir::Block*> order_;
+  std::vector<int> block_index_, block_start_, block_end_, def_block_;
+  std::vector<bool> cross_;
   std::vector<std::vector<int>> uses_;
-  std::vector<int> reg_of_, slot_of_;
+  std::vector<int> reg_of_, slot_of_, home_;
   std::array<int, kNumRegs> held_{};
-  int next_slot_ = 0;
+  bool straight_ = true;
+  int cur_ = 0, next_slot_ = 0, max_phis_ = 0, phis_here_ = 0, num_globals_ = 0;
+  int32_t out_slot_ = 0, pending_slot_ = 0, global_slot_ = 0, temp_slot_ = 0, spill_base_ = 0;
 };
 
 #undef FS_APPLY
 
 }  // namespace
 
-std::vector<uint8_t> generate(const ir::Module& m, std::string& error, std::string* listing) {
+std::vector<uint8_t> generate(const ir::Module& module, const backend::Budgets& budgets, std::string& error,
+                              std::string* listing) {
+  // Masked lanes have no call stack: calls of non-recursive functions are inlined first (an
+  // unoptimised module still has them); calls of recursive ones are refused below.
+  std::unique_ptr<ir::Module> inlined;
+  const ir::Module* mp = &module;
+  for (const auto& f : module.functions)
+    for (const auto& blk : f->blocks)
+      for (const ir::Inst* in : blk->insts)
+        if (in->op == ir::Op::Call && !inlined) {
+          inlined = module.clone();
+          error = ir::run_passes(*inlined, "inline");
+          if (!error.empty()) return {};
+          mp = inlined.get();
+        }
+  const ir::Module& m = *mp;
   const ir::Function* fn = nullptr;
   for (const auto& f : m.functions)
     if (f->kernel) fn = f.get();
@@ -383,15 +620,10 @@ std::vector<uint8_t> generate(const ir::Module& m, std::string& error, std::stri
     error = "the module has no kernel function";
     return {};
   }
-  if (fn->blocks.size() != 1) {
-    error = "the sse backend compiles straight-line kernels only so far; this one keeps " +
-            std::to_string(fn->blocks.size()) + " blocks (a loop or a branch); use --backend vm";
-    return {};
-  }
   // Twice: the first pass counts the spill slots the frame must hold.
-  Codegen sizing(*fn, 0);
+  Codegen sizing(*fn, budgets, 0);
   if (!sizing.run(error)) return {};
-  Codegen final_pass(*fn, sizing.slots_used());
+  Codegen final_pass(*fn, budgets, sizing.slots_used());
   if (listing) final_pass.enable_listing();
   if (!final_pass.run(error)) return {};
   std::vector<uint8_t> code = final_pass.finish();

@@ -50,7 +50,7 @@ class Assembler {
   FS_SSE_BINARY(blendvps)  // xmm0 is the implicit mask
   FS_SSE_BINARY(cvtdq2ps) FS_SSE_BINARY(cvttps2dq) FS_SSE_BINARY(cvtps2dq)
   FS_SSE_BINARY(pand) FS_SSE_BINARY(pandn) FS_SSE_BINARY(por) FS_SSE_BINARY(pxor)
-  FS_SSE_BINARY(pcmpeqd) FS_SSE_BINARY(paddd) FS_SSE_BINARY(psubd)
+  FS_SSE_BINARY(pcmpeqd) FS_SSE_BINARY(pcmpgtd) FS_SSE_BINARY(paddd) FS_SSE_BINARY(psubd)
   FS_SSE_BINARY(ucomiss)
 #undef FS_SSE_BINARY
   void cmpps(Xmm d, Xmm s, Pred p);

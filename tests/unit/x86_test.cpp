@@ -52,6 +52,8 @@ const Row kRows[] = {
     {"pandn xmm1,XMMWORD PTR [rax+0x10]", [](Assembler& a) { a.pandn(Xmm::x1, Mem::at(Gp::rax, 16)); }, "66 0f df 48 10"},
     {"por xmm10,xmm2", [](Assembler& a) { a.por(Xmm::x10, Xmm::x2); }, "66 44 0f eb d2"},
     {"pxor xmm7,xmm7", [](Assembler& a) { a.pxor(Xmm::x7, Xmm::x7); }, "66 0f ef ff"},
+    {"pcmpgtd xmm3,XMMWORD PTR [rsp+0x70]", [](Assembler& a) { a.pcmpgtd(Xmm::x3, Mem::at(Gp::rsp, 112)); }, "66 0f 66 5c 24 70"},
+    {"pcmpgtd xmm9,xmm1", [](Assembler& a) { a.pcmpgtd(Xmm::x9, Xmm::x1); }, "66 44 0f 66 c9"},
     {"pcmpeqd xmm6,xmm6", [](Assembler& a) { a.pcmpeqd(Xmm::x6, Xmm::x6); }, "66 0f 76 f6"},
     {"paddd xmm1,xmm14", [](Assembler& a) { a.paddd(Xmm::x1, Xmm::x14); }, "66 41 0f fe ce"},
     {"psubd xmm1,xmm2", [](Assembler& a) { a.psubd(Xmm::x1, Xmm::x2); }, "66 0f fa ca"},

@@ -249,7 +249,7 @@ int cmd_emit_asm(const Options& o, const std::string& file, const std::string& e
   if (auto* vk = dynamic_cast<const vm::VmKernel*>(c.kernel.get())) std::cout << vm::disassemble(vk->program());
   if (name == "sse") {
     std::string error, text;
-    if (sse::generate(*c.module, error, &text).empty()) {
+    if (sse::generate(*c.module, o.budgets, error, &text).empty()) {
       std::cerr << "error: " << error << "\n";
       return kExitInput;
     }

@@ -287,6 +287,13 @@ PY
       check "fvrml-run-corpus-reads $(basename "$w")" 0 '' -- "$F" check "$T/c.wrl"
     done < <(find "$SRC/../shared/corpus" -name '*.wrl' -print0)
   fi
+  # Every corpus file and example: the same mesh, byte for byte, with the sse backend as with the VM.
+  while IFS= read -r -d '' w; do
+    head -c 7 "$w" | grep -q BSCRYPT && continue
+    "$R" "$w" -o "$T/vm.ply" --resolution-scale 0.3 --backend vm 2> /dev/null
+    check "fvrml-run-sse $(basename "$w")" 0 '' -- "$R" "$w" -o "$T/sse.ply" --resolution-scale 0.3 --backend sse
+    cmp -s "$T/vm.ply" "$T/sse.ply" || { echo "FAIL sse mesh differs from vm: $w"; fails=$((fails + 1)); }
+  done < <(find "$SRC/examples" "$SRC/../shared/corpus" -name '*.wrl' -print0 2> /dev/null)
 fi
 
 # fvrml-meshdiff: known answers, formats, bad input.

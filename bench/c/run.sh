@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Builds and runs the C baseline of the shared benchmarks with the flags the issues name:
+# gcc -O3 -march=x86-64-v2 -fno-math-errno (the SSE backend's target) and, when clang is there,
+# clang -O3 -march=native -fno-math-errno (the LLVM backend's).
+set -euo pipefail
+cd "$(dirname "$0")"
+OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
+gcc -O3 -march=x86-64-v2 -fno-math-errno -o "$OUT/gcc" baseline.c -lm
+for f in gyroid csg8; do echo "gcc -O3 -march=x86-64-v2 $f: $("$OUT/gcc" "$f" "${1:-2000000}")"; done
+if command -v clang > /dev/null; then
+  clang -O3 -march=native -fno-math-errno -o "$OUT/clang" baseline.c -lm
+  for f in gyroid csg8; do echo "clang -O3 -march=native $f: $("$OUT/clang" "$f" "${1:-2000000}")"; done
+fi

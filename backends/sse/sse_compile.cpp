@@ -27,6 +27,7 @@ namespace fscript::sse {
 namespace {
 
 constexpr int kFirstReg = 2, kNumRegs = 16;
+constexpr int kFree = -1, kTemp = -2;  // held_[r] when r holds no value
 constexpr int32_t kScratch = 0;  // call arguments at 0, 16, 32; result at 48
 constexpr int32_t kActive = 64, kEdge0 = 80, kEdge1 = 96, kCounters = 112, kFixed = 128;
 
@@ -76,6 +77,18 @@ class Codegen {
       a_.bind(label);
       a_.mov_imm(Gp::rax, code);
       a_.jmp(exit_);
+    }
+    for (const auto& sp : slow_) {  // the argument is in the first scratch slot
+      a_.bind(sp.entry);
+      for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(at(save_slot_ + 16 * r), static_cast<Xmm>(r));
+      a_.lea(Gp::rdi, at(kScratch));
+      a_.lea(Gp::rsi, at(kScratch + 48));
+      a_.mov_imm(Gp::rdx, 4);
+      a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(sp.fn));
+      a_.call(Gp::rax);
+      for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(static_cast<Xmm>(r), at(save_slot_ + 16 * r));
+      a_.movaps(sp.result, at(kScratch + 48));
+      a_.jmp(sp.back);
     }
     return true;
   }
@@ -139,6 +152,7 @@ class Codegen {
     for (uint32_t v = 0; v < fn_.next_value; ++v)
       if (cross_[v] && !straight_) home_[v] = at, at += 16;
     temp_slot_ = at, at += 16 * max_phis_;
+    save_slot_ = at, at += 16 * kNumRegs;
     spill_base_ = at;
     (void)error;
     return true;
@@ -192,7 +206,7 @@ class Codegen {
   bool block(int b, std::string& error) {
     a_.bind(block_label_[b]);
     cur_ = b;
-    held_.fill(-1);
+    held_.fill(kFree);
     reg_of_.assign(fn_.next_value, -1);
     slot_of_ = home_;
     if (!straight_) {  // run for the waiting lanes, or skip
@@ -223,7 +237,7 @@ class Codegen {
   }
   void drop(uint32_t v) {
     if (reg_of_[v] < 0) return;
-    held_[reg_of_[v]] = -1;
+    held_[reg_of_[v]] = kFree;
     reg_of_[v] = -1;
   }
   void release_dead(const ir::Inst& in, int pos) {
@@ -245,13 +259,22 @@ class Codegen {
   Xmm alloc(int pos) {
     int best = -1, best_use = -1;
     for (int r = kFirstReg; r < kNumRegs; ++r) {
-      if (held_[r] < 0) return static_cast<Xmm>(r);
+      if (held_[r] == kFree) return static_cast<Xmm>(r);
+      if (held_[r] == kTemp) continue;
       int u = next_use(static_cast<uint32_t>(held_[r]), pos - 1);
       if (u != pos && u > best_use) best = r, best_use = u;
     }
     spill(best);
     return static_cast<Xmm>(best);
   }
+  // A scratch register for the length of one instruction's code.
+  Xmm temp(int pos) {
+    Xmm t = alloc(pos);
+    held_[static_cast<int>(t)] = kTemp;
+    return t;
+  }
+  void release(Xmm t) { held_[static_cast<int>(t)] = kFree; }
+
   // The result is in d; a value other blocks read also goes to its home, for this block's lanes.
   void define(const ir::Inst& in, Xmm d) {
     held_[static_cast<int>(d)] = static_cast<int>(in.id);
@@ -365,6 +388,86 @@ class Codegen {
     a_.movaps(d, Mem::at(Gp::rsp, kScratch + 48));
     define(in, d);
     return true;
+  }
+
+  Mem dbl(double v) {
+    uint64_t b;
+    std::memcpy(&b, &v, 8);
+    uint32_t lo = static_cast<uint32_t>(b), hi = static_cast<uint32_t>(b >> 32);
+    return Mem::rip(a_.constant({lo, hi, lo, hi}));
+  }
+
+  // sin (offset 0) and cos (offset 1) inline: runtime/math/batch.cpp's trig_lane step for step
+  // (the argument reduced in double, Cephes polynomials, quadrant by bit tricks), so the result is
+  // the batch function's, bit for bit. A group with a lane outside the fast range (huge, inf,
+  // NaN) takes the batch function itself, out of line.
+  void trig(const ir::Inst& in, int pos, int offset) {
+    constexpr float kLimit = 8.0e5f;
+    Src a = src(in.args[0]);
+    Xmm d = alloc(pos), t0 = temp(pos), t1 = temp(pos), t2 = temp(pos), t3 = temp(pos);
+    load(Xmm::x1, a);
+    a_.movaps(at(kScratch), Xmm::x1);
+    a_.movaps(Xmm::x0, Xmm::x1);
+    a_.andps(Xmm::x0, bits(0x7FFFFFFFu));
+    a_.cmpps(Xmm::x0, k(kLimit), Pred::Le);
+    a_.movmskps(Gp::rax, Xmm::x0);
+    a_.cmp(Gp::rax, 15);
+    SlowPath sp{a_.new_label(), a_.new_label(), d, offset ? reinterpret_cast<const void*>(&math::cos_batch)
+                                                          : reinterpret_cast<const void*>(&math::sin_batch)};
+    a_.jcc(Cond::NE, sp.entry);
+    a_.cvtps2pd(t0, Xmm::x1);
+    a_.movhlps(Xmm::x1, Xmm::x1);
+    a_.cvtps2pd(t1, Xmm::x1);
+    for (auto [h, j] : {std::pair{t0, t2}, std::pair{t1, t3}}) {  // each pair of lanes in double
+      a_.movaps(j, h);
+      a_.mulpd(j, dbl(0.63661977236758134308));
+      a_.addpd(j, dbl(6755399441055744.0));
+      a_.subpd(j, dbl(6755399441055744.0));
+      a_.movaps(Xmm::x0, j);
+      a_.mulpd(Xmm::x0, dbl(1.57079632673412561417e+00));
+      a_.subpd(h, Xmm::x0);
+      a_.movaps(Xmm::x0, j);
+      a_.mulpd(Xmm::x0, dbl(6.07710050650619224932e-11));
+      a_.subpd(h, Xmm::x0);
+      a_.cvttpd2dq(j, j);
+      a_.cvtpd2ps(h, h);
+    }
+    a_.movlhps(t0, t1);     // r, four lanes
+    a_.punpcklqdq(t2, t3);  // q, four lanes
+    if (offset) a_.paddd(t2, bits(1));
+    a_.movaps(t1, t0);
+    a_.mulps(t1, t0);  // z = r * r
+    a_.movaps(t3, k(-1.9515295891e-4f));  // sin: ((c1 z + c2) z - c3) z r + r
+    a_.mulps(t3, t1);
+    a_.addps(t3, k(8.3321608736e-3f));
+    a_.mulps(t3, t1);
+    a_.subps(t3, k(1.6666654611e-1f));
+    a_.mulps(t3, t1);
+    a_.mulps(t3, t0);
+    a_.addps(t3, t0);
+    a_.movaps(d, k(2.443315711809948e-5f));  // cos: ((d1 z - d2) z + d3) z z - 0.5 z + 1
+    a_.mulps(d, t1);
+    a_.subps(d, k(1.388731625493765e-3f));
+    a_.mulps(d, t1);
+    a_.addps(d, k(4.166664568298827e-2f));
+    a_.mulps(d, t1);
+    a_.mulps(d, t1);
+    a_.movaps(Xmm::x1, k(0.5f));
+    a_.mulps(Xmm::x1, t1);
+    a_.subps(d, Xmm::x1);
+    a_.addps(d, k(1.0f));
+    a_.movaps(Xmm::x0, t2);  // odd quadrant: the cosine polynomial
+    a_.pand(Xmm::x0, bits(1));
+    a_.pcmpeqd(Xmm::x0, bits(1));
+    a_.blendvps(t3, d);
+    a_.pand(t2, bits(2));  // quadrants 2 and 3: the sign flips
+    a_.pslld(t2, 30);
+    a_.xorps(t3, t2);
+    a_.movaps(d, t3);
+    a_.bind(sp.back);
+    slow_.push_back(sp);
+    for (Xmm t : {t0, t1, t2, t3}) release(t);
+    define(in, d);
   }
 
   bool unsupported(const ir::Inst& in, std::string& error) {
@@ -506,8 +609,8 @@ class Codegen {
       case Op::Exp: return call(in, pos, reinterpret_cast<const void*>(&math::exp_batch));
       case Op::Log: return call(in, pos, reinterpret_cast<const void*>(&math::log_batch));
       case Op::Log10: return call(in, pos, reinterpret_cast<const void*>(&math::log10_batch));
-      case Op::Sin: return call(in, pos, reinterpret_cast<const void*>(&math::sin_batch));
-      case Op::Cos: return call(in, pos, reinterpret_cast<const void*>(&math::cos_batch));
+      case Op::Sin: return trig(in, pos, 0), true;
+      case Op::Cos: return trig(in, pos, 1), true;
       case Op::Tan: return call(in, pos, reinterpret_cast<const void*>(&math::tan_batch));
       case Op::Asin: return call(in, pos, reinterpret_cast<const void*>(&math::asin_batch));
       case Op::Acos: return call(in, pos, reinterpret_cast<const void*>(&math::acos_batch));
@@ -590,7 +693,13 @@ class Codegen {
   std::array<int, kNumRegs> held_{};
   bool straight_ = true;
   int cur_ = 0, next_slot_ = 0, max_phis_ = 0, phis_here_ = 0, num_globals_ = 0;
-  int32_t out_slot_ = 0, pending_slot_ = 0, global_slot_ = 0, temp_slot_ = 0, spill_base_ = 0;
+  int32_t out_slot_ = 0, pending_slot_ = 0, global_slot_ = 0, temp_slot_ = 0, save_slot_ = 0, spill_base_ = 0;
+  struct SlowPath {  // a call of a batch function out of line: every register saved around it
+    Label entry, back;
+    Xmm result;
+    const void* fn;
+  };
+  std::vector<SlowPath> slow_;
 };
 
 #undef FS_APPLY

@@ -99,6 +99,13 @@ FS_SSE_DEFINE(pcmpgtd, 0x66, 0x0F, 0x66)
 FS_SSE_DEFINE(paddd, 0x66, 0x0F, 0xFE)
 FS_SSE_DEFINE(psubd, 0x66, 0x0F, 0xFA)
 FS_SSE_DEFINE(ucomiss, 0, 0x0F, 0x2E)
+FS_SSE_DEFINE(cvtps2pd, 0, 0x0F, 0x5A)
+FS_SSE_DEFINE(cvtpd2ps, 0x66, 0x0F, 0x5A)
+FS_SSE_DEFINE(cvttpd2dq, 0x66, 0x0F, 0xE6)
+FS_SSE_DEFINE(addpd, 0x66, 0x0F, 0x58)
+FS_SSE_DEFINE(subpd, 0x66, 0x0F, 0x5C)
+FS_SSE_DEFINE(mulpd, 0x66, 0x0F, 0x59)
+FS_SSE_DEFINE(punpcklqdq, 0x66, 0x0F, 0x6C)
 #undef FS_SSE_DEFINE
 
 void Assembler::cmpps(Xmm d, Xmm s, Pred p) { if (listing_on_) list(("cmp" + operand(p) + "ps").c_str(), d, s); sse(0, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
@@ -110,6 +117,8 @@ void Assembler::shufps(Xmm d, Xmm s, uint8_t imm) { list("shufps", d, s, imm); s
 void Assembler::pslld(Xmm d, uint8_t imm) { list("pslld", d, imm); emit(0x66, false, {0x0F, 0x72}, 6, r(n(d)), 1, imm); }
 void Assembler::psrld(Xmm d, uint8_t imm) { list("psrld", d, imm); emit(0x66, false, {0x0F, 0x72}, 2, r(n(d)), 1, imm); }
 void Assembler::psrad(Xmm d, uint8_t imm) { list("psrad", d, imm); emit(0x66, false, {0x0F, 0x72}, 4, r(n(d)), 1, imm); }
+void Assembler::movhlps(Xmm d, Xmm s) { list("movhlps", d, s); sse(0, {0x0F, 0x12}, d, r(n(s))); }
+void Assembler::movlhps(Xmm d, Xmm s) { list("movlhps", d, s); sse(0, {0x0F, 0x16}, d, r(n(s))); }
 void Assembler::movaps(Xmm d, Xmm s) { list("movaps", d, s); sse(0, {0x0F, 0x28}, d, r(n(s))); }
 void Assembler::movaps(Xmm d, const Mem& s) { list("movaps", d, s); sse(0, {0x0F, 0x28}, d, m(s)); }
 void Assembler::movaps(const Mem& d, Xmm s) { list("movaps", d, s); sse(0, {0x0F, 0x29}, s, m(d)); }

@@ -52,6 +52,8 @@ class Assembler {
   FS_SSE_BINARY(pand) FS_SSE_BINARY(pandn) FS_SSE_BINARY(por) FS_SSE_BINARY(pxor)
   FS_SSE_BINARY(pcmpeqd) FS_SSE_BINARY(pcmpgtd) FS_SSE_BINARY(paddd) FS_SSE_BINARY(psubd)
   FS_SSE_BINARY(ucomiss)
+  FS_SSE_BINARY(cvtps2pd) FS_SSE_BINARY(cvtpd2ps) FS_SSE_BINARY(cvttpd2dq)  // low two lanes <-> doubles
+  FS_SSE_BINARY(addpd) FS_SSE_BINARY(subpd) FS_SSE_BINARY(mulpd) FS_SSE_BINARY(punpcklqdq)
 #undef FS_SSE_BINARY
   void cmpps(Xmm d, Xmm s, Pred p);
   void cmpps(Xmm d, const Mem& s, Pred p);
@@ -62,6 +64,8 @@ class Assembler {
   void pslld(Xmm d, uint8_t imm);
   void psrld(Xmm d, uint8_t imm);
   void psrad(Xmm d, uint8_t imm);
+  void movhlps(Xmm d, Xmm s);  // d.low = s.high
+  void movlhps(Xmm d, Xmm s);  // d.high = s.low
   void movaps(Xmm d, Xmm s);
   void movaps(Xmm d, const Mem& s);
   void movaps(const Mem& d, Xmm s);

@@ -340,17 +340,21 @@ class Codegen {
   }
 
   // ---- semantics (runtime/math/math.h, lane by lane) ----
-  // min: b NaN ? b : (b < a ? b : a); max alike with >. minps/maxps return their second operand
-  // when either is NaN, hence b first.
-  void minmax(Xmm d, const Src& a, const Src& b, bool is_min) {
-    load(Xmm::x1, b);
-    if (is_min) FS_APPLY(minps, Xmm::x1, a);
-    else FS_APPLY(maxps, Xmm::x1, a);
-    load(Xmm::x0, b);
-    a_.cmpps(Xmm::x0, Xmm::x0, Pred::Unord);
-    a_.movaps(d, Xmm::x1);
-    FS_APPLY(blendvps, d, b);
+  // min: b NaN ? NaN : (b < a ? b : a); max alike with >. minps(b, a) is (b < a ? b : a), which
+  // is already a when a is NaN; a NaN b is caught by its unordered mask, OR-ed in (the result is a
+  // NaN; NaN payloads are not part of the semantics). A constant b that is a number needs no mask.
+  // d may be b's own register: b is read before d is written.
+  void minmax(Xmm d, const Src& a, const Src& b, bool b_number, bool is_min) {
+    if (!b_number) {
+      load(Xmm::x0, b);
+      a_.cmpps(Xmm::x0, Xmm::x0, Pred::Unord);
+    }
+    load(d, b);
+    if (is_min) FS_APPLY(minps, d, a);
+    else FS_APPLY(maxps, d, a);
+    if (!b_number) a_.orps(d, Xmm::x0);
   }
+  static bool number(const ir::Inst* v) { return v->op == ir::Op::Const && v->imm == v->imm; }
   // xmm0 = truthy(c): ordered and != 0.
   void truthy_mask(const Src& c) {
     load(Xmm::x0, c);
@@ -561,15 +565,23 @@ class Codegen {
         return true;
       }
       case Op::Min: case Op::Max: {
-        Xmm d = alloc(pos);
-        minmax(d, arg(0), arg(1), in.op == Op::Min);
+        const ir::Inst* b = in.args[1];
+        Src sa = arg(0), sb = arg(1);
+        Xmm d;
+        if (b->op != Op::Const && reg_of_[b->id] >= 0 && next_use(b->id, pos) == INT32_MAX) {
+          d = static_cast<Xmm>(reg_of_[b->id]);  // b dies here: its register takes the result
+          drop(b->id);
+        } else {
+          d = alloc(pos);
+        }
+        minmax(d, sa, sb, number(b), in.op == Op::Min);
         define(in, d);
         return true;
       }
       case Op::Clamp: {  // min(max(a, lo), hi)
         Xmm d = alloc(pos);
-        minmax(d, arg(0), arg(1), false);
-        minmax(d, {false, d, {}}, arg(2), true);
+        minmax(Xmm::x1, arg(0), arg(1), number(in.args[1]), false);
+        minmax(d, {false, Xmm::x1, {}}, arg(2), number(in.args[2]), true);
         define(in, d);
         return true;
       }

@@ -24,6 +24,17 @@ struct RuntimeError {
   uint32_t line = 0;  // source line of the loop, call or array access (0: unknown)
 };
 
+// The name a user wrote for an array slot: lowering numbers each declaration ("a.0") and inlining
+// prefixes the callee ("FRep.a.0"); messages show "a".
+inline std::string array_display_name(const std::string& slot) {
+  std::string s = slot;
+  size_t dot = s.rfind('.');
+  if (dot != std::string::npos && dot + 1 < s.size() && s.find_first_not_of("0123456789", dot + 1) == std::string::npos)
+    s.erase(dot);
+  dot = s.rfind('.');
+  return dot == std::string::npos ? s : s.substr(dot + 1);
+}
+
 class Kernel {
  public:
   virtual ~Kernel() = default;

@@ -11,28 +11,41 @@ std::unique_ptr<backend::Kernel> SseBackend::compile(const ir::Module& m, const 
     error = "the sse backend needs a CPU with SSE4.1";
     return nullptr;
   }
-  std::vector<uint8_t> code = generate(m, budgets, error);
+  std::vector<std::string> arrays;
+  std::vector<uint8_t> code = generate(m, budgets, error, nullptr, &arrays);
   if (code.empty()) return nullptr;
   auto memory = CodeMemory::create(code, error);
   if (!memory) return nullptr;
   const ir::Function* fn = nullptr;
   for (const auto& f : m.functions)
     if (f->kernel) fn = f.get();
-  return std::make_unique<SseKernel>(std::move(memory), fn->num_params, fn->num_results, budgets);
+  return std::make_unique<SseKernel>(std::move(memory), fn->num_params, fn->num_results, budgets, std::move(arrays));
 }
 
 // The same messages as the VM's.
-bool SseKernel::status(uint64_t code, backend::RuntimeError& err) const {
+bool SseKernel::status(uint64_t code, const ArrayState& arrays, backend::RuntimeError& err) const {
   if (code == 0) return true;
   err.line = static_cast<uint32_t>(code);
-  err.message = "loop iteration budget exceeded: more than " + std::to_string(budgets_.max_loop_iterations) +
-                " iterations in one evaluation";
+  if (code >> 32 == 2) err.message = arrays.message;
+  else
+    err.message = "loop iteration budget exceeded: more than " + std::to_string(budgets_.max_loop_iterations) +
+                  " iterations in one evaluation";
   return false;
+}
+
+ArrayState SseKernel::fresh_arrays() const {
+  ArrayState s;
+  s.max_elements = budgets_.max_array_elements;
+  for (const auto& n : arrays_) s.names.push_back(backend::array_display_name(n));
+  s.off.resize(arrays_.size());
+  s.len.resize(arrays_.size());
+  return s;
 }
 
 bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const {
   size_t whole = n & ~size_t{3};
-  if (whole && !status(fn()(inputs, outputs, 0, whole), err)) return false;
+  ArrayState arrays = fresh_arrays();  // per call: batches may run on several threads at once
+  if (whole && !status(fn()(inputs, outputs, 0, whole, &arrays), arrays, err)) return false;
   if (whole == n) return true;
   // The last one to three points, through four-lane copies.
   std::vector<float> in(4 * inputs_, 0.0f), out(4 * outputs_, 0.0f);
@@ -43,7 +56,7 @@ bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, si
     ip[k] = in.data() + 4 * k;
   }
   for (size_t k = 0; k < outputs_; ++k) op[k] = out.data() + 4 * k;
-  if (!status(fn()(ip.data(), op.data(), 0, 4), err)) return false;
+  if (!status(fn()(ip.data(), op.data(), 0, 4, &arrays), arrays, err)) return false;
   for (size_t k = 0; k < outputs_; ++k) std::copy_n(out.begin() + 4 * k, n - whole, outputs[k] + whole);
   return true;
 }

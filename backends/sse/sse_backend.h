@@ -1,23 +1,27 @@
 #pragma once
 // The SSE backend: the kernel function compiled to x86-64 machine code that evaluates four points
 // per iteration in xmm registers (packed single precision), our own encoder, register allocation
-// and W^X code memory. Branches and loops run masked (sse_compile.cpp); kernels that use arrays or
-// call recursive functions are refused with a message naming the operation (use --backend vm).
+// and W^X code memory. Branches and loops run masked (sse_compile.cpp), arrays through helpers
+// (sse_arrays.h); kernels that call recursive functions are refused with a message (use the VM).
 #include <memory>
 
 #include "backends/backend.h"
 #include "backends/sse/code_memory.h"
+#include "backends/sse/sse_arrays.h"
 
 namespace fscript::sse {
 
 // The generated function: points [begin, end) of the batch, end - begin a multiple of 4. Returns 0,
-// or a runtime error: (kind << 32) | source line, kind 1 = the loop budget.
-using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end);
+// or a runtime error: (kind << 32) | source line, kind 1 = the loop budget, 2 = an array error
+// (its message in `arrays`).
+using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end,
+                              ArrayState* arrays);
 
 class SseKernel : public backend::Kernel {
  public:
-  SseKernel(std::unique_ptr<CodeMemory> code, size_t inputs, size_t outputs, const backend::Budgets& budgets)
-      : code_(std::move(code)), inputs_(inputs), outputs_(outputs), budgets_(budgets) {}
+  SseKernel(std::unique_ptr<CodeMemory> code, size_t inputs, size_t outputs, const backend::Budgets& budgets,
+            std::vector<std::string> array_names)
+      : code_(std::move(code)), inputs_(inputs), outputs_(outputs), budgets_(budgets), arrays_(std::move(array_names)) {}
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
   bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const override;
@@ -26,10 +30,12 @@ class SseKernel : public backend::Kernel {
 
  private:
   KernelFn fn() const { return reinterpret_cast<KernelFn>(const_cast<uint8_t*>(code_->start())); }
-  bool status(uint64_t code, backend::RuntimeError& err) const;
+  bool status(uint64_t code, const ArrayState& arrays, backend::RuntimeError& err) const;
+  ArrayState fresh_arrays() const;
   std::unique_ptr<CodeMemory> code_;
   size_t inputs_, outputs_;
   backend::Budgets budgets_;
+  std::vector<std::string> arrays_;  // names by slot
 };
 
 class SseBackend : public backend::Backend {
@@ -41,6 +47,6 @@ class SseBackend : public backend::Backend {
 // The machine code of the module's kernel; empty with a message when the kernel uses what this
 // stage does not compile. `listing`, when given, receives the code as assembly text (emit-asm).
 std::vector<uint8_t> generate(const ir::Module& m, const backend::Budgets& budgets, std::string& error,
-                              std::string* listing = nullptr);
+                              std::string* listing = nullptr, std::vector<std::string>* array_names = nullptr);
 
 }  // namespace fscript::sse

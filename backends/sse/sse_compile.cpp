@@ -18,6 +18,7 @@
 #include <map>
 
 #include "backends/regalloc.h"
+#include "backends/sse/sse_arrays.h"
 #include "backends/sse/sse_backend.h"
 #include "backends/sse/x86.h"
 #include "ir/passes/passes.h"
@@ -49,9 +50,9 @@ struct Src {
 
 class Codegen {
  public:
-  Codegen(const ir::Function& fn, const backend::Budgets& budgets, int spill_slots)
+  Codegen(const ir::Function& fn, const backend::Budgets& budgets, int spill_slots, uint32_t global_arrays)
       : fn_(fn), budget_(static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, INT32_MAX - 1))),
-        spill_slots_(spill_slots) {}
+        spill_slots_(spill_slots), global_arrays_(global_arrays) {}
 
   bool run(std::string& error) {
     if (!layout(error)) return false;
@@ -117,6 +118,10 @@ class Codegen {
         else
           for (const ir::Inst* arg : in->args) uses_[arg->id].push_back(pos);
         memory |= in->op == ir::Op::GLoad || in->op == ir::Op::GStore || in->op == ir::Op::Tick;
+        bool array = in->op == ir::Op::ANew || in->op == ir::Op::ALoad || in->op == ir::Op::AStore ||
+                     in->op == ir::Op::ALen;
+        memory |= array;
+        arrays_ |= array;
         max_phis_ = std::max(max_phis_, in->op == ir::Op::Phi ? ++phis_here_ : (phis_here_ = 0));
         ++pos;
       }
@@ -164,6 +169,7 @@ class Codegen {
     a_.sub(Gp::rsp, frame_bytes());
     a_.mov(Gp::rbx, Gp::rdi);
     a_.mov(Gp::r12, Gp::rsi);
+    a_.mov(Gp::r15, Gp::r8);  // the arrays' state
     a_.lea(Gp::r13, Mem::at(Gp::rdx, Gp::rdx, 2));  // byte offsets: 4 * point index
     a_.add(Gp::r13, Gp::rdx);
     a_.lea(Gp::r14, Mem::at(Gp::rcx, Gp::rcx, 2));
@@ -179,6 +185,11 @@ class Codegen {
 
   // Each group of four points: every lane waits at the entry; counters zero; globals NaN.
   void start_group() {
+    if (arrays_) {
+      a_.mov(Gp::rdi, Gp::r15);
+      a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(&fs_sse_arrays_reset));
+      a_.call(Gp::rax);
+    }
     a_.pcmpeqd(Xmm::x0, Xmm::x0);
     a_.movaps(pending(0), Xmm::x0);
     a_.xorps(Xmm::x1, Xmm::x1);
@@ -474,9 +485,60 @@ class Codegen {
     define(in, d);
   }
 
+  // An array operation: its operands to the scratch slots, every register saved, the helper called
+  // with (state, slot, operands..., lane mask); a helper's 1 is a runtime error with its message.
+  void array_op(const ir::Inst& in, int pos) {
+    for (size_t i = 0; i < in.args.size(); ++i) {
+      load(Xmm::x0, src(in.args[i]));
+      a_.movaps(at(kScratch + 16 * static_cast<int32_t>(i)), Xmm::x0);
+    }
+    for (int r = kFirstReg; r < kNumRegs; ++r) {
+      if (held_[r] < 0) continue;
+      if (next_use(static_cast<uint32_t>(held_[r]), pos) != INT32_MAX) spill(r);
+      else drop(static_cast<uint32_t>(held_[r]));
+    }
+    uint32_t slot = in.array_global ? static_cast<uint32_t>(in.aux) : global_arrays_ + static_cast<uint32_t>(in.aux);
+    a_.mov(Gp::rdi, Gp::r15);
+    a_.mov_imm(Gp::rsi, slot);
+    const void* fn = nullptr;
+    switch (in.op) {
+      case ir::Op::ANew:
+        a_.lea(Gp::rdx, at(kScratch));
+        a_.lea(Gp::rcx, at(kActive));
+        fn = reinterpret_cast<const void*>(&fs_sse_anew);
+        break;
+      case ir::Op::ALoad:
+        a_.lea(Gp::rdx, at(kScratch));
+        a_.lea(Gp::rcx, at(kScratch + 48));
+        a_.lea(Gp::r8, at(kActive));
+        fn = reinterpret_cast<const void*>(&fs_sse_aload);
+        break;
+      case ir::Op::AStore:
+        a_.lea(Gp::rdx, at(kScratch));
+        a_.lea(Gp::rcx, at(kScratch + 16));
+        a_.lea(Gp::r8, at(kActive));
+        fn = reinterpret_cast<const void*>(&fs_sse_astore);
+        break;
+      default:  // ALen
+        a_.lea(Gp::rdx, at(kScratch + 48));
+        a_.lea(Gp::rcx, at(kActive));
+        fn = reinterpret_cast<const void*>(&fs_sse_alen);
+        break;
+    }
+    a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(fn));
+    a_.call(Gp::rax);
+    a_.test(Gp::rax, Gp::rax);
+    a_.jcc(Cond::NE, trap(2, in.line));
+    if (in.op == ir::Op::ALoad || in.op == ir::Op::ALen) {
+      Xmm d = alloc(pos);
+      a_.movaps(d, at(kScratch + 48));
+      define(in, d);
+    }
+  }
+
   bool unsupported(const ir::Inst& in, std::string& error) {
     error = std::string("the sse backend does not compile '") + ir::mnemonic(in.op) +
-            "' yet (arrays and calls of recursive functions); use --backend vm";
+            "' yet (calls of recursive functions); use --backend vm";
     return false;
   }
 
@@ -684,7 +746,10 @@ class Codegen {
         masked_store(at(global_slot_ + 16 * in.aux), arg(0), at(kActive));
         return true;
       case Op::Phi: return true;  // its home is written on the incoming edges
-      case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen: case Op::Call:
+      case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
+        array_op(in, pos);
+        return true;
+      case Op::Call:
         return unsupported(in, error);
     }
     return unsupported(in, error);
@@ -703,7 +768,8 @@ class Codegen {
   std::vector<std::vector<int>> uses_;
   std::vector<int> reg_of_, slot_of_, home_;
   std::array<int, kNumRegs> held_{};
-  bool straight_ = true;
+  bool straight_ = true, arrays_ = false;
+  uint32_t global_arrays_ = 0;  // array slots: the module's global arrays first, then the kernel's
   int cur_ = 0, next_slot_ = 0, max_phis_ = 0, phis_here_ = 0, num_globals_ = 0;
   int32_t out_slot_ = 0, pending_slot_ = 0, global_slot_ = 0, temp_slot_ = 0, save_slot_ = 0, spill_base_ = 0;
   struct SlowPath {  // a call of a batch function out of line: every register saved around it
@@ -719,7 +785,7 @@ class Codegen {
 }  // namespace
 
 std::vector<uint8_t> generate(const ir::Module& module, const backend::Budgets& budgets, std::string& error,
-                              std::string* listing) {
+                              std::string* listing, std::vector<std::string>* array_names) {
   // Masked lanes have no call stack: calls of non-recursive functions are inlined first (an
   // unoptimised module still has them); calls of recursive ones are refused below.
   std::unique_ptr<ir::Module> inlined;
@@ -741,10 +807,14 @@ std::vector<uint8_t> generate(const ir::Module& module, const backend::Budgets& 
     error = "the module has no kernel function";
     return {};
   }
+  if (array_names) {
+    *array_names = m.arrays;
+    array_names->insert(array_names->end(), fn->arrays.begin(), fn->arrays.end());
+  }
   // Twice: the first pass counts the spill slots the frame must hold.
-  Codegen sizing(*fn, budgets, 0);
+  Codegen sizing(*fn, budgets, 0, static_cast<uint32_t>(m.arrays.size()));
   if (!sizing.run(error)) return {};
-  Codegen final_pass(*fn, budgets, sizing.slots_used());
+  Codegen final_pass(*fn, budgets, sizing.slots_used(), static_cast<uint32_t>(m.arrays.size()));
   if (listing) final_pass.enable_listing();
   if (!final_pass.run(error)) return {};
   std::vector<uint8_t> code = final_pass.finish();

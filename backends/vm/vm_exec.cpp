@@ -422,8 +422,7 @@ bool Executor::array_slot(Frame& fr, const VInst& v, uint32_t i, int64_t*& off, 
   } else {
     off = &fr.arr_off[size_t(v.aux) * fr.lanes + i];
     len = &fr.arr_len[size_t(v.aux) * fr.lanes + i];
-    name = fr.f->array_names[v.aux];
-    name = name.substr(0, name.find('.'));
+    name = backend::array_display_name(fr.f->array_names[v.aux]);
   }
   return true;
 }

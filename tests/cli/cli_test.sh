@@ -87,8 +87,7 @@ check backend-sse 0 '^0$' -- "$F" run "$T/sphere.fs" --backend sse 1 0 0
 check emit-asm-sse 0 'mulps xmm[0-9]+, xmm[0-9]+' -- "$F" emit-asm "$T/sphere.fs" --backend sse
 check emit-asm-sse-pool 0 '\.float 1, 1, 1, 1' -- "$F" emit-asm "$T/sphere.fs" --backend sse
 check backend-sse-loop 1 'loop.fs:2: error: loop iteration budget' -- "$F" run "$T/loop.fs" --backend sse 0
-printf 'function f(x) { var a = new Array(2); a[0] = x; return a[0]; }\n' > "$T/arr.fs"
-check backend-sse-refuses 1 "the sse backend does not compile 'anew' yet" -- "$F" run "$T/arr.fs" --backend sse 1
+check backend-sse-refuses 1 "the sse backend does not compile 'call' yet" -- "$F" run "$T/rec.fs" --backend sse 1
 check backend-missing 2 "backend 'llvm' is not built" -- "$F" run "$T/sphere.fs" --backend llvm 0 0 0
 check usage-unknown-command 2 '' -- "$F" frobnicate
 check usage-render-size 2 'size' -- "$F" render2d "$T/sphere.fs" --size 0x5 --bounds -1,1,-1,1

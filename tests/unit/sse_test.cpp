@@ -153,11 +153,39 @@ TEST_CASE("sse: the loop budget stops a runaway loop with the VM's message and l
   CHECK(err.line == 3);
 }
 
+TEST_CASE("sse: arrays per lane, with the VM's results and errors") {
+  agree("var a = new Array(4); for (var i = 0; i < 4; i++) a[i] = x * i; return a[1] + a[3] - a.length;");
+  agree("var a = new Array(3); a[0] = 1; if (x > 0) a[2] = y; return a[2] + a[0];");
+  // Errors: an index out of range in one lane stops the batch with the VM's message and line.
+  const char* text = "function FRep(x, y, z, t) {\n  var a = new Array(3);\n  return a[x];\n}";
+  auto vm = test::build(text, "", true, {}, "vm");
+  auto sse = test::build(text, "", true, {}, "sse");
+  REQUIRE(sse->ok);
+  std::vector<float> xs = {0, 1, 2, 7, 1}, zero(5, 0), out(5);
+  const float* in[4] = {xs.data(), zero.data(), zero.data(), zero.data()};
+  float* outs[1] = {out.data()};
+  backend::RuntimeError e1, e2;
+  CHECK(!vm->kernel->eval_batch(in, outs, 5, e1));
+  CHECK(!sse->kernel->eval_batch(in, outs, 5, e2));
+  CHECK(e2.message == e1.message);
+  CHECK(e2.message == "index 7 is out of range for array 'a' of 3 elements");
+  CHECK(e2.line == 3);
+  backend::Budgets small;
+  small.max_array_elements = 10;
+  auto big = test::build("function FRep(x, y, z, t) { var a = new Array(x); return a.length; }", "", true, small, "sse");
+  REQUIRE(big->ok);
+  CHECK(test::eval1(*big, {10}) == 10.0f);
+  float p[4] = {11, 0, 0, 0}, o[1];
+  backend::RuntimeError e3;
+  CHECK(!big->kernel->eval(p, o, e3));
+  CHECK(e3.message.find("sizes must be whole numbers from 0 to the budget of 10") != std::string::npos);
+}
+
 TEST_CASE("sse: what this stage does not compile is refused with a message") {
-  auto b = test::build("function FRep(x, y, z, t) { var a = new Array(3); a[1] = x; return a[1]; }");
+  auto b = test::build("function f(n) { return n <= 1 ? 1 : n * f(n - 1); } function FRep(x, y, z, t) { return f(x); }");
   REQUIRE(b->ok);  // on the VM
   std::string error;
   CHECK(sse::generate(*b->module, {}, error).empty());
-  CHECK(error.find("does not compile") != std::string::npos);
+  CHECK(error.find("does not compile 'call'") != std::string::npos);
   CHECK(error.find("--backend vm") != std::string::npos);
 }

@@ -26,3 +26,8 @@ function len() { var a = [1, 2, 3, 4]; return a.length; }
 // run: global_table(1) == 24
 // run: len() == 4
 // run: filled(-1) error: sizes must be whole numbers
+function pick(i) { var table = new Array(3); table[1] = 5; return table[i]; }
+function helper_pick(i) { return pick(i) + 1; }
+// run: pick(1) == 5
+// run: pick(3) error: index 3 is out of range for array 'table' of 3 elements
+// run: helper_pick(-1) error: index -1 is out of range for array 'table' of 3 elements

@@ -17,10 +17,10 @@
 #include <cstring>
 #include <map>
 
-#include "backends/regalloc.h"
 #include "backends/sse/sse_arrays.h"
 #include "backends/sse/sse_backend.h"
 #include "backends/sse/x86.h"
+#include "ir/analysis.h"
 #include "ir/passes/passes.h"
 #include "runtime/math/math.h"
 
@@ -50,9 +50,9 @@ struct Src {
 
 class Codegen {
  public:
-  Codegen(const ir::Function& fn, const backend::Budgets& budgets, int spill_slots, uint32_t global_arrays)
+  Codegen(const ir::Function& fn, const backend::Budgets& budgets, uint32_t global_arrays)
       : fn_(fn), budget_(static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, INT32_MAX - 1))),
-        spill_slots_(spill_slots), global_arrays_(global_arrays) {}
+        global_arrays_(global_arrays) {}
 
   bool run(std::string& error) {
     if (!layout(error)) return false;
@@ -94,15 +94,21 @@ class Codegen {
     return true;
   }
 
-  int slots_used() const { return next_slot_; }
   void enable_listing() { a_.enable_listing(); }
-  std::string listing() const { return a_.listing(); }
-  std::vector<uint8_t> finish() { return a_.finish(); }
+  std::string listing() const {  // with the patched frame size in place of the placeholder
+    std::string text = a_.listing(), from = "rsp, " + std::to_string(kPlaceholder), to = "rsp, " + std::to_string(frame_bytes());
+    for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) text.replace(at, from.size(), to);
+    return text;
+  }
+  std::vector<uint8_t> finish() {
+    for (size_t at : frame_fields_) a_.patch32(at, static_cast<uint32_t>(frame_bytes()));
+    return a_.finish();
+  }
 
  private:
   // ---- layout: block order, positions, uses, homes ----
   bool layout(std::string& error) {
-    for (const ir::Block* blk : backend::compute_intervals(fn_).blocks) order_.push_back(blk);
+    for (const ir::Block* blk : ir::reverse_post_order(fn_)) order_.push_back(blk);
     block_index_.assign(fn_.next_block, -1);
     for (size_t b = 0; b < order_.size(); ++b) block_index_[order_[b]->id] = static_cast<int>(b);
     uses_.assign(fn_.next_value, {});
@@ -163,10 +169,14 @@ class Codegen {
     return true;
   }
 
-  int32_t frame_bytes() const { return spill_base_ + 16 * spill_slots_ + 8; }  // + 8 realigns after six pushes
+  // The frame's size is known only once every spill slot is counted: the prologue and epilogue
+  // take a 32-bit placeholder that finish() patches.
+  int32_t frame_bytes() const { return spill_base_ + 16 * next_slot_ + 8; }  // + 8 realigns after six pushes
+  static constexpr int32_t kPlaceholder = 0x10000;
   void prologue() {
     for (Gp g : {Gp::rbx, Gp::rbp, Gp::r12, Gp::r13, Gp::r14, Gp::r15}) a_.push(g);
-    a_.sub(Gp::rsp, frame_bytes());
+    a_.sub(Gp::rsp, kPlaceholder);
+    frame_fields_.push_back(a_.size() - 4);
     a_.mov(Gp::rbx, Gp::rdi);
     a_.mov(Gp::r12, Gp::rsi);
     a_.mov(Gp::r15, Gp::r8);  // the arrays' state
@@ -176,7 +186,8 @@ class Codegen {
     a_.add(Gp::r14, Gp::rcx);
   }
   void epilogue() {
-    a_.add(Gp::rsp, frame_bytes());
+    a_.add(Gp::rsp, kPlaceholder);
+    frame_fields_.push_back(a_.size() - 4);
     for (Gp g : {Gp::r15, Gp::r14, Gp::r13, Gp::r12, Gp::rbp, Gp::rbx}) a_.pop(g);
     a_.ret();
   }
@@ -757,7 +768,7 @@ class Codegen {
 
   const ir::Function& fn_;
   int32_t budget_;
-  int spill_slots_;
+  std::vector<size_t> frame_fields_;
   Assembler a_;
   Label exit_;
   std::vector<Label> block_label_;  // one per block in order, then the end of the scan
@@ -811,14 +822,11 @@ std::vector<uint8_t> generate(const ir::Module& module, const backend::Budgets& 
     *array_names = m.arrays;
     array_names->insert(array_names->end(), fn->arrays.begin(), fn->arrays.end());
   }
-  // Twice: the first pass counts the spill slots the frame must hold.
-  Codegen sizing(*fn, budgets, 0, static_cast<uint32_t>(m.arrays.size()));
-  if (!sizing.run(error)) return {};
-  Codegen final_pass(*fn, budgets, sizing.slots_used(), static_cast<uint32_t>(m.arrays.size()));
-  if (listing) final_pass.enable_listing();
-  if (!final_pass.run(error)) return {};
-  std::vector<uint8_t> code = final_pass.finish();
-  if (listing) *listing = final_pass.listing();
+  Codegen gen(*fn, budgets, static_cast<uint32_t>(m.arrays.size()));
+  if (listing) gen.enable_listing();
+  if (!gen.run(error)) return {};
+  std::vector<uint8_t> code = gen.finish();
+  if (listing) *listing = gen.listing();
   return code;
 }
 

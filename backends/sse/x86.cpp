@@ -222,10 +222,13 @@ void Assembler::bind(Label l) {
   if (listing_on_) lines_.push_back({code_.size(), "L" + std::to_string(l.id) + ":"});
 }
 
+void Assembler::patch32(size_t at, uint32_t v) { std::memcpy(code_.data() + at, &v, 4); }
+
 Label Assembler::constant(const std::array<uint32_t, 4>& bits) {
-  for (const auto& [value, label] : pool_)
-    if (value == bits) return {label};
+  auto [it, fresh] = pool_index_.try_emplace(bits, 0);
+  if (!fresh) return {it->second};
   Label l = new_label();
+  it->second = l.id;
   pool_.push_back({bits, l.id});
   return l;
 }

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace fscript::sse {
@@ -113,6 +114,8 @@ class Assembler {
   Label constant(const std::array<uint32_t, 4>& bits);
   Label constant_ps(float v);  // four lanes of v
   size_t size() const { return code_.size(); }
+  // Overwrites the 32-bit little-endian field at `at` (an immediate fixed once the code is known).
+  void patch32(size_t at, uint32_t v);
   const std::vector<uint8_t>& bytes() const { return code_; }
   // Resolves every label use, appends the constant pool; the code is then position-independent.
   std::vector<uint8_t> finish();
@@ -170,6 +173,14 @@ class Assembler {
   };
   std::vector<Fixup> fixups_;
   std::vector<std::pair<std::array<uint32_t, 4>, int>> pool_;  // constant, label
+  struct PoolHash {
+    size_t operator()(const std::array<uint32_t, 4>& v) const {
+      uint64_t h = 1469598103934665603ull;
+      for (uint32_t w : v) h = (h ^ w) * 1099511628211ull;
+      return static_cast<size_t>(h);
+    }
+  };
+  std::unordered_map<std::array<uint32_t, 4>, int, PoolHash> pool_index_;
 };
 
 }  // namespace fscript::sse

@@ -35,7 +35,7 @@ void add_budget_flags(CLI::App& app, Args& a) {
 CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args& a) {
   CLI::App* c = app.add_subcommand(name, help);
   c->add_option("FILE", a.file, "the .fs script ('-' for standard input)")->required();
-  c->add_option("--backend,-b", a.opts.backend, "evaluation backend: vm (default: the fastest built)");
+  c->add_option("--backend,-b", a.opts.backend, "evaluation backend: vm or sse (default: the fastest built)");
   c->add_option("--entry,-e", a.entry, "function to call (default: the script's entry point)");
   add_budget_flags(*c, a);
   return c;

@@ -189,3 +189,27 @@ TEST_CASE("sse: what this stage does not compile is refused with a message") {
   CHECK(error.find("does not compile 'call'") != std::string::npos);
   CHECK(error.find("--backend vm") != std::string::npos);
 }
+
+TEST_CASE("sse: a function of 100,000 operations compiles and agrees with the VM") {
+  std::string body = "var s = x;";
+  for (int i = 0; i < 50000; ++i)
+    body += i % 3 ? "s = s * 0.99991 + y * " + std::to_string(i % 7) + ".5;" : std::string("s = max(s, z) - 0.001;");
+  body += "return s;";
+  std::string text = "function FRep(x, y, z, t) { " + body + " }";
+  auto vm = test::build(text, "", true, {}, "vm");  // one front end run; the sse kernel from its module
+  REQUIRE(vm->ok);
+  std::string error;
+  auto sse = sse::SseBackend().compile(*vm->module, {}, error);
+  REQUIRE(sse);
+  size_t ops = 0;
+  for (const auto& f : vm->module->functions)
+    for (const auto& blk : f->blocks) ops += blk->insts.size();
+  CHECK(ops >= 100000);
+  for (float x : {0.5f, -3.0f, 1e6f}) {
+    float in[4] = {x, 0.25f, 0.1f, 0}, a, b;
+    backend::RuntimeError err;
+    REQUIRE(vm->kernel->eval(in, &a, err));
+    REQUIRE(sse->eval(in, &b, err));
+    CHECK(same(a, b));
+  }
+}

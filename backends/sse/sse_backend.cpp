@@ -42,31 +42,45 @@ ArrayState SseKernel::fresh_arrays() const {
   return s;
 }
 
+namespace {
+// Small lists live on the stack: the one-point path must not allocate.
+template <typename T>
+struct Scratch {
+  explicit Scratch(size_t n) : heap(n > 32 ? n : 0) { data = n > 32 ? heap.data() : local; }
+  T local[32];
+  std::vector<T> heap;
+  T* data;
+};
+}  // namespace
+
 bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const {
   size_t whole = n & ~size_t{3};
-  ArrayState arrays = fresh_arrays();  // per call: batches may run on several threads at once
+  // Per call: batches may run on several threads at once. Only kernels with arrays need it.
+  ArrayState arrays;
+  if (!arrays_.empty()) arrays = fresh_arrays();
   if (whole && !status(fn()(inputs, outputs, 0, whole, &arrays), arrays, err)) return false;
   if (whole == n) return true;
   // The last one to three points, through four-lane copies.
-  std::vector<float> in(4 * inputs_, 0.0f), out(4 * outputs_, 0.0f);
-  std::vector<const float*> ip(inputs_);
-  std::vector<float*> op(outputs_);
+  Scratch<float> in(4 * inputs_), out(4 * outputs_);
+  Scratch<const float*> ip(inputs_);
+  Scratch<float*> op(outputs_);
+  std::fill_n(in.data, 4 * inputs_, 0.0f);
   for (size_t k = 0; k < inputs_; ++k) {
-    std::copy(inputs[k] + whole, inputs[k] + n, in.begin() + 4 * k);
-    ip[k] = in.data() + 4 * k;
+    std::copy(inputs[k] + whole, inputs[k] + n, in.data + 4 * k);
+    ip.data[k] = in.data + 4 * k;
   }
-  for (size_t k = 0; k < outputs_; ++k) op[k] = out.data() + 4 * k;
-  if (!status(fn()(ip.data(), op.data(), 0, 4, &arrays), arrays, err)) return false;
-  for (size_t k = 0; k < outputs_; ++k) std::copy_n(out.begin() + 4 * k, n - whole, outputs[k] + whole);
+  for (size_t k = 0; k < outputs_; ++k) op.data[k] = out.data + 4 * k;
+  if (!status(fn()(ip.data, op.data, 0, 4, &arrays), arrays, err)) return false;
+  for (size_t k = 0; k < outputs_; ++k) std::copy_n(out.data + 4 * k, n - whole, outputs[k] + whole);
   return true;
 }
 
 bool SseKernel::eval(const float* inputs, float* outputs, backend::RuntimeError& err) const {
-  std::vector<const float*> in(inputs_);
-  std::vector<float*> out(outputs_);
-  for (size_t k = 0; k < inputs_; ++k) in[k] = inputs + k;
-  for (size_t k = 0; k < outputs_; ++k) out[k] = outputs + k;
-  return eval_batch(in.data(), out.data(), 1, err);
+  Scratch<const float*> in(inputs_);
+  Scratch<float*> out(outputs_);
+  for (size_t k = 0; k < inputs_; ++k) in.data[k] = inputs + k;
+  for (size_t k = 0; k < outputs_; ++k) out.data[k] = outputs + k;
+  return eval_batch(in.data, out.data, 1, err);
 }
 
 }  // namespace fscript::sse

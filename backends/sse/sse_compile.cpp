@@ -17,9 +17,8 @@
 #include <cstring>
 #include <map>
 
-#include "backends/sse/sse_arrays.h"
+#include "backends/sse/lane_code.h"
 #include "backends/sse/sse_backend.h"
-#include "backends/sse/x86.h"
 #include "ir/analysis.h"
 #include "ir/passes/passes.h"
 #include "runtime/math/math.h"
@@ -27,10 +26,7 @@
 namespace fscript::sse {
 namespace {
 
-constexpr int kFirstReg = 2, kNumRegs = 16;
-constexpr int kFree = -1, kTemp = -2;  // held_[r] when r holds no value
-constexpr int32_t kScratch = 0;  // call arguments at 0, 16, 32; result at 48
-constexpr int32_t kActive = 64, kEdge0 = 80, kEdge1 = 96, kCounters = 112, kFixed = 128;
+using namespace detail;
 
 void mod_batch(const float* a, const float* b, float* out, size_t n) {
   for (size_t i = 0; i < n; ++i) out[i] = math::mod(a[i], b[i]);
@@ -39,20 +35,11 @@ void noise_batch(const float* x, const float* y, const float* z, float* out, siz
   for (size_t i = 0; i < n; ++i) out[i] = math::noise(x[i], y[i], z[i]);
 }
 
-// A source operand: a register or a memory location (spill or home slot, or constant).
-struct Src {
-  bool mem;
-  Xmm x;
-  Mem m;
-};
-
-#define FS_APPLY(method, d, s) ((s).mem ? a_.method(d, (s).m) : a_.method(d, (s).x))
-
-class Codegen {
+class Codegen : public detail::LaneCode {
  public:
   Codegen(const ir::Function& fn, const backend::Budgets& budgets, uint32_t global_arrays)
-      : fn_(fn), budget_(static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, INT32_MAX - 1))),
-        global_arrays_(global_arrays) {}
+      : LaneCode(fn, static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, INT32_MAX - 1)),
+                 global_arrays) {}
 
   bool run(std::string& error) {
     if (!layout(error)) return false;
@@ -191,8 +178,6 @@ class Codegen {
     for (Gp g : {Gp::r15, Gp::r14, Gp::r13, Gp::r12, Gp::rbp, Gp::rbx}) a_.pop(g);
     a_.ret();
   }
-  Mem at(int32_t offset) const { return Mem::at(Gp::rsp, offset); }
-  Mem pending(int b) const { return at(pending_slot_ + 16 * b); }
 
   // Each group of four points: every lane waits at the entry; counters zero; globals NaN.
   void start_group() {
@@ -249,302 +234,6 @@ class Codegen {
       ++pos;
     }
     return true;
-  }
-
-  // ---- uses and liveness (within the current block) ----
-  int next_use(uint32_t v, int pos) const {  // first use after pos in this block, or INT_MAX
-    const auto& u = uses_[v];
-    auto it = std::upper_bound(u.begin(), u.end(), pos);
-    return it == u.end() || *it >= block_end_[cur_] ? INT32_MAX : *it;
-  }
-  void drop(uint32_t v) {
-    if (reg_of_[v] < 0) return;
-    held_[reg_of_[v]] = kFree;
-    reg_of_[v] = -1;
-  }
-  void release_dead(const ir::Inst& in, int pos) {
-    for (const ir::Inst* arg : in.args)
-      if (next_use(arg->id, pos) == INT32_MAX) drop(arg->id);
-    if (in.defines_value() && next_use(in.id, pos) == INT32_MAX) drop(in.id);
-  }
-
-  // ---- registers ----
-  void spill(int reg) {
-    uint32_t v = static_cast<uint32_t>(held_[reg]);
-    if (slot_of_[v] < 0) {
-      slot_of_[v] = spill_base_ + 16 * next_slot_++;
-      a_.movaps(at(slot_of_[v]), static_cast<Xmm>(reg));
-    }
-    drop(v);
-  }
-  // A free register for the result of the instruction at pos; operands of that instruction stay.
-  Xmm alloc(int pos) {
-    int best = -1, best_use = -1;
-    for (int r = kFirstReg; r < kNumRegs; ++r) {
-      if (held_[r] == kFree) return static_cast<Xmm>(r);
-      if (held_[r] == kTemp) continue;
-      int u = next_use(static_cast<uint32_t>(held_[r]), pos - 1);
-      if (u != pos && u > best_use) best = r, best_use = u;
-    }
-    spill(best);
-    return static_cast<Xmm>(best);
-  }
-  // A scratch register for the length of one instruction's code.
-  Xmm temp(int pos) {
-    Xmm t = alloc(pos);
-    held_[static_cast<int>(t)] = kTemp;
-    return t;
-  }
-  void release(Xmm t) { held_[static_cast<int>(t)] = kFree; }
-
-  // The result is in d; a value other blocks read also goes to its home, for this block's lanes.
-  void define(const ir::Inst& in, Xmm d) {
-    held_[static_cast<int>(d)] = static_cast<int>(in.id);
-    reg_of_[in.id] = static_cast<int>(d);
-    if (home_[in.id] >= 0) masked_store(at(home_[in.id]), {false, d, {}}, at(kActive));
-  }
-  // dst = mask ? value : dst, lane by lane (a plain store in the entry block: every lane is there).
-  void masked_store(const Mem& dst, const Src& value, const Mem& mask) {
-    if (cur_ == 0 && mask.disp == kActive) {
-      if (value.mem) a_.movaps(Xmm::x1, value.m), a_.movaps(dst, Xmm::x1);
-      else a_.movaps(dst, value.x);
-      return;
-    }
-    a_.movaps(Xmm::x0, mask);
-    a_.movaps(Xmm::x1, dst);
-    FS_APPLY(blendvps, Xmm::x1, value);
-    a_.movaps(dst, Xmm::x1);
-  }
-  Src src(const ir::Inst* v) {
-    if (v->op == ir::Op::Const) return {true, Xmm::x0, Mem::rip(a_.constant_ps(v->imm))};
-    if (reg_of_[v->id] >= 0) return {false, static_cast<Xmm>(reg_of_[v->id]), {}};
-    return {true, Xmm::x0, at(slot_of_[v->id])};
-  }
-  Mem k(float v) { return Mem::rip(a_.constant_ps(v)); }
-  Mem bits(uint32_t b) { return Mem::rip(a_.constant({b, b, b, b})); }
-  void load(Xmm d, const Src& s) {
-    if (s.mem || s.x != d) FS_APPLY(movaps, d, s);
-  }
-
-  // ---- edges: phi moves as a parallel copy under the edge's mask, then the lanes wait at s ----
-  void edge(const ir::Block* to, const Mem& mask) {
-    const ir::Block* from = order_[cur_];
-    std::vector<const ir::Inst*> phis;
-    for (const ir::Inst* in : to->insts)
-      if (in->op == ir::Op::Phi) phis.push_back(in);
-    for (size_t k = 0; k < phis.size(); ++k)
-      for (size_t j = 0; j < phis[k]->args.size(); ++j)
-        if (phis[k]->targets[j] == from) {
-          Src s = src(phis[k]->args[j]);
-          if (s.mem) a_.movaps(Xmm::x1, s.m), s = {false, Xmm::x1, {}};
-          a_.movaps(at(temp_slot_ + 16 * static_cast<int32_t>(k)), s.x);
-        }
-    for (size_t k = 0; k < phis.size(); ++k)
-      masked_store(at(home_[phis[k]->id]), {true, Xmm::x0, at(temp_slot_ + 16 * static_cast<int32_t>(k))}, mask);
-    int t = block_index_[to->id];
-    a_.movaps(Xmm::x1, pending(t));
-    a_.orps(Xmm::x1, mask);
-    a_.movaps(pending(t), Xmm::x1);
-  }
-  // After both edges: a back edge that carried lanes jumps to its target.
-  void back_edge(const ir::Block* to, const Mem& mask) {
-    int t = block_index_[to->id];
-    if (t > cur_) return;  // forward: the scan gets there
-    a_.movaps(Xmm::x0, mask);
-    a_.movmskps(Gp::rax, Xmm::x0);
-    a_.test(Gp::rax, Gp::rax);
-    a_.jcc(Cond::NE, block_label_[t]);
-  }
-  Label trap(uint32_t kind, uint32_t line) {
-    Label l = a_.new_label();
-    traps_.push_back({l, (static_cast<uint64_t>(kind) << 32) | line});
-    return l;
-  }
-
-  // ---- semantics (runtime/math/math.h, lane by lane) ----
-  // min: b NaN ? NaN : (b < a ? b : a); max alike with >. minps(b, a) is (b < a ? b : a), which
-  // is already a when a is NaN; a NaN b is caught by its unordered mask, OR-ed in (the result is a
-  // NaN; NaN payloads are not part of the semantics). A constant b that is a number needs no mask.
-  // d may be b's own register: b is read before d is written.
-  void minmax(Xmm d, const Src& a, const Src& b, bool b_number, bool is_min) {
-    if (!b_number) {
-      load(Xmm::x0, b);
-      a_.cmpps(Xmm::x0, Xmm::x0, Pred::Unord);
-    }
-    load(d, b);
-    if (is_min) FS_APPLY(minps, d, a);
-    else FS_APPLY(maxps, d, a);
-    if (!b_number) a_.orps(d, Xmm::x0);
-  }
-  static bool number(const ir::Inst* v) { return v->op == ir::Op::Const && v->imm == v->imm; }
-  // xmm0 = truthy(c): ordered and != 0.
-  void truthy_mask(const Src& c) {
-    load(Xmm::x0, c);
-    if (c.mem) a_.cmpps(Xmm::x0, c.m, Pred::Ord);
-    else a_.cmpps(Xmm::x0, c.x, Pred::Ord);
-    load(Xmm::x1, c);
-    a_.cmpps(Xmm::x1, k(0.0f), Pred::Neq);
-    a_.andps(Xmm::x0, Xmm::x1);
-  }
-  void compare(Xmm d, const Src& first, const Src& second, Pred p) {
-    load(d, first);
-    if (second.mem) a_.cmpps(d, second.m, p);
-    else a_.cmpps(d, second.x, p);
-    a_.andps(d, k(1.0f));
-  }
-
-  bool call(const ir::Inst& in, int pos, const void* fn) {
-    for (size_t i = 0; i < in.args.size(); ++i) {  // arguments to the scratch slots
-      load(Xmm::x0, src(in.args[i]));
-      a_.movaps(Mem::at(Gp::rsp, kScratch + 16 * static_cast<int32_t>(i)), Xmm::x0);
-    }
-    for (int r = kFirstReg; r < kNumRegs; ++r) {  // every xmm register is caller-saved
-      if (held_[r] < 0) continue;
-      if (next_use(static_cast<uint32_t>(held_[r]), pos) != INT32_MAX) spill(r);
-      else reg_of_[held_[r]] = -1, held_[r] = -1;
-    }
-    Gp arg_regs[4] = {Gp::rdi, Gp::rsi, Gp::rdx, Gp::rcx};
-    size_t n = in.args.size();
-    for (size_t i = 0; i < n; ++i) a_.lea(arg_regs[i], Mem::at(Gp::rsp, kScratch + 16 * static_cast<int32_t>(i)));
-    a_.lea(arg_regs[n], Mem::at(Gp::rsp, kScratch + 48));
-    a_.mov_imm(n + 1 < 4 ? arg_regs[n + 1] : Gp::r8, 4);
-    a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(fn));
-    a_.call(Gp::rax);
-    Xmm d = alloc(pos);
-    a_.movaps(d, Mem::at(Gp::rsp, kScratch + 48));
-    define(in, d);
-    return true;
-  }
-
-  Mem dbl(double v) {
-    uint64_t b;
-    std::memcpy(&b, &v, 8);
-    uint32_t lo = static_cast<uint32_t>(b), hi = static_cast<uint32_t>(b >> 32);
-    return Mem::rip(a_.constant({lo, hi, lo, hi}));
-  }
-
-  // sin (offset 0) and cos (offset 1) inline: runtime/math/batch.cpp's trig_lane step for step
-  // (the argument reduced in double, Cephes polynomials, quadrant by bit tricks), so the result is
-  // the batch function's, bit for bit. A group with a lane outside the fast range (huge, inf,
-  // NaN) takes the batch function itself, out of line.
-  void trig(const ir::Inst& in, int pos, int offset) {
-    constexpr float kLimit = 8.0e5f;
-    Src a = src(in.args[0]);
-    Xmm d = alloc(pos), t0 = temp(pos), t1 = temp(pos), t2 = temp(pos), t3 = temp(pos);
-    load(Xmm::x1, a);
-    a_.movaps(at(kScratch), Xmm::x1);
-    a_.movaps(Xmm::x0, Xmm::x1);
-    a_.andps(Xmm::x0, bits(0x7FFFFFFFu));
-    a_.cmpps(Xmm::x0, k(kLimit), Pred::Le);
-    a_.movmskps(Gp::rax, Xmm::x0);
-    a_.cmp(Gp::rax, 15);
-    SlowPath sp{a_.new_label(), a_.new_label(), d, offset ? reinterpret_cast<const void*>(&math::cos_batch)
-                                                          : reinterpret_cast<const void*>(&math::sin_batch)};
-    a_.jcc(Cond::NE, sp.entry);
-    a_.cvtps2pd(t0, Xmm::x1);
-    a_.movhlps(Xmm::x1, Xmm::x1);
-    a_.cvtps2pd(t1, Xmm::x1);
-    for (auto [h, j] : {std::pair{t0, t2}, std::pair{t1, t3}}) {  // each pair of lanes in double
-      a_.movaps(j, h);
-      a_.mulpd(j, dbl(0.63661977236758134308));
-      a_.addpd(j, dbl(6755399441055744.0));
-      a_.subpd(j, dbl(6755399441055744.0));
-      a_.movaps(Xmm::x0, j);
-      a_.mulpd(Xmm::x0, dbl(1.57079632673412561417e+00));
-      a_.subpd(h, Xmm::x0);
-      a_.movaps(Xmm::x0, j);
-      a_.mulpd(Xmm::x0, dbl(6.07710050650619224932e-11));
-      a_.subpd(h, Xmm::x0);
-      a_.cvttpd2dq(j, j);
-      a_.cvtpd2ps(h, h);
-    }
-    a_.movlhps(t0, t1);     // r, four lanes
-    a_.punpcklqdq(t2, t3);  // q, four lanes
-    if (offset) a_.paddd(t2, bits(1));
-    a_.movaps(t1, t0);
-    a_.mulps(t1, t0);  // z = r * r
-    a_.movaps(t3, k(-1.9515295891e-4f));  // sin: ((c1 z + c2) z - c3) z r + r
-    a_.mulps(t3, t1);
-    a_.addps(t3, k(8.3321608736e-3f));
-    a_.mulps(t3, t1);
-    a_.subps(t3, k(1.6666654611e-1f));
-    a_.mulps(t3, t1);
-    a_.mulps(t3, t0);
-    a_.addps(t3, t0);
-    a_.movaps(d, k(2.443315711809948e-5f));  // cos: ((d1 z - d2) z + d3) z z - 0.5 z + 1
-    a_.mulps(d, t1);
-    a_.subps(d, k(1.388731625493765e-3f));
-    a_.mulps(d, t1);
-    a_.addps(d, k(4.166664568298827e-2f));
-    a_.mulps(d, t1);
-    a_.mulps(d, t1);
-    a_.movaps(Xmm::x1, k(0.5f));
-    a_.mulps(Xmm::x1, t1);
-    a_.subps(d, Xmm::x1);
-    a_.addps(d, k(1.0f));
-    a_.movaps(Xmm::x0, t2);  // odd quadrant: the cosine polynomial
-    a_.pand(Xmm::x0, bits(1));
-    a_.pcmpeqd(Xmm::x0, bits(1));
-    a_.blendvps(t3, d);
-    a_.pand(t2, bits(2));  // quadrants 2 and 3: the sign flips
-    a_.pslld(t2, 30);
-    a_.xorps(t3, t2);
-    a_.movaps(d, t3);
-    a_.bind(sp.back);
-    slow_.push_back(sp);
-    for (Xmm t : {t0, t1, t2, t3}) release(t);
-    define(in, d);
-  }
-
-  // An array operation: its operands to the scratch slots, every register saved, the helper called
-  // with (state, slot, operands..., lane mask); a helper's 1 is a runtime error with its message.
-  void array_op(const ir::Inst& in, int pos) {
-    for (size_t i = 0; i < in.args.size(); ++i) {
-      load(Xmm::x0, src(in.args[i]));
-      a_.movaps(at(kScratch + 16 * static_cast<int32_t>(i)), Xmm::x0);
-    }
-    for (int r = kFirstReg; r < kNumRegs; ++r) {
-      if (held_[r] < 0) continue;
-      if (next_use(static_cast<uint32_t>(held_[r]), pos) != INT32_MAX) spill(r);
-      else drop(static_cast<uint32_t>(held_[r]));
-    }
-    uint32_t slot = in.array_global ? static_cast<uint32_t>(in.aux) : global_arrays_ + static_cast<uint32_t>(in.aux);
-    a_.mov(Gp::rdi, Gp::r15);
-    a_.mov_imm(Gp::rsi, slot);
-    const void* fn = nullptr;
-    switch (in.op) {
-      case ir::Op::ANew:
-        a_.lea(Gp::rdx, at(kScratch));
-        a_.lea(Gp::rcx, at(kActive));
-        fn = reinterpret_cast<const void*>(&fs_sse_anew);
-        break;
-      case ir::Op::ALoad:
-        a_.lea(Gp::rdx, at(kScratch));
-        a_.lea(Gp::rcx, at(kScratch + 48));
-        a_.lea(Gp::r8, at(kActive));
-        fn = reinterpret_cast<const void*>(&fs_sse_aload);
-        break;
-      case ir::Op::AStore:
-        a_.lea(Gp::rdx, at(kScratch));
-        a_.lea(Gp::rcx, at(kScratch + 16));
-        a_.lea(Gp::r8, at(kActive));
-        fn = reinterpret_cast<const void*>(&fs_sse_astore);
-        break;
-      default:  // ALen
-        a_.lea(Gp::rdx, at(kScratch + 48));
-        a_.lea(Gp::rcx, at(kActive));
-        fn = reinterpret_cast<const void*>(&fs_sse_alen);
-        break;
-    }
-    a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(fn));
-    a_.call(Gp::rax);
-    a_.test(Gp::rax, Gp::rax);
-    a_.jcc(Cond::NE, trap(2, in.line));
-    if (in.op == ir::Op::ALoad || in.op == ir::Op::ALen) {
-      Xmm d = alloc(pos);
-      a_.movaps(d, at(kScratch + 48));
-      define(in, d);
-    }
   }
 
   bool unsupported(const ir::Inst& in, std::string& error) {
@@ -765,30 +454,6 @@ class Codegen {
     }
     return unsupported(in, error);
   }
-
-  const ir::Function& fn_;
-  int32_t budget_;
-  std::vector<size_t> frame_fields_;
-  Assembler a_;
-  Label exit_;
-  std::vector<Label> block_label_;  // one per block in order, then the end of the scan
-  std::vector<std::pair<Label, uint64_t>> traps_;
-  std::vector<const ir::Block*> order_;
-  std::vector<int> block_index_, block_start_, block_end_, def_block_;
-  std::vector<bool> cross_;
-  std::vector<std::vector<int>> uses_;
-  std::vector<int> reg_of_, slot_of_, home_;
-  std::array<int, kNumRegs> held_{};
-  bool straight_ = true, arrays_ = false;
-  uint32_t global_arrays_ = 0;  // array slots: the module's global arrays first, then the kernel's
-  int cur_ = 0, next_slot_ = 0, max_phis_ = 0, phis_here_ = 0, num_globals_ = 0;
-  int32_t out_slot_ = 0, pending_slot_ = 0, global_slot_ = 0, temp_slot_ = 0, save_slot_ = 0, spill_base_ = 0;
-  struct SlowPath {  // a call of a batch function out of line: every register saved around it
-    Label entry, back;
-    Xmm result;
-    const void* fn;
-  };
-  std::vector<SlowPath> slow_;
 };
 
 #undef FS_APPLY

@@ -267,6 +267,20 @@ class Codegen : public detail::LaneCode {
       case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: {
         Src b = arg(1);
         Src a = arg(0);
+        // a + b and a * b are b + a and b * a, bit for bit: when only b dies here, its register
+        // takes the result and no copy is needed.
+        const ir::Inst *ia = in.args[0], *ib = in.args[1];
+        auto dying = [&](const ir::Inst* v) {
+          return v->op != Op::Const && reg_of_[v->id] >= 0 && next_use(v->id, pos) == INT32_MAX;
+        };
+        if ((in.op == Op::Add || in.op == Op::Mul) && !dying(ia) && dying(ib) && ia != ib) {
+          Xmm d = static_cast<Xmm>(reg_of_[ib->id]);
+          drop(ib->id);
+          if (in.op == Op::Add) FS_APPLY(addps, d, a);
+          else FS_APPLY(mulps, d, a);
+          define(in, d);
+          return true;
+        }
         Xmm d = dest_binary();
         load(d, a);
         if (in.op == Op::Add) FS_APPLY(addps, d, b);

@@ -68,12 +68,31 @@ Mat4 vrml_transform(const double t[3], const double r[4], const double s[3], con
   return multiply(m, translate(c, -1));
 }
 
-namespace {
-
-double num(const vrml::Node& n, const char* field, size_t k = 0, double fallback = 0) {
+double field_number(const vrml::Node& n, const char* field, size_t k, double fallback) {
   const vrml::Value* v = n.get(field);
   return v && v->nums.size() > k ? v->nums[k] : fallback;
 }
+
+Mat4 transform_matrix(const vrml::Node& n) {
+  double t[3], r[4], s[3], sr[4], c[3];
+  for (int i = 0; i < 3; ++i) {
+    t[i] = field_number(n, "translation", i);
+    s[i] = field_number(n, "scale", i, 1);
+    c[i] = field_number(n, "center", i);
+  }
+  for (int i = 0; i < 4; ++i) {
+    r[i] = field_number(n, "rotation", i);
+    sr[i] = field_number(n, "scaleOrientation", i);
+  }
+  return vrml_transform(t, r, s, sr, c);
+}
+
+TimeSensorFields time_fields(const vrml::Node& n) {
+  return {field_number(n, "startTime"), field_number(n, "stopTime"), field_number(n, "cycleInterval", 0, 1),
+          field_number(n, "loop") != 0, field_number(n, "enabled", 0, 1) != 0};
+}
+
+namespace {
 std::string str(const vrml::Node& n, const char* field) {
   const vrml::Value* v = n.get(field);
   return v && !v->strs.empty() ? v->strs[0] : "";
@@ -211,13 +230,12 @@ class Builder {
       s.fraction = *opts_.fraction;
       return s;
     }
-    TimeSensorFields own{num(n, "startTime"), num(n, "stopTime"), num(n, "cycleInterval", 0, 1),
-                         num(n, "loop") != 0, num(n, "enabled", 0, 1) != 0};
+    TimeSensorFields own = time_fields(n);
     for (const auto& r : scene_.routes) {
       if (r.to_node != n.def_name || n.def_name.empty()) continue;
       auto src = scene_.defs.find(r.from_node);
       if (src == scene_.defs.end() || src->second->type != "TimeSensor") continue;
-      TimeSensorState ext = evaluate_time_sensor(sensor_fields(*src->second), opts_.now);
+      TimeSensorState ext = evaluate_time_sensor(time_fields(*src->second), opts_.now);
       if (r.to_field == "set_fraction" && r.from_field == "fraction_changed") return ext;
       if ((r.to_field == "startTime" || r.to_field == "set_startTime") && r.from_field == "cycleTime" && ext.ever_active)
         own.start_time = ext.cycle_time;
@@ -225,14 +243,9 @@ class Builder {
     return evaluate_time_sensor(own, opts_.now);
   }
 
-  static TimeSensorFields sensor_fields(const vrml::Node& ts) {
-    return {num(ts, "startTime"), num(ts, "stopTime"), num(ts, "cycleInterval", 0, 1), num(ts, "loop") != 0,
-            num(ts, "enabled", 0, 1) != 0};
-  }
-
   void set_time(CompiledField& f, const vrml::Node& n, double fraction) {
-    f.span0 = num(n, "timeSpan", 0, 0);
-    f.span1 = num(n, "timeSpan", 1, 1);
+    f.span0 = field_number(n, "timeSpan", 0, 0);
+    f.span1 = field_number(n, "timeSpan", 1, 1);
     f.t = node_time(fraction, f.span0, f.span1);
   }
 
@@ -251,19 +264,7 @@ class Builder {
       return;
     }
     Mat4 here = m;
-    if (n->type == "Transform") {
-      double t[3], r[4], s[3], sr[4], c[3];
-      for (int i = 0; i < 3; ++i) {
-        t[i] = num(*n, "translation", i);
-        s[i] = num(*n, "scale", i, 1);
-        c[i] = num(*n, "center", i);
-      }
-      for (int i = 0; i < 4; ++i) {
-        r[i] = num(*n, "rotation", i);
-        sr[i] = num(*n, "scaleOrientation", i);
-      }
-      here = multiply(m, vrml_transform(t, r, s, sr, c));
-    }
+    if (n->type == "Transform") here = multiply(m, transform_matrix(*n));
     for (const char* f : {"children", "choice", "level"})
       if (const vrml::Value* v = n->get(f))
         for (const auto& c : v->nodes) walk(c.get(), here, group, depth + 1);
@@ -307,7 +308,7 @@ class Builder {
     s.transform = m;
     s.time = time_of(n);
     s.fraction = s.time.fraction;
-    s.frames = static_cast<int>(num(n, "frames"));
+    s.frames = static_cast<int>(field_number(n, "frames"));
     const vrml::Node* geo = child(n, "geometry");
     if (!geo || geo->type != "FGeometry") {
       diag_.warning(*scene_.file, n.span, "FShape without an FGeometry: nothing to draw");
@@ -343,7 +344,7 @@ class Builder {
     if (implicit) {
       s.kind = ShapeKind::Implicit;
       for (int k = 0; k < 3; ++k) {
-        double c = num(geo, "bboxCenter", k), size = num(geo, "bboxSize", k, 10);
+        double c = field_number(geo, "bboxCenter", k), size = field_number(geo, "bboxSize", k, 10);
         s.domain[2 * k] = c - size / 2;
         s.domain[2 * k + 1] = c + size / 2;
       }

@@ -24,6 +24,13 @@ Mat4 identity();
 Mat4 multiply(const Mat4& a, const Mat4& b);
 // The VRML97 Transform: T * C * R * SR * S * -SR * -C.
 Mat4 vrml_transform(const double t[3], const double r[4], const double s[3], const double sr[4], const double c[3]);
+// The local matrix of a Transform node (its fields, or their defaults).
+Mat4 transform_matrix(const vrml::Node& transform);
+
+// Component k of a numeric field (written or the interface default), else `fallback`.
+double field_number(const vrml::Node& n, const char* field, size_t k = 0, double fallback = 0);
+// The TimeSensor fields of a TimeSensor, FShape or FTransform.
+TimeSensorFields time_fields(const vrml::Node& n);
 
 // One compiled FScript field of a node.
 struct CompiledField {

@@ -119,8 +119,10 @@ bool displace(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err) {
   return true;
 }
 
+}  // namespace
+
 // Positions by the matrix, normals by its inverse transpose (non-uniform scales bend them).
-void transform(const Mat4& t, mesh::Mesh& m) {
+void transform_mesh(const Mat4& t, mesh::Mesh& m) {
   if (t == identity()) return;
   for (auto& p : m.positions) {
     mesh::Vec3 q;
@@ -143,8 +145,6 @@ void transform(const Mat4& t, mesh::Mesh& m) {
   if (det < 0)
     for (auto& tri : m.triangles) std::swap(tri[1], tri[2]);
 }
-
-}  // namespace
 
 bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, bool world, int threads) {
   if (!s.geometry.kernel) {
@@ -171,7 +171,7 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, boo
     ok = mesh::polygonize_parametric(job, out, err) && (s.kind == ShapeKind::Curve || displace(s, out, err));
   }
   if (!ok || !colour_vertices(s, out, err) || !evaluate_material(s, out, err)) return false;
-  if (world) transform(s.transform, out);
+  if (world) transform_mesh(s.transform, out);
   return true;
 }
 
@@ -189,7 +189,7 @@ bool mesh_parametric_group(const SceneModel& m, int group, mesh::Mesh& out, back
       mesh::Mesh part;
       if (!(is_group ? mesh_group(m, index, part, err, false, threads) : mesh_shape(m.shapes[index], part, err, false, threads)))
         return false;
-      transform(matrix, part);
+      transform_mesh(matrix, part);
       out.append(part);
     }
     return true;
@@ -228,7 +228,7 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::Runtim
   if (parametric_group(m, group)) {
     if (!mesh_parametric_group(m, group, out, err, threads)) return false;
     const Shape* first = first_shape_below(m, group);
-    if (first && world) transform(first->transform, out);
+    if (first && world) transform_mesh(first->transform, out);
     return true;
   }
   GroupField field(m, group);
@@ -245,7 +245,7 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::Runtim
   if (!mesh::polygonize_implicit(job, out, err)) return false;
   const Shape* first = field.first_shape();
   if (first && (!colour_vertices(*first, out, err) || !evaluate_material(*first, out, err))) return false;
-  if (first && world) transform(first->transform, out);
+  if (first && world) transform_mesh(first->transform, out);
   return true;
 }
 

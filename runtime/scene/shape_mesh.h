@@ -16,6 +16,9 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, boo
 bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err, bool world = true,
                 int threads = 1);
 
+// Positions by the matrix, normals by its inverse transpose; a mirroring matrix flips the winding.
+void transform_mesh(const Mat4& t, mesh::Mesh& m);
+
 // The pattern map: piecewise linear over keys, clamped at the ends; no pattern: a grey level.
 mesh::Vec3 pattern_colour(const vrml::Node* material, float value);
 

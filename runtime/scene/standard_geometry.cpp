@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "runtime/scene/scene_model.h"
+#include "runtime/scene/shape_mesh.h"
 
 namespace fscript::scene {
 namespace {
@@ -18,8 +19,7 @@ const std::vector<double>& nums(const vrml::Node* n, const char* field) {
 }
 
 double number(const vrml::Node* n, const char* field, double fallback) {
-  const auto& v = nums(n, field);
-  return v.empty() ? fallback : v[0];
+  return n ? field_number(*n, field, 0, fallback) : fallback;
 }
 
 const vrml::Node* child(const vrml::Node* n, const char* field) {
@@ -188,20 +188,6 @@ void material(const vrml::Node* shape, mesh::Mesh& m) {
   m.material = out;
 }
 
-void apply(const Mat4& t, mesh::Mesh& m) {
-  for (auto& p : m.positions) {
-    mesh::Vec3 q;
-    for (int r = 0; r < 3; ++r) q[r] = static_cast<float>(t[r] * p[0] + t[4 + r] * p[1] + t[8 + r] * p[2] + t[12 + r]);
-    p = q;
-  }
-  for (auto& n : m.normals) {  // rotations and uniform scales; the renderer lights both sides
-    mesh::Vec3 q;
-    for (int r = 0; r < 3; ++r) q[r] = static_cast<float>(t[r] * n[0] + t[4 + r] * n[1] + t[8 + r] * n[2]);
-    float len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
-    n = len > 0 ? mesh::Vec3{q[0] / len, q[1] / len, q[2] / len} : n;
-  }
-}
-
 void walk(const vrml::Node* n, const Mat4& m, std::vector<mesh::Mesh>& out, int depth) {
   if (!n || n->fvrml || n->proto || depth > 1000) return;
   if (n->type == "Shape") {
@@ -215,23 +201,12 @@ void walk(const vrml::Node* n, const Mat4& m, std::vector<mesh::Mesh>& out, int 
     else if (g->type == "Cylinder" || g->type == "Cone") round_solid(g, g->type == "Cone", mesh);
     else return;
     material(n, mesh);
-    apply(m, mesh);
+    transform_mesh(m, mesh);
     out.push_back(std::move(mesh));
     return;
   }
   Mat4 here = m;
-  if (n->type == "Transform") {
-    double t[3], r[4], s[3], sr[4], c[3];
-    for (int i = 0; i < 3; ++i) {
-      const auto &tv = nums(n, "translation"), &sv = nums(n, "scale"), &cv = nums(n, "center");
-      t[i] = tv.size() > size_t(i) ? tv[i] : 0, s[i] = sv.size() > size_t(i) ? sv[i] : 1, c[i] = cv.size() > size_t(i) ? cv[i] : 0;
-    }
-    for (int i = 0; i < 4; ++i) {
-      const auto &rv = nums(n, "rotation"), &srv = nums(n, "scaleOrientation");
-      r[i] = rv.size() > size_t(i) ? rv[i] : (i == 2 ? 1 : 0), sr[i] = srv.size() > size_t(i) ? srv[i] : (i == 2 ? 1 : 0);
-    }
-    here = multiply(m, vrml_transform(t, r, s, sr, c));
-  }
+  if (n->type == "Transform") here = multiply(m, transform_matrix(*n));
   if (n->type == "Switch") {  // only the chosen child is drawn
     int which = static_cast<int>(number(n, "whichChoice", -1));
     const vrml::Value* v = n->get("choice");

@@ -114,12 +114,7 @@ void lights(const vrml::Node* n, const fscript::scene::Mat4& m, std::vector<fscr
     return;
   }
   fscript::scene::Mat4 here = m;
-  if (n->type == "Transform") {
-    double t[3] = {0, 0, 0}, r[4] = {0, 0, 1, 0}, s[3] = {1, 1, 1}, sr[4] = {0, 0, 1, 0}, c[3] = {0, 0, 0};
-    numbers(*n, "translation", t, 3), numbers(*n, "rotation", r, 4), numbers(*n, "scale", s, 3);
-    numbers(*n, "scaleOrientation", sr, 4), numbers(*n, "center", c, 3);
-    here = fscript::scene::multiply(m, fscript::scene::vrml_transform(t, r, s, sr, c));
-  }
+  if (n->type == "Transform") here = fscript::scene::multiply(m, fscript::scene::transform_matrix(*n));
   if (n->type == "Transform" || n->type == "Group" || n->type == "Anchor" || n->type == "Collision")
     if (const vrml::Value* v = n->get("children"))
       for (const auto& c : v->nodes) lights(c.get(), here, out, depth + 1);

@@ -49,16 +49,6 @@ bool frame_models(const Options& o, Loaded& l, int n, std::vector<SceneModel>& o
   return true;
 }
 
-double number(const vrml::Node& n, const char* field, double fallback) {
-  const vrml::Value* v = n.get(field);
-  return v && !v->nums.empty() ? v->nums[0] : fallback;
-}
-
-fscript::scene::TimeSensorFields timing(const vrml::Node& n) {
-  return {number(n, "startTime", 0), number(n, "stopTime", 0), number(n, "cycleInterval", 1),
-          number(n, "loop", 0) != 0, number(n, "enabled", 1) != 0};
-}
-
 bool externally_driven(const vrml::Scene& scene, const vrml::Node& n) {
   if (n.def_name.empty()) return false;
   for (const auto& r : scene.routes)
@@ -127,7 +117,7 @@ std::vector<Track> tracks(const Options& o, const SceneModel& model) {
   }
   for (size_t g = 0; g < model.groups.size(); ++g) {
     const auto& grp = model.groups[g];
-    int n = count(number(*grp.node, "frames", 0));
+    int n = count(fscript::scene::field_number(*grp.node, "frames"));
     if (grp.parent < 0 && n > 0) out.push_back({grp.node, true, static_cast<int>(g), n});
   }
   return out;
@@ -178,13 +168,13 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
       continue;
     }
     if (!world) {
-      animations[t.node] = {&cache, timing(*t.node), externally_driven(l.scene, *t.node), initial};
+      animations[t.node] = {&cache, fscript::scene::time_fields(*t.node), externally_driven(l.scene, *t.node), initial};
       continue;
     }
     mesh::GltfAnimation a;
     a.name = t.node->def_name.empty() ? "line " + std::to_string(l.scene.file->position(t.node->span.begin).line)
                                       : t.node->def_name;
-    a.cycle_interval = timing(*t.node).cycle_interval;
+    a.cycle_interval = fscript::scene::time_fields(*t.node).cycle_interval;
     a.frames.resize(cache.size());
     for (size_t i = 0; i < cache.size(); ++i) cache.peek(i, a.frames[i]);
     gltf.push_back(std::move(a));

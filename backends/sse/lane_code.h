@@ -15,6 +15,7 @@
 #include "backends/sse/sse_arrays.h"
 #include "backends/sse/x86.h"
 #include "ir/ir.h"
+#include "ir/ranges.h"
 #include "runtime/math/math.h"
 
 namespace fscript::sse::detail {
@@ -166,9 +167,18 @@ class LaneCode {
     else FS_APPLY(maxps, d, a);
     if (!b_number) a_.orps(d, Xmm::x0);
   }
-  static bool number(const ir::Inst* v) { return v->op == ir::Op::Const && v->imm == v->imm; }
+  // Without value ranges only a constant is known not to be NaN.
+  bool may_nan(const ir::Inst* v) const {
+    if (v->op == ir::Op::Const) return v->imm != v->imm;
+    return ranges_.empty() || ranges_[v->id].nan;
+  }
   // xmm0 = truthy(c): ordered and != 0.
-  void truthy_mask(const Src& c) {
+  void truthy_mask(const Src& c, bool maybe_nan = true) {
+    if (!maybe_nan) {
+      load(Xmm::x0, c);
+      a_.cmpps(Xmm::x0, k(0.0f), Pred::Neq);
+      return;
+    }
     load(Xmm::x0, c);
     if (c.mem) a_.cmpps(Xmm::x0, c.m, Pred::Ord);
     else a_.cmpps(Xmm::x0, c.x, Pred::Ord);
@@ -338,6 +348,7 @@ class LaneCode {
   }
 
   const ir::Function& fn_;
+  std::vector<ir::Range> ranges_;  // empty: no assumption about the parameters
   int32_t budget_;
   std::vector<size_t> frame_fields_;
   Assembler a_;

@@ -2,6 +2,7 @@
 #include "backends/sse/sse_backend.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace fscript::sse {
 
@@ -12,14 +13,36 @@ std::unique_ptr<backend::Kernel> SseBackend::compile(const ir::Module& m, const 
     return nullptr;
   }
   std::vector<std::string> arrays;
-  std::vector<uint8_t> code = generate(m, budgets, error, nullptr, &arrays);
+  double bound = 0;
+  std::vector<uint8_t> code = generate(m, budgets, error, nullptr, &arrays, &bound);
   if (code.empty()) return nullptr;
   auto memory = CodeMemory::create(code, error);
   if (!memory) return nullptr;
   const ir::Function* fn = nullptr;
   for (const auto& f : m.functions)
     if (f->kernel) fn = f.get();
-  return std::make_unique<SseKernel>(std::move(memory), fn->num_params, fn->num_results, budgets, std::move(arrays));
+  return std::make_unique<SseKernel>(std::move(memory), fn->num_params, fn->num_results, budgets, std::move(arrays),
+                                     bound, bound > 0 ? m.clone() : nullptr);
+}
+
+// Finite and within the bound; NaN fails the test too. No early exit, so the loop vectorises.
+bool SseKernel::in_range(const float* const* inputs, size_t n) const {
+  float bound = static_cast<float>(param_bound_);
+  bool ok = true;
+  for (size_t k = 0; k < inputs_; ++k)
+    for (size_t i = 0; i < n; ++i) ok &= std::fabs(inputs[k][i]) <= bound;
+  return ok;
+}
+
+KernelFn SseKernel::general(backend::RuntimeError& err) const {
+  std::call_once(general_once_, [this] {
+    std::string error;
+    std::vector<uint8_t> code = generate(*module_, budgets_, error);
+    if (!code.empty()) general_ = CodeMemory::create(code, error);
+    if (!general_) general_error_ = "the sse backend could not compile the kernel's general code: " + error;
+  });
+  if (!general_) err.message = general_error_;
+  return general_ ? entry(*general_) : nullptr;
 }
 
 // The same messages as the VM's.
@@ -54,11 +77,18 @@ struct Scratch {
 }  // namespace
 
 bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const {
+  KernelFn f = entry(*code_);
+  if (param_bound_ > 0 && !in_range(inputs, n) && !(f = general(err))) return false;
+  return run(f, inputs, outputs, n, err);
+}
+
+bool SseKernel::run(KernelFn f, const float* const* inputs, float* const* outputs, size_t n,
+                    backend::RuntimeError& err) const {
   size_t whole = n & ~size_t{3};
   // Per call: batches may run on several threads at once. Only kernels with arrays need it.
   ArrayState arrays;
   if (!arrays_.empty()) arrays = fresh_arrays();
-  if (whole && !status(fn()(inputs, outputs, 0, whole, &arrays), arrays, err)) return false;
+  if (whole && !status(f(inputs, outputs, 0, whole, &arrays), arrays, err)) return false;
   if (whole == n) return true;
   // The last one to three points, through four-lane copies.
   Scratch<float> in(4 * inputs_), out(4 * outputs_);
@@ -70,7 +100,7 @@ bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, si
     ip.data[k] = in.data + 4 * k;
   }
   for (size_t k = 0; k < outputs_; ++k) op.data[k] = out.data + 4 * k;
-  if (!status(fn()(ip.data, op.data, 0, 4, &arrays), arrays, err)) return false;
+  if (!status(f(ip.data, op.data, 0, 4, &arrays), arrays, err)) return false;
   for (size_t k = 0; k < outputs_; ++k) std::copy_n(out.data + 4 * k, n - whole, outputs[k] + whole);
   return true;
 }

@@ -4,6 +4,7 @@
 // and W^X code memory. Branches and loops run masked (sse_compile.cpp), arrays through helpers
 // (sse_arrays.h); kernels that call recursive functions are refused with a message (use the VM).
 #include <memory>
+#include <mutex>
 
 #include "backends/backend.h"
 #include "backends/sse/code_memory.h"
@@ -17,11 +18,15 @@ namespace fscript::sse {
 using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end,
                               ArrayState* arrays);
 
+// A kernel whose code assumes bounded inputs (param_bound > 0: every input finite with |x| <=
+// param_bound, which lets it drop NaN handling the value ranges prove useless) runs batches with
+// an input outside that range through the general code, compiled on first need from `module`.
 class SseKernel : public backend::Kernel {
  public:
   SseKernel(std::unique_ptr<CodeMemory> code, size_t inputs, size_t outputs, const backend::Budgets& budgets,
-            std::vector<std::string> array_names)
-      : code_(std::move(code)), inputs_(inputs), outputs_(outputs), budgets_(budgets), arrays_(std::move(array_names)) {}
+            std::vector<std::string> array_names, double param_bound, std::unique_ptr<ir::Module> module)
+      : code_(std::move(code)), inputs_(inputs), outputs_(outputs), budgets_(budgets), arrays_(std::move(array_names)),
+        param_bound_(param_bound), module_(std::move(module)) {}
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
   bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const override;
@@ -29,13 +34,21 @@ class SseKernel : public backend::Kernel {
   const CodeMemory& code() const { return *code_; }
 
  private:
-  KernelFn fn() const { return reinterpret_cast<KernelFn>(const_cast<uint8_t*>(code_->start())); }
+  static KernelFn entry(const CodeMemory& c) { return reinterpret_cast<KernelFn>(const_cast<uint8_t*>(c.start())); }
+  bool in_range(const float* const* inputs, size_t n) const;
+  KernelFn general(backend::RuntimeError& err) const;
+  bool run(KernelFn f, const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const;
   bool status(uint64_t code, const ArrayState& arrays, backend::RuntimeError& err) const;
   ArrayState fresh_arrays() const;
   std::unique_ptr<CodeMemory> code_;
   size_t inputs_, outputs_;
   backend::Budgets budgets_;
   std::vector<std::string> arrays_;  // names by slot
+  double param_bound_;
+  std::unique_ptr<ir::Module> module_;
+  mutable std::once_flag general_once_;
+  mutable std::unique_ptr<CodeMemory> general_;
+  mutable std::string general_error_;
 };
 
 class SseBackend : public backend::Backend {
@@ -46,7 +59,9 @@ class SseBackend : public backend::Backend {
 
 // The machine code of the module's kernel; empty with a message when the kernel uses what this
 // stage does not compile. `listing`, when given, receives the code as assembly text (emit-asm).
+// With `param_bound`, the code may assume bounded inputs and says the bound it chose (0: none).
 std::vector<uint8_t> generate(const ir::Module& m, const backend::Budgets& budgets, std::string& error,
-                              std::string* listing = nullptr, std::vector<std::string>* array_names = nullptr);
+                              std::string* listing = nullptr, std::vector<std::string>* array_names = nullptr,
+                              double* param_bound = nullptr);
 
 }  // namespace fscript::sse

@@ -82,6 +82,8 @@ class Codegen : public detail::LaneCode {
   }
 
   void enable_listing() { a_.enable_listing(); }
+  void set_ranges(std::vector<ir::Range> r) { ranges_ = std::move(r); }
+  using LaneCode::may_nan;
   std::string listing() const {  // with the patched frame size in place of the placeholder
     std::string text = a_.listing(), from = "rsp, " + std::to_string(kPlaceholder), to = "rsp, " + std::to_string(frame_bytes());
     for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) text.replace(at, from.size(), to);
@@ -350,14 +352,14 @@ class Codegen : public detail::LaneCode {
         } else {
           d = alloc(pos);
         }
-        minmax(d, sa, sb, number(b), in.op == Op::Min);
+        minmax(d, sa, sb, !may_nan(b), in.op == Op::Min);
         define(in, d);
         return true;
       }
       case Op::Clamp: {  // min(max(a, lo), hi)
         Xmm d = alloc(pos);
-        minmax(Xmm::x1, arg(0), arg(1), number(in.args[1]), false);
-        minmax(d, {false, Xmm::x1, {}}, arg(2), number(in.args[2]), true);
+        minmax(Xmm::x1, arg(0), arg(1), !may_nan(in.args[1]), false);
+        minmax(d, {false, Xmm::x1, {}}, arg(2), !may_nan(in.args[2]), true);
         define(in, d);
         return true;
       }
@@ -377,7 +379,7 @@ class Codegen : public detail::LaneCode {
       }
       case Op::Not: case Op::Truth: {
         Xmm d = alloc(pos);
-        truthy_mask(arg(0));
+        truthy_mask(arg(0), may_nan(in.args[0]));
         a_.movaps(d, Xmm::x0);
         if (in.op == Op::Not) a_.andnps(d, k(1.0f));
         else a_.andps(d, k(1.0f));
@@ -386,7 +388,7 @@ class Codegen : public detail::LaneCode {
       }
       case Op::Select: {
         Xmm d = alloc(pos);
-        truthy_mask(arg(0));
+        truthy_mask(arg(0), may_nan(in.args[0]));
         load(d, arg(2));
         FS_APPLY(blendvps, d, arg(1));
         define(in, d);
@@ -427,7 +429,7 @@ class Codegen : public detail::LaneCode {
         back_edge(in.targets[0], at(kEdge0));
         return true;
       case Op::Branch: {  // lanes where the condition is truthy take targets[0]
-        truthy_mask(arg(0));
+        truthy_mask(arg(0), may_nan(in.args[0]));
         a_.movaps(Xmm::x1, at(kActive));
         a_.andps(Xmm::x1, Xmm::x0);
         a_.movaps(at(kEdge0), Xmm::x1);
@@ -472,10 +474,39 @@ class Codegen : public detail::LaneCode {
 
 #undef FS_APPLY
 
+// The operations whose NaN handling depends on an operand that may be NaN.
+int nan_checks(const ir::Function& fn, const Codegen& gen) {
+  int n = 0;
+  for (const auto& blk : fn.blocks)
+    for (const ir::Inst* in : blk->insts) {
+      switch (in->op) {
+        case ir::Op::Min: case ir::Op::Max: n += gen.may_nan(in->args[1]); break;
+        case ir::Op::Clamp: n += gen.may_nan(in->args[1]) + gen.may_nan(in->args[2]); break;
+        case ir::Op::Not: case ir::Op::Truth: case ir::Op::Select: case ir::Op::Branch: n += gen.may_nan(in->args[0]); break;
+        default: break;
+      }
+    }
+  return n;
+}
+
+// The largest parameter bound that leaves the fewest NaN checks; 0 (and no ranges) when no bound
+// removes any, so the kernel needs no guard.
+double choose_bound(const ir::Function& fn, Codegen& gen) {
+  int general = nan_checks(fn, gen), best_checks = general;
+  double best = 0;
+  for (double bound : {65536.0, 1024.0, 16.0}) {
+    gen.set_ranges(ir::value_ranges(fn, bound));
+    int checks = nan_checks(fn, gen);
+    if (checks < best_checks) best_checks = checks, best = bound;
+  }
+  gen.set_ranges(best > 0 ? ir::value_ranges(fn, best) : std::vector<ir::Range>{});
+  return best;
+}
+
 }  // namespace
 
 std::vector<uint8_t> generate(const ir::Module& module, const backend::Budgets& budgets, std::string& error,
-                              std::string* listing, std::vector<std::string>* array_names) {
+                              std::string* listing, std::vector<std::string>* array_names, double* param_bound) {
   // Masked lanes have no call stack: calls of non-recursive functions are inlined first (an
   // unoptimised module still has them); calls of recursive ones are refused below.
   std::unique_ptr<ir::Module> inlined;
@@ -502,6 +533,7 @@ std::vector<uint8_t> generate(const ir::Module& module, const backend::Budgets& 
     array_names->insert(array_names->end(), fn->arrays.begin(), fn->arrays.end());
   }
   Codegen gen(*fn, budgets, static_cast<uint32_t>(m.arrays.size()));
+  if (param_bound) *param_bound = choose_bound(*fn, gen);
   if (listing) gen.enable_listing();
   if (!gen.run(error)) return {};
   std::vector<uint8_t> code = gen.finish();

@@ -167,6 +167,8 @@ if [ -d "$SRC/../shared/corpus" ]; then
 fi
 if [ -f "$SRC/../shared/data/prospero.fs" ]; then
   check prospero-256 0 '^8150 white pixels' -- "$F" render2d "$SRC/../shared/data/prospero.fs" --entry FRep --size 256 --bounds -1,1,-1,1
+  check prospero-256-sse 0 '^8150 white pixels' -- "$F" render2d "$SRC/../shared/data/prospero.fs" --entry FRep --size 256 --bounds -1,1,-1,1 --backend sse
+  check prospero-asm-bounded 0 '^; inputs finite with \|x\| <= 65536' -- "$F" emit-asm "$SRC/../shared/data/prospero.fs" --backend sse
 fi
 
 # fvrml-run: the scene layer (--stats) on the paper's examples, the corpus and bad scenes.

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "ir/passes/passes.h"
+#include "ir/ranges.h"
 #include "ir/text.h"
 #include "tests/unit/helpers.h"
 
@@ -67,4 +68,41 @@ TEST_CASE("passes: every pass runs alone on every program and verifies") {
       INFO(src << " / " << pass);
       CHECK(ir::run_passes(*b->module, pass, po) == "");
     }
+}
+
+namespace {
+// The range of the kernel's returned value, parameters within +-bound.
+ir::Range returned_range(const std::string& body, double bound) {
+  auto b = test::build("function FRep(x, y, z, t) { " + body + " }");
+  REQUIRE(b->ok);
+  for (const auto& f : b->module->functions)
+    if (f->kernel)
+      for (const auto& blk : f->blocks)
+        if (blk->terminator()->op == ir::Op::Ret) return ir::value_ranges(*f, bound)[blk->terminator()->args[0]->id];
+  FAIL("no kernel");
+  return {};
+}
+}  // namespace
+
+TEST_CASE("ranges: intervals and the NaN bit under bounded parameters") {
+  ir::Range r = returned_range("return sqrt(x * x + y * y);", 10);
+  CHECK(r.lo == 0);  // a sum of squares keeps its zero lower bound, so its sqrt is no NaN
+  CHECK(r.hi >= std::sqrt(200.0));
+  CHECK(r.hi < 14.2);
+  CHECK_FALSE(r.nan);
+  CHECK(returned_range("return sqrt(x);", 10).nan);  // x may be negative
+  r = returned_range("return x * x - x * x;", 1e4);
+  CHECK_FALSE(r.nan);
+  CHECK(r.lo <= -1e8);
+  CHECK(r.hi >= 1e8);
+  // Beyond the float range products overflow to infinity, and inf - inf is NaN.
+  CHECK(returned_range("return x * x * x * x * x * x * x * x * x * x - 1;", 65536).hi == INFINITY);
+  CHECK(returned_range("var a = x * x * x * x * x * x * x * x * x * x; return a - a;", 65536).nan);
+  CHECK(returned_range("return max(x, 1 / y);", 10).nan);  // division: unknown
+  CHECK_FALSE(returned_range("return min(x, y) + max(-x, 3) * abs(y);", 10).nan);
+  r = returned_range("return min(x, y) + max(-x, 3) * abs(y);", 10);
+  CHECK(r.lo <= -10 + 3 * 0);
+  CHECK(r.hi >= 10 + 10 * 10);
+  CHECK_FALSE(returned_range("return sin(x * 3) + (x < y);", 10).nan);
+  CHECK(returned_range("var s = 0; for (var i = 0; i < x; i++) s += y; return s;", 10).nan);  // a loop phi
 }

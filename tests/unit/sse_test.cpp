@@ -213,3 +213,43 @@ TEST_CASE("sse: a function of 100,000 operations compiles and agrees with the VM
     CHECK(same(a, b));
   }
 }
+
+TEST_CASE("sse: code that assumes bounded inputs, and the general code for batches outside") {
+  // With |x| <= 65536 the subtraction is finite, so max needs no NaN test; x = 1e30 makes it NaN.
+  std::string text = "function FRep(x, y, z, t) { return max(1, x * x - x * x) + min(y, 2 * y); }";
+  auto vm = test::build(text, "", true, {}, "vm");
+  auto sse = test::build(text, "", true, {}, "sse");
+  REQUIRE(sse->ok);
+  std::string error;
+  double bound = 0;
+  REQUIRE_FALSE(sse::generate(*sse->module, {}, error, nullptr, nullptr, &bound).empty());
+  CHECK(bound == 65536);
+  auto run = [&](std::vector<float> x) {
+    std::vector<float> y(x.size(), 0.5f), z(x.size()), t(x.size()), o1(x.size()), o2(x.size());
+    for (size_t i = 0; i < x.size(); ++i) y[i] = i % 3 ? -x[i] : x[i];
+    const float* in[4] = {x.data(), y.data(), z.data(), t.data()};
+    float* out1[1] = {o1.data()};
+    float* out2[1] = {o2.data()};
+    backend::RuntimeError err;
+    REQUIRE(vm->kernel->eval_batch(in, out1, x.size(), err));
+    REQUIRE(sse->kernel->eval_batch(in, out2, x.size(), err));
+    for (size_t i = 0; i < x.size(); ++i) {
+      INFO("x=" << x[i] << ": vm " << o1[i] << ", sse " << o2[i]);
+      CHECK(same(o1[i], o2[i]));
+    }
+    return o2;
+  };
+  run({0.5f, -2.0f, 65536.0f, -0.0f, 3.0f, 1e4f, -65536.0f});  // all in range: the bounded code
+  std::vector<float> o = run({0.5f, 1e30f, 2.0f, kInf, kNan, 70000.0f, -3.0f});  // the general code
+  CHECK(std::isnan(o[1]));
+  CHECK(std::isnan(o[3]));
+  CHECK(o[0] == 1.5f);
+  float one[4] = {1e30f, 1, 0, 0}, r = 0;
+  backend::RuntimeError err;
+  REQUIRE(sse->kernel->eval(one, &r, err));  // one point, out of range
+  CHECK(std::isnan(r));
+  // Kernels where a bound would remove nothing carry no assumption.
+  auto plain = test::build("function FRep(x, y, z, t) { return min(x, 1 / y); }", "", true, {}, "vm");
+  REQUIRE_FALSE(sse::generate(*plain->module, {}, error, nullptr, nullptr, &bound).empty());
+  CHECK(bound == 0);
+}

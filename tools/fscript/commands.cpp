@@ -249,10 +249,13 @@ int cmd_emit_asm(const Options& o, const std::string& file, const std::string& e
   if (auto* vk = dynamic_cast<const vm::VmKernel*>(c.kernel.get())) std::cout << vm::disassemble(vk->program());
   if (name == "sse") {
     std::string error, text;
-    if (sse::generate(*c.module, o.budgets, error, &text).empty()) {
+    double bound = 0;
+    if (sse::generate(*c.module, o.budgets, error, &text, nullptr, &bound).empty()) {
       std::cerr << "error: " << error << "\n";
       return kExitInput;
     }
+    if (bound > 0)  // the code that runs a batch whose inputs are all in range
+      std::cout << "; inputs finite with |x| <= " << bound << " (other batches run the general code)\n";
     std::cout << text;
   }
   return kExitOk;

@@ -23,7 +23,10 @@ namespace fscript::sse::detail {
 constexpr int kFirstReg = 2, kNumRegs = 16;
 constexpr int kFree = -1, kTemp = -2;  // held_[r] when r holds no value
 constexpr int32_t kScratch = 0;  // call arguments at 0, 16, 32; result at 48
-constexpr int32_t kActive = 64, kEdge0 = 80, kEdge1 = 96, kCounters = 112, kFixed = 128;
+constexpr int32_t kActive = 64, kEdge0 = 80, kEdge1 = 96, kCounters = 112, kCtx = 128, kFixed = 176;
+// The call context a kernel keeps at kCtx and hands (in rbp) to the functions it calls, which
+// share its lanes' globals, loop counters, arrays and call depth.
+constexpr int32_t kCtxGlobals = 0, kCtxCounters = 8, kCtxArrays = 16, kCtxDepth = 24, kCtxStackLimit = 32;
 
 // A source operand: a register or a memory location (spill or home slot, or constant).
 struct Src {
@@ -36,8 +39,8 @@ struct Src {
 
 class LaneCode {
  protected:
-  LaneCode(const ir::Function& fn, int32_t budget, uint32_t global_arrays)
-      : fn_(fn), budget_(budget), global_arrays_(global_arrays) {}
+  LaneCode(const ir::Function& fn, Assembler& a, int32_t budget, uint32_t global_arrays, bool callee)
+      : fn_(fn), budget_(budget), a_(a), global_arrays_(global_arrays), callee_(callee) {}
 
   Mem at(int32_t offset) const { return Mem::at(Gp::rsp, offset); }
   Mem pending(int b) const { return at(pending_slot_ + 16 * b); }
@@ -87,6 +90,26 @@ class LaneCode {
     return t;
   }
   void release(Xmm t) { held_[static_cast<int>(t)] = kFree; }
+  // Before a call: every xmm register is caller-saved, so values used later go to their slots.
+  void flush_registers(int pos) {
+    for (int r = kFirstReg; r < kNumRegs; ++r) {
+      if (held_[r] < 0) continue;
+      if (next_use(static_cast<uint32_t>(held_[r]), pos) != INT32_MAX) spill(r);
+      else drop(static_cast<uint32_t>(held_[r]));
+    }
+  }
+  // The lanes' globals and loop counters: in the kernel's frame, reached through the call
+  // context from a called function (rax holds its pointer).
+  Mem global_mem(int g) {
+    if (!callee_) return at(global_slot_ + 16 * g);
+    a_.mov(Gp::rax, Mem::at(Gp::rbp, kCtxGlobals));
+    return Mem::at(Gp::rax, 16 * g);
+  }
+  Mem counters_mem() {
+    if (!callee_) return at(kCounters);
+    a_.mov(Gp::rax, Mem::at(Gp::rbp, kCtxCounters));
+    return Mem::at(Gp::rax, 0);
+  }
 
   // The result is in d; a value other blocks read also goes to its home, for this block's lanes.
   void define(const ir::Inst& in, Xmm d) {
@@ -96,7 +119,7 @@ class LaneCode {
   }
   // dst = mask ? value : dst, lane by lane (a plain store in the entry block: every lane is there).
   void masked_store(const Mem& dst, const Src& value, const Mem& mask) {
-    if (cur_ == 0 && mask.disp == kActive) {
+    if (cur_ == 0 && mask.disp == kActive && !callee_) {
       if (value.mem) a_.movaps(Xmm::x1, value.m), a_.movaps(dst, Xmm::x1);
       else a_.movaps(dst, value.x);
       return;
@@ -198,11 +221,7 @@ class LaneCode {
       load(Xmm::x0, src(in.args[i]));
       a_.movaps(Mem::at(Gp::rsp, kScratch + 16 * static_cast<int32_t>(i)), Xmm::x0);
     }
-    for (int r = kFirstReg; r < kNumRegs; ++r) {  // every xmm register is caller-saved
-      if (held_[r] < 0) continue;
-      if (next_use(static_cast<uint32_t>(held_[r]), pos) != INT32_MAX) spill(r);
-      else reg_of_[held_[r]] = -1, held_[r] = -1;
-    }
+    flush_registers(pos);
     Gp arg_regs[4] = {Gp::rdi, Gp::rsi, Gp::rdx, Gp::rcx};
     size_t n = in.args.size();
     for (size_t i = 0; i < n; ++i) a_.lea(arg_regs[i], Mem::at(Gp::rsp, kScratch + 16 * static_cast<int32_t>(i)));
@@ -303,11 +322,7 @@ class LaneCode {
       load(Xmm::x0, src(in.args[i]));
       a_.movaps(at(kScratch + 16 * static_cast<int32_t>(i)), Xmm::x0);
     }
-    for (int r = kFirstReg; r < kNumRegs; ++r) {
-      if (held_[r] < 0) continue;
-      if (next_use(static_cast<uint32_t>(held_[r]), pos) != INT32_MAX) spill(r);
-      else drop(static_cast<uint32_t>(held_[r]));
-    }
+    flush_registers(pos);
     uint32_t slot = in.array_global ? static_cast<uint32_t>(in.aux) : global_arrays_ + static_cast<uint32_t>(in.aux);
     a_.mov(Gp::rdi, Gp::r15);
     a_.mov_imm(Gp::rsi, slot);
@@ -351,7 +366,7 @@ class LaneCode {
   std::vector<ir::Range> ranges_;  // empty: no assumption about the parameters
   int32_t budget_;
   std::vector<size_t> frame_fields_;
-  Assembler a_;
+  Assembler& a_;  // shared by the kernel and the functions it calls
   Label exit_;
   std::vector<Label> block_label_;  // one per block in order, then the end of the scan
   std::vector<std::pair<Label, uint64_t>> traps_;
@@ -362,7 +377,8 @@ class LaneCode {
   std::vector<int> reg_of_, slot_of_, home_;
   std::array<int, kNumRegs> held_{};
   bool straight_ = true, arrays_ = false;
-  uint32_t global_arrays_ = 0;  // array slots: the module's global arrays first, then the kernel's
+  uint32_t global_arrays_ = 0;  // array slots: the module's global arrays first, then each function's
+  bool callee_ = false;         // a called function: lanes come in under a mask, state through rbp
   int cur_ = 0, next_slot_ = 0, max_phis_ = 0, phis_here_ = 0, num_globals_ = 0;
   int32_t out_slot_ = 0, pending_slot_ = 0, global_slot_ = 0, temp_slot_ = 0, save_slot_ = 0, spill_base_ = 0;
   struct SlowPath {  // a call of a batch function out of line: every register saved around it

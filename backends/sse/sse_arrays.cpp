@@ -1,6 +1,7 @@
 // The array helpers of SSE kernels, lane by lane.
 #include "backends/sse/sse_arrays.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 
@@ -95,6 +96,24 @@ uint32_t fs_sse_alen(ArrayState* s, uint32_t slot, float* out, const float* mask
     if (!on(mask, i)) continue;
     if (!created(s, slot, i)) return 1;
     out[i] = static_cast<float>(s->len[slot][i]);
+  }
+  return 0;
+}
+
+uint32_t fs_sse_arrays_enter(ArrayState* s, uint32_t first, uint32_t count, int64_t* save) {
+  for (uint32_t k = 0; k < count; ++k) {
+    std::copy(s->off[first + k].begin(), s->off[first + k].end(), save + 8 * k);
+    std::copy(s->len[first + k].begin(), s->len[first + k].end(), save + 8 * k + 4);
+    s->off[first + k].fill(-1);
+    s->len[first + k].fill(0);
+  }
+  return 0;
+}
+
+uint32_t fs_sse_arrays_leave(ArrayState* s, uint32_t first, uint32_t count, const int64_t* save) {
+  for (uint32_t k = 0; k < count; ++k) {
+    std::copy(save + 8 * k, save + 8 * k + 4, s->off[first + k].begin());
+    std::copy(save + 8 * k + 4, save + 8 * k + 8, s->len[first + k].begin());
   }
   return 0;
 }

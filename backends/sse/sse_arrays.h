@@ -26,6 +26,10 @@ uint32_t fs_sse_anew(ArrayState* s, uint32_t slot, const float* size, const floa
 uint32_t fs_sse_aload(ArrayState* s, uint32_t slot, const float* index, float* out, const float* mask);
 uint32_t fs_sse_astore(ArrayState* s, uint32_t slot, const float* index, const float* value, const float* mask);
 uint32_t fs_sse_alen(ArrayState* s, uint32_t slot, float* out, const float* mask);
+// A recursive function's local arrays belong to its activation: entering saves the slots' state
+// (eight int64 per slot) and marks them not created; leaving puts the caller's back.
+uint32_t fs_sse_arrays_enter(ArrayState* s, uint32_t first, uint32_t count, int64_t* save);
+uint32_t fs_sse_arrays_leave(ArrayState* s, uint32_t first, uint32_t count, const int64_t* save);
 }
 
 }  // namespace fscript::sse

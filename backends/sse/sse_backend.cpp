@@ -4,7 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <pthread.h>
+
 namespace fscript::sse {
+
+constexpr uintptr_t kStackMargin = 256 * 1024;
 
 std::unique_ptr<backend::Kernel> SseBackend::compile(const ir::Module& m, const backend::Budgets& budgets,
                                                      std::string& error) const {
@@ -49,11 +53,39 @@ KernelFn SseKernel::general(backend::RuntimeError& err) const {
 bool SseKernel::status(uint64_t code, const ArrayState& arrays, backend::RuntimeError& err) const {
   if (code == 0) return true;
   err.line = static_cast<uint32_t>(code);
-  if (code >> 32 == 2) err.message = arrays.message;
-  else
-    err.message = "loop iteration budget exceeded: more than " + std::to_string(budgets_.max_loop_iterations) +
-                  " iterations in one evaluation";
+  switch (code >> 32) {
+    case 1:
+      err.message = "loop iteration budget exceeded: more than " + std::to_string(budgets_.max_loop_iterations) +
+                    " iterations in one evaluation";
+      break;
+    case 2: err.message = arrays.message; break;
+    case 3:
+      err.message =
+          "call depth budget exceeded: more than " + std::to_string(budgets_.max_call_depth) + " nested calls";
+      break;
+    default:
+      err.message = "recursion too deep for this thread's stack (the budget allows " +
+                    std::to_string(budgets_.max_call_depth) +
+                    " nested calls); lower --max-call-depth or use --backend vm";
+      break;
+  }
   return false;
+}
+
+// The lowest address a called function's frame may reach on this thread: its stack's end plus a
+// margin for the runtime functions the code calls. Found once per thread.
+static uintptr_t stack_limit() {
+  thread_local uintptr_t limit = [] {
+    pthread_attr_t attr;
+    void* addr = nullptr;
+    size_t size = 0;
+    if (pthread_getattr_np(pthread_self(), &attr) != 0)  // then assume the smallest usual stack
+      return reinterpret_cast<uintptr_t>(__builtin_frame_address(0)) - (size_t{1} << 20) + kStackMargin;
+    pthread_attr_getstack(&attr, &addr, &size);
+    pthread_attr_destroy(&attr);
+    return reinterpret_cast<uintptr_t>(addr) + kStackMargin;
+  }();
+  return limit;
 }
 
 ArrayState SseKernel::fresh_arrays() const {
@@ -88,7 +120,7 @@ bool SseKernel::run(KernelFn f, const float* const* inputs, float* const* output
   // Per call: batches may run on several threads at once. Only kernels with arrays need it.
   ArrayState arrays;
   if (!arrays_.empty()) arrays = fresh_arrays();
-  if (whole && !status(f(inputs, outputs, 0, whole, &arrays), arrays, err)) return false;
+  if (whole && !status(f(inputs, outputs, 0, whole, &arrays, stack_limit()), arrays, err)) return false;
   if (whole == n) return true;
   // The last one to three points, through four-lane copies.
   Scratch<float> in(4 * inputs_), out(4 * outputs_);
@@ -100,7 +132,7 @@ bool SseKernel::run(KernelFn f, const float* const* inputs, float* const* output
     ip.data[k] = in.data + 4 * k;
   }
   for (size_t k = 0; k < outputs_; ++k) op.data[k] = out.data + 4 * k;
-  if (!status(f(ip.data, op.data, 0, 4, &arrays), arrays, err)) return false;
+  if (!status(f(ip.data, op.data, 0, 4, &arrays, stack_limit()), arrays, err)) return false;
   for (size_t k = 0; k < outputs_; ++k) std::copy_n(out.data + 4 * k, n - whole, outputs[k] + whole);
   return true;
 }

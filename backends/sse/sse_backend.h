@@ -2,7 +2,7 @@
 // The SSE backend: the kernel function compiled to x86-64 machine code that evaluates four points
 // per iteration in xmm registers (packed single precision), our own encoder, register allocation
 // and W^X code memory. Branches and loops run masked (sse_compile.cpp), arrays through helpers
-// (sse_arrays.h); kernels that call recursive functions are refused with a message (use the VM).
+// (sse_arrays.h); recursive functions are compiled too and called with the caller's lane mask.
 #include <memory>
 #include <mutex>
 
@@ -14,9 +14,10 @@ namespace fscript::sse {
 
 // The generated function: points [begin, end) of the batch, end - begin a multiple of 4. Returns 0,
 // or a runtime error: (kind << 32) | source line, kind 1 = the loop budget, 2 = an array error
-// (its message in `arrays`).
+// (its message in `arrays`), 3 = the call depth budget, 4 = recursion deeper than the thread's
+// stack allows (a called function's frame would go below `stack_limit`).
 using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end,
-                              ArrayState* arrays);
+                              ArrayState* arrays, uintptr_t stack_limit);
 
 // A kernel whose code assumes bounded inputs (param_bound > 0: every input finite with |x| <=
 // param_bound, which lets it drop NaN handling the value ranges prove useless) runs batches with

@@ -35,29 +35,48 @@ void noise_batch(const float* x, const float* y, const float* z, float* out, siz
   for (size_t i = 0; i < n; ++i) out[i] = math::noise(x[i], y[i], z[i]);
 }
 
+// The functions compiled into one piece of code: the kernel first (the code's start), then every
+// function it calls, directly or not. Calls left after inlining are of recursive functions.
+struct Program {
+  const ir::Module& module;
+  std::vector<Label> entries;  // by function index
+  int num_globals = 0;         // global slots in the kernel's frame, for every function
+  uint32_t max_call_depth = 0;
+};
+
+// The kernel loops over groups of four points. A called function (callee mode) runs once for
+// the four lanes of its caller, under the caller's lane mask: rbx holds its arguments (16 bytes
+// each), r12 where its result goes, rbp the kernel's call context. Recursion is thus packed: the
+// lanes recurse together, each only as deep as its own path, as the VM's lane-by-lane calls do.
 class Codegen : public detail::LaneCode {
  public:
-  Codegen(const ir::Function& fn, const backend::Budgets& budgets, uint32_t global_arrays)
-      : LaneCode(fn, static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, INT32_MAX - 1)),
-                 global_arrays) {}
+  Codegen(const ir::Function& fn, Assembler& a, const backend::Budgets& budgets, uint32_t local_arrays,
+          const Program& program, int index, bool callee)
+      : LaneCode(fn, a, static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, INT32_MAX - 1)),
+                 local_arrays, callee),
+        program_(program), placeholder_(kPlaceholder + index) {}
 
   bool run(std::string& error) {
     if (!layout(error)) return false;
+    exit_ = a_.new_label();
     prologue();
     Label top = a_.new_label(), done = a_.new_label();
-    exit_ = a_.new_label();
     for (size_t b = 0; b <= order_.size(); ++b) block_label_.push_back(a_.new_label());
-    a_.bind(top);
-    a_.cmp(Gp::r13, Gp::r14);
-    a_.jcc(Cond::AE, done);
+    if (!callee_) {
+      a_.bind(top);
+      a_.cmp(Gp::r13, Gp::r14);
+      a_.jcc(Cond::AE, done);
+    }
     if (!straight_) start_group();
     for (size_t b = 0; b < order_.size(); ++b)
       if (!block(static_cast<int>(b), error)) return false;
     a_.bind(block_label_[order_.size()]);
     if (!straight_) finish_group();
-    a_.add(Gp::r13, 16);
-    a_.jmp(top);
-    a_.bind(done);
+    if (!callee_) {
+      a_.add(Gp::r13, 16);
+      a_.jmp(top);
+      a_.bind(done);
+    }
     a_.mov_imm(Gp::rax, 0);
     a_.bind(exit_);
     epilogue();
@@ -81,17 +100,15 @@ class Codegen : public detail::LaneCode {
     return true;
   }
 
-  void enable_listing() { a_.enable_listing(); }
   void set_ranges(std::vector<ir::Range> r) { ranges_ = std::move(r); }
   using LaneCode::may_nan;
-  std::string listing() const {  // with the patched frame size in place of the placeholder
-    std::string text = a_.listing(), from = "rsp, " + std::to_string(kPlaceholder), to = "rsp, " + std::to_string(frame_bytes());
+  // The listing with this function's frame size in place of its placeholder.
+  void fix_listing(std::string& text) const {
+    std::string from = "rsp, " + std::to_string(placeholder_), to = "rsp, " + std::to_string(frame_bytes());
     for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) text.replace(at, from.size(), to);
-    return text;
   }
-  std::vector<uint8_t> finish() {
+  void patch_frame() {
     for (size_t at : frame_fields_) a_.patch32(at, static_cast<uint32_t>(frame_bytes()));
-    return a_.finish();
   }
 
  private:
@@ -113,6 +130,10 @@ class Codegen : public detail::LaneCode {
         else
           for (const ir::Inst* arg : in->args) uses_[arg->id].push_back(pos);
         memory |= in->op == ir::Op::GLoad || in->op == ir::Op::GStore || in->op == ir::Op::Tick;
+        if (in->op == ir::Op::Call) {  // the callee needs the lane mask, and the call context
+          memory = calls_ = true;
+          max_args_ = std::max(max_args_, static_cast<int>(in->args.size()));
+        }
         bool array = in->op == ir::Op::ANew || in->op == ir::Op::ALoad || in->op == ir::Op::AStore ||
                      in->op == ir::Op::ALen;
         memory |= array;
@@ -137,17 +158,16 @@ class Codegen : public detail::LaneCode {
     for (uint32_t v = 0; v < fn_.next_value; ++v)
       for (int u : uses_[v])
         if (def_block_[v] >= 0 && (u < block_start_[def_block_[v]] || u >= block_end_[def_block_[v]])) cross_[v] = true;
-    straight_ = order_.size() == 1 && !memory;
+    straight_ = order_.size() == 1 && !memory && !callee_;
     // Frame: fixed slots, outputs, pending masks, globals, homes, phi temporaries, spills.
     int32_t at = kFixed;
     out_slot_ = at, at += 16 * static_cast<int32_t>(fn_.num_results);
     pending_slot_ = at, at += 16 * static_cast<int32_t>(order_.size());
-    int globals = 0;
-    for (const ir::Block* blk : order_)
-      for (const ir::Inst* in : blk->insts)
-        if (in->op == ir::Op::GLoad || in->op == ir::Op::GStore) globals = std::max(globals, in->aux + 1);
+    int globals = callee_ ? 0 : program_.num_globals;  // a callee's globals are the kernel's
     global_slot_ = at, at += 16 * globals;
     num_globals_ = globals;
+    call_slot_ = at, at += 16 * max_args_;
+    array_save_ = at, at += callee_ ? 64 * static_cast<int32_t>(fn_.arrays.size()) : 0;
     home_.assign(fn_.next_value, -1);
     for (uint32_t v = 0; v < fn_.next_value; ++v)
       if (cross_[v] && !straight_) home_[v] = at, at += 16;
@@ -164,8 +184,10 @@ class Codegen : public detail::LaneCode {
   static constexpr int32_t kPlaceholder = 0x10000;
   void prologue() {
     for (Gp g : {Gp::rbx, Gp::rbp, Gp::r12, Gp::r13, Gp::r14, Gp::r15}) a_.push(g);
-    a_.sub(Gp::rsp, kPlaceholder);
+    a_.sub(Gp::rsp, placeholder_);
     frame_fields_.push_back(a_.size() - 4);
+    if (callee_) return callee_prologue();
+    if (calls_) kernel_context();
     a_.mov(Gp::rbx, Gp::rdi);
     a_.mov(Gp::r12, Gp::rsi);
     a_.mov(Gp::r15, Gp::r8);  // the arrays' state
@@ -174,15 +196,48 @@ class Codegen : public detail::LaneCode {
     a_.lea(Gp::r14, Mem::at(Gp::rcx, Gp::rcx, 2));
     a_.add(Gp::r14, Gp::rcx);
   }
+  // (args, result, mask, context): the stack is checked once the frame is reserved, before any
+  // of it is written; the caller's lane mask is where the lanes start.
+  void callee_prologue() {
+    a_.mov(Gp::rbx, Gp::rdi);
+    a_.mov(Gp::r12, Gp::rsi);
+    a_.mov(Gp::rbp, Gp::rcx);
+    a_.mov(Gp::r15, Mem::at(Gp::rbp, kCtxArrays));
+    a_.mov(Gp::rax, Mem::at(Gp::rbp, kCtxStackLimit));
+    a_.cmp(Gp::rsp, Gp::rax);
+    a_.jcc(Cond::B, trap(4, first_line()));
+    a_.movups(Xmm::x0, Mem::at(Gp::rdx));
+    a_.movaps(pending(0), Xmm::x0);
+  }
+  // The kernel's call context: its globals, counters, arrays, depth 0 and the stack limit (r9).
+  void kernel_context() {
+    a_.lea(Gp::rax, at(global_slot_));
+    a_.mov(at(kCtx + kCtxGlobals), Gp::rax);
+    a_.lea(Gp::rax, at(kCounters));
+    a_.mov(at(kCtx + kCtxCounters), Gp::rax);
+    a_.mov(at(kCtx + kCtxArrays), Gp::r8);
+    a_.mov_imm(Gp::rax, 0);
+    a_.mov(at(kCtx + kCtxDepth), Gp::rax);
+    a_.mov(at(kCtx + kCtxStackLimit), Gp::r9);
+    a_.lea(Gp::rbp, at(kCtx));
+  }
+  uint32_t first_line() const {
+    for (const ir::Block* blk : order_)
+      for (const ir::Inst* in : blk->insts)
+        if (in->line) return in->line;
+    return 0;
+  }
   void epilogue() {
-    a_.add(Gp::rsp, kPlaceholder);
+    a_.add(Gp::rsp, placeholder_);
     frame_fields_.push_back(a_.size() - 4);
     for (Gp g : {Gp::r15, Gp::r14, Gp::r13, Gp::r12, Gp::rbp, Gp::rbx}) a_.pop(g);
     a_.ret();
   }
 
-  // Each group of four points: every lane waits at the entry; counters zero; globals NaN.
+  // Each group of four points: every lane waits at the entry; counters zero; globals NaN. A callee
+  // starts with its caller's lanes, and its local arrays are its own.
   void start_group() {
+    if (callee_) return start_call();
     if (arrays_) {
       a_.mov(Gp::rdi, Gp::r15);
       a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(&fs_sse_arrays_reset));
@@ -197,6 +252,20 @@ class Codegen : public detail::LaneCode {
     if (num_globals_) a_.movaps(Xmm::x0, bits(0x7FC00000u));
     for (int g = 0; g < num_globals_; ++g) a_.movaps(at(global_slot_ + 16 * g), Xmm::x0);
   }
+  void start_call() {
+    a_.xorps(Xmm::x1, Xmm::x1);
+    for (size_t b = 1; b < order_.size(); ++b) a_.movaps(pending(static_cast<int>(b)), Xmm::x1);
+    a_.movaps(at(out_slot_), Xmm::x1);
+    if (!fn_.arrays.empty()) local_arrays(reinterpret_cast<const void*>(&fs_sse_arrays_enter));
+  }
+  void local_arrays(const void* helper) {
+    a_.mov(Gp::rdi, Gp::r15);
+    a_.mov_imm(Gp::rsi, global_arrays_);
+    a_.mov_imm(Gp::rdx, fn_.arrays.size());
+    a_.lea(Gp::rcx, at(array_save_));
+    a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(helper));
+    a_.call(Gp::rax);
+  }
   // After the scan: lanes still waiting (sent back to an earlier block by a later one) rescan;
   // otherwise the outputs go out.
   void finish_group() {
@@ -205,6 +274,12 @@ class Codegen : public detail::LaneCode {
     a_.movmskps(Gp::rax, Xmm::x0);
     a_.test(Gp::rax, Gp::rax);
     a_.jcc(Cond::NE, block_label_[0]);
+    if (callee_) {
+      a_.movaps(Xmm::x0, at(out_slot_));
+      a_.movaps(Mem::at(Gp::r12), Xmm::x0);
+      if (!fn_.arrays.empty()) local_arrays(reinterpret_cast<const void*>(&fs_sse_arrays_leave));
+      return;
+    }
     for (uint32_t k = 0; k < fn_.num_results; ++k) {
       a_.movaps(Xmm::x0, at(out_slot_ + 16 * static_cast<int32_t>(k)));
       a_.mov(Gp::rax, Mem::at(Gp::r12, 8 * static_cast<int32_t>(k)));
@@ -239,8 +314,7 @@ class Codegen : public detail::LaneCode {
   }
 
   bool unsupported(const ir::Inst& in, std::string& error) {
-    error = std::string("the sse backend does not compile '") + ir::mnemonic(in.op) +
-            "' yet (calls of recursive functions); use --backend vm";
+    error = std::string("the sse backend does not compile '") + ir::mnemonic(in.op) + "'; use --backend vm";
     return false;
   }
 
@@ -261,6 +335,11 @@ class Codegen : public detail::LaneCode {
       case Op::Const: return true;  // read from the constant pool where used
       case Op::Param: {
         Xmm d = alloc(pos);
+        if (callee_) {
+          a_.movaps(d, Mem::at(Gp::rbx, 16 * in.aux));
+          define(in, d);
+          return true;
+        }
         a_.mov(Gp::rax, Mem::at(Gp::rbx, 8 * in.aux));
         a_.movups(d, Mem::at(Gp::rax, Gp::r13, 1));
         define(in, d);
@@ -443,9 +522,10 @@ class Codegen : public detail::LaneCode {
         return true;
       }
       case Op::Tick: {  // per-lane iteration counters (int32): counter - mask adds one per active lane
-        a_.movaps(Xmm::x0, at(kCounters));
+        Mem counters = counters_mem();
+        a_.movaps(Xmm::x0, counters);
         a_.psubd(Xmm::x0, at(kActive));
-        a_.movaps(at(kCounters), Xmm::x0);
+        a_.movaps(counters, Xmm::x0);
         a_.pcmpgtd(Xmm::x0, bits(static_cast<uint32_t>(budget_)));
         a_.movmskps(Gp::rax, Xmm::x0);
         a_.test(Gp::rax, Gp::rax);
@@ -454,22 +534,57 @@ class Codegen : public detail::LaneCode {
       }
       case Op::GLoad: {
         Xmm d = alloc(pos);
-        a_.movaps(d, at(global_slot_ + 16 * in.aux));
+        a_.movaps(d, global_mem(in.aux));
         define(in, d);
         return true;
       }
       case Op::GStore:
-        masked_store(at(global_slot_ + 16 * in.aux), arg(0), at(kActive));
+        masked_store(global_mem(in.aux), arg(0), at(kActive));
         return true;
       case Op::Phi: return true;  // its home is written on the incoming edges
       case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
         array_op(in, pos);
         return true;
-      case Op::Call:
-        return unsupported(in, error);
+      case Op::Call: return call_function(in, pos), true;
     }
     return unsupported(in, error);
   }
+
+  // The callee runs for this block's lanes: arguments to the call slots, live registers saved,
+  // the depth budget (recursive callees only, as in the VM) checked around it; an error it
+  // returns (rax != 0) ends this function too.
+  void call_function(const ir::Inst& in, int pos) {
+    for (size_t i = 0; i < in.args.size(); ++i) {
+      load(Xmm::x0, src(in.args[i]));
+      a_.movaps(at(call_slot_ + 16 * static_cast<int32_t>(i)), Xmm::x0);
+    }
+    flush_registers(pos);
+    bool counted = program_.module.functions[in.aux]->recursive;
+    Mem depth = Mem::at(Gp::rbp, kCtxDepth);
+    if (counted) {
+      a_.cmp(depth, static_cast<int32_t>(program_.max_call_depth));
+      a_.jcc(Cond::AE, trap(3, in.line));
+      a_.add(depth, 1);
+    }
+    a_.lea(Gp::rdi, at(call_slot_));
+    a_.lea(Gp::rsi, at(kScratch + 48));
+    a_.lea(Gp::rdx, at(kActive));
+    a_.mov(Gp::rcx, Gp::rbp);
+    a_.lea(Gp::rax, Mem::rip(program_.entries[in.aux]));
+    a_.call(Gp::rax);
+    a_.test(Gp::rax, Gp::rax);
+    a_.jcc(Cond::NE, exit_);
+    if (counted) a_.sub(depth, 1);
+    Xmm d = alloc(pos);
+    a_.movaps(d, at(kScratch + 48));
+    define(in, d);
+  }
+
+  const Program& program_;
+  int32_t placeholder_;
+  bool calls_ = false;
+  int max_args_ = 0;
+  int32_t call_slot_ = 0, array_save_ = 0;
 };
 
 #undef FS_APPLY
@@ -505,10 +620,38 @@ double choose_bound(const ir::Function& fn, Codegen& gen) {
 
 }  // namespace
 
+namespace {
+
+// The kernel, then every function reachable from it through calls, by index in the module.
+std::vector<int> reachable_functions(const ir::Module& m, int kernel) {
+  std::vector<int> order{kernel};
+  std::vector<bool> seen(m.functions.size(), false);
+  seen[static_cast<size_t>(kernel)] = true;
+  for (size_t i = 0; i < order.size(); ++i)
+    for (const auto& blk : m.functions[static_cast<size_t>(order[i])]->blocks)
+      for (const ir::Inst* in : blk->insts)
+        if (in->op == ir::Op::Call && !seen[static_cast<size_t>(in->aux)]) {
+          seen[static_cast<size_t>(in->aux)] = true;
+          order.push_back(in->aux);
+        }
+  return order;
+}
+
+int globals_used(const ir::Module& m, const std::vector<int>& fns) {
+  int n = 0;
+  for (int f : fns)
+    for (const auto& blk : m.functions[static_cast<size_t>(f)]->blocks)
+      for (const ir::Inst* in : blk->insts)
+        if (in->op == ir::Op::GLoad || in->op == ir::Op::GStore) n = std::max(n, in->aux + 1);
+  return n;
+}
+
+}  // namespace
+
 std::vector<uint8_t> generate(const ir::Module& module, const backend::Budgets& budgets, std::string& error,
                               std::string* listing, std::vector<std::string>* array_names, double* param_bound) {
-  // Masked lanes have no call stack: calls of non-recursive functions are inlined first (an
-  // unoptimised module still has them); calls of recursive ones are refused below.
+  // Masked lanes have no call stack of their own: calls of non-recursive functions are inlined
+  // first (an unoptimised module still has them); recursive functions are compiled as callees.
   std::unique_ptr<ir::Module> inlined;
   const ir::Module* mp = &module;
   for (const auto& f : module.functions)
@@ -521,23 +664,36 @@ std::vector<uint8_t> generate(const ir::Module& module, const backend::Budgets& 
           mp = inlined.get();
         }
   const ir::Module& m = *mp;
-  const ir::Function* fn = nullptr;
-  for (const auto& f : m.functions)
-    if (f->kernel) fn = f.get();
-  if (!fn) {
+  int kernel = -1;
+  for (size_t f = 0; f < m.functions.size(); ++f)
+    if (m.functions[f]->kernel) kernel = static_cast<int>(f);
+  if (kernel < 0) {
     error = "the module has no kernel function";
     return {};
   }
-  if (array_names) {
-    *array_names = m.arrays;
-    array_names->insert(array_names->end(), fn->arrays.begin(), fn->arrays.end());
+  Assembler a;
+  if (listing) a.enable_listing();
+  std::vector<int> fns = reachable_functions(m, kernel);
+  Program program{m, {}, globals_used(m, fns), budgets.max_call_depth};
+  for (size_t f = 0; f < m.functions.size(); ++f) program.entries.push_back(a.new_label());
+  std::vector<std::string> names = m.arrays;
+  std::vector<std::unique_ptr<Codegen>> gens;
+  for (int f : fns) {
+    const ir::Function& fn = *m.functions[static_cast<size_t>(f)];
+    gens.push_back(std::make_unique<Codegen>(fn, a, budgets, static_cast<uint32_t>(names.size()), program,
+                                             static_cast<int>(gens.size()), f != kernel));
+    names.insert(names.end(), fn.arrays.begin(), fn.arrays.end());
+    if (f == kernel && param_bound) *param_bound = choose_bound(fn, *gens.back());
+    a.bind(program.entries[static_cast<size_t>(f)]);
+    if (!gens.back()->run(error)) return {};
   }
-  Codegen gen(*fn, budgets, static_cast<uint32_t>(m.arrays.size()));
-  if (param_bound) *param_bound = choose_bound(*fn, gen);
-  if (listing) gen.enable_listing();
-  if (!gen.run(error)) return {};
-  std::vector<uint8_t> code = gen.finish();
-  if (listing) *listing = gen.listing();
+  if (array_names) *array_names = names;
+  for (const auto& g : gens) g->patch_frame();
+  std::vector<uint8_t> code = a.finish();
+  if (listing) {
+    *listing = a.listing();
+    for (const auto& g : gens) g->fix_listing(*listing);
+  }
   return code;
 }
 

@@ -51,6 +51,9 @@ FS
 cat > "$T/rec.fs" <<'FS'
 function f(x) { return f(x + 1); }
 FS
+cat > "$T/fact.fs" <<'FS'
+function fact(n) { if (n <= 1) return 1; return n * fact(n - 1); }
+FS
 cat > "$T/nan.fs" <<'FS'
 function f(x) { return sqrt(x) + log(x); }
 FS
@@ -87,7 +90,8 @@ check backend-sse 0 '^0$' -- "$F" run "$T/sphere.fs" --backend sse 1 0 0
 check emit-asm-sse 0 'mulps xmm[0-9]+, xmm[0-9]+' -- "$F" emit-asm "$T/sphere.fs" --backend sse
 check emit-asm-sse-pool 0 '\.float 1, 1, 1, 1' -- "$F" emit-asm "$T/sphere.fs" --backend sse
 check backend-sse-loop 1 'loop.fs:2: error: loop iteration budget' -- "$F" run "$T/loop.fs" --backend sse 0
-check backend-sse-refuses 1 "the sse backend does not compile 'call' yet" -- "$F" run "$T/rec.fs" --backend sse 1
+check run-recursion-sse 1 'rec.fs:1: error: call depth budget exceeded: more than 1000 nested calls' -- "$F" run "$T/rec.fs" --backend sse 1
+check run-fact-sse 0 '^3628800$' -- "$F" run "$T/fact.fs" 10 --backend sse
 check backend-missing 2 "backend 'llvm' is not built" -- "$F" run "$T/sphere.fs" --backend llvm 0 0 0
 check usage-unknown-command 2 '' -- "$F" frobnicate
 check usage-render-size 2 'size' -- "$F" render2d "$T/sphere.fs" --size 0x5 --bounds -1,1,-1,1

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <thread>
 
 #include "backends/sse/sse_backend.h"
 #include "tests/unit/helpers.h"
@@ -28,8 +29,8 @@ bool same(float a, float b) {
 
 // Runs `body` (an FRep over x, y, z) on both backends over every pair of special values (and the
 // third input cycling), in one batch, and compares every output.
-void agree(const std::string& body) {
-  std::string text = "function FRep(x, y, z, t) { " + body + " }";
+void agree(const std::string& body, const std::string& prelude = "") {
+  std::string text = prelude + "function FRep(x, y, z, t) { " + body + " }";
   auto vm = test::build(text, "", true, {}, "vm");
   auto sse = test::build(text, "", true, {}, "sse");
   INFO(body << "\n" << test::messages(vm->diag));
@@ -181,13 +182,54 @@ TEST_CASE("sse: arrays per lane, with the VM's results and errors") {
   CHECK(e3.message.find("sizes must be whole numbers from 0 to the budget of 10") != std::string::npos);
 }
 
-TEST_CASE("sse: what this stage does not compile is refused with a message") {
-  auto b = test::build("function f(n) { return n <= 1 ? 1 : n * f(n - 1); } function FRep(x, y, z, t) { return f(x); }");
-  REQUIRE(b->ok);  // on the VM
-  std::string error;
-  CHECK(sse::generate(*b->module, {}, error).empty());
-  CHECK(error.find("does not compile 'call'") != std::string::npos);
-  CHECK(error.find("--backend vm") != std::string::npos);
+TEST_CASE("sse: recursive functions run packed under the caller's lanes, with the VM's budgets") {
+  const char* fns =
+      "function fact(n) { if (n <= 1) return 1; return n * fact(n - 1); }\n"
+      "function fib(n) { return n < 2 ? n : fib(n - 1) + fib(n - 2); }\n"
+      "function even(n) { if (n <= 0) return 1; return odd(n - 1); }\n"
+      "function odd(n) { if (n <= 0) return 0; return even(n - 1); }\n"
+      "var calls = 0;\n"
+      "function count(n) { calls = calls + 1; if (n <= 0) return calls; return count(n - 1); }\n"
+      "var arr = new Array(4);\n"
+      "function fill(n) { var a = new Array(3); a[0] = n; if (n > 0) fill(n - 1); arr[0] = arr[0] + a[0]; return a[0]; }\n"
+      "function loopy(n) { var s = 0; for (var i = 0; i < n; i++) s += i; if (n <= 0) return s; return s + loopy(n - 1); }\n";
+  // Lanes with different depths (x from the special values: NaN, inf, negatives, fractions).
+  // Lanes with different depths: n from the special values (NaN, inf, negatives, fractions).
+  for (const char* body : {"return fact(n);", "return fib(min(n, 12)) + y;", "return even(n) + odd(3);",
+                           "return count(min(n, 20)) * 100 + calls;", "return fill(min(n, 6)) + arr[0];",
+                           "return loopy(min(n, 10));", "return x > 0 ? fact(min(n, 10)) : (y > 0 ? fib(min(y, 10)) : -1);"})
+    agree(std::string("var n = x == x ? min(abs(floor(x)), 25) : 2; ") + body, fns);
+}
+
+TEST_CASE("sse: the call depth budget and a stack too small for the recursion give errors, not crashes") {
+  std::string text = "function down(n) { if (n <= 0) return 0; return 1 + down(n - 1); }\n"
+                     "function FRep(x, y, z, t) { return down(x); }";
+  backend::Budgets budgets;
+  budgets.max_call_depth = 50;
+  auto vm = test::build(text, "", true, budgets, "vm");
+  auto sse = test::build(text, "", true, budgets, "sse");
+  REQUIRE(sse->ok);
+  CHECK(test::eval1(*vm, {49}) == 49.0f);
+  CHECK(test::eval1(*sse, {49}) == 49.0f);
+  float in[4] = {51, 0, 0, 0}, out = 0;
+  backend::RuntimeError e1, e2;
+  CHECK_FALSE(vm->kernel->eval(in, &out, e1));
+  CHECK_FALSE(sse->kernel->eval(in, &out, e2));
+  CHECK(e2.message == e1.message);
+  CHECK(e2.line == e1.line);
+  // 100,000 nested calls on a thread with a small stack: the generated code stops before the end.
+  budgets.max_call_depth = backend::kCallDepthCeiling;
+  auto deep = test::build(text, "", true, budgets, "sse");
+  REQUIRE(deep->ok);
+  backend::RuntimeError e3;
+  bool ok = true;
+  std::thread small([&] {
+    float p[4] = {99000, 0, 0, 0}, r = 0;
+    ok = deep->kernel->eval(p, &r, e3);
+  });
+  small.join();
+  CHECK_FALSE(ok);
+  CHECK(e3.message.find("recursion too deep for this thread's stack") != std::string::npos);
 }
 
 TEST_CASE("sse: a function of 100,000 operations compiles and agrees with the VM") {

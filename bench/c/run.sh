@@ -8,6 +8,12 @@ OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 gcc -O3 -march=x86-64-v2 -fno-math-errno -o "$OUT/gcc" baseline.c -lm
 for f in gyroid csg8; do echo "gcc -O3 -march=x86-64-v2 $f: $("$OUT/gcc" "$f" "${1:-2000000}")"; done
+P=../../../shared/data/prospero.fs
+if [ -f "$P" ]; then
+  sed -E -f prospero.sed "$P" > "$OUT/prospero_body.h"
+  gcc -O3 -march=x86-64-v2 -fno-math-errno -I"$OUT" -o "$OUT/prospero" prospero_main.c
+  echo "gcc -O3 -march=x86-64-v2 prospero 1024^2: $("$OUT/prospero")"
+fi
 if command -v clang > /dev/null; then
   clang -O3 -march=native -fno-math-errno -o "$OUT/clang" baseline.c -lm
   for f in gyroid csg8; do echo "clang -O3 -march=native $f: $("$OUT/clang" "$f" "${1:-2000000}")"; done

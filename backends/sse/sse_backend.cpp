@@ -50,7 +50,7 @@ KernelFn SseKernel::general(backend::RuntimeError& err) const {
 }
 
 // The same messages as the VM's.
-bool SseKernel::status(uint64_t code, const ArrayState& arrays, backend::RuntimeError& err) const {
+bool SseKernel::status(uint64_t code, const backend::LaneArrays& arrays, backend::RuntimeError& err) const {
   if (code == 0) return true;
   err.line = static_cast<uint32_t>(code);
   switch (code >> 32) {
@@ -88,12 +88,9 @@ static uintptr_t stack_limit() {
   return limit;
 }
 
-ArrayState SseKernel::fresh_arrays() const {
-  ArrayState s;
-  s.max_elements = budgets_.max_array_elements;
-  for (const auto& n : arrays_) s.names.push_back(backend::array_display_name(n));
-  s.off.resize(arrays_.size());
-  s.len.resize(arrays_.size());
+backend::LaneArrays SseKernel::fresh_arrays() const {
+  backend::LaneArrays s;
+  s.init(4, budgets_.max_array_elements, arrays_);
   return s;
 }
 
@@ -118,7 +115,7 @@ bool SseKernel::run(KernelFn f, const float* const* inputs, float* const* output
                     backend::RuntimeError& err) const {
   size_t whole = n & ~size_t{3};
   // Per call: batches may run on several threads at once. Only kernels with arrays need it.
-  ArrayState arrays;
+  backend::LaneArrays arrays;
   if (!arrays_.empty()) arrays = fresh_arrays();
   if (whole && !status(f(inputs, outputs, 0, whole, &arrays, stack_limit()), arrays, err)) return false;
   if (whole == n) return true;

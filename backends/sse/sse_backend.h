@@ -8,7 +8,7 @@
 
 #include "backends/backend.h"
 #include "backends/sse/code_memory.h"
-#include "backends/sse/sse_arrays.h"
+#include "backends/lane_arrays.h"
 
 namespace fscript::sse {
 
@@ -17,7 +17,7 @@ namespace fscript::sse {
 // (its message in `arrays`), 3 = the call depth budget, 4 = recursion deeper than the thread's
 // stack allows (a called function's frame would go below `stack_limit`).
 using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end,
-                              ArrayState* arrays, uintptr_t stack_limit);
+                              backend::LaneArrays* arrays, uintptr_t stack_limit);
 
 // A kernel whose code assumes bounded inputs (param_bound > 0: every input finite with |x| <=
 // param_bound, which lets it drop NaN handling the value ranges prove useless) runs batches with
@@ -39,8 +39,8 @@ class SseKernel : public backend::Kernel {
   bool in_range(const float* const* inputs, size_t n) const;
   KernelFn general(backend::RuntimeError& err) const;
   bool run(KernelFn f, const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const;
-  bool status(uint64_t code, const ArrayState& arrays, backend::RuntimeError& err) const;
-  ArrayState fresh_arrays() const;
+  bool status(uint64_t code, const backend::LaneArrays& arrays, backend::RuntimeError& err) const;
+  backend::LaneArrays fresh_arrays() const;
   std::unique_ptr<CodeMemory> code_;
   size_t inputs_, outputs_;
   backend::Budgets budgets_;

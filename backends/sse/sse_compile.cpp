@@ -240,7 +240,7 @@ class Codegen : public detail::LaneCode {
     if (callee_) return start_call();
     if (arrays_) {
       a_.mov(Gp::rdi, Gp::r15);
-      a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(&fs_sse_arrays_reset));
+      a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(&backend::fs_lanes_reset));
       a_.call(Gp::rax);
     }
     a_.pcmpeqd(Xmm::x0, Xmm::x0);
@@ -256,7 +256,7 @@ class Codegen : public detail::LaneCode {
     a_.xorps(Xmm::x1, Xmm::x1);
     for (size_t b = 1; b < order_.size(); ++b) a_.movaps(pending(static_cast<int>(b)), Xmm::x1);
     a_.movaps(at(out_slot_), Xmm::x1);
-    if (!fn_.arrays.empty()) local_arrays(reinterpret_cast<const void*>(&fs_sse_arrays_enter));
+    if (!fn_.arrays.empty()) local_arrays(reinterpret_cast<const void*>(&backend::fs_lanes_enter));
   }
   void local_arrays(const void* helper) {
     a_.mov(Gp::rdi, Gp::r15);
@@ -277,7 +277,7 @@ class Codegen : public detail::LaneCode {
     if (callee_) {
       a_.movaps(Xmm::x0, at(out_slot_));
       a_.movaps(Mem::at(Gp::r12), Xmm::x0);
-      if (!fn_.arrays.empty()) local_arrays(reinterpret_cast<const void*>(&fs_sse_arrays_leave));
+      if (!fn_.arrays.empty()) local_arrays(reinterpret_cast<const void*>(&backend::fs_lanes_leave));
       return;
     }
     for (uint32_t k = 0; k < fn_.num_results; ++k) {

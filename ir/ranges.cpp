@@ -93,4 +93,33 @@ std::vector<Range> value_ranges(const Function& fn, double param_bound) {
   return r;
 }
 
+bool may_be_nan(const Inst* v, const std::vector<Range>& ranges) {
+  if (v->op == Op::Const) return v->imm != v->imm;
+  return ranges.empty() || ranges[v->id].nan;
+}
+
+int nan_tests(const Function& fn, const std::vector<Range>& r) {
+  int n = 0;
+  for (const auto& blk : fn.blocks)
+    for (const Inst* in : blk->insts) {
+      switch (in->op) {
+        case Op::Min: case Op::Max: n += may_be_nan(in->args[1], r); break;
+        case Op::Clamp: n += may_be_nan(in->args[1], r) + may_be_nan(in->args[2], r); break;
+        case Op::Not: case Op::Truth: case Op::Select: case Op::Branch: n += may_be_nan(in->args[0], r); break;
+        default: break;
+      }
+    }
+  return n;
+}
+
+double best_param_bound(const Function& fn) {
+  int best_tests = nan_tests(fn, {});
+  double best = 0;
+  for (double bound : {65536.0, 1024.0, 16.0}) {
+    int tests = nan_tests(fn, value_ranges(fn, bound));
+    if (tests < best_tests) best_tests = tests, best = bound;
+  }
+  return best;
+}
+
 }  // namespace fscript::ir

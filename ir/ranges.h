@@ -16,4 +16,13 @@ struct Range {
 // get (-inf, inf, NaN possible).
 std::vector<Range> value_ranges(const Function& fn, double param_bound);
 
+// Whether v may be NaN: a constant by its value, anything else by `ranges` (empty: unknown).
+bool may_be_nan(const Inst* v, const std::vector<Range>& ranges);
+// How many operations need a NaN test: min/max/clamp on a bound operand that may be NaN (the
+// first operand's NaN comes out of minps/maxps by itself), truthiness of one that may be NaN.
+int nan_tests(const Function& fn, const std::vector<Range>& ranges);
+// The largest parameter bound (65536, 1024 or 16) that leaves the fewest NaN tests; 0 when no
+// bound removes any, so code need not assume one.
+double best_param_bound(const Function& fn);
+
 }  // namespace fscript::ir

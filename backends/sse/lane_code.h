@@ -191,10 +191,7 @@ class LaneCode {
     if (!b_number) a_.orps(d, Xmm::x0);
   }
   // Without value ranges only a constant is known not to be NaN.
-  bool may_nan(const ir::Inst* v) const {
-    if (v->op == ir::Op::Const) return v->imm != v->imm;
-    return ranges_.empty() || ranges_[v->id].nan;
-  }
+  bool may_nan(const ir::Inst* v) const { return ir::may_be_nan(v, ranges_); }
   // xmm0 = truthy(c): ordered and != 0.
   void truthy_mask(const Src& c, bool maybe_nan = true) {
     if (!maybe_nan) {

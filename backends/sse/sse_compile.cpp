@@ -101,7 +101,6 @@ class Codegen : public detail::LaneCode {
   }
 
   void set_ranges(std::vector<ir::Range> r) { ranges_ = std::move(r); }
-  using LaneCode::may_nan;
   // The listing with this function's frame size in place of its placeholder.
   void fix_listing(std::string& text) const {
     std::string from = "rsp, " + std::to_string(placeholder_), to = "rsp, " + std::to_string(frame_bytes());
@@ -589,32 +588,10 @@ class Codegen : public detail::LaneCode {
 
 #undef FS_APPLY
 
-// The operations whose NaN handling depends on an operand that may be NaN.
-int nan_checks(const ir::Function& fn, const Codegen& gen) {
-  int n = 0;
-  for (const auto& blk : fn.blocks)
-    for (const ir::Inst* in : blk->insts) {
-      switch (in->op) {
-        case ir::Op::Min: case ir::Op::Max: n += gen.may_nan(in->args[1]); break;
-        case ir::Op::Clamp: n += gen.may_nan(in->args[1]) + gen.may_nan(in->args[2]); break;
-        case ir::Op::Not: case ir::Op::Truth: case ir::Op::Select: case ir::Op::Branch: n += gen.may_nan(in->args[0]); break;
-        default: break;
-      }
-    }
-  return n;
-}
-
-// The largest parameter bound that leaves the fewest NaN checks; 0 (and no ranges) when no bound
-// removes any, so the kernel needs no guard.
+// Bounded-input code only where a bound removes NaN tests (then the kernel needs its guard).
 double choose_bound(const ir::Function& fn, Codegen& gen) {
-  int general = nan_checks(fn, gen), best_checks = general;
-  double best = 0;
-  for (double bound : {65536.0, 1024.0, 16.0}) {
-    gen.set_ranges(ir::value_ranges(fn, bound));
-    int checks = nan_checks(fn, gen);
-    if (checks < best_checks) best_checks = checks, best = bound;
-  }
-  gen.set_ranges(best > 0 ? ir::value_ranges(fn, best) : std::vector<ir::Range>{});
+  double best = ir::best_param_bound(fn);
+  if (best > 0) gen.set_ranges(ir::value_ranges(fn, best));
   return best;
 }
 

@@ -60,5 +60,7 @@ class Backend {
 std::vector<std::string> available_backends();
 // nullptr if `name` is unknown or not built.
 std::unique_ptr<Backend> make_backend(const std::string& name);
+// Why make_backend(name) gave nullptr, for the user.
+std::string missing_backend_message(const std::string& name);
 
 }  // namespace fscript::backend

@@ -18,13 +18,8 @@ class Module;
 
 namespace fscript::llvmjit {
 
-// The runtime functions generated code calls, by symbol name (resolved by the JIT, llvm_jit.cpp).
-// FS_RUNTIME(symbol, address, float operands)
-#define FS_LLVM_RUNTIME_FUNCTIONS(X)                                                                   \
-  X(fs_rt_exp, exp, 1) X(fs_rt_log, log, 1) X(fs_rt_log10, log10, 1) X(fs_rt_sin, sin, 1)            \
-  X(fs_rt_cos, cos, 1) X(fs_rt_tan, tan, 1) X(fs_rt_asin, asin, 1) X(fs_rt_acos, acos, 1)            \
-  X(fs_rt_atan, atan, 1) X(fs_rt_sinh, sinh, 1) X(fs_rt_cosh, cosh, 1) X(fs_rt_tanh, tanh, 1)        \
-  X(fs_rt_pow, pow, 2) X(fs_rt_atan2, atan2, 2) X(fs_rt_noise, noise, 3)
+// Generated code calls runtime functions by symbol name (fs_rt_* for runtime/math's batch
+// functions, fs_lanes_* for arrays); the JIT resolves them from one table (llvm_jit.cpp).
 
 // The generated kernel: points [begin, end) (end - begin a multiple of the width). Returns 0 or
 // (kind << 32) | line: 1 loop budget, 2 array error (message in `arrays`), 3 call depth budget,
@@ -34,19 +29,21 @@ using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs,
 constexpr const char* kKernelSymbol = "fs_kernel";
 
 struct Lowered {
+  Lowered();
+  ~Lowered();
+  Lowered(Lowered&&) noexcept;
   std::unique_ptr<llvm::LLVMContext> context;
   std::unique_ptr<llvm::Module> module;
   std::vector<std::string> array_names;  // by slot: the module's global arrays, then each function's
   uint32_t num_inputs = 0, num_outputs = 0;
+  double param_bound = 0;
 };
 
 // Lowers the module's kernel and every function it calls (after inlining the non-recursive ones).
-// With `param_bound` > 0 the code may assume every input finite with |x| <= param_bound (see
-// ir/ranges.h) and drops NaN tests the ranges prove useless.
-bool lower(const ir::Module& m, uint32_t width, const backend::Budgets& budgets, double param_bound, Lowered& out,
+// With `bounded`, the code may assume every input finite with |x| <= out.param_bound (the bound
+// ir::best_param_bound picks; 0 when none removes a NaN test) and drops the NaN tests the value
+// ranges prove useless.
+bool lower(const ir::Module& m, uint32_t width, const backend::Budgets& budgets, bool bounded, Lowered& out,
            std::string& error);
-
-// The parameter bound worth assuming for this module's kernel (0: none removes a NaN test).
-double choose_param_bound(const ir::Module& m);
 
 }  // namespace fscript::llvmjit

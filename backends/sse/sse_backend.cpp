@@ -1,14 +1,9 @@
 // SSE backend glue: generate, map W^X, and run groups of four points (the tail padded).
 #include "backends/sse/sse_backend.h"
 
-#include <algorithm>
-#include <cmath>
-
-#include <pthread.h>
+#include "backends/jit_support.h"
 
 namespace fscript::sse {
-
-constexpr uintptr_t kStackMargin = 256 * 1024;
 
 std::unique_ptr<backend::Kernel> SseBackend::compile(const ir::Module& m, const backend::Budgets& budgets,
                                                      std::string& error) const {
@@ -29,15 +24,6 @@ std::unique_ptr<backend::Kernel> SseBackend::compile(const ir::Module& m, const 
                                      bound, bound > 0 ? m.clone() : nullptr);
 }
 
-// Finite and within the bound; NaN fails the test too. No early exit, so the loop vectorises.
-bool SseKernel::in_range(const float* const* inputs, size_t n) const {
-  float bound = static_cast<float>(param_bound_);
-  bool ok = true;
-  for (size_t k = 0; k < inputs_; ++k)
-    for (size_t i = 0; i < n; ++i) ok &= std::fabs(inputs[k][i]) <= bound;
-  return ok;
-}
-
 KernelFn SseKernel::general(backend::RuntimeError& err) const {
   std::call_once(general_once_, [this] {
     std::string error;
@@ -49,43 +35,8 @@ KernelFn SseKernel::general(backend::RuntimeError& err) const {
   return general_ ? entry(*general_) : nullptr;
 }
 
-// The same messages as the VM's.
-bool SseKernel::status(uint64_t code, const backend::LaneArrays& arrays, backend::RuntimeError& err) const {
-  if (code == 0) return true;
-  err.line = static_cast<uint32_t>(code);
-  switch (code >> 32) {
-    case 1:
-      err.message = "loop iteration budget exceeded: more than " + std::to_string(budgets_.max_loop_iterations) +
-                    " iterations in one evaluation";
-      break;
-    case 2: err.message = arrays.message; break;
-    case 3:
-      err.message =
-          "call depth budget exceeded: more than " + std::to_string(budgets_.max_call_depth) + " nested calls";
-      break;
-    default:
-      err.message = "recursion too deep for this thread's stack (the budget allows " +
-                    std::to_string(budgets_.max_call_depth) +
-                    " nested calls); lower --max-call-depth or use --backend vm";
-      break;
-  }
-  return false;
-}
-
-// The lowest address a called function's frame may reach on this thread: its stack's end plus a
-// margin for the runtime functions the code calls. Found once per thread.
-static uintptr_t stack_limit() {
-  thread_local uintptr_t limit = [] {
-    pthread_attr_t attr;
-    void* addr = nullptr;
-    size_t size = 0;
-    if (pthread_getattr_np(pthread_self(), &attr) != 0)  // then assume the smallest usual stack
-      return reinterpret_cast<uintptr_t>(__builtin_frame_address(0)) - (size_t{1} << 20) + kStackMargin;
-    pthread_attr_getstack(&attr, &addr, &size);
-    pthread_attr_destroy(&attr);
-    return reinterpret_cast<uintptr_t>(addr) + kStackMargin;
-  }();
-  return limit;
+bool SseKernel::in_range(const float* const* inputs, size_t n) const {
+  return backend::inputs_in_range(inputs, inputs_, n, param_bound_);
 }
 
 backend::LaneArrays SseKernel::fresh_arrays() const {
@@ -93,17 +44,6 @@ backend::LaneArrays SseKernel::fresh_arrays() const {
   s.init(4, budgets_.max_array_elements, arrays_);
   return s;
 }
-
-namespace {
-// Small lists live on the stack: the one-point path must not allocate.
-template <typename T>
-struct Scratch {
-  explicit Scratch(size_t n) : heap(n > 32 ? n : 0) { data = n > 32 ? heap.data() : local; }
-  T local[32];
-  std::vector<T> heap;
-  T* data;
-};
-}  // namespace
 
 bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const {
   KernelFn f = entry(*code_);
@@ -113,33 +53,16 @@ bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, si
 
 bool SseKernel::run(KernelFn f, const float* const* inputs, float* const* outputs, size_t n,
                     backend::RuntimeError& err) const {
-  size_t whole = n & ~size_t{3};
   // Per call: batches may run on several threads at once. Only kernels with arrays need it.
   backend::LaneArrays arrays;
   if (!arrays_.empty()) arrays = fresh_arrays();
-  if (whole && !status(f(inputs, outputs, 0, whole, &arrays, stack_limit()), arrays, err)) return false;
-  if (whole == n) return true;
-  // The last one to three points, through four-lane copies.
-  Scratch<float> in(4 * inputs_), out(4 * outputs_);
-  Scratch<const float*> ip(inputs_);
-  Scratch<float*> op(outputs_);
-  std::fill_n(in.data, 4 * inputs_, 0.0f);
-  for (size_t k = 0; k < inputs_; ++k) {
-    std::copy(inputs[k] + whole, inputs[k] + n, in.data + 4 * k);
-    ip.data[k] = in.data + 4 * k;
-  }
-  for (size_t k = 0; k < outputs_; ++k) op.data[k] = out.data + 4 * k;
-  if (!status(f(ip.data, op.data, 0, 4, &arrays, stack_limit()), arrays, err)) return false;
-  for (size_t k = 0; k < outputs_; ++k) std::copy_n(out.data + 4 * k, n - whole, outputs[k] + whole);
-  return true;
+  return backend::run_padded(4, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
+    return backend::jit_status(f(in, out, 0, count, &arrays, backend::stack_limit()), arrays, budgets_, err);
+  });
 }
 
 bool SseKernel::eval(const float* inputs, float* outputs, backend::RuntimeError& err) const {
-  Scratch<const float*> in(inputs_);
-  Scratch<float*> out(outputs_);
-  for (size_t k = 0; k < inputs_; ++k) in.data[k] = inputs + k;
-  for (size_t k = 0; k < outputs_; ++k) out.data[k] = outputs + k;
-  return eval_batch(in.data, out.data, 1, err);
+  return backend::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
 }
 
 }  // namespace fscript::sse

@@ -39,7 +39,6 @@ class SseKernel : public backend::Kernel {
   bool in_range(const float* const* inputs, size_t n) const;
   KernelFn general(backend::RuntimeError& err) const;
   bool run(KernelFn f, const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const;
-  bool status(uint64_t code, const backend::LaneArrays& arrays, backend::RuntimeError& err) const;
   backend::LaneArrays fresh_arrays() const;
   std::unique_ptr<CodeMemory> code_;
   size_t inputs_, outputs_;

@@ -92,7 +92,20 @@ check emit-asm-sse-pool 0 '\.float 1, 1, 1, 1' -- "$F" emit-asm "$T/sphere.fs" -
 check backend-sse-loop 1 'loop.fs:2: error: loop iteration budget' -- "$F" run "$T/loop.fs" --backend sse 0
 check run-recursion-sse 1 'rec.fs:1: error: call depth budget exceeded: more than 1000 nested calls' -- "$F" run "$T/rec.fs" --backend sse 1
 check run-fact-sse 0 '^3628800$' -- "$F" run "$T/fact.fs" 10 --backend sse
-check backend-missing 2 "backend 'llvm' is not built" -- "$F" run "$T/sphere.fs" --backend llvm 0 0 0
+# The llvm backend, when this build has it (LLVM 19 at build time).
+LLVM=""
+"$F" run "$T/sphere.fs" --backend llvm 1 0 0 > /dev/null 2>&1 && LLVM=1
+if [ -n "$LLVM" ]; then
+  check backend-llvm 0 '^0$' -- "$F" run "$T/sphere.fs" --backend llvm 1 0 0
+  check emit-asm-llvm 0 'v?mulps' -- "$F" emit-asm "$T/sphere.fs" --backend llvm
+  check emit-ir-llvm 0 'fmul <(4|8|16) x float>' -- "$F" emit-ir --llvm "$T/sphere.fs"
+  check backend-llvm-loop 1 'loop.fs:2: error: loop iteration budget' -- "$F" run "$T/loop.fs" --backend llvm 0
+  check run-recursion-llvm 1 'rec.fs:1: error: call depth budget exceeded: more than 1000 nested calls' -- "$F" run "$T/rec.fs" --backend llvm 1
+  check run-fact-llvm 0 '^3628800$' -- "$F" run "$T/fact.fs" 10 --backend llvm
+else
+  check emit-ir-llvm-missing 2 'built without the llvm backend' -- "$F" emit-ir --llvm "$T/sphere.fs"
+fi
+check backend-unknown 2 "unknown backend 'gpu' \\(available: vm, sse" -- "$F" run "$T/sphere.fs" --backend gpu 0 0 0
 check usage-unknown-command 2 '' -- "$F" frobnicate
 check usage-render-size 2 'size' -- "$F" render2d "$T/sphere.fs" --size 0x5 --bounds -1,1,-1,1
 check usage-render-bounds 2 'bounds' -- "$F" render2d "$T/sphere.fs" --size 4 --bounds -1,1,1
@@ -172,6 +185,7 @@ fi
 if [ -f "$SRC/../shared/data/prospero.fs" ]; then
   check prospero-256 0 '^8150 white pixels' -- "$F" render2d "$SRC/../shared/data/prospero.fs" --entry FRep --size 256 --bounds -1,1,-1,1
   check prospero-256-sse 0 '^8150 white pixels' -- "$F" render2d "$SRC/../shared/data/prospero.fs" --entry FRep --size 256 --bounds -1,1,-1,1 --backend sse
+  [ -n "$LLVM" ] && check prospero-256-llvm 0 '^8150 white pixels' -- "$F" render2d "$SRC/../shared/data/prospero.fs" --entry FRep --size 256 --bounds -1,1,-1,1 --backend llvm
   check prospero-asm-bounded 0 '^; inputs finite with \|x\| <= 65536' -- "$F" emit-asm "$SRC/../shared/data/prospero.fs" --backend sse
 fi
 
@@ -283,7 +297,7 @@ PY
     check "fvrml-run-wrl-reads $(basename "$w")" 0 '' -- "$F" check "$T/out.wrl"
     grep -q 'FShape\|FGeometry\|ROUTE Time.fraction_changed TO shape' "$T/out.wrl" && { echo "FAIL FVRML nodes left in $(basename "$w")"; fails=$((fails + 1)); }
   done
-  check fvrml-run-bad-backend 2 "backend 'llvm' is not built" -- "$R" "$T/badfield.wrl" --stats --backend llvm
+  check fvrml-run-bad-backend 2 "unknown backend 'gpu'" -- "$R" "$T/badfield.wrl" --stats --backend gpu
   check fvrml-run-missing 1 'cannot read' -- "$R" "$T/none.wrl" --stats
   if [ -d "$SRC/../shared/corpus" ]; then
     while IFS= read -r -d '' w; do
@@ -292,12 +306,15 @@ PY
       check "fvrml-run-corpus-reads $(basename "$w")" 0 '' -- "$F" check "$T/c.wrl"
     done < <(find "$SRC/../shared/corpus" -name '*.wrl' -print0)
   fi
-  # Every corpus file and example: the same mesh, byte for byte, with the sse backend as with the VM.
+  # Every corpus file and example: the same mesh, byte for byte, with the sse and llvm backends as with the VM.
   while IFS= read -r -d '' w; do
     head -c 7 "$w" | grep -q BSCRYPT && continue
     "$R" "$w" -o "$T/vm.ply" --resolution-scale 0.3 --backend vm 2> /dev/null
     check "fvrml-run-sse $(basename "$w")" 0 '' -- "$R" "$w" -o "$T/sse.ply" --resolution-scale 0.3 --backend sse
     cmp -s "$T/vm.ply" "$T/sse.ply" || { echo "FAIL sse mesh differs from vm: $w"; fails=$((fails + 1)); }
+    [ -z "$LLVM" ] && continue
+    check "fvrml-run-llvm $(basename "$w")" 0 '' -- "$R" "$w" -o "$T/llvm.ply" --resolution-scale 0.3 --backend llvm
+    cmp -s "$T/vm.ply" "$T/llvm.ply" || { echo "FAIL llvm mesh differs from vm: $w"; fails=$((fails + 1)); }
   done < <(find "$SRC/examples" "$SRC/../shared/corpus" -name '*.wrl' -print0 2> /dev/null)
 fi
 

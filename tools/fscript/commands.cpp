@@ -7,6 +7,9 @@
 #include <sstream>
 
 #include "backends/sse/sse_backend.h"
+#ifdef FS_HAVE_LLVM
+#include "backends/llvm/llvm_backend.h"
+#endif
 #include "backends/vm/vm_backend.h"
 #include "frontend/fscript/formatter.h"
 #include "frontend/fscript/parser.h"
@@ -211,7 +214,7 @@ int cmd_check(const std::vector<std::string>& files) {
   return rc;
 }
 
-int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes) {
+int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes, bool llvm) {
   Options o;
   Compiled c;
   std::string text;
@@ -226,13 +229,27 @@ int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, con
                             : frontend::function_spec(c.script.sema, entry, c.spec, error);
   if (!have) c.spec = {};  // no entry point: show the functions with an empty kernel
   frontend::BuildOptions bo;
-  bo.optimize = opt && passes.empty();
+  bo.optimize = (opt || llvm) && passes.empty();
   c.module = frontend::build_module(c.script, c.spec, diag, bo, error);
   print_diagnostics(diag);
   if (c.module && !passes.empty()) error = ir::run_passes(*c.module, passes);
   if (!c.module || !error.empty()) {
     std::cerr << "error: " << error << "\n";
     return kExitInput;
+  }
+  if (llvm) {
+#ifdef FS_HAVE_LLVM
+    std::string text = llvmjit::kernel_text(*c.module, {}, false, error);
+    if (text.empty()) {
+      std::cerr << "error: " << error << "\n";
+      return kExitInput;
+    }
+    std::cout << text;
+    return kExitOk;
+#else
+    std::cerr << "error: this binary is built without the llvm backend (install llvm-19-dev and rebuild)\n";
+    return kExitUsage;
+#endif
   }
   std::cout << ir::print(*c.module);
   return kExitOk;
@@ -258,6 +275,16 @@ int cmd_emit_asm(const Options& o, const std::string& file, const std::string& e
       std::cout << "; inputs finite with |x| <= " << bound << " (other batches run the general code)\n";
     std::cout << text;
   }
+#ifdef FS_HAVE_LLVM
+  if (name == "llvm") {
+    std::string error, text = llvmjit::kernel_text(*c.module, o.budgets, true, error);
+    if (text.empty()) {
+      std::cerr << "error: " << error << "\n";
+      return kExitInput;
+    }
+    std::cout << text;
+  }
+#endif
   return kExitOk;
 }
 

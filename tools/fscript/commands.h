@@ -10,7 +10,7 @@ namespace fscript::cli {
 int cmd_run(const Options& o, const std::string& file, const std::string& entry, const std::vector<std::string>& args);
 int cmd_eval(const Options& o, const std::string& file, const std::string& entry, const std::string& points);
 int cmd_check(const std::vector<std::string>& files);
-int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes);
+int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes, bool llvm);
 int cmd_emit_asm(const Options& o, const std::string& file, const std::string& entry);
 int cmd_fmt(const std::string& file);
 int cmd_bench(const Options& o, const std::string& file, const std::string& entry, size_t points, unsigned threads,

@@ -26,11 +26,7 @@ void print_diagnostics(const frontend::DiagnosticSink& sink) { std::cerr << fron
 std::unique_ptr<backend::Backend> pick_backend(const std::string& name) {
   std::string n = name.empty() ? backend::available_backends().front() : name;
   auto b = backend::make_backend(n);
-  if (!b) {
-    std::string avail;
-    for (const auto& a : backend::available_backends()) avail += (avail.empty() ? "" : ", ") + a;
-    std::cerr << "error: backend '" << n << "' is not built in this binary (available: " << avail << ")\n";
-  }
+  if (!b) std::cerr << "error: " << backend::missing_backend_message(n) << "\n";
   return b;
 }
 

@@ -17,7 +17,7 @@ struct Args {
   std::vector<std::string> files, values;
   size_t points = 1'000'000;
   unsigned threads = 1;
-  bool opt = false, one_point = false;
+  bool opt = false, one_point = false, llvm = false;
   uint32_t max_depth = 1000;
 };
 
@@ -49,7 +49,7 @@ int dispatch(CLI::App& app, Args& a) {
   }
   if (app.got_subcommand("eval")) return cmd_eval(a.opts, a.file, a.entry, a.points_path);
   if (app.got_subcommand("check")) return cmd_check(a.files);
-  if (app.got_subcommand("emit-ir")) return cmd_emit_ir(a.file, a.entry, a.opt, a.passes);
+  if (app.got_subcommand("emit-ir")) return cmd_emit_ir(a.file, a.entry, a.opt, a.passes, a.llvm);
   if (app.got_subcommand("emit-asm")) return cmd_emit_asm(a.opts, a.file, a.entry);
   if (app.got_subcommand("fmt")) return cmd_fmt(a.file);
   if (app.got_subcommand("bench")) return cmd_bench(a.opts, a.file, a.entry, a.points, a.threads, a.one_point);
@@ -78,6 +78,7 @@ int real_main(int argc, char** argv) {
   CLI::App* emit = app.add_subcommand("emit-ir", "print the SSA IR");
   emit->add_option("FILE", a.file, "the .fs script")->required();
   emit->add_flag("--opt", a.opt, "after the optimisation pipeline");
+  emit->add_flag("--llvm", a.llvm, "the kernel lowered to LLVM IR and optimised by LLVM (the llvm backend)");
   emit->add_option("--passes", a.passes, "run these passes in order instead (inline,promote,fold,dce,gvn,simplify,ifconv)");
   emit->add_option("--entry,-e", a.entry, "function to build the kernel for");
 

@@ -167,7 +167,7 @@ int run(int argc, char** argv) {
   }
   if (o.fraction >= 0) o.model.fraction = o.fraction;
   if (!fscript::backend::make_backend(o.model.backend)) {
-    std::cerr << "error: backend '" << o.model.backend << "' is not built in this binary\n";
+    std::cerr << "error: " << fscript::backend::missing_backend_message(o.model.backend) << "\n";
     return 2;
   }
   if (o.format.empty() && !o.output.empty()) o.format = o.output.substr(o.output.find_last_of('.') + 1);

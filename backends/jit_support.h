@@ -1,0 +1,69 @@
+#pragma once
+// What the JIT backends (sse, llvm) share around their generated code: the runtime-error codes
+// it returns, the native stack limit it checks recursion against, the bounded-input guard, and
+// running a batch in whole groups of lanes with the tail padded.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "backends/backend.h"
+#include "backends/lane_arrays.h"
+
+namespace fscript::backend {
+
+// Generated code returns 0 or (kind << 32) | line: 1 loop budget, 2 array error (message in
+// `arrays`), 3 call depth budget, 4 recursion deeper than the thread's stack allows. Returns
+// whether `code` is 0, else fills `err` with the VM's message for it.
+bool jit_status(uint64_t code, const LaneArrays& arrays, const Budgets& budgets, RuntimeError& err);
+
+// The lowest address a called function's frame may reach on this thread: the end of its stack
+// plus a margin for the runtime functions generated code calls. Found once per thread.
+uintptr_t stack_limit();
+
+// Every input of the batch finite with |x| <= bound (NaN fails too).
+bool inputs_in_range(const float* const* inputs, size_t num_inputs, size_t n, double bound);
+
+// Small lists live on the stack: the one-point path must not allocate.
+template <typename T, size_t N = 64>
+struct Scratch {
+  explicit Scratch(size_t n) : heap(n > N ? n : 0) { data = n > N ? heap.data() : local; }
+  T local[N];
+  std::vector<T> heap;
+  T* data;
+};
+
+// Runs `group_fn(inputs, outputs, count)` on the whole groups of `width` points, then on the
+// last points copied into one padded group (zeros in the unused lanes).
+template <typename GroupFn>
+bool run_padded(uint32_t width, size_t num_inputs, size_t num_outputs, const float* const* inputs,
+                float* const* outputs, size_t n, GroupFn group_fn) {
+  size_t whole = n - n % width;
+  if (whole && !group_fn(inputs, outputs, whole)) return false;
+  if (whole == n) return true;
+  Scratch<float, 256> in(width * num_inputs), out(width * num_outputs);
+  Scratch<const float*> ip(num_inputs);
+  Scratch<float*> op(num_outputs);
+  std::fill_n(in.data, width * num_inputs, 0.0f);
+  for (size_t k = 0; k < num_inputs; ++k) {
+    std::copy(inputs[k] + whole, inputs[k] + n, in.data + width * k);
+    ip.data[k] = in.data + width * k;
+  }
+  for (size_t k = 0; k < num_outputs; ++k) op.data[k] = out.data + width * k;
+  if (!group_fn(ip.data, op.data, width)) return false;
+  for (size_t k = 0; k < num_outputs; ++k) std::copy_n(out.data + width * k, n - whole, outputs[k] + whole);
+  return true;
+}
+
+// One point as a batch of one.
+template <typename Kernel>
+bool eval_one(const Kernel& kernel, size_t num_inputs, size_t num_outputs, const float* inputs, float* outputs,
+              RuntimeError& err) {
+  Scratch<const float*> in(num_inputs);
+  Scratch<float*> out(num_outputs);
+  for (size_t k = 0; k < num_inputs; ++k) in.data[k] = inputs + k;
+  for (size_t k = 0; k < num_outputs; ++k) out.data[k] = outputs + k;
+  return kernel.eval_batch(in.data, out.data, 1, err);
+}
+
+}  // namespace fscript::backend

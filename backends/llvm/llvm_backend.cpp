@@ -1,0 +1,76 @@
+// LLVM backend glue: lower, compile (or find in the cache), run groups of `width` points.
+#include "backends/llvm/llvm_backend.h"
+
+#include "backends/jit_support.h"
+#include "ir/text.h"
+
+namespace fscript::llvmjit {
+
+std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, const backend::Budgets& budgets,
+                                        bool bounded, Lowered& lowered, double& compile_ms, std::string& error) {
+  if (!lower(m, width, budgets, bounded, lowered, error)) return nullptr;
+  // The cache key: everything the code depends on.
+  std::string key = ir::print(m) + "\nwidth " + std::to_string(width) + " bounded " + std::to_string(bounded) +
+                    " loops " + std::to_string(budgets.max_loop_iterations) + " depth " +
+                    std::to_string(budgets.max_call_depth) + " elements " + std::to_string(budgets.max_array_elements);
+  return llvmjit::compile(std::move(lowered), key, compile_ms, error);
+}
+
+std::unique_ptr<backend::Kernel> LlvmBackend::compile(const ir::Module& m, const backend::Budgets& budgets,
+                                                      std::string& error) const {
+  Lowered lowered;
+  std::shared_ptr<Program> code = compile_module(m, width_, budgets, true, lowered, last_ms_, error);
+  if (!code) return nullptr;
+  return std::make_unique<LlvmKernel>(std::move(code), width_, lowered.num_inputs, lowered.num_outputs, budgets,
+                                      std::move(lowered.array_names), lowered.param_bound,
+                                      lowered.param_bound > 0 ? m.clone() : nullptr);
+}
+
+LlvmKernel::LlvmKernel(std::shared_ptr<Program> code, uint32_t width, size_t inputs, size_t outputs,
+                       const backend::Budgets& budgets, std::vector<std::string> array_names, double param_bound,
+                       std::unique_ptr<ir::Module> module)
+    : code_(std::move(code)), width_(width), inputs_(inputs), outputs_(outputs), budgets_(budgets),
+      arrays_(std::move(array_names)), param_bound_(param_bound), module_(std::move(module)) {}
+
+KernelFn LlvmKernel::general(backend::RuntimeError& err) const {
+  std::call_once(general_once_, [this] {
+    Lowered lowered;
+    double ms = 0;
+    std::string error;
+    general_ = compile_module(*module_, width_, budgets_, false, lowered, ms, error);
+    if (!general_) general_error_ = "the llvm backend could not compile the kernel's general code: " + error;
+  });
+  if (!general_) err.message = general_error_;
+  return general_ ? general_->entry() : nullptr;
+}
+
+bool LlvmKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n,
+                            backend::RuntimeError& err) const {
+  KernelFn f = code_->entry();
+  if (param_bound_ > 0 && !backend::inputs_in_range(inputs, inputs_, n, param_bound_) && !(f = general(err)))
+    return false;
+  // Per call: batches may run on several threads at once. Only kernels with arrays need it.
+  backend::LaneArrays arrays;
+  if (!arrays_.empty()) arrays.init(width_, budgets_.max_array_elements, arrays_);
+  return backend::run_padded(width_, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
+    return backend::jit_status(f(in, out, 0, count, &arrays, backend::stack_limit()), arrays, budgets_, err);
+  });
+}
+
+bool LlvmKernel::eval(const float* inputs, float* outputs, backend::RuntimeError& err) const {
+  return backend::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
+}
+
+std::string kernel_text(const ir::Module& m, const backend::Budgets& budgets, bool assembly, std::string& error) {
+  Lowered lowered;
+  if (!lower(m, host_width(), budgets, true, lowered, error)) return "";
+  std::string head = "; " + std::to_string(host_width()) + " lanes" +
+                     (lowered.param_bound > 0 ? "; inputs finite with |x| <= " + std::to_string(static_cast<int>(lowered.param_bound)) +
+                                                    " (other batches run the general code)"
+                                              : std::string()) +
+                     "\n";
+  std::string text = assembly ? llvmjit::assembly(lowered, error) : optimized_ir(lowered, error);
+  return text.empty() ? "" : head + text;
+}
+
+}  // namespace fscript::llvmjit

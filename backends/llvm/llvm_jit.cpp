@@ -1,0 +1,239 @@
+// The LLJIT instance, the optimisation pipeline, runtime symbols and the compiled-code cache.
+#include "backends/llvm/llvm_jit.h"
+
+#include <llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h>
+#include <llvm/ExecutionEngine/Orc/LLJIT.h>
+#include <llvm/ExecutionEngine/Orc/ThreadSafeModule.h>
+#include <llvm/IR/LLVMContext.h>
+#include <llvm/IR/LegacyPassManager.h>
+#include <llvm/IR/Module.h>
+#include <llvm/Passes/PassBuilder.h>
+#include <llvm/Support/TargetSelect.h>
+#include <llvm/Support/raw_ostream.h>
+#include <llvm/Target/TargetMachine.h>
+
+#include <chrono>
+#include <deque>
+#include <mutex>
+#include <unordered_map>
+
+#include "backends/lane_arrays.h"
+#include "runtime/math/math.h"
+
+namespace fscript::llvmjit {
+namespace {
+
+// runtime/math's batch functions under the names generated code calls.
+extern "C" {
+#define FS_RT1(name) \
+  void fs_rt_##name(const float* a, float* out, size_t n) { math::name##_batch(a, out, n); }
+FS_RT1(exp) FS_RT1(log) FS_RT1(log10) FS_RT1(sin) FS_RT1(cos) FS_RT1(tan) FS_RT1(asin) FS_RT1(acos)
+FS_RT1(atan) FS_RT1(sinh) FS_RT1(cosh) FS_RT1(tanh)
+#undef FS_RT1
+void fs_rt_pow(const float* a, const float* b, float* out, size_t n) { math::pow_batch(a, b, out, n); }
+void fs_rt_atan2(const float* a, const float* b, float* out, size_t n) { math::atan2_batch(a, b, out, n); }
+void fs_rt_noise(const float* x, const float* y, const float* z, float* out, size_t n) {
+  for (size_t i = 0; i < n; ++i) out[i] = math::noise(x[i], y[i], z[i]);
+}
+}
+
+// Every symbol generated code may call, the one table the JIT resolves them from.
+struct RuntimeSymbol {
+  const char* name;
+  const void* address;
+};
+#define FS_SYM(f) {#f, reinterpret_cast<const void*>(&f)}
+const RuntimeSymbol kRuntimeSymbols[] = {
+    FS_SYM(fs_rt_exp), FS_SYM(fs_rt_log), FS_SYM(fs_rt_log10), FS_SYM(fs_rt_sin), FS_SYM(fs_rt_cos),
+    FS_SYM(fs_rt_tan), FS_SYM(fs_rt_asin), FS_SYM(fs_rt_acos), FS_SYM(fs_rt_atan), FS_SYM(fs_rt_sinh),
+    FS_SYM(fs_rt_cosh), FS_SYM(fs_rt_tanh), FS_SYM(fs_rt_pow), FS_SYM(fs_rt_atan2), FS_SYM(fs_rt_noise),
+#define FS_LANES(f) {#f, reinterpret_cast<const void*>(&backend::f)}
+    FS_LANES(fs_lanes_reset), FS_LANES(fs_lanes_anew), FS_LANES(fs_lanes_aload), FS_LANES(fs_lanes_astore),
+    FS_LANES(fs_lanes_alen), FS_LANES(fs_lanes_enter), FS_LANES(fs_lanes_leave),
+};
+#undef FS_SYM
+#undef FS_LANES
+
+std::string message(llvm::Error e) {
+  std::string s;
+  llvm::handleAllErrors(std::move(e), [&](const llvm::ErrorInfoBase& info) { s += info.message(); });
+  return s;
+}
+
+// One LLJIT for the process, with a target machine for the optimiser and the assembly printer;
+// the mutex serialises compiles (the target machine is not shared across threads).
+struct State {
+  std::unique_ptr<llvm::orc::LLJIT> jit;
+  std::unique_ptr<llvm::TargetMachine> tm;
+  std::string error;
+  std::mutex mutex;
+  uint64_t next_dylib = 0;
+  std::unordered_map<std::string, std::weak_ptr<Program>> cache;
+  std::deque<std::shared_ptr<Program>> recent;  // the last programs stay compiled when unused
+  CacheStats stats;
+};
+constexpr size_t kRecentPrograms = 16;
+
+State& state() {
+  static State* s = [] {
+    auto* st = new State;  // never destroyed: kernels may outlive static destruction order
+    llvm::InitializeNativeTarget();
+    llvm::InitializeNativeTargetAsmPrinter();
+    llvm::InitializeNativeTargetAsmParser();
+    auto jtmb = llvm::orc::JITTargetMachineBuilder::detectHost();
+    if (!jtmb) {
+      st->error = message(jtmb.takeError());
+      return st;
+    }
+    jtmb->setCodeGenOptLevel(llvm::CodeGenOptLevel::Aggressive);
+    auto tm = jtmb->createTargetMachine();
+    if (!tm) {
+      st->error = message(tm.takeError());
+      return st;
+    }
+    st->tm = std::move(*tm);
+    auto jit = llvm::orc::LLJITBuilder().setJITTargetMachineBuilder(std::move(*jtmb)).create();
+    if (!jit) {
+      st->error = message(jit.takeError());
+      return st;
+    }
+    st->jit = std::move(*jit);
+    // Errors reach the caller through lookup's result; nothing goes to stderr.
+    st->jit->getExecutionSession().setErrorReporter([](llvm::Error e) { llvm::consumeError(std::move(e)); });
+    return st;
+  }();
+  return *s;
+}
+
+void prepare(Lowered& l, State& s) {
+  l.module->setDataLayout(s.tm->createDataLayout());
+  l.module->setTargetTriple(s.tm->getTargetTriple().str());
+}
+
+void optimize(llvm::Module& m, llvm::TargetMachine* tm) {
+  llvm::LoopAnalysisManager lam;
+  llvm::FunctionAnalysisManager fam;
+  llvm::CGSCCAnalysisManager cgam;
+  llvm::ModuleAnalysisManager mam;
+  llvm::PassBuilder pb(tm);
+  pb.registerModuleAnalyses(mam);
+  pb.registerCGSCCAnalyses(cgam);
+  pb.registerFunctionAnalyses(fam);
+  pb.registerLoopAnalyses(lam);
+  pb.crossRegisterProxies(lam, fam, cgam, mam);
+  llvm::OptimizationLevel level = kOptLevel == 3   ? llvm::OptimizationLevel::O3
+                                  : kOptLevel == 1 ? llvm::OptimizationLevel::O1
+                                                   : llvm::OptimizationLevel::O2;
+  pb.buildPerModuleDefaultPipeline(level).run(m, mam);
+}
+
+}  // namespace
+
+Program::~Program() {
+  if (!dylib_) return;
+  State& s = state();
+  std::lock_guard<std::mutex> lock(s.mutex);
+  llvm::consumeError(s.jit->getExecutionSession().removeJITDylib(*static_cast<llvm::orc::JITDylib*>(dylib_)));
+}
+
+uint32_t host_width() {
+  if (__builtin_cpu_supports("avx512f")) return 16;
+  if (__builtin_cpu_supports("avx2")) return 8;
+  return 4;
+}
+
+std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, double& compile_ms, std::string& error) {
+  compile_ms = 0;
+  State& s = state();
+  if (!s.jit) {
+    error = "the llvm backend could not start LLVM's JIT: " + s.error;
+    return nullptr;
+  }
+  std::shared_ptr<Program> evicted;  // destroyed after the lock is released (its destructor locks)
+  std::unique_lock<std::mutex> lock(s.mutex);
+  if (auto it = s.cache.find(key); it != s.cache.end())
+    if (auto hit = it->second.lock()) {
+      ++s.stats.hits;
+      return hit;
+    }
+  auto start = std::chrono::steady_clock::now();
+  prepare(lowered, s);
+  optimize(*lowered.module, s.tm.get());
+  auto dylib = s.jit->createJITDylib("fs_program_" + std::to_string(s.next_dylib++));
+  if (!dylib) {
+    error = message(dylib.takeError());
+    return nullptr;
+  }
+  llvm::orc::SymbolMap symbols;
+  for (const auto& r : kRuntimeSymbols)
+    symbols[s.jit->mangleAndIntern(r.name)] = {llvm::orc::ExecutorAddr::fromPtr(r.address),
+                                               llvm::JITSymbolFlags::Exported | llvm::JITSymbolFlags::Callable};
+  auto program = std::make_shared<Program>();
+  program->dylib_ = &*dylib;
+  llvm::Error e = dylib->define(llvm::orc::absoluteSymbols(std::move(symbols)));
+  if (!e) e = s.jit->addIRModule(*dylib, llvm::orc::ThreadSafeModule(std::move(lowered.module), std::move(lowered.context)));
+  if (e) {
+    error = message(std::move(e));
+    lock.unlock();
+    return nullptr;  // the program's destructor removes the dylib
+  }
+  auto entry = s.jit->lookup(*dylib, kKernelSymbol);  // compiles
+  if (!entry) {
+    error = message(entry.takeError());
+    lock.unlock();
+    return nullptr;
+  }
+  program->entry_ = entry->toPtr<KernelFn>();
+  compile_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  ++s.stats.compiles;
+  s.cache[key] = program;
+  s.recent.push_back(program);
+  if (s.recent.size() > kRecentPrograms) {
+    evicted = std::move(s.recent.front());
+    s.recent.pop_front();
+  }
+  return program;
+}
+
+std::string optimized_ir(Lowered& lowered, std::string& error) {
+  State& s = state();
+  if (!s.jit) {
+    error = "the llvm backend could not start LLVM: " + s.error;
+    return "";
+  }
+  std::lock_guard<std::mutex> lock(s.mutex);
+  prepare(lowered, s);
+  optimize(*lowered.module, s.tm.get());
+  std::string text;
+  llvm::raw_string_ostream os(text);
+  lowered.module->print(os, nullptr);
+  return os.str();
+}
+
+std::string assembly(Lowered& lowered, std::string& error) {
+  State& s = state();
+  if (!s.jit) {
+    error = "the llvm backend could not start LLVM: " + s.error;
+    return "";
+  }
+  std::lock_guard<std::mutex> lock(s.mutex);
+  prepare(lowered, s);
+  optimize(*lowered.module, s.tm.get());
+  llvm::SmallString<0> buffer;
+  llvm::raw_svector_ostream os(buffer);
+  llvm::legacy::PassManager pm;
+  if (s.tm->addPassesToEmitFile(pm, os, nullptr, llvm::CodeGenFileType::AssemblyFile)) {
+    error = "LLVM cannot print assembly for this target";
+    return "";
+  }
+  pm.run(*lowered.module);
+  return std::string(buffer.str());
+}
+
+CacheStats cache_stats() {
+  State& s = state();
+  std::lock_guard<std::mutex> lock(s.mutex);
+  return s.stats;
+}
+
+}  // namespace fscript::llvmjit

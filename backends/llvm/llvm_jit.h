@@ -1,0 +1,42 @@
+#pragma once
+// The process's LLVM ORC LLJIT: optimisation of lowered modules, one JITDylib per compiled
+// program (freed with it), runtime symbols from one table, a cache of compiled programs keyed by
+// the IR's hash, and the text forms `fscript emit-asm` / `emit-ir --llvm` print.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "backends/llvm/llvm_lower.h"
+
+namespace fscript::llvmjit {
+
+// Compiled code alive as long as some kernel holds it (made by compile()).
+struct Program {
+  ~Program();
+  KernelFn entry() const { return entry_; }
+  void* dylib_ = nullptr;  // the llvm::orc::JITDylib, removed with the program
+  KernelFn entry_ = nullptr;
+};
+
+// The optimisation level, chosen by measurement (docs/performance.md).
+constexpr int kOptLevel = 2;
+
+// The SIMD width of this CPU: 16 with AVX-512, 8 with AVX2, else 4.
+uint32_t host_width();
+
+// Compiles (or finds in the cache) the lowered program; nullptr with a message on failure.
+// `key` identifies the source program (its IR text, width, budgets); compile_ms says how long
+// compiling took (0 on a cache hit).
+std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, double& compile_ms, std::string& error);
+
+// The optimised LLVM IR, or the host's assembly for it.
+std::string optimized_ir(Lowered& lowered, std::string& error);
+std::string assembly(Lowered& lowered, std::string& error);
+
+// Compiled programs kept (cache hits) and compiles done, for tests and `--stats`.
+struct CacheStats {
+  uint64_t hits = 0, compiles = 0;
+};
+CacheStats cache_stats();
+
+}  // namespace fscript::llvmjit

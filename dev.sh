@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
-PACKAGES=(cmake ninja-build g++ python3 catch2 nlohmann-json3-dev libcli11-dev libpng-dev libedit-dev)
+PACKAGES=(cmake ninja-build g++ python3 catch2 nlohmann-json3-dev libcli11-dev libpng-dev libedit-dev llvm-19-dev)
 # For the tests only: a real VRML97 browser (view3dscene, run under a virtual X server).
 TEST_PACKAGES=(view3dscene xvfb xauth binutils)
 

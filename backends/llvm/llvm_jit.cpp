@@ -13,6 +13,7 @@
 #include <llvm/Target/TargetMachine.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <deque>
 #include <mutex>
 #include <unordered_map>
@@ -137,6 +138,11 @@ Program::~Program() {
 }
 
 uint32_t host_width() {
+  // FSCRIPT_ISA (as for the VM's variants, runtime/math/isa.h) narrows it, so tests run every width.
+  const char* isa = std::getenv("FSCRIPT_ISA");
+  std::string want = isa ? isa : "";
+  if (want == "base") return 4;
+  if (want == "avx2" && __builtin_cpu_supports("avx2")) return 8;
   if (__builtin_cpu_supports("avx512f")) return 16;
   if (__builtin_cpu_supports("avx2")) return 8;
   return 4;

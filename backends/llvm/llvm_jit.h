@@ -21,7 +21,8 @@ struct Program {
 // The optimisation level, chosen by measurement (docs/performance.md).
 constexpr int kOptLevel = 2;
 
-// The SIMD width of this CPU: 16 with AVX-512, 8 with AVX2, else 4.
+// The SIMD width of this CPU: 16 with AVX-512, 8 with AVX2, else 4 (FSCRIPT_ISA=base|avx2 asks
+// for 4 or 8, as it picks the VM's instruction-set variant).
 uint32_t host_width();
 
 // Compiles (or finds in the cache) the lowered program; nullptr with a message on failure.

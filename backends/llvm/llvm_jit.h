@@ -39,5 +39,7 @@ struct CacheStats {
   uint64_t hits = 0, compiles = 0;
 };
 CacheStats cache_stats();
+// Off: every compile compiles (for measuring cold compile times); on by default.
+void set_cache_enabled(bool on);
 
 }  // namespace fscript::llvmjit

@@ -285,6 +285,63 @@ class FnLower {
     return scratch_;
   }
 
+  // sin (quadrant offset 0) and cos (1) inline: runtime/math/batch.cpp's trig_lane step for step
+  // (reduction in double, Cephes polynomials, quadrant by integer bit operations), so the result
+  // is the batch function's bit for bit; a group with a lane beyond its fast range (huge, inf,
+  // NaN) calls the batch function instead.
+  llvm::Value* trig(const ir::Inst& in, int offset, const char* batch_name) {
+    llvm::Value* x = val(in.args[0]);
+    auto* vd = llvm::FixedVectorType::get(b_.getDoubleTy(), s_.width);
+    auto f = [&](float v) { return llvm::ConstantFP::get(s_.vf, v); };
+    auto d = [&](double v) { return llvm::ConstantFP::get(vd, v); };
+    auto i = [&](uint32_t v) { return llvm::ConstantInt::get(s_.vi, v); };
+    llvm::Value* fast = b_.CreateFCmpOLE(unary(llvm::Intrinsic::fabs, x), f(8.0e5f));
+    llvm::Value* xd = b_.CreateFPExt(b_.CreateSelect(fast, x, f(0.0f)), vd);
+    llvm::Value* magic = d(6755399441055744.0);
+    llvm::Value* jd = b_.CreateFSub(b_.CreateFAdd(b_.CreateFMul(xd, d(0.63661977236758134308)), magic), magic);
+    llvm::Value* r = b_.CreateFSub(b_.CreateFSub(xd, b_.CreateFMul(jd, d(1.57079632673412561417e+00))),
+                                   b_.CreateFMul(jd, d(6.07710050650619224932e-11)));
+    llvm::Value* q = b_.CreateAdd(b_.CreateFPToSI(jd, s_.vi), i(static_cast<uint32_t>(offset)));
+    llvm::Value* rf = b_.CreateFPTrunc(r, s_.vf);
+    llvm::Value* z = b_.CreateFMul(rf, rf);
+    llvm::Value* sp = b_.CreateFAdd(
+        b_.CreateFMul(b_.CreateFMul(b_.CreateFSub(b_.CreateFMul(b_.CreateFAdd(b_.CreateFMul(f(-1.9515295891e-4f), z),
+                                                                                f(8.3321608736e-3f)),
+                                                                  z),
+                                                  f(1.6666654611e-1f)),
+                                    z),
+                      rf),
+        rf);
+    llvm::Value* cp = b_.CreateFAdd(
+        b_.CreateFSub(
+            b_.CreateFMul(b_.CreateFMul(b_.CreateFAdd(b_.CreateFMul(b_.CreateFSub(b_.CreateFMul(f(2.443315711809948e-5f), z),
+                                                                                f(1.388731625493765e-3f)),
+                                                                  z),
+                                                      f(4.166664568298827e-2f)),
+                                        z),
+                          z),
+            b_.CreateFMul(f(0.5f), z)),
+        f(1.0f));
+    llvm::Value* odd = b_.CreateICmpNE(b_.CreateAnd(q, i(1)), i(0));
+    llvm::Value* v = b_.CreateBitCast(b_.CreateSelect(odd, cp, sp), s_.vi);
+    llvm::Value* result = b_.CreateBitCast(b_.CreateXor(v, b_.CreateShl(b_.CreateAnd(q, i(2)), i(30))), s_.vf);
+    // Out-of-range lanes: the whole group through the batch function.
+    llvm::BasicBlock* here = b_.GetInsertBlock();
+    llvm::BasicBlock* slow = llvm::BasicBlock::Create(s_.c, "trig_slow", f_);
+    llvm::BasicBlock* join = llvm::BasicBlock::Create(s_.c, "trig_done", f_);
+    llvm::Value* all_fast = b_.CreateAndReduce(fast);
+    b_.CreateCondBr(all_fast, join, slow, llvm::MDBuilder(s_.c).createBranchWeights(1 << 20, 1));
+    b_.SetInsertPoint(slow);
+    llvm::Value* slow_result = batch(batch_name, in);
+    llvm::BasicBlock* slow_end = b_.GetInsertBlock();
+    b_.CreateBr(join);
+    b_.SetInsertPoint(join);
+    llvm::PHINode* phi = b_.CreatePHI(s_.vf, 2);
+    phi->addIncoming(result, here);
+    phi->addIncoming(slow_result, slow_end);
+    return phi;
+  }
+
   // A runtime error when any lane meets `bad`: the function returns (kind << 32) | line.
   void trap_if(llvm::Value* bad, uint64_t kind, uint32_t line) {
     llvm::BasicBlock* trap = llvm::BasicBlock::Create(s_.c, "trap", f_);
@@ -332,8 +389,8 @@ class FnLower {
       case Op::Exp: return define(in, batch("fs_rt_exp", in));
       case Op::Log: return define(in, batch("fs_rt_log", in));
       case Op::Log10: return define(in, batch("fs_rt_log10", in));
-      case Op::Sin: return define(in, batch("fs_rt_sin", in));
-      case Op::Cos: return define(in, batch("fs_rt_cos", in));
+      case Op::Sin: return define(in, trig(in, 0, "fs_rt_sin"));
+      case Op::Cos: return define(in, trig(in, 1, "fs_rt_cos"));
       case Op::Tan: return define(in, batch("fs_rt_tan", in));
       case Op::Asin: return define(in, batch("fs_rt_asin", in));
       case Op::Acos: return define(in, batch("fs_rt_acos", in));

@@ -13,6 +13,10 @@ if [ -f "$P" ]; then
   sed -E -f prospero.sed "$P" > "$OUT/prospero_body.h"
   gcc -O3 -march=x86-64-v2 -fno-math-errno -I"$OUT" -o "$OUT/prospero" prospero_main.c
   echo "gcc -O3 -march=x86-64-v2 prospero 1024^2: $("$OUT/prospero")"
+  if command -v clang > /dev/null; then
+    clang -O3 -march=native -fno-math-errno -I"$OUT" -o "$OUT/prospero-native" prospero_main.c
+    echo "clang -O3 -march=native prospero 1024^2: $("$OUT/prospero-native")"
+  fi
 fi
 if command -v clang > /dev/null; then
   clang -O3 -march=native -fno-math-errno -o "$OUT/clang" baseline.c -lm

@@ -8,11 +8,13 @@ namespace fscript::llvmjit {
 
 std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, const backend::Budgets& budgets,
                                         bool bounded, Lowered& lowered, double& compile_ms, std::string& error) {
-  if (!lower(m, width, budgets, bounded, lowered, error)) return nullptr;
+  compile_ms = 0;
   // The cache key: everything the code depends on.
   std::string key = ir::print(m) + "\nwidth " + std::to_string(width) + " bounded " + std::to_string(bounded) +
                     " loops " + std::to_string(budgets.max_loop_iterations) + " depth " +
                     std::to_string(budgets.max_call_depth) + " elements " + std::to_string(budgets.max_array_elements);
+  if (std::shared_ptr<Program> hit = cached(key)) return hit;
+  if (!lower(m, width, budgets, bounded, lowered, error)) return nullptr;
   return llvmjit::compile(std::move(lowered), key, compile_ms, error);
 }
 
@@ -21,9 +23,9 @@ std::unique_ptr<backend::Kernel> LlvmBackend::compile(const ir::Module& m, const
   Lowered lowered;
   std::shared_ptr<Program> code = compile_module(m, width_, budgets, true, lowered, last_ms_, error);
   if (!code) return nullptr;
-  return std::make_unique<LlvmKernel>(std::move(code), width_, lowered.num_inputs, lowered.num_outputs, budgets,
-                                      std::move(lowered.array_names), lowered.param_bound,
-                                      lowered.param_bound > 0 ? m.clone() : nullptr);
+  const Program& p = *code;
+  return std::make_unique<LlvmKernel>(std::move(code), width_, p.num_inputs, p.num_outputs, budgets, p.array_names,
+                                      p.param_bound, p.param_bound > 0 ? m.clone() : nullptr);
 }
 
 LlvmKernel::LlvmKernel(std::shared_ptr<Program> code, uint32_t width, size_t inputs, size_t outputs,

@@ -126,9 +126,14 @@ void optimize(llvm::Module& m, llvm::TargetMachine* tm) {
   pb.registerFunctionAnalyses(fam);
   pb.registerLoopAnalyses(lam);
   pb.crossRegisterProxies(lam, fam, cgam, mam);
-  llvm::OptimizationLevel level = kOptLevel == 3   ? llvm::OptimizationLevel::O3
-                                  : kOptLevel == 1 ? llvm::OptimizationLevel::O1
-                                                   : llvm::OptimizationLevel::O2;
+  // FSCRIPT_LLVM_OPT=1|2|3 overrides the level, to measure the choice (docs/performance.md).
+  static const int opt = [] {
+    const char* v = std::getenv("FSCRIPT_LLVM_OPT");
+    return v && (v[0] == '1' || v[0] == '2' || v[0] == '3') && !v[1] ? v[0] - '0' : kOptLevel;
+  }();
+  llvm::OptimizationLevel level = opt == 3   ? llvm::OptimizationLevel::O3
+                                  : opt == 1 ? llvm::OptimizationLevel::O1
+                                             : llvm::OptimizationLevel::O2;
   pb.buildPerModuleDefaultPipeline(level).run(m, mam);
 }
 
@@ -161,11 +166,6 @@ std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, doub
   }
   std::shared_ptr<Program> evicted;  // destroyed after the lock is released (its destructor locks)
   std::unique_lock<std::mutex> lock(s.mutex);
-  if (auto it = s.cache.find(key); s.cache_on && it != s.cache.end())
-    if (auto hit = it->second.lock()) {
-      ++s.stats.hits;
-      return hit;
-    }
   auto start = std::chrono::steady_clock::now();
   prepare(lowered, s);
   optimize(*lowered.module, s.tm.get());
@@ -180,6 +180,10 @@ std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, doub
                                                llvm::JITSymbolFlags::Exported | llvm::JITSymbolFlags::Callable};
   auto program = std::make_shared<Program>();
   program->dylib_ = &*dylib;
+  program->num_inputs = lowered.num_inputs;
+  program->num_outputs = lowered.num_outputs;
+  program->array_names = lowered.array_names;
+  program->param_bound = lowered.param_bound;
   llvm::Error e = dylib->define(llvm::orc::absoluteSymbols(std::move(symbols)));
   if (!e) e = s.jit->addIRModule(*dylib, llvm::orc::ThreadSafeModule(std::move(lowered.module), std::move(lowered.context)));
   if (e) {
@@ -203,6 +207,17 @@ std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, doub
     s.recent.pop_front();
   }
   return program;
+}
+
+std::shared_ptr<Program> cached(const std::string& key) {
+  State& s = state();
+  std::lock_guard<std::mutex> lock(s.mutex);
+  if (!s.cache_on) return nullptr;
+  auto it = s.cache.find(key);
+  if (it == s.cache.end()) return nullptr;
+  auto hit = it->second.lock();
+  if (hit) ++s.stats.hits;
+  return hit;
 }
 
 std::string optimized_ir(Lowered& lowered, std::string& error) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "backends/llvm/llvm_lower.h"
 
@@ -16,18 +17,24 @@ struct Program {
   KernelFn entry() const { return entry_; }
   void* dylib_ = nullptr;  // the llvm::orc::JITDylib, removed with the program
   KernelFn entry_ = nullptr;
+  // The kernel's shape, as lowering found it (a cache hit needs no lowering).
+  uint32_t num_inputs = 0, num_outputs = 0;
+  std::vector<std::string> array_names;
+  double param_bound = 0;
 };
 
 // The optimisation level, chosen by measurement (docs/performance.md).
-constexpr int kOptLevel = 2;
+constexpr int kOptLevel = 1;
 
 // The SIMD width of this CPU: 16 with AVX-512, 8 with AVX2, else 4 (FSCRIPT_ISA=base|avx2 asks
 // for 4 or 8, as it picks the VM's instruction-set variant).
 uint32_t host_width();
 
-// Compiles (or finds in the cache) the lowered program; nullptr with a message on failure.
-// `key` identifies the source program (its IR text, width, budgets); compile_ms says how long
-// compiling took (0 on a cache hit).
+// The compiled program for `key` (the source program's IR text, width, budgets), if the cache
+// has it alive.
+std::shared_ptr<Program> cached(const std::string& key);
+// Compiles the lowered program and caches it under `key`; nullptr with a message on failure.
+// compile_ms says how long LLVM took.
 std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, double& compile_ms, std::string& error);
 
 // The optimised LLVM IR, or the host's assembly for it.

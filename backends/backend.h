@@ -62,5 +62,8 @@ std::vector<std::string> available_backends();
 std::unique_ptr<Backend> make_backend(const std::string& name);
 // Why make_backend(name) gave nullptr, for the user.
 std::string missing_backend_message(const std::string& name);
+// Turns on the llvm backend's on-disk cache of compiled code (the user's cache directory).
+// Returns false with a message when this binary has no llvm backend or no cache directory.
+bool enable_llvm_disk_cache(std::string& message);
 
 }  // namespace fscript::backend

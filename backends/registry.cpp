@@ -35,4 +35,15 @@ std::string missing_backend_message(const std::string& name) {
   return "unknown backend '" + name + "' (available: " + avail + ")";
 }
 
+bool enable_llvm_disk_cache(std::string& message) {
+#ifdef FS_HAVE_LLVM
+  message = llvmjit::set_disk_cache_enabled(true);
+  if (!message.empty()) return true;
+  message = "--llvm-disk-cache: no cache directory (set XDG_CACHE_HOME or HOME to a writable place)";
+#else
+  message = "--llvm-disk-cache: this binary has no llvm backend";
+#endif
+  return false;
+}
+
 }  // namespace fscript::backend

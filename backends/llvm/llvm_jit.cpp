@@ -19,6 +19,7 @@
 #include <unordered_map>
 
 #include "backends/lane_arrays.h"
+#include "backends/llvm/llvm_disk_cache.h"
 #include "runtime/math/math.h"
 
 namespace fscript::llvmjit {
@@ -73,6 +74,7 @@ struct State {
   std::deque<std::shared_ptr<Program>> recent;  // the last programs stay compiled when unused
   CacheStats stats;
   bool cache_on = true;
+  DiskCache* disk = make_disk_cache();
 };
 constexpr size_t kRecentPrograms = 16;
 
@@ -97,7 +99,13 @@ State& state() {
       return st;
     }
     st->tm = std::move(*tm);
-    auto jit = llvm::orc::LLJITBuilder().setJITTargetMachineBuilder(std::move(*jtmb)).create();
+    DiskCache* disk = st->disk;
+    auto jit = llvm::orc::LLJITBuilder()
+                   .setJITTargetMachineBuilder(std::move(*jtmb))
+                   .setCompileFunctionCreator([disk](llvm::orc::JITTargetMachineBuilder j) {
+                     return make_compiler(std::move(j), disk);
+                   })
+                   .create();
     if (!jit) {
       st->error = message(jit.takeError());
       return st;
@@ -168,7 +176,10 @@ std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, doub
   std::unique_lock<std::mutex> lock(s.mutex);
   auto start = std::chrono::steady_clock::now();
   prepare(lowered, s);
-  optimize(*lowered.module, s.tm.get());
+  lowered.module->setModuleIdentifier(disk_name(key));
+  disk_expect(s.disk, key);
+  if (disk_has(s.disk, key)) ++s.stats.disk_hits;  // the object is loaded instead of compiled
+  else optimize(*lowered.module, s.tm.get());
   auto dylib = s.jit->createJITDylib("fs_program_" + std::to_string(s.next_dylib++));
   if (!dylib) {
     error = message(dylib.takeError());
@@ -253,6 +264,12 @@ std::string assembly(Lowered& lowered, std::string& error) {
   }
   pm.run(*lowered.module);
   return std::string(buffer.str());
+}
+
+std::string set_disk_cache_enabled(bool on) {
+  State& s = state();
+  std::lock_guard<std::mutex> lock(s.mutex);
+  return set_disk_cache(s.disk, on);
 }
 
 void set_cache_enabled(bool on) {

@@ -43,10 +43,13 @@ std::string assembly(Lowered& lowered, std::string& error);
 
 // Compiled programs kept (cache hits) and compiles done, for tests and `--stats`.
 struct CacheStats {
-  uint64_t hits = 0, compiles = 0;
+  uint64_t hits = 0, compiles = 0, disk_hits = 0;  // disk hits are also counted in compiles
 };
 CacheStats cache_stats();
 // Off: every compile compiles (for measuring cold compile times); on by default.
 void set_cache_enabled(bool on);
+// The on-disk cache of object code (off by default); returns its directory, "" when off or when
+// no cache directory can be made.
+std::string set_disk_cache_enabled(bool on);
 
 }  // namespace fscript::llvmjit

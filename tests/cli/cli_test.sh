@@ -102,6 +102,10 @@ if [ -n "$LLVM" ]; then
   check backend-llvm-loop 1 'loop.fs:2: error: loop iteration budget' -- "$F" run "$T/loop.fs" --backend llvm 0
   check run-recursion-llvm 1 'rec.fs:1: error: call depth budget exceeded: more than 1000 nested calls' -- "$F" run "$T/rec.fs" --backend llvm 1
   check run-fact-llvm 0 '^3628800$' -- "$F" run "$T/fact.fs" 10 --backend llvm
+  check llvm-disk-cache 0 '^3628800$' -- env XDG_CACHE_HOME="$T/xdg" "$F" run "$T/fact.fs" 10 --backend llvm --llvm-disk-cache
+  ls "$T"/xdg/fscript/llvm/*.o > /dev/null 2>&1 || { echo "FAIL llvm-disk-cache wrote no object file"; fails=$((fails + 1)); }
+  check llvm-disk-cache-again 0 '^3628800$' -- env XDG_CACHE_HOME="$T/xdg" "$F" run "$T/fact.fs" 10 --backend llvm --llvm-disk-cache
+  check llvm-disk-cache-nowhere 2 'no cache directory' -- env -u XDG_CACHE_HOME -u HOME "$F" run "$T/fact.fs" 10 --backend llvm --llvm-disk-cache
 else
   check emit-ir-llvm-missing 2 'built without the llvm backend' -- "$F" emit-ir --llvm "$T/sphere.fs"
 fi

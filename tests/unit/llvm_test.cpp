@@ -7,6 +7,9 @@
 #include <cstring>
 #include <limits>
 #include <thread>
+#include <filesystem>
+
+#include <unistd.h>
 
 #include "backends/llvm/llvm_backend.h"
 #include "tests/unit/helpers.h"
@@ -192,4 +195,28 @@ TEST_CASE("llvm: kernels compiled and freed, and the cache of compiled code") {
   REQUIRE(k2->eval(in, &r2, err));
   CHECK(r1 == 248.0f);
   CHECK(r2 == 248.0f);
+}
+
+TEST_CASE("llvm: the on-disk cache of machine code serves the next compile of the same program") {
+  std::string dir = "/tmp/fscript-llvm-test-cache-" + std::to_string(::getpid());
+  setenv("XDG_CACHE_HOME", dir.c_str(), 1);
+  REQUIRE(llvmjit::set_disk_cache_enabled(true) == dir + "/fscript/llvm");
+  llvmjit::set_cache_enabled(false);  // so the second compile cannot come from memory
+  auto vm = test::build("function FRep(x, y, z, t) { return sin(x) * 7.25 + y * y; }");
+  llvmjit::CacheStats before = llvmjit::cache_stats();
+  auto k1 = llvm_kernel(*vm->module, 16);
+  auto k2 = llvm_kernel(*vm->module, 16);
+  llvmjit::CacheStats after = llvmjit::cache_stats();
+  llvmjit::set_cache_enabled(true);
+  llvmjit::set_disk_cache_enabled(false);
+  CHECK(after.compiles == before.compiles + 2);
+  CHECK(after.disk_hits == before.disk_hits + 1);
+  float in[4] = {0.5f, 3, 0, 0}, r1 = 0, r2 = 0, r0 = 0;
+  backend::RuntimeError err;
+  REQUIRE(vm->kernel->eval(in, &r0, err));
+  REQUIRE(k1->eval(in, &r1, err));
+  REQUIRE(k2->eval(in, &r2, err));
+  CHECK(same(r1, r0));
+  CHECK(same(r2, r0));
+  std::filesystem::remove_all(dir);
 }

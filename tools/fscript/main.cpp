@@ -17,7 +17,7 @@ struct Args {
   std::vector<std::string> files, values;
   size_t points = 1'000'000;
   unsigned threads = 1;
-  bool opt = false, one_point = false, llvm = false;
+  bool opt = false, one_point = false, llvm = false, disk_cache = false;
   uint32_t max_depth = 1000;
 };
 
@@ -35,7 +35,9 @@ void add_budget_flags(CLI::App& app, Args& a) {
 CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args& a) {
   CLI::App* c = app.add_subcommand(name, help);
   c->add_option("FILE", a.file, "the .fs script ('-' for standard input)")->required();
-  c->add_option("--backend,-b", a.opts.backend, "evaluation backend: vm or sse (default: the fastest built)");
+  c->add_option("--backend,-b", a.opts.backend, "evaluation backend: vm, sse or llvm (default: vm)");
+  c->add_flag("--llvm-disk-cache", a.disk_cache,
+              "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
   c->add_option("--entry,-e", a.entry, "function to call (default: the script's entry point)");
   add_budget_flags(*c, a);
   return c;
@@ -43,6 +45,10 @@ CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args&
 
 int dispatch(CLI::App& app, Args& a) {
   a.opts.budgets.max_call_depth = a.max_depth;
+  if (std::string message; a.disk_cache && !backend::enable_llvm_disk_cache(message)) {
+    std::cerr << "error: " << message << "\n";
+    return 2;
+  }
   if (CLI::App* run = app.get_subcommand("run"); run->parsed()) {
     for (const auto& extra : run->remaining()) a.values.push_back(extra);
     return cmd_run(a.opts, a.file, a.entry, a.values);

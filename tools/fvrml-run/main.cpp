@@ -143,7 +143,10 @@ int run(int argc, char** argv) {
   o.model.backend = fscript::backend::available_backends().front();
   o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   app.add_option("SCENE", o.path, "the .wrl scene (plain or gzip)")->required();
-  app.add_option("--backend", o.model.backend, "evaluation backend (default: the fastest built)");
+  app.add_option("--backend", o.model.backend, "evaluation backend: vm, sse or llvm (default: vm)");
+  bool disk_cache = false;
+  app.add_flag("--llvm-disk-cache", disk_cache,
+               "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
   app.add_option("--time", o.model.now, "the scene clock in seconds after load (default 0)");
   app.add_option("--fraction", o.fraction, "drive every node as if set_fraction F had been received")
       ->check(CLI::Range(0.0, 1.0));
@@ -166,6 +169,10 @@ int run(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   if (o.fraction >= 0) o.model.fraction = o.fraction;
+  if (std::string message; disk_cache && !fscript::backend::enable_llvm_disk_cache(message)) {
+    std::cerr << "error: " << message << "\n";
+    return 2;
+  }
   if (!fscript::backend::make_backend(o.model.backend)) {
     std::cerr << "error: " << fscript::backend::missing_backend_message(o.model.backend) << "\n";
     return 2;

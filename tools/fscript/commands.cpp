@@ -161,11 +161,6 @@ bool check_embedded(const std::string& path, const std::vector<std::string>& lin
   return true;
 }
 
-bool is_scene_path(const std::string& p) {
-  auto ends = [&](const char* e) { return p.size() >= std::strlen(e) && p.compare(p.size() - std::strlen(e), std::string::npos, e) == 0; };
-  return ends(".wrl") || ends(".wrl.gz") || ends(".wrz") || ends(".WRL");
-}
-
 int check_wrl(const std::string& path, const std::string& text, frontend::DiagnosticSink& diag) {
   vrml::Scene scene;
   bool ok = vrml::parse_scene(std::make_unique<frontend::SourceFile>(path, text), diag, scene);
@@ -255,6 +250,25 @@ int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, con
   return kExitOk;
 }
 
+std::string backend_listing(const std::string& name, const ir::Module& m, const backend::Kernel* kernel,
+                            const backend::Budgets& budgets, std::string& error) {
+  if (auto* vk = dynamic_cast<const vm::VmKernel*>(kernel)) return vm::disassemble(vk->program());
+  if (name == "sse") {
+    std::string text;
+    double bound = 0;
+    if (sse::generate(m, budgets, error, &text, nullptr, &bound).empty()) return "";
+    if (bound > 0)  // the code that runs a batch whose inputs are all in range
+      text = "; inputs finite with |x| <= " + std::to_string(static_cast<int>(bound)) +
+             " (other batches run the general code)\n" + text;
+    return text;
+  }
+#ifdef FS_HAVE_LLVM
+  if (name == "llvm") return llvmjit::kernel_text(m, budgets, true, error);
+#endif
+  error = "no listing for backend '" + name + "'";
+  return "";
+}
+
 int cmd_emit_asm(const Options& o, const std::string& file, const std::string& entry) {
   std::string name = o.backend.empty() ? backend::available_backends().front() : o.backend;
   if (!backend::make_backend(name)) {
@@ -263,28 +277,12 @@ int cmd_emit_asm(const Options& o, const std::string& file, const std::string& e
   }
   Compiled c;
   if (int rc = compile_file(file, entry, o, c); rc != kExitOk) return rc;
-  if (auto* vk = dynamic_cast<const vm::VmKernel*>(c.kernel.get())) std::cout << vm::disassemble(vk->program());
-  if (name == "sse") {
-    std::string error, text;
-    double bound = 0;
-    if (sse::generate(*c.module, o.budgets, error, &text, nullptr, &bound).empty()) {
-      std::cerr << "error: " << error << "\n";
-      return kExitInput;
-    }
-    if (bound > 0)  // the code that runs a batch whose inputs are all in range
-      std::cout << "; inputs finite with |x| <= " << bound << " (other batches run the general code)\n";
-    std::cout << text;
+  std::string error, text = backend_listing(name, *c.module, c.kernel.get(), o.budgets, error);
+  if (text.empty()) {
+    std::cerr << "error: " << error << "\n";
+    return kExitInput;
   }
-#ifdef FS_HAVE_LLVM
-  if (name == "llvm") {
-    std::string error, text = llvmjit::kernel_text(*c.module, o.budgets, true, error);
-    if (text.empty()) {
-      std::cerr << "error: " << error << "\n";
-      return kExitInput;
-    }
-    std::cout << text;
-  }
-#endif
+  std::cout << text;
   return kExitOk;
 }
 

@@ -2,6 +2,7 @@
 #include "tools/fscript/common.h"
 
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <iostream>
 #include <iterator>
@@ -65,6 +66,11 @@ int compile_file(const std::string& path, const std::string& entry, const Option
     return kExitInput;
   }
   return kExitOk;
+}
+
+bool is_scene_path(const std::string& p) {
+  auto ends = [&](const char* e) { return p.size() >= std::strlen(e) && p.compare(p.size() - std::strlen(e), std::string::npos, e) == 0; };
+  return ends(".wrl") || ends(".wrl.gz") || ends(".wrz") || ends(".WRL");
 }
 
 std::string format_number(float v) {

@@ -33,6 +33,11 @@ bool read_source(const std::string& path, std::string& text);
 // Prints every diagnostic of the sink to standard error.
 void print_diagnostics(const frontend::DiagnosticSink& sink);
 
+// The generated code of backend `name` as text: VM bytecode, or the JIT's assembly; "" with a
+// message when there is none (emit-asm, the REPL's :asm).
+std::string backend_listing(const std::string& name, const ir::Module& m, const backend::Kernel* kernel,
+                            const backend::Budgets& budgets, std::string& error);
+
 // Loads, analyses, lowers, optimises and compiles `path` for `entry` ("" = the script's entry
 // point; "FRep" style names match without case). Returns an exit status (0 = ready).
 int compile_file(const std::string& path, const std::string& entry, const Options& opts, Compiled& out,
@@ -43,6 +48,8 @@ std::unique_ptr<backend::Backend> pick_backend(const std::string& name);
 
 // Numbers: %.9g, nan (never -nan), inf, -inf.
 std::string format_number(float v);
+// A .wrl scene (also .wrl.gz, .wrz) rather than a .fs script.
+bool is_scene_path(const std::string& p);
 // Accepts decimal, hex float, nan, inf, -inf, -0. Returns false on anything else.
 bool parse_number(const std::string& text, float& out);
 

@@ -7,6 +7,7 @@
 
 #include "frontend/big_stack.h"
 #include "tools/fscript/commands.h"
+#include "tools/fscript/repl.h"
 
 namespace fscript::cli {
 namespace {
@@ -61,7 +62,8 @@ int dispatch(CLI::App& app, Args& a) {
   if (app.got_subcommand("bench")) return cmd_bench(a.opts, a.file, a.entry, a.points, a.threads, a.one_point);
   if (app.got_subcommand("render2d"))
     return cmd_render2d(a.opts, a.file, a.entry, a.size, a.bounds, a.out, a.threads);
-  // No subcommand: the program on standard input runs once (the REPL arrives with issue 7).
+  // No subcommand: the REPL on a terminal; otherwise the program on standard input runs once.
+  if (isatty(STDIN_FILENO)) return run_repl(a.opts);
   return cmd_run(a.opts, "-", a.entry, {});
 }
 

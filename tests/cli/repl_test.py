@@ -1,0 +1,138 @@
+#!/usr/bin/env python3
+"""The fscript REPL driven as a person would: under a pseudo-terminal, typing definitions,
+expressions, errors, multi-line input and commands, pressing Ctrl-C during a long evaluation and
+Ctrl-D at the end, and reading what the screen shows. usage: repl_test.py FSCRIPT SOURCE_DIR"""
+import os
+import pty
+import re
+import select
+import sys
+import tempfile
+import time
+
+FSCRIPT, SRC = sys.argv[1], sys.argv[2]
+failures = []
+checks = 0
+
+
+def start(extra_args=(), env_extra=None):
+    env = dict(os.environ, TERM="xterm", **(env_extra or {}))
+    pid, fd = pty.fork()
+    if pid == 0:
+        os.execve(FSCRIPT, [FSCRIPT, *extra_args], env)
+    return pid, fd
+
+
+def read_until(fd, pattern, timeout=20.0):
+    """Reads the terminal until `pattern` (a regex) appears in what came since the last call."""
+    text = ""
+    end = time.time() + timeout
+    while time.time() < end:
+        ready, _, _ = select.select([fd], [], [], 0.1)
+        if not ready:
+            continue
+        try:
+            chunk = os.read(fd, 65536).decode("utf-8", "replace")
+        except OSError:
+            break
+        if not chunk:
+            break
+        text += chunk
+        if re.search(pattern, text):
+            return text
+    return text
+
+
+def expect(name, text, pattern):
+    global checks
+    checks += 1
+    if not re.search(pattern, text):
+        failures.append(f"{name}: wanted /{pattern}/ in:\n{text}")
+
+
+def type_line(fd, line, until=r"(fs|\.\.\.)> $"):
+    os.write(fd, (line + "\r").encode())
+    return read_until(fd, until)
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    history = os.path.join(tmp, "history")
+    pid, fd = start(["--max-loop-iterations", "4000000000000"], {"FSCRIPT_HISTORY": history})
+    expect("banner", read_until(fd, r"fs> $"), r"definitions stay.*:help")
+    expect("expression", type_line(fd, "1 + 2 * 3"), r"\r\n7\r\n")
+    expect("definition silent", type_line(fd, "function sq(x) { return x * x; }"), r"^[^0-9]*fs> $")
+    expect("call", type_line(fd, "sq(7)"), r"\r\n49\r\n")
+    type_line(fd, "function f(a) {")
+    type_line(fd, "  var b = a + 1;")
+    expect("multi-line end", type_line(fd, "  return b * sq(2); }"), r"fs> $")
+    expect("multi-line function", type_line(fd, "f(2)"), r"\r\n12\r\n")
+    expect("continuation prompt", type_line(fd, "sq(", r"\.\.\. $"), r"\.\.\. $")
+    expect("continued expression", type_line(fd, "5)"), r"\r\n25\r\n")
+    type_line(fd, "var k = 10;")
+    expect("global", type_line(fd, "k * 2"), r"\r\n20\r\n")
+    type_line(fd, "var k = 3;")
+    expect("global replaced", type_line(fd, "k * 2"), r"\r\n6\r\n")
+    type_line(fd, "function sq(x) { return x * x * x; }")
+    expect("function replaced", type_line(fd, "sq(2)"), r"\r\n8\r\n")
+    err = type_line(fd, "1 +* 2")
+    expect("syntax error with caret", err, r"<input>:1:4: error: expected an expression")
+    expect("caret line", err, r"1 \+\* 2\r\n   \^")
+    expect("session survives the error", type_line(fd, "sq(3)"), r"\r\n27\r\n")
+    expect("bad definition refused", type_line(fd, "function h2(x) { return x + ; }"), r"error")
+    expect("unknown name", type_line(fd, "h2(1)"), r"unknown function 'h2'")
+    expect("help", type_line(fd, ":help"), r":plot EXPR")
+    expect("backend sse", type_line(fd, ":backend sse"), r"backend sse")
+    expect("value on sse", type_line(fd, "sq(1.5)"), r"\r\n3\.375\r\n")
+    expect("asm on sse", type_line(fd, ":asm sq"), r"mulps")
+    expect("ir", type_line(fd, ":ir sq"), r"fmul")
+    expect("bad backend", type_line(fd, ":backend gpu"), r"unknown backend 'gpu'")
+    expect("time", type_line(fd, ":time sq(1.25) + 1"), r"evaluations/s")
+    plot = type_line(fd, ":plot sin(x * 3) from -3 to 3")
+    expect("plot 1d", plot, r"\*")
+    expect("plot 1d axis", plot, r"x from -3 to 3")
+    expect("plot 2d", type_line(fd, ":plot x * x + y * y - 0.5"), r"\(y up\)")
+    scene = os.path.join(SRC, "examples", "paper", "figure3-colour.wrl")
+    loaded = type_line(fd, f":load {scene}")
+    expect("load wrl", loaded, r"callable:")
+    names = re.findall(r"callable:((?: \w+)+)", loaded)
+    if names:
+        name = names[0].split()[0]
+        expect("call a scene script", type_line(fd, f"{name}(0, 0, 0, 0)"), r"\r\n-?[0-9.e+-]+( -?[0-9.e+-]+)*\r\n")
+    fs_file = os.path.join(tmp, "defs.fs")
+    with open(fs_file, "w") as f:
+        f.write("function cube(x) { return x * x * x; }\n")
+    expect("load fs", type_line(fd, f":load {fs_file}"), r"loaded")
+    expect("loaded function", type_line(fd, "cube(3)"), r"\r\n27\r\n")
+    # Ctrl-C during a long evaluation stops it and keeps the session.
+    type_line(fd, ":backend vm")
+    os.write(fd, b"var s = 0; while (true) { s = s + 1; }\r")
+    time.sleep(1.0)
+    os.write(fd, b"\x03")
+    expect("ctrl-c", read_until(fd, r"interrupted[\s\S]*fs> $"), r"interrupted")
+    expect("alive after ctrl-c", type_line(fd, "sq(2)"), r"\r\n8\r\n")
+    expect("reset", type_line(fd, ":reset"), r"forgotten")
+    expect("reset forgets", type_line(fd, "sq(2)"), r"unknown function 'sq'")
+    os.write(fd, b"\x04")  # Ctrl-D
+    read_until(fd, r"$^", timeout=2)
+    _, status = os.waitpid(pid, 0)
+    checks += 1
+    if os.WEXITSTATUS(status) != 0:
+        failures.append(f"Ctrl-D: exit status {os.WEXITSTATUS(status)}")
+    with open(history) as h:
+        expect("history kept", h.read(), r"sq\(7\)")
+    # :quit, and the history read back by the next session (arrow up recalls it).
+    pid, fd = start([], {"FSCRIPT_HISTORY": history})
+    read_until(fd, r"fs> $")
+    os.write(fd, b"\x1b[A")
+    expect("history recalled", read_until(fd, r"sq\(2\)"), r"sq\(2\)")
+    os.write(fd, b"\x15")  # kill the recalled line
+    type_line(fd, ":quit", r"$^")
+    _, status = os.waitpid(pid, 0)
+    checks += 1
+    if os.WEXITSTATUS(status) != 0:
+        failures.append(f":quit: exit status {os.WEXITSTATUS(status)}")
+
+for f in failures:
+    print("FAIL " + f)
+print(f"{checks - len(failures)} of {checks} REPL checks passed")
+sys.exit(1 if failures else 0)

@@ -1,0 +1,304 @@
+// The REPL's loop (libedit line editing, history, multi-line input), definitions that replace
+// their earlier versions, evaluation of expressions in a child process that Ctrl-C can stop, and
+// diagnostics with carets under the line the user typed.
+#include "tools/fscript/repl.h"
+
+#include <editline/readline.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <iostream>
+#include <regex>
+
+#include "frontend/fscript/compiler.h"
+#include "frontend/fscript/embedded.h"
+
+namespace fscript::cli {
+
+namespace {
+
+uint32_t count_lines(const std::string& s) {
+  uint32_t n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+std::string trim(const std::string& s) {
+  size_t b = s.find_first_not_of(" \t\r\n"), e = s.find_last_not_of(" \t\r\n");
+  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
+}
+
+// Diagnostics of a synthesized program, shown against what the user typed: positions inside the
+// input (lines [first, first + count)) become "<input>:line:col"; anything after it (an unclosed
+// construct found at the end) points at the input's end.
+std::string render_mapped(const frontend::DiagnosticSink& diag, uint32_t first, const std::string& input) {
+  std::vector<std::string> lines = frontend::split_lines(input);
+  uint32_t count = static_cast<uint32_t>(std::max<size_t>(lines.size(), 1));
+  std::string out;
+  for (frontend::Diagnostic d : diag.all()) {
+    if (d.pos.line >= first) {
+      d.path = "<input>";
+      if (d.pos.line >= first + count) {
+        d.pos.line = count;
+        d.line_text = lines.empty() ? "" : lines.back();
+        d.pos.col = d.caret_col = static_cast<uint32_t>(d.line_text.size() + 1);
+        d.length = 1;
+      } else {
+        d.pos.line -= first - 1;
+      }
+    } else {
+      d.path = "<session>";
+    }
+    out += frontend::render(d);
+  }
+  return out;
+}
+
+// Statements outside brackets: "var a = 1; while (...) ..." is code to run, not a definition.
+int top_level_statements(const std::string& input) {
+  int depth = 0, n = 1;
+  std::string s = input;
+  while (!s.empty() && (s.back() == ';' || std::isspace(static_cast<unsigned char>(s.back())))) s.pop_back();
+  for (char c : s) {
+    if (c == '(' || c == '{' || c == '[') ++depth;
+    if (c == ')' || c == '}' || c == ']') --depth;
+    n += c == ';' && depth == 0;
+  }
+  return n;
+}
+
+// The name a definition binds: function NAME, var NAME, or NAME = (a global assignment). A var or
+// an assignment is a definition only as a statement of its own.
+bool definition_name(const std::string& input, std::string& name) {
+  static const std::regex fn(R"(^\s*function\s+([A-Za-z_$][A-Za-z0-9_$]*))");
+  static const std::regex var(R"(^\s*var\s+([A-Za-z_$][A-Za-z0-9_$]*))");
+  static const std::regex assign(R"(^\s*([A-Za-z_$][A-Za-z0-9_$]*)\s*=[^=])");
+  std::smatch m;
+  if (std::regex_search(input, m, fn)) {
+    name = m[1];
+    return true;
+  }
+  if (top_level_statements(input) == 1 && input.find('{') == std::string::npos &&
+      (std::regex_search(input, m, var) || std::regex_search(input, m, assign))) {
+    name = m[1];
+    return true;
+  }
+  return false;
+}
+
+volatile sig_atomic_t g_interrupted = 0;
+void on_sigint(int) { g_interrupted = 1; }
+
+}  // namespace
+
+bool input_complete(const std::string& text) {
+  int depth = 0;
+  char quote = 0;
+  for (size_t i = 0; i < text.size(); ++i) {
+    char c = text[i];
+    if (quote) {
+      if (c == '\\') ++i;
+      else if (c == quote) quote = 0;
+      continue;
+    }
+    if (c == '"' || c == '\'') quote = c;
+    else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') i = text.find('\n', i) == std::string::npos ? text.size() : text.find('\n', i);
+    else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+      size_t end = text.find("*/", i + 2);
+      if (end == std::string::npos) return false;
+      i = end + 1;
+    } else if (c == '(' || c == '{' || c == '[') ++depth;
+    else if (c == ')' || c == '}' || c == ']') --depth;
+  }
+  return depth <= 0 && !quote;
+}
+
+std::string run_interruptible(const std::function<std::string()>& work) {
+  int fds[2];
+  if (pipe(fds) != 0) return work();
+  std::cout.flush();
+  pid_t pid = fork();
+  if (pid < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    return work();
+  }
+  if (pid == 0) {  // the child: compute, write, leave without running the parent's destructors
+    close(fds[0]);
+    signal(SIGINT, SIG_DFL);
+    std::string text = work();
+    for (size_t at = 0; at < text.size();) {
+      ssize_t n = write(fds[1], text.data() + at, text.size() - at);
+      if (n <= 0) break;
+      at += static_cast<size_t>(n);
+    }
+    _exit(0);
+  }
+  close(fds[1]);
+  struct sigaction sa {}, old {};
+  sa.sa_handler = on_sigint;  // no SA_RESTART: read() returns on Ctrl-C
+  sigemptyset(&sa.sa_mask);
+  g_interrupted = 0;
+  sigaction(SIGINT, &sa, &old);
+  std::string text;
+  char buf[4096];
+  bool stopped = false;
+  for (;;) {
+    ssize_t n = read(fds[0], buf, sizeof buf);
+    if (n > 0) {
+      text.append(buf, static_cast<size_t>(n));
+      continue;
+    }
+    if (n < 0 && errno == EINTR && g_interrupted) {
+      kill(pid, SIGKILL);
+      stopped = true;
+    }
+    if (n == 0 || stopped || errno != EINTR) break;
+  }
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  sigaction(SIGINT, &old, nullptr);
+  // The terminal sends Ctrl-C to the child too, which may die of it before we kill it.
+  if (stopped || g_interrupted || (WIFSIGNALED(status) && WTERMSIG(status) == SIGINT)) return "interrupted\n";
+  if (WIFSIGNALED(status)) return "error: the evaluation stopped on signal " + std::to_string(WTERMSIG(status)) + "\n";
+  return text;
+}
+
+std::string Session::program(const std::string& tail) const {
+  std::string text;
+  for (const auto& d : defs_) text += d.second + "\n";
+  return text + tail;
+}
+
+bool Session::compile(const std::string& name, const std::vector<std::string>& params, const std::string& body,
+                      const std::string& input_text, Compiled& c, std::string& out) const {
+  std::string head = "function " + name + "(";
+  for (size_t i = 0; i < params.size(); ++i) head += (i ? ", " : "") + params[i];
+  head += ") {\n";
+  std::string prefix = program(head);
+  // The input sits on its own lines inside `body`; find where.
+  size_t at = body.find(input_text);
+  uint32_t first = count_lines(prefix) + count_lines(body.substr(0, at == std::string::npos ? 0 : at)) + 1;
+  frontend::DiagnosticSink diag;
+  auto file = std::make_unique<frontend::SourceFile>("<input>", prefix + body + "\n}\n");
+  if (!frontend::load_script(std::move(file), diag, c.script)) {
+    out += render_mapped(diag, first, input_text);
+    return false;
+  }
+  std::string error;
+  if (!frontend::function_spec(c.script.sema, name, c.spec, error)) {
+    out += "error: " + error + "\n";
+    return false;
+  }
+  c.module = frontend::build_module(c.script, c.spec, diag, frontend::BuildOptions{}, error);
+  if (!c.module) {
+    out += "internal error: " + error + "\n";
+    return false;
+  }
+  auto be = backend::make_backend(opts_.backend);
+  c.kernel = be ? be->compile(*c.module, opts_.budgets, error) : nullptr;
+  if (!c.kernel) {
+    out += "error: " + error + "\n";
+    return false;
+  }
+  return true;
+}
+
+bool Session::handle(const std::string& raw, std::string& out) {
+  std::string input = trim(raw);
+  if (input.empty()) return true;
+  if (input[0] == ':') return command(input, out);
+  std::string name;
+  if (definition_name(input, name)) {
+    define(input, out);
+    return true;
+  }
+  if (!call_scene_script(input, out)) evaluate(input, out);
+  return true;
+}
+
+// A definition replaces the one of the same name; it is kept only when the whole session still
+// compiles with it.
+bool Session::define(const std::string& input, std::string& out) {
+  std::string name;
+  definition_name(input, name);
+  auto kept = defs_;
+  kept.erase(std::remove_if(kept.begin(), kept.end(), [&](const auto& d) { return d.first == name; }), kept.end());
+  std::string prefix;
+  for (const auto& d : kept) prefix += d.second + "\n";
+  frontend::DiagnosticSink diag;
+  frontend::Script script;
+  bool ok = frontend::load_script(std::make_unique<frontend::SourceFile>("<input>", prefix + input + "\n"), diag, script);
+  out += render_mapped(diag, count_lines(prefix) + 1, input);
+  if (!ok) return false;
+  kept.push_back({name, input});
+  defs_ = std::move(kept);
+  return true;
+}
+
+void Session::evaluate(const std::string& raw, std::string& out) {
+  std::string expr = raw;
+  while (!expr.empty() && (expr.back() == ';' || std::isspace(static_cast<unsigned char>(expr.back())))) expr.pop_back();
+  Compiled c;
+  std::string errors;
+  if (!compile("__repl__", {}, "return (\n" + expr + "\n);", expr, c, errors)) {
+    // Not an expression: statements, run for their effect and any value they return.
+    Compiled s;
+    std::string statement_errors;
+    bool looks_like_statements = raw.find(';') != std::string::npos || raw.find('{') != std::string::npos;
+    if (!looks_like_statements || !compile("__repl__", {}, raw + "\n", raw, s, statement_errors)) {
+      out += looks_like_statements ? statement_errors : errors;
+      return;
+    }
+    c = std::move(s);
+  }
+  const backend::Kernel& k = *c.kernel;
+  out += run_interruptible([&k] {
+    float value = 0;
+    backend::RuntimeError err;
+    if (!k.eval(nullptr, &value, err)) return "error: " + err.message + "\n";
+    return format_number(value) + "\n";
+  });
+}
+
+int run_repl(const Options& o) {
+  Session session(o);
+  std::string history;
+  if (const char* h = std::getenv("FSCRIPT_HISTORY")) history = h;
+  else if (const char* home = std::getenv("HOME")) history = std::string(home) + "/.fscript_history";
+  using_history();
+  if (!history.empty()) read_history(history.c_str());
+  std::cout << "fscript " << "(backend " << (o.backend.empty() ? backend::available_backends().front() : o.backend)
+            << "): definitions stay, expressions print their value; :help for commands, Ctrl-D to leave\n";
+  signal(SIGINT, SIG_IGN);  // at the prompt; an evaluation in progress takes Ctrl-C
+  std::string buffer;
+  for (;;) {
+    char* line = readline(buffer.empty() ? "fs> " : "... ");
+    if (!line) {  // Ctrl-D
+      std::cout << "\n";
+      break;
+    }
+    buffer += line;
+    buffer += "\n";
+    std::free(line);
+    if (!input_complete(buffer)) continue;
+    std::string entry = trim(buffer);
+    if (!entry.empty()) {
+      add_history(entry.c_str());
+      if (!history.empty()) write_history(history.c_str());
+    }
+    std::string out;
+    bool go = session.handle(buffer, out);
+    buffer.clear();
+    std::cout << out << std::flush;
+    if (!go) break;
+  }
+  signal(SIGINT, SIG_DFL);
+  return kExitOk;
+}
+
+}  // namespace fscript::cli

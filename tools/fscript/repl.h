@@ -1,0 +1,61 @@
+#pragma once
+// The interactive fscript: line editing and history (libedit), definitions that stay, each
+// expression's value, commands (:help, :backend, :ir, :asm, :time, :load, :plot, :reset, :quit).
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tools/fscript/common.h"
+
+namespace fscript::cli {
+
+// The state a REPL session builds up; the loop (repl.cpp) and the commands (repl_commands.cpp)
+// share it. Each definition is kept as its own text, so redefining a name replaces it.
+class Session {
+ public:
+  explicit Session(const Options& o) : opts_(o) {
+    if (opts_.backend.empty()) opts_.backend = backend::available_backends().front();
+  }
+
+  // One complete input (brackets balanced): a definition, a command or an expression. Output and
+  // errors go to `out`; returns false when the session should end (:quit).
+  bool handle(const std::string& input, std::string& out);
+
+  // The text of every accepted definition, then `tail`.
+  std::string program(const std::string& tail = "") const;
+  // Compiles `body` as the function `name` with `params` against the session; nullptr with the
+  // errors rendered into `out` (positions relative to the input `input_text`).
+  bool compile(const std::string& name, const std::vector<std::string>& params, const std::string& body,
+               const std::string& input_text, Compiled& c, std::string& out) const;
+
+ private:
+  bool define(const std::string& input, std::string& out);
+  void evaluate(const std::string& expr, std::string& out);
+  bool command(const std::string& input, std::string& out);
+  void cmd_ir(const std::string& arg, std::string& out);
+  void cmd_asm(const std::string& arg, std::string& out);
+  void cmd_time(const std::string& arg, std::string& out);
+  void cmd_plot(const std::string& arg, std::string& out);
+  void cmd_load(const std::string& arg, std::string& out);
+  bool call_scene_script(const std::string& input, std::string& out);
+
+  Options opts_;
+  std::vector<std::pair<std::string, std::string>> defs_;  // (name, text)
+  struct SceneCallable {
+    std::string text, where;  // the script, "file.wrl:line"
+  };
+  std::map<std::string, SceneCallable> scene_;  // node name -> its script
+};
+
+// Whether the brackets of `text` are all closed (outside strings and comments): the REPL keeps
+// reading lines until they are.
+bool input_complete(const std::string& text);
+
+// Runs `work` in a child process and returns what it wrote; Ctrl-C (SIGINT) in the meantime kills
+// it and returns "interrupted". The session survives anything the evaluation does.
+std::string run_interruptible(const std::function<std::string()>& work);
+
+int run_repl(const Options& o);
+
+}  // namespace fscript::cli

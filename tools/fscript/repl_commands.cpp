@@ -1,0 +1,320 @@
+// The REPL's commands: :help, :backend, :ir, :asm, :time, :plot, :load, :reset, :quit, and calls
+// of the scripts a loaded .wrl scene brought in (by node name).
+#include <chrono>
+#include <cmath>
+#include <regex>
+#include <sstream>
+
+#include "frontend/fscript/compiler.h"
+#include "frontend/vrml/scene_file.h"
+#include "frontend/vrml/scene_scripts.h"
+#include "frontend/vrml/vrml_parser.h"
+#include "ir/text.h"
+#include "tools/fscript/repl.h"
+
+namespace fscript::cli {
+
+namespace {
+
+const char* kHelp =
+    "Type a definition (function f(x) { ... }, var a = 1;) and it stays; type an expression and\n"
+    "its value prints. Input continues on the next line while brackets are open.\n"
+    "  :help               this text\n"
+    "  :backend vm|sse|llvm  the backend that compiles what follows (no argument: the current one)\n"
+    "  :ir NAME            the optimised IR of function NAME\n"
+    "  :asm NAME           the generated code of NAME on the current backend\n"
+    "  :time EXPR          evaluations per second of EXPR\n"
+    "  :plot EXPR [from A to B]  EXPR of x as a chart, or of x and y as a picture (default -1 to 1)\n"
+    "  :load FILE          a .fs script's definitions, or a .wrl scene's scripts (called by node name)\n"
+    "  :reset              forget every definition\n"
+    "  :quit               leave (also Ctrl-D); Ctrl-C stops a long evaluation\n";
+
+std::string trim(const std::string& s) {
+  size_t b = s.find_first_not_of(" \t\r\n"), e = s.find_last_not_of(" \t\r\n");
+  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
+}
+
+// Top-level comma split (brackets nest).
+std::vector<std::string> split_args(const std::string& s) {
+  std::vector<std::string> out;
+  int depth = 0;
+  std::string cur;
+  for (char c : s) {
+    if (c == '(' || c == '[' || c == '{') ++depth;
+    if (c == ')' || c == ']' || c == '}') --depth;
+    if (c == ',' && depth == 0) {
+      out.push_back(trim(cur));
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  if (!trim(cur).empty()) out.push_back(trim(cur));
+  return out;
+}
+
+bool uses_identifier(const std::string& expr, const std::string& name) {
+  return std::regex_search(expr, std::regex("(^|[^A-Za-z0-9_$.])" + name + "([^A-Za-z0-9_$]|$)"));
+}
+
+std::string chart(const std::vector<float>& ys, float a, float b) {
+  float lo = INFINITY, hi = -INFINITY;
+  for (float y : ys)
+    if (std::isfinite(y)) lo = std::min(lo, y), hi = std::max(hi, y);
+  if (!(lo <= hi)) return "no finite value on [" + format_number(a) + ", " + format_number(b) + "]\n";
+  if (hi == lo) hi = lo + 1;
+  const int rows = 16;
+  std::vector<std::string> grid(rows, std::string(ys.size(), ' '));
+  if (lo < 0 && hi > 0) {  // the x axis
+    int r = static_cast<int>(std::lround((hi - 0) / (hi - lo) * (rows - 1)));
+    grid[static_cast<size_t>(r)].assign(ys.size(), '-');
+  }
+  for (size_t i = 0; i < ys.size(); ++i) {
+    if (!std::isfinite(ys[i])) continue;
+    int r = static_cast<int>(std::lround((hi - ys[i]) / (hi - lo) * (rows - 1)));
+    grid[static_cast<size_t>(r)][i] = '*';
+  }
+  std::ostringstream out;
+  for (int r = 0; r < rows; ++r) {
+    std::string label = r == 0 ? format_number(hi) : r == rows - 1 ? format_number(lo) : "";
+    out << std::string(12 - std::min<size_t>(12, label.size()), ' ') << label << " |" << grid[static_cast<size_t>(r)] << "\n";
+  }
+  out << std::string(13, ' ') << "x from " << format_number(a) << " to " << format_number(b) << "\n";
+  return out.str();
+}
+
+std::string picture(const std::vector<float>& v, int w, int h, float a, float b) {
+  static const char* kShades = " .:-=+*#%@";
+  float lo = INFINITY, hi = -INFINITY;
+  for (float y : v)
+    if (std::isfinite(y)) lo = std::min(lo, y), hi = std::max(hi, y);
+  if (!(lo <= hi)) return "no finite value\n";
+  std::ostringstream out;
+  for (int r = 0; r < h; ++r) {
+    for (int c = 0; c < w; ++c) {
+      float y = v[static_cast<size_t>(r * w + c)];
+      int s = std::isfinite(y) && hi > lo ? static_cast<int>((y - lo) / (hi - lo) * 9.0f + 0.5f) : 0;
+      out << kShades[std::clamp(s, 0, 9)];
+    }
+    out << "\n";
+  }
+  out << "x, y from " << format_number(a) << " to " << format_number(b) << " (y up); ' ' is " << format_number(lo)
+      << ", '@' is " << format_number(hi) << "\n";
+  return out.str();
+}
+
+}  // namespace
+
+bool Session::command(const std::string& input, std::string& out) {
+  size_t sp = input.find_first_of(" \t\n");
+  std::string cmd = input.substr(0, sp), arg = sp == std::string::npos ? "" : trim(input.substr(sp));
+  if (cmd == ":quit" || cmd == ":q") return false;
+  if (cmd == ":help") out += kHelp;
+  else if (cmd == ":reset") defs_.clear(), scene_.clear(), out += "every definition forgotten\n";
+  else if (cmd == ":backend") {
+    if (!arg.empty() && !backend::make_backend(arg)) out += "error: " + backend::missing_backend_message(arg) + "\n";
+    else if (!arg.empty()) opts_.backend = arg;
+    if (arg.empty() || backend::make_backend(arg)) out += "backend " + opts_.backend + "\n";
+  } else if (cmd == ":ir") cmd_ir(arg, out);
+  else if (cmd == ":asm") cmd_asm(arg, out);
+  else if (cmd == ":time") cmd_time(arg, out);
+  else if (cmd == ":plot") cmd_plot(arg, out);
+  else if (cmd == ":load") cmd_load(arg, out);
+  else out += "error: unknown command '" + cmd + "' (:help lists them)\n";
+  return true;
+}
+
+// The session as one program with NAME as the kernel.
+static bool compile_named(const Session& s, const std::string& name, const Options& o, Compiled& c, std::string& out,
+                          bool want_kernel) {
+  frontend::DiagnosticSink diag;
+  if (!frontend::load_script(std::make_unique<frontend::SourceFile>("<session>", s.program()), diag, c.script)) {
+    out += frontend::render_all(diag);
+    return false;
+  }
+  std::string error;
+  if (name.empty() || !frontend::function_spec(c.script.sema, name, c.spec, error)) {
+    out += "error: " + (name.empty() ? std::string("which function? (:ir NAME, :asm NAME)") : error) + "\n";
+    return false;
+  }
+  c.module = frontend::build_module(c.script, c.spec, diag, frontend::BuildOptions{}, error);
+  if (!c.module) {
+    out += "internal error: " + error + "\n";
+    return false;
+  }
+  if (!want_kernel) return true;
+  c.kernel = backend::make_backend(o.backend)->compile(*c.module, o.budgets, error);
+  if (!c.kernel) out += "error: " + error + "\n";
+  return c.kernel != nullptr;
+}
+
+void Session::cmd_ir(const std::string& arg, std::string& out) {
+  Compiled c;
+  if (compile_named(*this, arg, opts_, c, out, false)) out += ir::print(*c.module);
+}
+
+void Session::cmd_asm(const std::string& arg, std::string& out) {
+  Compiled c;
+  if (!compile_named(*this, arg, opts_, c, out, true)) return;
+  std::string error, text = backend_listing(opts_.backend, *c.module, c.kernel.get(), opts_.budgets, error);
+  out += text.empty() ? "error: " + error + "\n" : text;
+}
+
+void Session::cmd_time(const std::string& arg, std::string& out) {
+  Compiled c;
+  if (arg.empty()) {
+    out += "error: :time EXPR\n";
+    return;
+  }
+  if (!compile("__repl__", {}, "return (\n" + arg + "\n);", arg, c, out)) return;
+  const backend::Kernel& k = *c.kernel;
+  std::string name = opts_.backend;
+  out += run_interruptible([&k, name] {
+    using Clock = std::chrono::steady_clock;
+    const size_t n = 4096;
+    std::vector<float> result(n);
+    float* outs[1] = {result.data()};
+    backend::RuntimeError err;
+    size_t done = 0;
+    auto start = Clock::now();
+    double secs = 0;
+    while (secs < 0.3) {
+      if (!k.eval_batch(nullptr, outs, n, err)) return "error: " + err.message + "\n";
+      done += n;
+      secs = std::chrono::duration<double>(Clock::now() - start).count();
+    }
+    char line[128];
+    std::snprintf(line, sizeof line, "%.3g evaluations/s (%.3g ns each, backend %s)\n", done / secs, secs * 1e9 / done,
+                  name.c_str());
+    return std::string(line);
+  });
+}
+
+void Session::cmd_plot(const std::string& raw, std::string& out) {
+  std::smatch m;
+  std::string expr = raw;
+  float a = -1, b = 1;
+  static const std::regex range(R"(^(.*)\s+from\s+(\S+)\s+to\s+(\S+)\s*$)");
+  if (std::regex_match(raw, m, range)) {
+    expr = m[1];
+    if (!parse_number(m[2], a) || !parse_number(m[3], b) || !(a < b)) {
+      out += "error: :plot EXPR from A to B wants numbers with A < B\n";
+      return;
+    }
+  }
+  if (trim(expr).empty()) {
+    out += "error: :plot EXPR\n";
+    return;
+  }
+  bool two_d = uses_identifier(expr, "y");
+  Compiled c;
+  std::vector<std::string> params = two_d ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x"};
+  if (!compile("__plot__", params, "return (\n" + expr + "\n);", expr, c, out)) return;
+  const backend::Kernel& k = *c.kernel;
+  out += run_interruptible([&k, two_d, a, b] {
+    int w = two_d ? 64 : 72, h = two_d ? 32 : 1;
+    std::vector<float> xs, ys, v(static_cast<size_t>(w * h));
+    for (int r = 0; r < h; ++r)
+      for (int col = 0; col < w; ++col) {
+        xs.push_back(a + (b - a) * static_cast<float>(col) / static_cast<float>(w - 1));
+        ys.push_back(h > 1 ? b - (b - a) * static_cast<float>(r) / static_cast<float>(h - 1) : 0.0f);
+      }
+    const float* in[2] = {xs.data(), ys.data()};
+    float* outs[1] = {v.data()};
+    backend::RuntimeError err;
+    if (!k.eval_batch(in, outs, v.size(), err)) return "error: " + err.message + "\n";
+    return two_d ? picture(v, w, h, a, b) : chart(v, a, b);
+  });
+}
+
+void Session::cmd_load(const std::string& path, std::string& out) {
+  if (path.empty()) {
+    out += "error: :load FILE\n";
+    return;
+  }
+  std::string text, error;
+  if (!is_scene_path(path)) {
+    if (!frontend::read_file(path, text, error)) {
+      out += path + ": error: " + error + "\n";
+      return;
+    }
+    frontend::DiagnosticSink diag;
+    frontend::Script script;
+    if (!frontend::load_script(std::make_unique<frontend::SourceFile>(path, program(text)), diag, script)) {
+      out += frontend::render_all(diag);
+      return;
+    }
+    defs_.erase(std::remove_if(defs_.begin(), defs_.end(), [&](const auto& d) { return d.first == "file:" + path; }),
+                defs_.end());
+    defs_.push_back({"file:" + path, text});
+    out += "loaded " + path + "\n";
+    return;
+  }
+  if (!vrml::read_scene_text(path, text, error)) {
+    out += path + ": error: " + error + "\n";
+    return;
+  }
+  frontend::DiagnosticSink diag;
+  vrml::Scene scene;
+  if (!vrml::parse_scene(std::make_unique<frontend::SourceFile>(path, text), diag, scene)) {
+    out += frontend::render_all(diag);
+    return;
+  }
+  std::map<std::string, int> per_node;
+  auto scripts = vrml::scene_scripts(scene);
+  for (const auto& s : scripts)
+    if (!s.node->def_name.empty()) ++per_node[s.node->def_name];
+  std::string names;
+  for (const auto& s : scripts) {
+    if (s.node->def_name.empty() || frontend::is_affine_field(s.script.field)) continue;
+    std::string name = per_node[s.node->def_name] > 1 ? s.node->def_name + "_" + s.script.field : s.node->def_name;
+    scene_[name] = {s.script.text, path + ":" + std::to_string(s.script.line)};
+    names += " " + name;
+  }
+  out += names.empty() ? "no script of a DEF-named node in " + path + "\n"
+                       : "callable:" + names + " (each with its script's inputs, e.g. x, y, z, t)\n";
+}
+
+// NAME(args) where NAME came from a loaded scene: the script compiled on its own (its entry
+// point), the arguments evaluated in the session.
+bool Session::call_scene_script(const std::string& input, std::string& out) {
+  static const std::regex call(R"(^\s*([A-Za-z_$][A-Za-z0-9_$]*)\s*\(([\s\S]*)\)\s*;?\s*$)");
+  std::smatch m;
+  if (!std::regex_match(input, m, call) || !scene_.count(m[1])) return false;
+  const SceneCallable& sc = scene_.at(m[1]);
+  std::vector<float> args;
+  for (const auto& a : split_args(m[2])) {
+    Compiled c;
+    if (!compile("__repl__", {}, "return (\n" + a + "\n);", a, c, out)) return true;
+    float v = 0;
+    backend::RuntimeError err;
+    if (!c.kernel->eval(nullptr, &v, err)) {
+      out += "error: " + err.message + "\n";
+      return true;
+    }
+    args.push_back(v);
+  }
+  Compiled c;
+  frontend::DiagnosticSink diag;
+  std::string error;
+  if (!frontend::load_script(std::make_unique<frontend::SourceFile>(sc.where, sc.text), diag, c.script) ||
+      !frontend::default_spec(c.script.sema, c.spec, error) ||
+      !(c.module = frontend::build_module(c.script, c.spec, diag, frontend::BuildOptions{}, error)) ||
+      !(c.kernel = backend::make_backend(opts_.backend)->compile(*c.module, opts_.budgets, error))) {
+    out += frontend::render_all(diag) + (error.empty() ? "" : "error: " + error + "\n");
+    return true;
+  }
+  args.resize(c.kernel->num_inputs(), 0.0f);
+  const backend::Kernel& k = *c.kernel;
+  out += run_interruptible([&k, &args] {
+    std::vector<float> results(k.num_outputs());
+    backend::RuntimeError err;
+    if (!k.eval(args.data(), results.data(), err)) return "error: " + err.message + "\n";
+    std::string line;
+    for (size_t i = 0; i < results.size(); ++i) line += (i ? " " : "") + format_number(results[i]);
+    return line + "\n";
+  });
+  return true;
+}
+
+}  // namespace fscript::cli

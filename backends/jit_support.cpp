@@ -3,6 +3,8 @@
 
 #include <pthread.h>
 
+#include <algorithm>
+#include <climits>
 #include <cmath>
 #include <string>
 
@@ -44,6 +46,26 @@ uintptr_t stack_limit() {
     return reinterpret_cast<uintptr_t>(addr) + kStackMargin;
   }();
   return limit;
+}
+
+extern "C" uint32_t fs_ticks_carry(int32_t* counters, uint64_t budget) {
+  // Invariant: a lane's ticks so far = totals + counters. The counter restarts so that it passes
+  // the generated code's int32 threshold exactly when the lane passes the budget (or, when that
+  // is further than int32 reaches, at the next carry).
+  constexpr int64_t kThreshold = INT32_MAX - 1;
+  auto* totals = reinterpret_cast<int64_t*>(reinterpret_cast<char*>(counters) + 16);
+  uint32_t over = 0;
+  for (int i = 0; i < 4; ++i) {
+    int64_t ticks = totals[i] + counters[i];
+    if (static_cast<uint64_t>(ticks) > budget) {
+      over = 1;
+      continue;
+    }
+    int64_t start = kThreshold - std::min<int64_t>(kThreshold, static_cast<int64_t>(budget - static_cast<uint64_t>(ticks)));
+    counters[i] = static_cast<int32_t>(start);
+    totals[i] = ticks - start;
+  }
+  return over;
 }
 
 // No early exit, so the loop vectorises.

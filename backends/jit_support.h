@@ -21,6 +21,11 @@ bool jit_status(uint64_t code, const LaneArrays& arrays, const Budgets& budgets,
 // plus a margin for the runtime functions generated code calls. Found once per thread.
 uintptr_t stack_limit();
 
+// The SSE backend's loop counters for budgets beyond int32, called when a lane's int32 counter at
+// `counters` passes INT32_MAX - 1: moves the counts into the four int64 totals that follow them
+// (16 bytes on) and returns 1 when a lane is over the budget.
+extern "C" uint32_t fs_ticks_carry(int32_t* counters, uint64_t budget);
+
 // Every input of the batch finite with |x| <= bound (NaN fails too).
 bool inputs_in_range(const float* const* inputs, size_t num_inputs, size_t n, double bound);
 

@@ -102,7 +102,7 @@ class FnLower {
     arrays_ = f_->getArg(4);
     if (!straight_) {
       globals_ = slot(llvm::ArrayType::get(s_.vf, std::max(1, s_.num_globals)), "globals");
-      counters_ = slot(s_.vi, "counters");
+      counters_ = slot(counter_type(), "counters");
       ctx_ = slot(s_.ctx, "ctx");
       b_.CreateStore(globals_, b_.CreateStructGEP(s_.ctx, ctx_, kGlobals));
       b_.CreateStore(counters_, b_.CreateStructGEP(s_.ctx, ctx_, kCounters));
@@ -138,7 +138,7 @@ class FnLower {
   void start_group() {
     b_.CreateStore(llvm::Constant::getAllOnesValue(s_.vb), pending_[0]);
     for (size_t b = 1; b < pending_.size(); ++b) b_.CreateStore(zero_mask(), pending_[b]);
-    b_.CreateStore(llvm::Constant::getNullValue(s_.vi), counters_);
+    b_.CreateStore(llvm::Constant::getNullValue(counter_type()), counters_);
     for (auto* o : out_) b_.CreateStore(splat(0), o);
     for (int g = 0; g < s_.num_globals; ++g) b_.CreateStore(splat(__builtin_nanf("")), global_ptr(g));
     if (has_arrays()) call_runtime("fs_lanes_reset", s_.i32, {arrays_});
@@ -229,6 +229,7 @@ class FnLower {
     if (callee_) base = b_.CreateLoad(s_.ptr, b_.CreateStructGEP(s_.ctx, ctx_, kGlobals));
     return b_.CreateConstGEP1_64(s_.vf, base, static_cast<uint64_t>(g));
   }
+  llvm::Type* counter_type() const { return llvm::FixedVectorType::get(s_.i64, s_.width); }
   llvm::Value* counters_ptr() {
     if (callee_) return b_.CreateLoad(s_.ptr, b_.CreateStructGEP(s_.ctx, ctx_, kCounters));
     return counters_;
@@ -413,12 +414,12 @@ class FnLower {
       case Op::GStore: return masked_store(global_ptr(in.aux), a(0), active_);
       case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen: return array_op(in);
       case Op::Call: return call(in);
-      case Op::Tick: {  // per-lane iteration counters
+      case Op::Tick: {  // per-lane iteration counters, 64-bit like the VM's
         llvm::Value* at = counters_ptr();
-        llvm::Value* n = b_.CreateAdd(b_.CreateLoad(s_.vi, at), b_.CreateZExt(active_, s_.vi));
+        llvm::Value* n = b_.CreateAdd(b_.CreateLoad(counter_type(), at), b_.CreateZExt(active_, counter_type()));
         b_.CreateStore(n, at);
-        int64_t budget = static_cast<int64_t>(std::min<uint64_t>(s_.budgets.max_loop_iterations, INT32_MAX - 1));
-        return trap_if(b_.CreateOrReduce(b_.CreateICmpSGT(n, llvm::ConstantInt::get(s_.vi, budget))), 1, in.line);
+        llvm::Value* budget = llvm::ConstantInt::get(counter_type(), s_.budgets.max_loop_iterations);
+        return trap_if(b_.CreateOrReduce(b_.CreateICmpUGT(n, budget)), 1, in.line);
       }
       case Op::Jump: return jump(in);
       case Op::Branch: return branch(in);

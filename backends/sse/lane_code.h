@@ -23,7 +23,10 @@ namespace fscript::sse::detail {
 constexpr int kFirstReg = 2, kNumRegs = 16;
 constexpr int kFree = -1, kTemp = -2;  // held_[r] when r holds no value
 constexpr int32_t kScratch = 0;  // call arguments at 0, 16, 32; result at 48
-constexpr int32_t kActive = 64, kEdge0 = 80, kEdge1 = 96, kCounters = 112, kCtx = 128, kFixed = 176;
+constexpr int32_t kActive = 64, kEdge0 = 80, kEdge1 = 96, kCounters = 112, kTotals = 128, kCtx = 160, kFixed = 208;
+// Loop counters: int32 per lane at kCounters; a budget beyond int32 also keeps 64-bit totals per
+// lane right after them (kTotals = kCounters + 16, see fs_ticks_carry in jit_support.h).
+static_assert(kTotals == kCounters + 16);
 // The call context a kernel keeps at kCtx and hands (in rbp) to the functions it calls, which
 // share its lanes' globals, loop counters, arrays and call depth.
 constexpr int32_t kCtxGlobals = 0, kCtxCounters = 8, kCtxArrays = 16, kCtxDepth = 24, kCtxStackLimit = 32;

@@ -17,6 +17,7 @@
 #include <cstring>
 #include <map>
 
+#include "backends/jit_support.h"
 #include "backends/sse/lane_code.h"
 #include "backends/sse/sse_backend.h"
 #include "ir/analysis.h"
@@ -52,9 +53,9 @@ class Codegen : public detail::LaneCode {
  public:
   Codegen(const ir::Function& fn, Assembler& a, const backend::Budgets& budgets, uint32_t local_arrays,
           const Program& program, int index, bool callee)
-      : LaneCode(fn, a, static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, INT32_MAX - 1)),
+      : LaneCode(fn, a, static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, kCarryAt)),
                  local_arrays, callee),
-        program_(program), placeholder_(kPlaceholder + index) {}
+        program_(program), placeholder_(kPlaceholder + index), loop_budget_(budgets.max_loop_iterations) {}
 
   bool run(std::string& error) {
     if (!layout(error)) return false;
@@ -85,6 +86,7 @@ class Codegen : public detail::LaneCode {
       a_.mov_imm(Gp::rax, code);
       a_.jmp(exit_);
     }
+    for (const auto& c : carries_) carry(c);
     for (const auto& sp : slow_) {  // the argument is in the first scratch slot
       a_.bind(sp.entry);
       for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(at(save_slot_ + 16 * r), static_cast<Xmm>(r));
@@ -247,6 +249,8 @@ class Codegen : public detail::LaneCode {
     a_.xorps(Xmm::x1, Xmm::x1);
     for (size_t b = 1; b < order_.size(); ++b) a_.movaps(pending(static_cast<int>(b)), Xmm::x1);
     a_.movaps(at(kCounters), Xmm::x1);
+    a_.movaps(at(kTotals), Xmm::x1);
+    a_.movaps(at(kTotals + 16), Xmm::x1);
     for (uint32_t k = 0; k < fn_.num_results; ++k) a_.movaps(at(out_slot_ + 16 * static_cast<int32_t>(k)), Xmm::x1);
     if (num_globals_) a_.movaps(Xmm::x0, bits(0x7FC00000u));
     for (int g = 0; g < num_globals_; ++g) a_.movaps(at(global_slot_ + 16 * g), Xmm::x0);
@@ -528,7 +532,14 @@ class Codegen : public detail::LaneCode {
         a_.pcmpgtd(Xmm::x0, bits(static_cast<uint32_t>(budget_)));
         a_.movmskps(Gp::rax, Xmm::x0);
         a_.test(Gp::rax, Gp::rax);
-        a_.jcc(Cond::NE, trap(1, in.line));
+        if (loop_budget_ <= kCarryAt) {
+          a_.jcc(Cond::NE, trap(1, in.line));
+          return true;
+        }
+        // A budget beyond int32: at 2^30 the counts move into 64-bit totals, checked there.
+        carries_.push_back({a_.new_label(), a_.new_label(), trap(1, in.line)});
+        a_.jcc(Cond::NE, carries_.back().entry);
+        a_.bind(carries_.back().back);
         return true;
       }
       case Op::GLoad: {
@@ -579,8 +590,27 @@ class Codegen : public detail::LaneCode {
     define(in, d);
   }
 
+  static constexpr uint64_t kCarryAt = INT32_MAX - 1;  // budgets up to here count in int32 alone
+  struct Carry {  // out of line: fold the int32 counters into the totals, every register saved
+    Label entry, back, trap;
+  };
+  void carry(const Carry& c) {
+    a_.bind(c.entry);
+    for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(at(save_slot_ + 16 * r), static_cast<Xmm>(r));
+    if (callee_) a_.mov(Gp::rdi, Mem::at(Gp::rbp, kCtxCounters));
+    else a_.lea(Gp::rdi, at(kCounters));
+    a_.mov_imm(Gp::rsi, loop_budget_);
+    a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(&backend::fs_ticks_carry));
+    a_.call(Gp::rax);
+    for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(static_cast<Xmm>(r), at(save_slot_ + 16 * r));
+    a_.test(Gp::rax, Gp::rax);
+    a_.jcc(Cond::NE, c.trap);
+    a_.jmp(c.back);
+  }
   const Program& program_;
   int32_t placeholder_;
+  uint64_t loop_budget_;
+  std::vector<Carry> carries_;
   bool calls_ = false;
   int max_args_ = 0;
   int32_t call_slot_ = 0, array_save_ = 0;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <thread>
 
+#include "backends/jit_support.h"
 #include "backends/sse/sse_backend.h"
 #include "tests/unit/helpers.h"
 
@@ -294,4 +295,38 @@ TEST_CASE("sse: code that assumes bounded inputs, and the general code for batch
   auto plain = test::build("function FRep(x, y, z, t) { return min(x, 1 / y); }", "", true, {}, "vm");
   REQUIRE_FALSE(sse::generate(*plain->module, {}, error, nullptr, nullptr, &bound).empty());
   CHECK(bound == 0);
+}
+
+TEST_CASE("sse: loop budgets beyond int32 keep exact 64-bit counts (fs_ticks_carry)") {
+  // Four int32 counters, then four int64 totals, as the generated code lays them out.
+  struct alignas(16) Counters {
+    int32_t c[4];
+    int64_t t[4];
+  } s{};
+  const int64_t kT = INT32_MAX - 1;
+  uint64_t budget = 5'000'000'000ull;
+  for (int i = 0; i < 4; ++i) s.c[i] = static_cast<int32_t>(kT + 1);  // every lane just passed the threshold
+  CHECK(backend::fs_ticks_carry(s.c, budget) == 0);
+  for (int i = 0; i < 4; ++i) CHECK(s.t[i] + s.c[i] == kT + 1);  // nothing lost
+  // The next trigger (counter > kT) comes when the lane passes min(budget, ticks + kT).
+  int64_t until_next = kT + 1 - s.c[0];
+  CHECK(until_next == kT + 1);
+  s.c[0] += static_cast<int32_t>(until_next - 1);  // the lane at ticks = 2 * kT + 1
+  CHECK(backend::fs_ticks_carry(s.c, budget) == 0);
+  int64_t ticks = s.t[0] + s.c[0];
+  CHECK(ticks == 2 * kT + 1);
+  // Now less than kT remains: the counter restarts so it passes kT exactly past the budget.
+  int64_t remaining = static_cast<int64_t>(budget) - ticks;
+  CHECK(kT - s.c[0] == remaining);
+  s.c[0] += static_cast<int32_t>(remaining);  // exactly at the budget: still fine
+  CHECK(s.t[0] + s.c[0] == static_cast<int64_t>(budget));
+  s.c[0] += 1;  // one past: over
+  CHECK(backend::fs_ticks_carry(s.c, budget) == 1);
+  // A kernel with such a budget still runs and counts ordinary loops.
+  backend::Budgets big;
+  big.max_loop_iterations = budget;
+  auto b = test::build("function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < x; i++) s += i; return s; }", "",
+                       true, big, "sse");
+  REQUIRE(b->ok);
+  CHECK(test::eval1(*b, {100}) == 4950.0f);
 }

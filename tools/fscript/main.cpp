@@ -1,4 +1,4 @@
-// fscript: the FScript command-line tool (see docs/cli.md and ../shared/spec/cli.md).
+// fscript: the FScript command-line tool (README.md, and the contract in ../shared/spec/cli.md).
 // Every command runs on a thread with a large stack: deep but legal nesting never overflows.
 #include <unistd.h>
 

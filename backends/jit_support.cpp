@@ -8,10 +8,54 @@
 #include <cmath>
 #include <string>
 
+#include "ir/analysis.h"
+#include "ir/passes/passes.h"
+
 namespace fscript::backend {
 
 namespace {
 constexpr uintptr_t kStackMargin = 256 * 1024;
+}
+
+bool prepare_program(const ir::Module& m, JitProgram& out, std::string& error) {
+  out.module = &m;
+  bool calls = false;
+  for (const auto& f : m.functions)
+    for (const auto& blk : f->blocks)
+      for (const ir::Inst* in : blk->insts) calls |= in->op == ir::Op::Call;
+  if (calls) {
+    out.inlined = m.clone();
+    error = ir::run_passes(*out.inlined, "inline");
+    if (!error.empty()) return false;
+    out.module = out.inlined.get();
+  }
+  const ir::Module& p = *out.module;
+  for (size_t f = 0; f < p.functions.size(); ++f)
+    if (p.functions[f]->kernel) out.kernel = static_cast<int>(f);
+  if (out.kernel < 0) {
+    error = "the module has no kernel function";
+    return false;
+  }
+  out.functions = {out.kernel};
+  std::vector<bool> seen(p.functions.size(), false);
+  seen[static_cast<size_t>(out.kernel)] = true;
+  for (size_t i = 0; i < out.functions.size(); ++i)
+    for (const auto& blk : p.functions[static_cast<size_t>(out.functions[i])]->blocks)
+      for (const ir::Inst* in : blk->insts) {
+        if (in->op == ir::Op::GLoad || in->op == ir::Op::GStore) out.num_globals = std::max(out.num_globals, in->aux + 1);
+        if (in->op == ir::Op::Call && !seen[static_cast<size_t>(in->aux)]) {
+          seen[static_cast<size_t>(in->aux)] = true;
+          out.functions.push_back(in->aux);
+        }
+      }
+  return true;
+}
+
+uint32_t first_line(const ir::Function& fn) {
+  for (const ir::Block* blk : ir::reverse_post_order(fn))
+    for (const ir::Inst* in : blk->insts)
+      if (in->line) return in->line;
+  return 0;
 }
 
 bool jit_status(uint64_t code, const LaneArrays& arrays, const Budgets& budgets, RuntimeError& err) {

@@ -5,12 +5,29 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "backends/backend.h"
 #include "backends/lane_arrays.h"
 
 namespace fscript::backend {
+
+// A module as the JIT backends compile it: calls of non-recursive functions inlined (masked lanes
+// have no call stack of their own; an unoptimised module still has such calls), the kernel found,
+// and every function it reaches through the calls left (recursive ones, compiled as callees).
+struct JitProgram {
+  std::unique_ptr<ir::Module> inlined;  // set when inlining had work to do
+  const ir::Module* module = nullptr;   // the module to compile (`inlined` or the original)
+  int kernel = -1;
+  std::vector<int> functions;           // by index in the module: the kernel, then its callees
+  int num_globals = 0;                  // global slots any of them uses
+};
+bool prepare_program(const ir::Module& m, JitProgram& out, std::string& error);
+
+// The first source line in a function (for errors raised at its entry), or 0.
+uint32_t first_line(const ir::Function& fn);
 
 // Generated code returns 0 or (kind << 32) | line: 1 loop budget, 2 array error (message in
 // `arrays`), 3 call depth budget, 4 recursion deeper than the thread's stack allows. Returns

@@ -231,7 +231,10 @@ std::shared_ptr<Program> cached(const std::string& key) {
   return hit;
 }
 
-std::string optimized_ir(Lowered& lowered, std::string& error) {
+namespace {
+// `use` on the optimised module, under the JIT's lock (the target machine is shared).
+template <typename Use>
+std::string with_optimized(Lowered& lowered, std::string& error, Use use) {
   State& s = state();
   if (!s.jit) {
     error = "the llvm backend could not start LLVM: " + s.error;
@@ -240,30 +243,31 @@ std::string optimized_ir(Lowered& lowered, std::string& error) {
   std::lock_guard<std::mutex> lock(s.mutex);
   prepare(lowered, s);
   optimize(*lowered.module, s.tm.get());
-  std::string text;
-  llvm::raw_string_ostream os(text);
-  lowered.module->print(os, nullptr);
-  return os.str();
+  return use(s);
+}
+}  // namespace
+
+std::string optimized_ir(Lowered& lowered, std::string& error) {
+  return with_optimized(lowered, error, [&](State&) {
+    std::string text;
+    llvm::raw_string_ostream os(text);
+    lowered.module->print(os, nullptr);
+    return os.str();
+  });
 }
 
 std::string assembly(Lowered& lowered, std::string& error) {
-  State& s = state();
-  if (!s.jit) {
-    error = "the llvm backend could not start LLVM: " + s.error;
-    return "";
-  }
-  std::lock_guard<std::mutex> lock(s.mutex);
-  prepare(lowered, s);
-  optimize(*lowered.module, s.tm.get());
-  llvm::SmallString<0> buffer;
-  llvm::raw_svector_ostream os(buffer);
-  llvm::legacy::PassManager pm;
-  if (s.tm->addPassesToEmitFile(pm, os, nullptr, llvm::CodeGenFileType::AssemblyFile)) {
-    error = "LLVM cannot print assembly for this target";
-    return "";
-  }
-  pm.run(*lowered.module);
-  return std::string(buffer.str());
+  return with_optimized(lowered, error, [&](State& s) -> std::string {
+    llvm::SmallString<0> buffer;
+    llvm::raw_svector_ostream os(buffer);
+    llvm::legacy::PassManager pm;
+    if (s.tm->addPassesToEmitFile(pm, os, nullptr, llvm::CodeGenFileType::AssemblyFile)) {
+      error = "LLVM cannot print assembly for this target";
+      return "";
+    }
+    pm.run(*lowered.module);
+    return std::string(buffer.str());
+  });
 }
 
 std::string set_disk_cache_enabled(bool on) {

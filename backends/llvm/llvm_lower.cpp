@@ -11,6 +11,7 @@
 #include <llvm/IR/MDBuilder.h>
 #include <llvm/IR/Module.h>
 
+#include "backends/jit_support.h"
 #include "backends/lane_arrays.h"
 #include "ir/analysis.h"
 #include "ir/passes/passes.h"
@@ -151,7 +152,7 @@ class FnLower {
     llvm::Value* limit = b_.CreateLoad(s_.i64, b_.CreateStructGEP(s_.ctx, ctx_, kStackLimit));
     llvm::Value* frame = b_.CreatePtrToInt(
         b_.CreateIntrinsic(llvm::Intrinsic::frameaddress, {s_.ptr}, {b_.getInt32(0)}), s_.i64);
-    trap_if(b_.CreateICmpULT(frame, limit), 4, first_line());
+    trap_if(b_.CreateICmpULT(frame, limit), 4, backend::first_line(fn_));
     b_.CreateStore(f_->getArg(2), pending_[0]);
     for (size_t b = 1; b < pending_.size(); ++b) b_.CreateStore(zero_mask(), pending_[b]);
     for (auto* o : out_) b_.CreateStore(splat(0), o);
@@ -166,12 +167,6 @@ class FnLower {
   void local_arrays(const char* helper) {
     call_runtime(helper, s_.i32,
                  {arrays_, b_.getInt32(local_arrays_), b_.getInt32(static_cast<uint32_t>(fn_.arrays.size())), save_});
-  }
-  uint32_t first_line() const {
-    for (const ir::Block* blk : order_)
-      for (const ir::Inst* in : blk->insts)
-        if (in->line) return in->line;
-    return 0;
   }
 
   // ---- blocks in reverse post-order, each for its waiting lanes ----
@@ -541,21 +536,6 @@ class FnLower {
   int cur_ = 0;
 };
 
-// The kernel, then every function reachable from it through calls, by index in the module.
-std::vector<int> reachable_functions(const ir::Module& m, int kernel) {
-  std::vector<int> order{kernel};
-  std::vector<bool> seen(m.functions.size(), false);
-  seen[static_cast<size_t>(kernel)] = true;
-  for (size_t i = 0; i < order.size(); ++i)
-    for (const auto& blk : m.functions[static_cast<size_t>(order[i])]->blocks)
-      for (const ir::Inst* in : blk->insts)
-        if (in->op == Op::Call && !seen[static_cast<size_t>(in->aux)]) {
-          seen[static_cast<size_t>(in->aux)] = true;
-          order.push_back(in->aux);
-        }
-  return order;
-}
-
 }  // namespace
 
 Lowered::Lowered() = default;
@@ -564,18 +544,10 @@ Lowered::Lowered(Lowered&&) noexcept = default;
 
 bool lower(const ir::Module& module, uint32_t width, const backend::Budgets& budgets, bool bounded, Lowered& out,
            std::string& error) {
-  // Calls of non-recursive functions are inlined first (an unoptimised module still has them).
-  std::unique_ptr<ir::Module> inlined = module.clone();
-  error = ir::run_passes(*inlined, "inline");
-  if (!error.empty()) return false;
-  const ir::Module& m = *inlined;
-  int kernel = -1;
-  for (size_t f = 0; f < m.functions.size(); ++f)
-    if (m.functions[f]->kernel) kernel = static_cast<int>(f);
-  if (kernel < 0) {
-    error = "the module has no kernel function";
-    return false;
-  }
+  backend::JitProgram jp;
+  if (!backend::prepare_program(module, jp, error)) return false;
+  const ir::Module& m = *jp.module;
+  int kernel = jp.kernel;
   out.context = std::make_unique<llvm::LLVMContext>();
   out.module = std::make_unique<llvm::Module>("fscript", *out.context);
   llvm::LLVMContext& c = *out.context;
@@ -585,7 +557,8 @@ bool lower(const ir::Module& module, uint32_t width, const backend::Budgets& bud
   s.vi = llvm::FixedVectorType::get(s.i32, width);
   s.vb = llvm::FixedVectorType::get(llvm::Type::getInt1Ty(c), width);
   s.ctx = llvm::StructType::create(c, {s.ptr, s.ptr, s.ptr, s.i64, s.i64}, "fs_ctx");
-  std::vector<int> fns = reachable_functions(m, kernel);
+  const std::vector<int>& fns = jp.functions;
+  s.num_globals = jp.num_globals;
   s.fns.assign(m.functions.size(), nullptr);
   for (int f : fns) {
     const ir::Function& fn = *m.functions[static_cast<size_t>(f)];
@@ -600,10 +573,6 @@ bool lower(const ir::Module& module, uint32_t width, const backend::Budgets& bud
     s.fns[static_cast<size_t>(f)] =
         llvm::Function::Create(t, llvm::Function::InternalLinkage, "fs_fn_" + fn.name, s.m);
   }
-  for (int f : fns)
-    for (const auto& blk : m.functions[static_cast<size_t>(f)]->blocks)
-      for (const ir::Inst* in : blk->insts)
-        if (in->op == Op::GLoad || in->op == Op::GStore) s.num_globals = std::max(s.num_globals, in->aux + 1);
   out.array_names = m.arrays;
   for (int f : fns) {
     const ir::Function& fn = *m.functions[static_cast<size_t>(f)];

@@ -206,7 +206,7 @@ class Codegen : public detail::LaneCode {
     a_.mov(Gp::r15, Mem::at(Gp::rbp, kCtxArrays));
     a_.mov(Gp::rax, Mem::at(Gp::rbp, kCtxStackLimit));
     a_.cmp(Gp::rsp, Gp::rax);
-    a_.jcc(Cond::B, trap(4, first_line()));
+    a_.jcc(Cond::B, trap(4, backend::first_line(fn_)));
     a_.movups(Xmm::x0, Mem::at(Gp::rdx));
     a_.movaps(pending(0), Xmm::x0);
   }
@@ -221,12 +221,6 @@ class Codegen : public detail::LaneCode {
     a_.mov(at(kCtx + kCtxDepth), Gp::rax);
     a_.mov(at(kCtx + kCtxStackLimit), Gp::r9);
     a_.lea(Gp::rbp, at(kCtx));
-  }
-  uint32_t first_line() const {
-    for (const ir::Block* blk : order_)
-      for (const ir::Inst* in : blk->insts)
-        if (in->line) return in->line;
-    return 0;
   }
   void epilogue() {
     a_.add(Gp::rsp, placeholder_);
@@ -627,61 +621,16 @@ double choose_bound(const ir::Function& fn, Codegen& gen) {
 
 }  // namespace
 
-namespace {
-
-// The kernel, then every function reachable from it through calls, by index in the module.
-std::vector<int> reachable_functions(const ir::Module& m, int kernel) {
-  std::vector<int> order{kernel};
-  std::vector<bool> seen(m.functions.size(), false);
-  seen[static_cast<size_t>(kernel)] = true;
-  for (size_t i = 0; i < order.size(); ++i)
-    for (const auto& blk : m.functions[static_cast<size_t>(order[i])]->blocks)
-      for (const ir::Inst* in : blk->insts)
-        if (in->op == ir::Op::Call && !seen[static_cast<size_t>(in->aux)]) {
-          seen[static_cast<size_t>(in->aux)] = true;
-          order.push_back(in->aux);
-        }
-  return order;
-}
-
-int globals_used(const ir::Module& m, const std::vector<int>& fns) {
-  int n = 0;
-  for (int f : fns)
-    for (const auto& blk : m.functions[static_cast<size_t>(f)]->blocks)
-      for (const ir::Inst* in : blk->insts)
-        if (in->op == ir::Op::GLoad || in->op == ir::Op::GStore) n = std::max(n, in->aux + 1);
-  return n;
-}
-
-}  // namespace
-
 std::vector<uint8_t> generate(const ir::Module& module, const backend::Budgets& budgets, std::string& error,
                               std::string* listing, std::vector<std::string>* array_names, double* param_bound) {
-  // Masked lanes have no call stack of their own: calls of non-recursive functions are inlined
-  // first (an unoptimised module still has them); recursive functions are compiled as callees.
-  std::unique_ptr<ir::Module> inlined;
-  const ir::Module* mp = &module;
-  for (const auto& f : module.functions)
-    for (const auto& blk : f->blocks)
-      for (const ir::Inst* in : blk->insts)
-        if (in->op == ir::Op::Call && !inlined) {
-          inlined = module.clone();
-          error = ir::run_passes(*inlined, "inline");
-          if (!error.empty()) return {};
-          mp = inlined.get();
-        }
-  const ir::Module& m = *mp;
-  int kernel = -1;
-  for (size_t f = 0; f < m.functions.size(); ++f)
-    if (m.functions[f]->kernel) kernel = static_cast<int>(f);
-  if (kernel < 0) {
-    error = "the module has no kernel function";
-    return {};
-  }
+  backend::JitProgram jp;
+  if (!backend::prepare_program(module, jp, error)) return {};
+  const ir::Module& m = *jp.module;
+  int kernel = jp.kernel;
   Assembler a;
   if (listing) a.enable_listing();
-  std::vector<int> fns = reachable_functions(m, kernel);
-  Program program{m, {}, globals_used(m, fns), budgets.max_call_depth};
+  const std::vector<int>& fns = jp.functions;
+  Program program{m, {}, jp.num_globals, budgets.max_call_depth};
   for (size_t f = 0; f < m.functions.size(); ++f) program.entries.push_back(a.new_label());
   std::vector<std::string> names = m.arrays;
   std::vector<std::unique_ptr<Codegen>> gens;

@@ -10,23 +10,17 @@
 
 #include "backends/jit_support.h"
 #include "backends/sse/sse_backend.h"
+#include "tests/unit/backend_cases.h"
 #include "tests/unit/helpers.h"
 
 using namespace fscript;
+using test::kInf;
+using test::kNan;
+using test::kSpecial;
+using test::same;
 
 namespace {
 
-const float kInf = std::numeric_limits<float>::infinity(), kNan = std::numeric_limits<float>::quiet_NaN();
-const std::vector<float> kSpecial = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -0.5f, 1.5f, -2.5f, 0.49999997f, 3.0f,
-                                     kInf, -kInf, kNan, 1e-40f, -1e-40f, 1e30f, -7.25f, 100.0f, 0.1f, 2.0f};
-
-bool same(float a, float b) {
-  if (std::isnan(a) && std::isnan(b)) return true;
-  uint32_t x, y;
-  std::memcpy(&x, &a, 4);
-  std::memcpy(&y, &b, 4);
-  return x == y;
-}
 
 // Runs `body` (an FRep over x, y, z) on both backends over every pair of special values (and the
 // third input cycling), in one batch, and compares every output.
@@ -59,22 +53,11 @@ void agree(const std::string& body, const std::string& prelude = "") {
 }  // namespace
 
 TEST_CASE("sse: arithmetic, min/max, comparisons and selects are bit-identical to the VM") {
-  for (const char* body : {"return x + y;", "return x - y;", "return x * y;", "return x / y;", "return -x;",
-                           "return abs(x);", "return sqrt(x);", "return min(x, y);", "return max(x, y);",
-                           "return min(y, x);", "return floor(x);", "return ceil(x);", "return round(x);",
-                           "return sign(x);", "return clamp(x, y, z);", "return x == y;", "return x != y;",
-                           "return x < y;", "return x <= y;", "return x > y;", "return x >= y;", "return !x;",
-                           "return x ? y : z;", "return (x && y) ? 1 : 2;", "return x * x + y * y - 0.25;",
-                           "return x % y;"})
-    agree(body);
+  for (const char* body : test::kArithmeticBodies) agree(body);
 }
 
 TEST_CASE("sse: transcendentals and noise agree with the VM (the same runtime/math functions)") {
-  for (const char* body : {"return sin(x);", "return cos(x) * y;", "return tan(x);", "return exp(x);", "return log(x);",
-                           "return log10(x);", "return pow(x, y);", "return atan2(x, y);", "return asin(x);",
-                           "return acos(x);", "return atan(x);", "return sinh(x);", "return cosh(x);",
-                           "return tanh(x);", "return noise(x, y, z);", "return sin(x) + cos(y) * sin(z);"})
-    agree(body);
+  for (const char* body : test::kTranscendentalBodies) agree(body);
 }
 
 TEST_CASE("sse: more live values than registers are spilled and come back right") {
@@ -184,22 +167,8 @@ TEST_CASE("sse: arrays per lane, with the VM's results and errors") {
 }
 
 TEST_CASE("sse: recursive functions run packed under the caller's lanes, with the VM's budgets") {
-  const char* fns =
-      "function fact(n) { if (n <= 1) return 1; return n * fact(n - 1); }\n"
-      "function fib(n) { return n < 2 ? n : fib(n - 1) + fib(n - 2); }\n"
-      "function even(n) { if (n <= 0) return 1; return odd(n - 1); }\n"
-      "function odd(n) { if (n <= 0) return 0; return even(n - 1); }\n"
-      "var calls = 0;\n"
-      "function count(n) { calls = calls + 1; if (n <= 0) return calls; return count(n - 1); }\n"
-      "var arr = new Array(4);\n"
-      "function fill(n) { var a = new Array(3); a[0] = n; if (n > 0) fill(n - 1); arr[0] = arr[0] + a[0]; return a[0]; }\n"
-      "function loopy(n) { var s = 0; for (var i = 0; i < n; i++) s += i; if (n <= 0) return s; return s + loopy(n - 1); }\n";
-  // Lanes with different depths (x from the special values: NaN, inf, negatives, fractions).
-  // Lanes with different depths: n from the special values (NaN, inf, negatives, fractions).
-  for (const char* body : {"return fact(n);", "return fib(min(n, 12)) + y;", "return even(n) + odd(3);",
-                           "return count(min(n, 20)) * 100 + calls;", "return fill(min(n, 6)) + arr[0];",
-                           "return loopy(min(n, 10));", "return x > 0 ? fact(min(n, 10)) : (y > 0 ? fib(min(y, 10)) : -1);"})
-    agree(std::string("var n = x == x ? min(abs(floor(x)), 25) : 2; ") + body, fns);
+  for (const char* body : test::kRecursiveBodies)
+    agree(std::string(test::kRecursiveSetup) + body, test::kRecursivePrelude);
 }
 
 TEST_CASE("sse: the call depth budget and a stack too small for the recursion give errors, not crashes") {

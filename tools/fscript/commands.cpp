@@ -11,6 +11,7 @@
 #include "backends/llvm/llvm_backend.h"
 #endif
 #include "backends/vm/vm_backend.h"
+#include "frontend/check.h"
 #include "frontend/fscript/formatter.h"
 #include "frontend/fscript/parser.h"
 #include "frontend/fscript/embedded.h"
@@ -125,58 +126,6 @@ int cmd_eval(const Options& o, const std::string& file, const std::string& entry
   return kExitOk;
 }
 
-namespace {
-
-bool is_set_operation(const std::string& t) {
-  for (const char* k : {"union", "intersection", "subtraction", "difference", "blend_union", "blend_intersection"})
-    if (t == k) return true;
-  return false;
-}
-
-// Checks one FScript text embedded in a .wrl; returns false if it has errors.
-bool check_embedded(const std::string& path, const std::vector<std::string>& lines,
-                    const frontend::EmbeddedScript& e, frontend::DiagnosticSink& diag) {
-  std::string text = e.text;
-  size_t b = text.find_first_not_of(" \t\r\n");
-  size_t end = text.find_last_not_of(" \t\r\n");
-  std::string trimmed = text.substr(b, end - b + 1);
-  std::vector<std::string> extra;
-  if (e.field == "operation") {
-    if (is_set_operation(trimmed)) return true;
-    extra = {"f", "g"};
-    for (int k = 1; k <= 16; ++k) extra.push_back("f" + std::to_string(k));
-  }
-  auto file = std::make_unique<frontend::SourceFile>(path, text, e.line, e.col);
-  file->set_outer_lines(lines);
-  frontend::Script s;
-  size_t before = diag.error_count();
-  frontend::load_script(std::move(file), diag, s, extra);
-  if (diag.error_count() != before) return false;
-  frontend::KernelSpec spec;
-  std::string err;
-  if (!frontend::default_spec(s.sema, spec, err)) spec = {};
-  frontend::BuildOptions bo;
-  bo.optimize = false;
-  frontend::build_module(s, spec, diag, bo, err);
-  return true;
-}
-
-int check_wrl(const std::string& path, const std::string& text, frontend::DiagnosticSink& diag) {
-  vrml::Scene scene;
-  bool ok = vrml::parse_scene(std::make_unique<frontend::SourceFile>(path, text), diag, scene);
-  std::vector<std::string> lines = frontend::split_lines(text);
-  for (const auto& s : vrml::scene_scripts(scene)) {
-    if (!frontend::is_affine_field(s.script.field)) {
-      ok &= check_embedded(path, lines, s.script, diag);
-      continue;
-    }
-    for (const auto& c : frontend::split_components(s.script)) ok &= check_embedded(path, lines, c, diag);
-  }
-  return ok ? kExitOk : kExitInput;
-}
-
-}  // namespace
-
 int cmd_check(const std::vector<std::string>& files) {
   int rc = kExitOk;
   for (const auto& path : files) {
@@ -189,21 +138,8 @@ int cmd_check(const std::vector<std::string>& files) {
       continue;
     }
     frontend::DiagnosticSink diag;
-    if (is_wrl) {
-      if (check_wrl(path, text, diag) != kExitOk) rc = kExitInput;
-    } else {
-      frontend::Script s;
-      if (!frontend::load_script(std::make_unique<frontend::SourceFile>(path, text), diag, s)) {
-        rc = kExitInput;
-      } else {
-        frontend::KernelSpec spec;
-        std::string err;
-        if (!frontend::default_spec(s.sema, spec, err)) spec = {};
-        frontend::BuildOptions bo;
-        bo.optimize = false;
-        frontend::build_module(s, spec, diag, bo, err);
-      }
-    }
+    bool ok = is_wrl ? frontend::check_scene(path, text, diag) : frontend::check_script(path, text, diag);
+    if (!ok) rc = kExitInput;
     print_diagnostics(diag);
   }
   return rc;

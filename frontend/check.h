@@ -1,0 +1,18 @@
+#pragma once
+// Diagnostics of a whole file, as `fscript check` and the language server give them: a .fs script
+// (parse, analysis, lowering warnings), or every FScript text inside a .wrl scene (with the VRML
+// errors, positions in the .wrl).
+#include <string>
+
+#include "frontend/diagnostics.h"
+
+namespace fscript::frontend {
+
+// Returns false when any error was reported.
+bool check_script(const std::string& path, const std::string& text, DiagnosticSink& diag);
+bool check_scene(const std::string& path, const std::string& text, DiagnosticSink& diag);
+
+// The set operations FTransform's `operation` field names instead of a formula.
+bool is_set_operation(const std::string& text);
+
+}  // namespace fscript::frontend

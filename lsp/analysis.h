@@ -1,0 +1,25 @@
+#pragma once
+// What the language features read: a .fs document parsed and analysed (kept even when it has
+// errors: the parser recovers), and the identifier under a position.
+#include <memory>
+#include <string>
+
+#include "frontend/fscript/compiler.h"
+#include "lsp/documents.h"
+
+namespace fscript::lsp {
+
+struct Analysis {
+  frontend::DiagnosticSink diag;
+  frontend::Script script;
+};
+
+std::unique_ptr<Analysis> analyze(const Document& d);
+
+// The identifier around byte `offset` ([begin, end)); false when there is none.
+bool word_at(const std::string& text, size_t offset, size_t& begin, size_t& end);
+
+// The user function named `name` (exact, then ignoring case), or -1.
+int find_function(const frontend::SemaResult& sema, const std::string& name);
+
+}  // namespace fscript::lsp

@@ -1,0 +1,42 @@
+#pragma once
+// Open documents and LSP positions: lines are 0-based and characters count UTF-16 code units, as
+// LSP 3.17 says by default; our frontend counts bytes from 1. Edits arrive whole or as ranges.
+#include <cstdint>
+#include <map>
+#include <string>
+
+namespace fscript::lsp {
+
+struct Position {
+  uint32_t line = 0, character = 0;
+};
+
+struct Document {
+  std::string uri, text;
+  int64_t version = 0;
+  bool scene = false;  // a .wrl (VRML with FScript strings) rather than a .fs script
+};
+
+// Byte offset of an LSP position (clamped into the text: a position past a line's end is its end,
+// past the last line is the end of the text).
+size_t offset_of(const std::string& text, Position p);
+// LSP position of a byte offset.
+Position position_of(const std::string& text, size_t offset);
+// LSP position of a frontend line/column (1-based, bytes).
+Position position_of_line_col(const std::string& text, uint32_t line, uint32_t col);
+
+class Documents {
+ public:
+  Document& open(const std::string& uri, const std::string& text, int64_t version);
+  Document* find(const std::string& uri);
+  void close(const std::string& uri) { docs_.erase(uri); }
+  // Replaces [from, to) with `text`.
+  static void edit(Document& d, Position from, Position to, const std::string& text);
+
+ private:
+  std::map<std::string, Document> docs_;
+};
+
+bool is_scene_uri(const std::string& uri);
+
+}  // namespace fscript::lsp

@@ -1,0 +1,24 @@
+#pragma once
+// The language features, one file each. Each takes the document and the request's params and
+// returns the result (JSON null when there is nothing to say).
+#include <nlohmann/json.hpp>
+
+#include "lsp/documents.h"
+
+namespace fscript::lsp {
+
+using json = nlohmann::json;
+
+json diagnostics(const Document& d);  // the params of textDocument/publishDiagnostics
+json hover(const Document& d, const json& params);
+json completion(const Document& d, const json& params);
+json definition(const Document& d, const json& params);
+json document_symbols(const Document& d);
+json formatting(const Document& d);
+
+// LSP range of frontend positions (1-based line and byte column, then a byte length).
+json range_of(const std::string& text, uint32_t line, uint32_t col, uint32_t length);
+json range_of_span(const std::string& text, uint32_t begin, uint32_t end);
+Position position_param(const json& params);
+
+}  // namespace fscript::lsp

@@ -1,0 +1,17 @@
+// textDocument/formatting: the whole document as `fscript fmt` lays it out (only when it parses).
+#include "frontend/fscript/formatter.h"
+#include "lsp/analysis.h"
+#include "lsp/features/features.h"
+
+namespace fscript::lsp {
+
+json formatting(const Document& d) {
+  if (d.scene) return json::array();
+  auto a = analyze(d);
+  if (a->diag.has_errors()) return nullptr;  // LSP: null when the document cannot be formatted
+  std::string text = frontend::format_program(*a->script.prog, d.text);
+  if (text == d.text) return json::array();
+  return json::array({{{"range", range_of_span(d.text, 0, static_cast<uint32_t>(d.text.size()))}, {"newText", text}}});
+}
+
+}  // namespace fscript::lsp

@@ -1,0 +1,138 @@
+// Dispatch of LSP messages; every feature lives in features/. Bad input of any kind (malformed
+// JSON, wrong types, unknown methods, positions out of range) gets an error response or is
+// ignored; nothing escapes as an exception.
+#include "lsp/server.h"
+
+#include "lsp/features/features.h"
+
+namespace fscript::lsp {
+
+json response(const json& id, const json& result) { return {{"jsonrpc", "2.0"}, {"id", id}, {"result", result}}; }
+
+json error_response(const json& id, int code, const std::string& message) {
+  return {{"jsonrpc", "2.0"}, {"id", id}, {"error", {{"code", code}, {"message", message}}}};
+}
+
+std::vector<json> Server::handle_text(const std::string& text) {
+  json message = json::parse(text, nullptr, false);
+  if (message.is_discarded()) return {error_response(nullptr, kParseError, "the message is not JSON")};
+  return handle(message);
+}
+
+std::vector<json> Server::handle(const json& message) {
+  std::vector<json> out;
+  if (!message.is_object() || !message.contains("method") || !message["method"].is_string()) {
+    if (message.is_object() && (message.contains("result") || message.contains("error"))) return out;  // a reply to us
+    json id = message.is_object() && message.contains("id") ? message["id"] : json(nullptr);
+    out.push_back(error_response(id, kInvalidRequest, "not a JSON-RPC request or notification"));
+    return out;
+  }
+  std::string method = message["method"];
+  json params = message.contains("params") ? message["params"] : json::object();
+  bool is_request = message.contains("id");
+  try {
+    if (!is_request) {
+      notification(method, params, out);
+      return out;
+    }
+    const json& id = message["id"];
+    if (!id.is_number_integer() && !id.is_string()) {
+      out.push_back(error_response(nullptr, kInvalidRequest, "the request id must be a number or a string"));
+      return out;
+    }
+    if (!initialized_ && method != "initialize") {
+      out.push_back(error_response(id, kServerNotInitialized, "the server is not initialized yet"));
+      return out;
+    }
+    if (shutdown_) {
+      out.push_back(error_response(id, kInvalidRequest, "the server is shutting down"));
+      return out;
+    }
+    json result = request(method, params, out);
+    if (result.is_object() && result.contains("__error")) {
+      out.push_back(error_response(id, result["__error"].get<int>(), result["message"].get<std::string>()));
+    } else {
+      out.push_back(response(id, result));
+    }
+  } catch (const json::exception& e) {  // a field missing or of the wrong type
+    if (is_request) out.push_back(error_response(message["id"], kInvalidParams, std::string("bad params: ") + e.what()));
+  }
+  return out;
+}
+
+json Server::initialize_result() const {
+  return {{"capabilities",
+           {{"positionEncoding", "utf-16"},
+            {"textDocumentSync", {{"openClose", true}, {"change", 2}}},
+            {"hoverProvider", true},
+            {"completionProvider", {{"triggerCharacters", json::array()}}},
+            {"definitionProvider", true},
+            {"documentSymbolProvider", true},
+            {"documentFormattingProvider", true}}},
+          {"serverInfo", {{"name", "fscript-lsp"}, {"version", "0.1"}}}};
+}
+
+json Server::request(const std::string& method, const json& params, std::vector<json>&) {
+  auto doc = [&]() -> Document* { return docs_.find(params.at("textDocument").at("uri").get<std::string>()); };
+  auto no_doc = [&] { return json{{"__error", kInvalidParams}, {"message", "the document is not open"}}; };
+  if (method == "initialize") {
+    initialized_ = true;
+    return initialize_result();
+  }
+  if (method == "shutdown") {
+    shutdown_ = true;
+    return nullptr;
+  }
+  if (method == "textDocument/hover" || method == "textDocument/completion" || method == "textDocument/definition" ||
+      method == "textDocument/documentSymbol" || method == "textDocument/formatting") {
+    Document* d = doc();
+    if (!d) return no_doc();
+    if (method == "textDocument/hover") return hover(*d, params);
+    if (method == "textDocument/completion") return completion(*d, params);
+    if (method == "textDocument/definition") return definition(*d, params);
+    if (method == "textDocument/documentSymbol") return document_symbols(*d);
+    return formatting(*d);
+  }
+  return {{"__error", kMethodNotFound}, {"message", "unknown method '" + method + "'"}};
+}
+
+void Server::notification(const std::string& method, const json& params, std::vector<json>& out) {
+  if (method == "exit") {
+    exited_ = true;
+    return;
+  }
+  if (!initialized_) return;  // notifications before initialize are dropped, as LSP says
+  if (method == "textDocument/didOpen") {
+    const json& td = params.at("textDocument");
+    publish(docs_.open(td.at("uri"), td.at("text"), td.value("version", 0)), out);
+  } else if (method == "textDocument/didChange") {
+    Document* d = docs_.find(params.at("textDocument").at("uri").get<std::string>());
+    if (!d) return;
+    for (const json& change : params.at("contentChanges")) {
+      if (!change.contains("range")) {
+        d->text = change.at("text").get<std::string>();
+        continue;
+      }
+      const json& r = change.at("range");
+      Position from{r.at("start").at("line").get<uint32_t>(), r.at("start").at("character").get<uint32_t>()};
+      Position to{r.at("end").at("line").get<uint32_t>(), r.at("end").at("character").get<uint32_t>()};
+      Documents::edit(*d, from, to, change.at("text").get<std::string>());
+    }
+    d->version = params.at("textDocument").value("version", d->version);
+    publish(*d, out);
+  } else if (method == "textDocument/didClose") {
+    std::string uri = params.at("textDocument").at("uri");
+    docs_.close(uri);
+    out.push_back({{"jsonrpc", "2.0"},
+                   {"method", "textDocument/publishDiagnostics"},
+                   {"params", {{"uri", uri}, {"diagnostics", json::array()}}}});
+  }
+  // initialized, $/cancelRequest (requests are answered in order, each at once), $/setTrace and
+  // other notifications need nothing.
+}
+
+void Server::publish(const Document& d, std::vector<json>& out) {
+  out.push_back({{"jsonrpc", "2.0"}, {"method", "textDocument/publishDiagnostics"}, {"params", diagnostics(d)}});
+}
+
+}  // namespace fscript::lsp

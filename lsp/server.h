@@ -1,0 +1,40 @@
+#pragma once
+// The language server: JSON-RPC 2.0 requests and notifications of LSP 3.17 in, responses and
+// notifications out. Transport-free (main.cpp frames the messages), so tests drive it directly.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "lsp/documents.h"
+
+namespace fscript::lsp {
+
+using json = nlohmann::json;
+
+// JSON-RPC and LSP error codes.
+constexpr int kParseError = -32700, kInvalidRequest = -32600, kMethodNotFound = -32601, kInvalidParams = -32602,
+              kInternalError = -32603, kServerNotInitialized = -32002, kRequestCancelled = -32800;
+
+class Server {
+ public:
+  // One message's text in; the messages to send back (responses, diagnostics) out.
+  std::vector<json> handle_text(const std::string& text);
+  std::vector<json> handle(const json& message);
+  bool exited() const { return exited_; }
+  int exit_code() const { return shutdown_ ? 0 : 1; }
+
+ private:
+  json request(const std::string& method, const json& params, std::vector<json>& out);
+  void notification(const std::string& method, const json& params, std::vector<json>& out);
+  json initialize_result() const;
+  void publish(const Document& d, std::vector<json>& out);
+
+  Documents docs_;
+  bool initialized_ = false, shutdown_ = false, exited_ = false;
+};
+
+json response(const json& id, const json& result);
+json error_response(const json& id, int code, const std::string& message);
+
+}  // namespace fscript::lsp

@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""Runs LSP transcript files against fscript-lsp: each `--> JSON` line is sent framed, each `==> TEXT`
+line sent as raw bytes (escapes like \\r\\n resolved, for malformed frames), each `<-- JSON` line is
+the next message the server must send, matched as a subset (objects: the keys given; lists: each
+item given matches some item; strings starting with "re:" are regular expressions), `exit N` is the
+status the server must end with once its input closes. usage: run_transcripts.py FSCRIPT_LSP FILES..."""
+import json
+import re
+import subprocess
+import sys
+import threading
+import queue
+
+LSP = sys.argv[1]
+
+
+def matches(want, got):
+    if isinstance(want, dict):
+        return isinstance(got, dict) and all(k in got and matches(v, got[k]) for k, v in want.items())
+    if isinstance(want, list):
+        return isinstance(got, list) and all(any(matches(w, g) for g in got) for w in want)
+    if isinstance(want, str) and want.startswith("re:"):
+        return isinstance(got, str) and re.search(want[3:], got) is not None
+    return want == got
+
+
+def reader(stream, out):
+    while True:
+        headers = {}
+        while True:
+            line = stream.readline()
+            if not line:
+                out.put(None)
+                return
+            line = line.decode().rstrip("\r\n")
+            if not line:
+                break
+            k, _, v = line.partition(":")
+            headers[k.strip().lower()] = v.strip()
+        body = stream.read(int(headers["content-length"]))
+        out.put(json.loads(body))
+
+
+def run(path):
+    proc = subprocess.Popen([LSP], stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+    replies = queue.Queue()
+    threading.Thread(target=reader, args=(proc.stdout, replies), daemon=True).start()
+    failures = []
+    want_exit = None
+    for number, line in enumerate(open(path, encoding="utf-8"), 1):
+        line = line.rstrip("\n")
+        if line.startswith("-->"):
+            body = json.dumps(json.loads(line[3:])).encode()
+            proc.stdin.write(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+            proc.stdin.flush()
+        elif line.startswith("==>"):
+            proc.stdin.write(line[4:].encode().decode("unicode_escape").encode("latin-1"))
+            proc.stdin.flush()
+        elif line.startswith("<--"):
+            want = json.loads(line[3:])
+            try:
+                got = replies.get(timeout=20)
+            except queue.Empty:
+                got = "(nothing within 20 s)"
+            if not matches(want, got):
+                failures.append(f"{path}:{number}: wanted {json.dumps(want)}\n  got {json.dumps(got)[:2000]}")
+        elif line.startswith("exit "):
+            want_exit = int(line[5:])
+    proc.stdin.close()
+    try:
+        status = proc.wait(timeout=20)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        failures.append(f"{path}: the server did not end when its input closed")
+        status = None
+    if want_exit is not None and status != want_exit:
+        failures.append(f"{path}: exit status {status}, wanted {want_exit}")
+    return failures
+
+
+all_failures = []
+for path in sys.argv[2:]:
+    all_failures += run(path)
+for f in all_failures:
+    print("FAIL " + f)
+print(f"{len(sys.argv) - 2 - len(set(f.split(':')[0] for f in all_failures))} of {len(sys.argv) - 2} transcripts passed")
+sys.exit(1 if all_failures else 0)

@@ -1,0 +1,63 @@
+// The language server's layers: framing on good and bad streams, UTF-16 positions and edits, and
+// the server on a 5 MB document and on messages of every wrong shape (never an exception).
+#include <catch2/catch.hpp>
+#include <sstream>
+
+#include "lsp/documents.h"
+#include "lsp/server.h"
+#include "lsp/transport.h"
+
+using namespace fscript::lsp;
+
+TEST_CASE("lsp transport: Content-Length framing, bad headers, truncation") {
+  std::istringstream in("Content-Length: 2\r\n\r\n{}Content-Type: x\r\nContent-Length: 3\r\n\r\n[1]"
+                        "Content-Length: x\r\n\r\nno length\r\n\r\nContent-Length: 10\r\n\r\nshort");
+  std::string body, error;
+  CHECK(read_message(in, body, error) == ReadStatus::Message);
+  CHECK(body == "{}");
+  CHECK(read_message(in, body, error) == ReadStatus::Message);
+  CHECK(body == "[1]");
+  CHECK(read_message(in, body, error) == ReadStatus::BadHeader);
+  CHECK(error == "Content-Length is not a number");
+  CHECK(read_message(in, body, error) == ReadStatus::BadHeader);  // "no length"
+  CHECK(read_message(in, body, error) == ReadStatus::End);        // 10 bytes promised, 5 sent
+  std::ostringstream out;
+  write_message(out, "{\"a\":1}");
+  CHECK(out.str() == "Content-Length: 7\r\n\r\n{\"a\":1}");
+}
+
+TEST_CASE("lsp documents: UTF-16 positions and edits") {
+  std::string text = "a\xC3\xA9" "b\n\xF0\x9F\x98\x80x\n";  // "aéb", then an emoji (two UTF-16 units) and x
+  CHECK(offset_of(text, {0, 2}) == 3);  // after "aé"
+  CHECK(offset_of(text, {1, 2}) == 9);  // after the emoji
+  CHECK(offset_of(text, {1, 99}) == 10);  // clamped to the line's end
+  CHECK(offset_of(text, {9, 0}) == text.size());
+  Position p = position_of(text, 10);
+  CHECK(p.line == 1);
+  CHECK(p.character == 3);
+  Document d;
+  d.text = text;
+  Documents::edit(d, {1, 2}, {1, 3}, "yz");
+  CHECK(d.text == "a\xC3\xA9" "b\n\xF0\x9F\x98\x80yz\n");
+}
+
+TEST_CASE("lsp server: a 5 MB document, and messages of every wrong shape") {
+  Server s;
+  CHECK(s.handle_text("{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}").size() == 1);
+  std::string big;
+  for (int i = 0; big.size() < (5u << 20); ++i) big += "function f" + std::to_string(i) + "(x) { return x * " + std::to_string(i) + "; }\n";
+  json open = {{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
+               {"params", {{"textDocument", {{"uri", "file:///big.fs"}, {"version", 1}, {"text", big}}}}}};
+  auto out = s.handle(open);
+  REQUIRE(out.size() == 1);
+  CHECK(out[0]["params"]["diagnostics"].empty());
+  for (const char* bad : {"", "null", "42", "\"x\"", "{}", "{\"method\":7}", "{\"id\":1,\"method\":\"textDocument/hover\"}",
+                          "{\"id\":1,\"method\":\"textDocument/hover\",\"params\":{\"textDocument\":{\"uri\":5}}}",
+                          "{\"method\":\"textDocument/didChange\",\"params\":{\"textDocument\":{\"uri\":\"file:///big.fs\"},"
+                          "\"contentChanges\":[{\"range\":{\"start\":{\"line\":-1}}}]}}",
+                          "{\"method\":\"textDocument/didOpen\",\"params\":{\"textDocument\":{}}}"}) {
+    INFO(bad);
+    CHECK_NOTHROW(s.handle_text(bad));
+  }
+  CHECK_FALSE(s.exited());
+}

@@ -25,4 +25,47 @@ int find_function(const frontend::SemaResult& sema, const std::string& name) {
   return i >= 0 ? i : sema.function_index(name, true);
 }
 
+std::vector<frontend::Span> occurrences(const Analysis& a, const std::string& text, size_t offset) {
+  size_t b, e;
+  std::vector<frontend::Span> out;
+  if (!word_at(text, offset, b, e)) return out;
+  std::string word = text.substr(b, e - b);
+  const auto& sema = a.script.sema;
+  const auto& prog = *a.script.prog;
+  auto covers = [&](const frontend::Span& s) { return s.begin <= b && b < s.end; };
+  // A function: its declaration or one of its calls is under the cursor.
+  int f = sema.function_index(word, false);
+  bool on_function = false;
+  if (f >= 0 && sema.functions[static_cast<size_t>(f)].decl) {
+    on_function = covers(sema.functions[static_cast<size_t>(f)].decl->name_span);
+    for (const auto& ex : prog.expr_arena) on_function |= ex->kind == frontend::ExprKind::Call && ex->name == word && covers(ex->name_span);
+  }
+  if (on_function) {
+    out.push_back(sema.functions[static_cast<size_t>(f)].decl->name_span);
+    for (const auto& ex : prog.expr_arena)
+      if (ex->kind == frontend::ExprKind::Call && ex->name == word) out.push_back(ex->name_span);
+    return out;
+  }
+  // A variable: the symbol of the name under the cursor, then everything that resolves to it.
+  int sym = -1;
+  for (const auto& ex : prog.expr_arena)
+    if (ex->sym >= 0 && ex->name == word && covers(ex->name_span)) sym = ex->sym;
+  for (const auto& st : prog.stmt_arena)
+    for (const auto& d : st->decls)
+      if (d.sym >= 0 && d.name == word && covers(d.span)) sym = d.sym;
+  if (sym < 0) return out;
+  for (const auto& st : prog.stmt_arena)
+    for (const auto& d : st->decls)
+      if (d.sym == sym) out.push_back({d.span.begin, d.span.begin + static_cast<uint32_t>(d.name.size())});
+  for (const auto& ex : prog.expr_arena)
+    if (ex->sym == sym && ex->name == word) out.push_back(ex->name_span);
+  const frontend::Symbol& s = sema.symbols[static_cast<size_t>(sym)];
+  if (out.empty() || s.kind == frontend::SymKind::Global) {
+    bool have = false;
+    for (const auto& o : out) have |= o.begin == s.decl.begin;
+    if (!have && s.decl.end > s.decl.begin) out.push_back({s.decl.begin, s.decl.begin + static_cast<uint32_t>(word.size())});
+  }
+  return out;
+}
+
 }  // namespace fscript::lsp

@@ -3,6 +3,7 @@
 // errors: the parser recovers), and the identifier under a position.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "frontend/fscript/compiler.h"
 #include "lsp/documents.h"
@@ -21,5 +22,10 @@ bool word_at(const std::string& text, size_t offset, size_t& begin, size_t& end)
 
 // The user function named `name` (exact, then ignoring case), or -1.
 int find_function(const frontend::SemaResult& sema, const std::string& name);
+
+// Every place the name at byte `offset` stands for the same thing: a user function (its
+// declaration and calls) or a variable (its declaration, parameters and uses). Empty when the
+// position is on no such name.
+std::vector<frontend::Span> occurrences(const Analysis& a, const std::string& text, size_t offset);
 
 }  // namespace fscript::lsp

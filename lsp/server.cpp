@@ -3,6 +3,8 @@
 // ignored; nothing escapes as an exception.
 #include "lsp/server.h"
 
+#include <algorithm>
+
 #include "lsp/features/features.h"
 
 namespace fscript::lsp {
@@ -68,7 +70,12 @@ json Server::initialize_result() const {
             {"completionProvider", {{"triggerCharacters", json::array()}}},
             {"definitionProvider", true},
             {"documentSymbolProvider", true},
-            {"documentFormattingProvider", true}}},
+            {"documentFormattingProvider", true},
+            {"referencesProvider", true},
+            {"renameProvider", true},
+            {"signatureHelpProvider", {{"triggerCharacters", {"(", ","}}}},
+            {"foldingRangeProvider", true},
+            {"codeActionProvider", {{"codeActionKinds", {"quickfix"}}}}}},
           {"serverInfo", {{"name", "fscript-lsp"}, {"version", "0.1"}}}};
 }
 
@@ -83,15 +90,23 @@ json Server::request(const std::string& method, const json& params, std::vector<
     shutdown_ = true;
     return nullptr;
   }
-  if (method == "textDocument/hover" || method == "textDocument/completion" || method == "textDocument/definition" ||
-      method == "textDocument/documentSymbol" || method == "textDocument/formatting") {
+  static const char* const kDocumentMethods[] = {
+      "textDocument/hover", "textDocument/completion", "textDocument/definition", "textDocument/documentSymbol",
+      "textDocument/formatting", "textDocument/references", "textDocument/rename", "textDocument/signatureHelp",
+      "textDocument/foldingRange", "textDocument/codeAction"};
+  if (std::find(std::begin(kDocumentMethods), std::end(kDocumentMethods), method) != std::end(kDocumentMethods)) {
     Document* d = doc();
     if (!d) return no_doc();
     if (method == "textDocument/hover") return hover(*d, params);
     if (method == "textDocument/completion") return completion(*d, params);
     if (method == "textDocument/definition") return definition(*d, params);
     if (method == "textDocument/documentSymbol") return document_symbols(*d);
-    return formatting(*d);
+    if (method == "textDocument/formatting") return formatting(*d);
+    if (method == "textDocument/references") return references(*d, params);
+    if (method == "textDocument/rename") return rename(*d, params);
+    if (method == "textDocument/signatureHelp") return signature_help(*d, params);
+    if (method == "textDocument/foldingRange") return folding_ranges(*d);
+    return code_actions(*d, params);
   }
   return {{"__error", kMethodNotFound}, {"message", "unknown method '" + method + "'"}};
 }

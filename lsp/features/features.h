@@ -15,6 +15,11 @@ json completion(const Document& d, const json& params);
 json definition(const Document& d, const json& params);
 json document_symbols(const Document& d);
 json formatting(const Document& d);
+json references(const Document& d, const json& params);
+json rename(const Document& d, const json& params);
+json signature_help(const Document& d, const json& params);
+json folding_ranges(const Document& d);
+json code_actions(const Document& d, const json& params);
 
 // LSP range of frontend positions (1-based line and byte column, then a byte length).
 json range_of(const std::string& text, uint32_t line, uint32_t col, uint32_t length);

@@ -10,8 +10,10 @@ namespace fscript::frontend {
 
 namespace {
 
+}  // namespace
+
 // Lowering too, for its warnings (unoptimised: checking only).
-void lower_for_warnings(const Script& s, DiagnosticSink& diag) {
+void lowering_warnings(const Script& s, DiagnosticSink& diag) {
   KernelSpec spec;
   std::string err;
   if (!default_spec(s.sema, spec, err)) spec = {};
@@ -19,6 +21,8 @@ void lower_for_warnings(const Script& s, DiagnosticSink& diag) {
   bo.optimize = false;
   build_module(s, spec, diag, bo, err);
 }
+
+namespace {
 
 // One FScript text embedded in a .wrl; false if it has errors.
 bool check_embedded(const std::string& path, const std::vector<std::string>& lines, const EmbeddedScript& e,
@@ -37,7 +41,7 @@ bool check_embedded(const std::string& path, const std::vector<std::string>& lin
   size_t before = diag.error_count();
   load_script(std::move(file), diag, s, extra);
   if (diag.error_count() != before) return false;
-  lower_for_warnings(s, diag);
+  lowering_warnings(s, diag);
   return true;
 }
 
@@ -52,7 +56,7 @@ bool is_set_operation(const std::string& t) {
 bool check_script(const std::string& path, const std::string& text, DiagnosticSink& diag) {
   Script s;
   if (!load_script(std::make_unique<SourceFile>(path, text), diag, s)) return false;
-  lower_for_warnings(s, diag);
+  lowering_warnings(s, diag);
   return !diag.has_errors();
 }
 

@@ -12,6 +12,10 @@ namespace fscript::frontend {
 bool check_script(const std::string& path, const std::string& text, DiagnosticSink& diag);
 bool check_scene(const std::string& path, const std::string& text, DiagnosticSink& diag);
 
+// The warnings lowering adds to a script that analysed without errors (check_script's last step).
+struct Script;
+void lowering_warnings(const Script& s, DiagnosticSink& diag);
+
 // The set operations FTransform's `operation` field names instead of a formula.
 bool is_set_operation(const std::string& text);
 

@@ -5,9 +5,12 @@
 
 namespace fscript::lsp {
 
-std::unique_ptr<Analysis> analyze(const Document& d) {
-  auto a = std::make_unique<Analysis>();
+std::shared_ptr<const Analysis> analyze(const Document& d) {
+  if (d.analysis && d.analysed_revision == d.revision) return d.analysis;
+  auto a = std::make_shared<Analysis>();
   frontend::load_script(std::make_unique<frontend::SourceFile>(d.uri, d.text), a->diag, a->script);
+  d.analysis = a;
+  d.analysed_revision = d.revision;
   return a;
 }
 

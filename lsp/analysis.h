@@ -15,7 +15,8 @@ struct Analysis {
   frontend::Script script;
 };
 
-std::unique_ptr<Analysis> analyze(const Document& d);
+// The document's analysis, made once per revision of its text and shared by the features.
+std::shared_ptr<const Analysis> analyze(const Document& d);
 
 // The identifier around byte `offset` ([begin, end)); false when there is none.
 bool word_at(const std::string& text, size_t offset, size_t& begin, size_t& end);

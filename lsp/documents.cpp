@@ -68,6 +68,7 @@ Document& Documents::open(const std::string& uri, const std::string& text, int64
   d.text = text;
   d.version = version;
   d.scene = is_scene_uri(uri);
+  ++d.revision;
   return d;
 }
 
@@ -80,6 +81,7 @@ void Documents::edit(Document& d, Position from, Position to, const std::string&
   size_t a = offset_of(d.text, from), b = offset_of(d.text, to);
   if (b < a) std::swap(a, b);
   d.text.replace(a, b - a, text);
+  ++d.revision;
 }
 
 bool is_scene_uri(const std::string& uri) {

@@ -3,6 +3,7 @@
 // LSP 3.17 says by default; our frontend counts bytes from 1. Edits arrive whole or as ranges.
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 
 namespace fscript::lsp {
@@ -11,10 +12,16 @@ struct Position {
   uint32_t line = 0, character = 0;
 };
 
+struct Analysis;
+
 struct Document {
   std::string uri, text;
   int64_t version = 0;
   bool scene = false;  // a .wrl (VRML with FScript strings) rather than a .fs script
+  uint64_t revision = 0;  // bumped by every change of `text`
+  // The analysis of `text` at `analysed_revision` (lsp/analysis.h), shared by the features.
+  mutable std::shared_ptr<Analysis> analysis;
+  mutable uint64_t analysed_revision = ~uint64_t{0};
 };
 
 // Byte offset of an LSP position (clamped into the text: a position past a line's end is its end,

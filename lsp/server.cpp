@@ -126,6 +126,7 @@ void Server::notification(const std::string& method, const json& params, std::ve
     for (const json& change : params.at("contentChanges")) {
       if (!change.contains("range")) {
         d->text = change.at("text").get<std::string>();
+        ++d->revision;
         continue;
       }
       const json& r = change.at("range");

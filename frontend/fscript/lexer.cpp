@@ -28,7 +28,7 @@ bool is_keyword(Tok t) {
 namespace {
 
 struct Keyword {
-  const char* word;
+  std::string_view word;  // lengths known at compile time: the lexer compares without strlen
   Tok tok;
 };
 constexpr Keyword kKeywords[] = {
@@ -38,7 +38,7 @@ constexpr Keyword kKeywords[] = {
 
 // Longest punctuation first, so "===" wins over "==" and "=".
 struct Punct {
-  const char* text;
+  std::string_view text;
   Tok tok;
 };
 constexpr Punct kPuncts[] = {
@@ -126,14 +126,16 @@ class Lexer {
       while (i_ < s_.size() && is_ident_char(s_[i_])) ++i_;
       t.kind = Tok::Ident;
       std::string_view word(s_.data() + start, i_ - start);
-      for (const auto& k : kKeywords)
-        if (word == k.word) t.kind = k.tok;
+      if (word.size() <= 8 && word[0] >= 'a' && word[0] <= 'z')  // every keyword is short and lower case
+        for (const auto& k : kKeywords)
+          if (k.word[0] == word[0] && word == k.word) t.kind = k.tok;
     } else if (c == '"' || c == '\'') {
       lex_string(t, c);
     } else {
+      std::string_view rest(s_.data() + i_, s_.size() - i_);
       for (const auto& p : kPuncts) {
-        size_t n = std::strlen(p.text);
-        if (s_.compare(i_, n, p.text) == 0) {
+        size_t n = p.text.size();
+        if (p.text[0] == c && rest.substr(0, n) == p.text) {
           t.kind = p.tok;
           i_ += n;
           t.span = {u(start), u(i_)};

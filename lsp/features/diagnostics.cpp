@@ -1,5 +1,6 @@
 // textDocument/publishDiagnostics: the same diagnostics as `fscript check`, for .fs and .wrl.
 #include "frontend/check.h"
+#include "lsp/analysis.h"
 #include "lsp/features/features.h"
 
 namespace fscript::lsp {
@@ -24,10 +25,17 @@ Position position_param(const json& params) {
 
 json diagnostics(const Document& d) {
   frontend::DiagnosticSink sink;
-  if (d.scene) frontend::check_scene(d.uri, d.text, sink);
-  else frontend::check_script(d.uri, d.text, sink);
+  std::vector<frontend::Diagnostic> all;
+  if (d.scene) {
+    frontend::check_scene(d.uri, d.text, sink);
+  } else {  // check_script's steps, on the analysis the other features share
+    auto a = analyze(d);
+    all = a->diag.all();
+    if (!a->diag.has_errors()) frontend::lowering_warnings(a->script, sink);
+  }
+  all.insert(all.end(), sink.all().begin(), sink.all().end());
   json list = json::array();
-  for (const auto& diag : sink.all()) {
+  for (const auto& diag : all) {
     int severity = diag.severity == frontend::Severity::Error ? 1 : diag.severity == frontend::Severity::Warning ? 2 : 3;
     list.push_back({{"range", range_of(d.text, diag.pos.line, diag.pos.col, diag.length)},
                     {"severity", severity},

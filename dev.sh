@@ -8,8 +8,9 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 PACKAGES=(cmake ninja-build g++ python3 catch2 nlohmann-json3-dev libcli11-dev libpng-dev libedit-dev llvm-19-dev)
-# For the tests only: a real VRML97 browser (view3dscene, run under a virtual X server).
-TEST_PACKAGES=(view3dscene xvfb xauth binutils)
+# For the tests only: a real VRML97 browser (view3dscene, run under a virtual X server), and
+# Neovim as a real LSP client.
+TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim)
 
 install_missing() {
   local missing=()
@@ -37,20 +38,24 @@ build() {
 cmd="${1:-demo}"
 install_missing "${PACKAGES[@]}"
 build
-# The Khronos glTF validator for the tests (npm registry); its checks are skipped without it.
-install_gltf_validator() {
+# npm tools for the tests: the Khronos glTF validator and Microsoft's LSP client libraries; the
+# checks that need one that could not be installed are skipped.
+NPM_TOOLS=(gltf-validator@2.0.0-dev.3.10 vscode-jsonrpc@10.0.0 vscode-languageserver-protocol@3.18.5)
+install_npm_tools() {
   command -v npm > /dev/null || return 0
-  [ -d "$BUILD_DIR/npm/node_modules/gltf-validator" ] && return 0
+  local missing=()
+  for t in "${NPM_TOOLS[@]}"; do [ -d "$BUILD_DIR/npm/node_modules/${t%@*}" ] || missing+=("$t"); done
+  [ ${#missing[@]} -eq 0 ] && return 0
   mkdir -p "$BUILD_DIR/npm"
-  (cd "$BUILD_DIR/npm" && npm install --no-audit --no-fund --silent gltf-validator@2.0.0-dev.3.10 > /dev/null 2>&1) ||
-    echo "note: could not install the glTF validator from npm; its checks will be skipped"
+  (cd "$BUILD_DIR/npm" && npm install --no-audit --no-fund --silent "${missing[@]}" > /dev/null 2>&1) ||
+    echo "note: could not install ${missing[*]} from npm; their checks will be skipped"
 }
 
 case "$cmd" in
   build) ;;
   test)
     install_missing "${TEST_PACKAGES[@]}" || echo "note: could not install ${TEST_PACKAGES[*]}; the VRML97 browser test will be skipped"
-    install_gltf_validator
+    install_npm_tools
     export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
     export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
     (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)")

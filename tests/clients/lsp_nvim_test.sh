@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# fscript-lsp in a real editor: Neovim (Debian `neovim`, headless) opens a .fs and a .wrl through
+# its built-in LSP client (the shared probe ../shared/tools/clients/nvim_lsp_probe.lua), receives
+# diagnostics, hover, completion and go-to-definition, edits the buffer and gets fresh
+# diagnostics. Exit 77 (skipped) when nvim or the probe is missing.
+# usage: lsp_nvim_test.sh FSCRIPT_LSP SOURCE_DIR
+set -uo pipefail
+LSP=$1
+SRC=$2
+PROBE="$SRC/../shared/tools/clients/nvim_lsp_probe.lua"
+command -v nvim > /dev/null && [ -f "$PROBE" ] || { echo "skipped: needs nvim and $PROBE"; exit 77; }
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fails=0
+probe() {  # FILETYPE FILE QUERIES EDIT
+  LSP_FT=$1 LSP_CMD="[\"$LSP\"]" LSP_FILE=$2 LSP_QUERIES=$3 LSP_EDIT=$4 timeout 60 \
+    nvim --headless --clean -n -u NONE -c "luafile $PROBE" 2>&1
+}
+want() {  # NAME OUTPUT REGEX
+  if grep -Eq "$3" <<< "$2"; then echo "ok $1"; else echo "FAIL $1: no /$3/ in:"; echo "$2" | cut -c1-400; fails=$((fails + 1)); fi
+}
+printf 'function sq(a) {\n  return a * a;\n}\nfunction FRep(x, y, z, t) {\n  var r = sqrt(sq(x) + y * y);\n  return 1 - r;\n}\n' > "$T/probe.fs"
+out=$(probe fscript "$T/probe.fs" 'textDocument/hover@4:12;textDocument/completion@4:12;textDocument/definition@4:15;textDocument/documentSymbol' '5:  return 1 - rr;')
+want "fs: diagnostics on open" "$out" '"phase": "open", "event": "diagnostics".*"items": \[\]'
+want "fs: hover on a built-in" "$out" '"method": "textDocument/hover", "result": \{.*sqrt\(x\)'
+want "fs: completion" "$out" '"method": "textDocument/completion".*"label": "sqrt"'
+want "fs: definition of a user function" "$out" '"method": "textDocument/definition", "result": \{"uri": "file://[^"]*probe.fs", "range": \{"end": \{"character": 11, "line": 0\}'
+want "fs: symbols" "$out" '"method": "textDocument/documentSymbol".*"name": "FRep"'
+want "fs: diagnostics after an edit" "$out" "\"phase\": \"edit\".*unknown name 'rr'"
+want "fs: clean shutdown" "$out" '"status": 0, "ok": true'
+printf '#VRML V2.0 utf8\nTransform {\n  children FShape {\n    geometry FGeometry { definition "1 - x*x - y*y - z*z" }\n  }\n}\n' > "$T/scene.wrl"
+out=$(probe vrml "$T/scene.wrl" 'textDocument/completion@0:0' '3:    geometry FGeometry { definition "1 - x*x - qq" }')
+want "wrl: diagnostics on open" "$out" '"phase": "open", "event": "diagnostics".*"items": \[\]'
+want "wrl: an FScript error inside the .wrl after an edit" "$out" "\"phase\": \"edit\".*unknown name 'qq'"
+want "wrl: clean shutdown" "$out" '"status": 0, "ok": true'
+[ "$fails" -eq 0 ] && echo "all Neovim checks passed" || echo "$fails Neovim checks failed"
+exit $((fails > 0))

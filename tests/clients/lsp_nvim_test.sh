@@ -5,8 +5,8 @@
 # diagnostics. Exit 77 (skipped) when nvim or the probe is missing.
 # usage: lsp_nvim_test.sh FSCRIPT_LSP SOURCE_DIR
 set -uo pipefail
-LSP=$1
-SRC=$2
+LSP=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+SRC=$(cd "$2" && pwd)
 PROBE="$SRC/../shared/tools/clients/nvim_lsp_probe.lua"
 command -v nvim > /dev/null && [ -f "$PROBE" ] || { echo "skipped: needs nvim and $PROBE"; exit 77; }
 T=$(mktemp -d)
@@ -33,5 +33,13 @@ out=$(probe vrml "$T/scene.wrl" 'textDocument/completion@0:0' '3:    geometry FG
 want "wrl: diagnostics on open" "$out" '"phase": "open", "event": "diagnostics".*"items": \[\]'
 want "wrl: an FScript error inside the .wrl after an edit" "$out" "\"phase\": \"edit\".*unknown name 'qq'"
 want "wrl: clean shutdown" "$out" '"status": 0, "ok": true'
+# The Neovim set-up the README documents (editors/nvim/fscript.lua), on a .fs and a .wrl.
+printf 'function FRep(x, y, z, t) {\n  return 1 - Q;\n}\n' > "$T/bad.fs"
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1 - x*x - QQ" } }\n' > "$T/bad.wrl"
+for f in bad.fs bad.wrl; do
+  out=$(cd "$T" && FSCRIPT_LSP="$LSP" timeout 60 nvim --headless --clean -n -u NONE -c "luafile $SRC/editors/nvim/fscript.lua" \
+        -c "edit $f" -c "luafile $SRC/tests/clients/nvim_config_check.lua" 2>&1)
+  want "editors/nvim/fscript.lua on $f" "$out" "clients=fscript-lsp diagnostic=unknown name 'Q"
+done
 [ "$fails" -eq 0 ] && echo "all Neovim checks passed" || echo "$fails Neovim checks failed"
 exit $((fails > 0))

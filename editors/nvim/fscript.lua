@@ -1,0 +1,44 @@
+-- Neovim (0.7 or later) set-up for FScript: *.fs files are FScript (not F#), and fscript-lsp
+-- serves them and .wrl scenes (the FScript strings inside). Use: `:luafile path/to/fscript.lua`
+-- from init.vim, or `require` it from init.lua; FSCRIPT_LSP may name the server's path.
+local server = os.getenv("FSCRIPT_LSP") or "fscript-lsp"
+
+vim.cmd([[
+  augroup fscript_filetypes
+    autocmd!
+    autocmd BufRead,BufNewFile *.fs setlocal filetype=fscript
+    autocmd BufRead,BufNewFile *.wrl setlocal filetype=vrml
+  augroup END
+]])
+
+local clients = {}  -- one server per root folder
+
+local function attach(bufnr)
+  local file = vim.api.nvim_buf_get_name(bufnr)
+  local root = vim.fn.fnamemodify(file, ":p:h")
+  if not clients[root] then
+    clients[root] = vim.lsp.start_client({
+      name = "fscript-lsp",
+      cmd = { server },
+      root_dir = root,
+    })
+  end
+  if clients[root] then vim.lsp.buf_attach_client(bufnr, clients[root]) end
+end
+
+function _G.fscript_lsp_attach() attach(vim.api.nvim_get_current_buf()) end
+
+vim.cmd([[
+  augroup fscript_lsp
+    autocmd!
+    autocmd FileType fscript,vrml lua fscript_lsp_attach()
+  augroup END
+]])
+
+-- FScript comments and indentation like JavaScript's.
+vim.cmd([[
+  augroup fscript_buffer
+    autocmd!
+    autocmd FileType fscript setlocal commentstring=//\ %s shiftwidth=2 expandtab
+  augroup END
+]])

@@ -61,3 +61,49 @@ TEST_CASE("lsp server: a 5 MB document, and messages of every wrong shape") {
   }
   CHECK_FALSE(s.exited());
 }
+
+TEST_CASE("lsp fuzz: random and mutated byte streams through the transport and the server") {
+  // Valid messages cut, spliced and bit-flipped, and plain noise: every byte stream must end in
+  // End, with no exception and no hang.
+  std::vector<std::string> seeds = {
+      "{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}",
+      "{\"jsonrpc\":\"2.0\",\"method\":\"textDocument/didOpen\",\"params\":{\"textDocument\":{\"uri\":\"file:///f.fs\","
+      "\"version\":1,\"text\":\"function FRep(x,y,z,t){return x*x-1;}\"}}}",
+      "{\"jsonrpc\":\"2.0\",\"id\":2,\"method\":\"textDocument/hover\",\"params\":{\"textDocument\":{\"uri\":\"file:///f.fs\"},"
+      "\"position\":{\"line\":0,\"character\":30}}}",
+      "{\"jsonrpc\":\"2.0\",\"method\":\"textDocument/didChange\",\"params\":{\"textDocument\":{\"uri\":\"file:///f.fs\","
+      "\"version\":2},\"contentChanges\":[{\"range\":{\"start\":{\"line\":0,\"character\":5},\"end\":{\"line\":0,"
+      "\"character\":9}},\"text\":\"(\"}]}}",
+      "{\"jsonrpc\":\"2.0\",\"id\":3,\"method\":\"textDocument/completion\",\"params\":{\"textDocument\":{\"uri\":\"file:///f.fs\"},"
+      "\"position\":{\"line\":0,\"character\":3}}}"};
+  uint64_t rng = 0x9E3779B97F4A7C15ull;
+  auto next = [&] {
+    rng ^= rng << 13;
+    rng ^= rng >> 7;
+    rng ^= rng << 17;
+    return rng;
+  };
+  for (int round = 0; round < 400; ++round) {
+    std::string stream;
+    for (int m = 0; m < 6; ++m) {
+      std::string body = seeds[next() % seeds.size()];
+      int how = static_cast<int>(next() % 5);
+      if (how == 1 && !body.empty()) body.resize(next() % body.size());                       // cut
+      if (how == 2) for (int k = 0; k < 3; ++k) body[next() % body.size()] ^= static_cast<char>(1 << (next() % 8));  // flip
+      if (how == 3) body = std::string(next() % 40, static_cast<char>(next() % 256));          // noise
+      size_t claimed = how == 4 ? body.size() + next() % 20 : body.size();                      // a lying length
+      stream += (next() % 7 ? "Content-Length: " + std::to_string(claimed) : std::string("Content-Lenght: 3")) +
+                "\r\n\r\n" + body;
+    }
+    std::istringstream in(stream);
+    Server s;
+    std::string body, error;
+    int guard = 0;
+    for (;;) {
+      ReadStatus st = read_message(in, body, error);
+      if (st == ReadStatus::End) break;
+      if (st == ReadStatus::Message) CHECK_NOTHROW(s.handle_text(body));
+      REQUIRE(++guard < 100);
+    }
+  }
+}

@@ -75,7 +75,8 @@ json Server::initialize_result() const {
             {"renameProvider", true},
             {"signatureHelpProvider", {{"triggerCharacters", {"(", ","}}}},
             {"foldingRangeProvider", true},
-            {"codeActionProvider", {{"codeActionKinds", {"quickfix"}}}}}},
+            {"codeActionProvider", {{"codeActionKinds", {"quickfix"}}}},
+            {"semanticTokensProvider", {{"legend", semantic_tokens_legend()}, {"full", true}}}}},
           {"serverInfo", {{"name", "fscript-lsp"}, {"version", "0.1"}}}};
 }
 
@@ -93,7 +94,7 @@ json Server::request(const std::string& method, const json& params, std::vector<
   static const char* const kDocumentMethods[] = {
       "textDocument/hover", "textDocument/completion", "textDocument/definition", "textDocument/documentSymbol",
       "textDocument/formatting", "textDocument/references", "textDocument/rename", "textDocument/signatureHelp",
-      "textDocument/foldingRange", "textDocument/codeAction"};
+      "textDocument/foldingRange", "textDocument/codeAction", "textDocument/semanticTokens/full"};
   if (std::find(std::begin(kDocumentMethods), std::end(kDocumentMethods), method) != std::end(kDocumentMethods)) {
     Document* d = doc();
     if (!d) return no_doc();
@@ -106,6 +107,7 @@ json Server::request(const std::string& method, const json& params, std::vector<
     if (method == "textDocument/rename") return rename(*d, params);
     if (method == "textDocument/signatureHelp") return signature_help(*d, params);
     if (method == "textDocument/foldingRange") return folding_ranges(*d);
+    if (method == "textDocument/semanticTokens/full") return semantic_tokens(*d);
     return code_actions(*d, params);
   }
   return {{"__error", kMethodNotFound}, {"message", "unknown method '" + method + "'"}};

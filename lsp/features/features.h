@@ -20,6 +20,8 @@ json rename(const Document& d, const json& params);
 json signature_help(const Document& d, const json& params);
 json folding_ranges(const Document& d);
 json code_actions(const Document& d, const json& params);
+json semantic_tokens(const Document& d);
+json semantic_tokens_legend();
 
 // LSP range of frontend positions (1-based line and byte column, then a byte length).
 json range_of(const std::string& text, uint32_t line, uint32_t col, uint32_t length);

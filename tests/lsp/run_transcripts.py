@@ -17,6 +17,8 @@ LSP = sys.argv[1]
 def matches(want, got):
     if isinstance(want, dict):
         return isinstance(got, dict) and all(k in got and matches(v, got[k]) for k, v in want.items())
+    if isinstance(want, list) and all(not isinstance(w, (dict, list)) for w in want):
+        return want == got  # a list of plain values (semantic token data): exactly, in order
     if isinstance(want, list):
         return isinstance(got, list) and all(any(matches(w, g) for g in got) for w in want)
     if isinstance(want, str) and want.startswith("re:"):

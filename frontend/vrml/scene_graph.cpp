@@ -1,6 +1,8 @@
 // Scene graph helpers: field type tables, lookups with defaults, the built-in node interfaces.
 #include "frontend/vrml/scene_graph.h"
 
+#include <algorithm>
+
 #include <cstdlib>
 #include <cstring>
 #include <unordered_map>
@@ -106,6 +108,13 @@ const Interface* standard_interface(const std::string& node_type) {
   const auto& t = standard_table();
   auto it = t.find(node_type);
   return it == t.end() ? nullptr : &it->second;
+}
+
+std::vector<std::string> standard_node_types() {
+  std::vector<std::string> out;
+  for (const auto& [name, iface] : standard_table()) out.push_back(name);
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 bool is_fvrml_node(const std::string& n) {

@@ -109,6 +109,7 @@ struct Scene {
 
 // The standard node interfaces (VRML97 and FVRML), parsed once from nodes_vrml97.wrl.
 const Interface* standard_interface(const std::string& node_type);
+std::vector<std::string> standard_node_types();  // sorted
 bool is_fvrml_node(const std::string& node_type);
 
 }  // namespace fscript::vrml

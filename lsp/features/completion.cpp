@@ -1,7 +1,9 @@
 // textDocument/completion: keywords, built-ins, the document's functions and variables.
+#include <cctype>
 #include <set>
 
 #include "frontend/fscript/sema.h"
+#include "frontend/vrml/scene_graph.h"
 #include "lsp/analysis.h"
 #include "lsp/features/features.h"
 
@@ -17,6 +19,34 @@ const char* const kKeywords[] = {
 #include "frontend/fscript/tokens.def"
 };
 
+// In a .wrl: whether `at` is inside a string (FScript lives there), else the node type whose
+// braces enclose it ("" at the top level).
+bool scene_context(const std::string& text, size_t at, std::string& node) {
+  bool in_string = false;
+  std::vector<size_t> opens;
+  for (size_t i = 0; i < at && i < text.size(); ++i) {
+    char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '#') {
+      size_t nl = text.find('\n', i);
+      i = nl == std::string::npos ? text.size() : nl;
+    } else if (c == '{') {
+      opens.push_back(i);
+    } else if (c == '}' && !opens.empty()) {
+      opens.pop_back();
+    }
+  }
+  if (in_string || opens.empty()) return in_string;
+  size_t b, e, end = opens.back();
+  while (end > 0 && std::isspace(static_cast<unsigned char>(text[end - 1]))) --end;
+  if (end > 0 && word_at(text, end - 1, b, e)) node = text.substr(b, e - b);
+  return false;
+}
+
 }  // namespace
 
 json completion(const Document& d, const json& params) {
@@ -30,6 +60,17 @@ json completion(const Document& d, const json& params) {
       return;
     items.push_back({{"label", label}, {"kind", kind}, {"detail", detail}});
   };
+  std::string node;
+  if (d.scene && !scene_context(d.text, at, node)) {  // VRML: node types, and the enclosing node's fields
+    constexpr int kFieldKind = 5, kClassKind = 7;
+    if (const vrml::Interface* iface = node.empty() ? nullptr : vrml::standard_interface(node))
+      for (const auto& f : iface->fields) add(f.name, kFieldKind, node + " field");
+    for (const auto& n : vrml::standard_node_types())
+      add(n, kClassKind, vrml::is_fvrml_node(n) ? "FVRML node" : "VRML97 node");
+    for (const char* k : {"DEF", "USE", "PROTO", "EXTERNPROTO", "ROUTE", "TO", "IS", "TRUE", "FALSE", "NULL"})
+      add(k, kKeywordKind, "VRML97");
+    return {{"isIncomplete", false}, {"items", items}};
+  }
   for (const char* k : kKeywords) add(k, kKeywordKind, "keyword");
   for (int i = 0; i < frontend::kNumBuiltins; ++i)
     add(frontend::kBuiltins[i].name, kFunctionKind, frontend::kBuiltins[i].signature);

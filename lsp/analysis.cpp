@@ -3,6 +3,9 @@
 
 #include <cctype>
 
+#include "frontend/vrml/scene_scripts.h"
+#include "frontend/vrml/vrml_parser.h"
+
 namespace fscript::lsp {
 
 std::shared_ptr<const Analysis> analyze(const Document& d) {
@@ -21,6 +24,24 @@ bool word_at(const std::string& text, size_t offset, size_t& begin, size_t& end)
   while (begin > 0 && ident(text[begin - 1])) --begin;
   while (end < text.size() && ident(text[end])) ++end;
   return end > begin && !std::isdigit(static_cast<unsigned char>(text[begin]));
+}
+
+bool embedded_script_at(const Document& scene, size_t offset, Document& script, size_t& base) {
+  frontend::DiagnosticSink ignored;
+  vrml::Scene parsed;
+  vrml::parse_scene(std::make_unique<frontend::SourceFile>(scene.uri, scene.text), ignored, parsed);
+  for (const auto& s : vrml::scene_scripts(parsed)) {
+    size_t start = offset_of(scene.text, position_of_line_col(scene.text, s.script.line, s.script.col));
+    if (offset < start || offset > start + s.script.text.size()) continue;
+    if (scene.text.compare(start, s.script.text.size(), s.script.text) != 0) return false;  // escapes
+    script.uri = scene.uri;
+    script.text = s.script.text;
+    script.scene = false;
+    script.revision = 0;
+    base = start;
+    return true;
+  }
+  return false;
 }
 
 int find_function(const frontend::SemaResult& sema, const std::string& name) {

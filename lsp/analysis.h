@@ -24,6 +24,11 @@ bool word_at(const std::string& text, size_t offset, size_t& begin, size_t& end)
 // The user function named `name` (exact, then ignoring case), or -1.
 int find_function(const frontend::SemaResult& sema, const std::string& name);
 
+// The FScript string of a .wrl document that holds byte `offset`: a document of its own (same
+// uri) and the byte offset in the .wrl where its text starts. False outside every script, or for
+// a string with escapes (its text and the .wrl bytes would not line up).
+bool embedded_script_at(const Document& scene, size_t offset, Document& script, size_t& base);
+
 // Every place the name at byte `offset` stands for the same thing: a user function (its
 // declaration and calls) or a variable (its declaration, parameters and uses). Empty when the
 // position is on no such name.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "lsp/analysis.h"
 #include "lsp/features/features.h"
 
 namespace fscript::lsp {
@@ -98,6 +99,9 @@ json Server::request(const std::string& method, const json& params, std::vector<
   if (std::find(std::begin(kDocumentMethods), std::end(kDocumentMethods), method) != std::end(kDocumentMethods)) {
     Document* d = doc();
     if (!d) return no_doc();
+    if (d->scene && (method == "textDocument/hover" || method == "textDocument/definition" ||
+                     method == "textDocument/signatureHelp"))
+      return in_embedded_script(*d, method, params);
     if (method == "textDocument/hover") return hover(*d, params);
     if (method == "textDocument/completion") return completion(*d, params);
     if (method == "textDocument/definition") return definition(*d, params);
@@ -111,6 +115,28 @@ json Server::request(const std::string& method, const json& params, std::vector<
     return code_actions(*d, params);
   }
   return {{"__error", kMethodNotFound}, {"message", "unknown method '" + method + "'"}};
+}
+
+// Hover, definition and signature help on the FScript inside a .wrl: the feature runs on the
+// script as a document of its own, and every range comes back in .wrl positions.
+json Server::in_embedded_script(const Document& scene, const std::string& method, const json& params) {
+  Document script;
+  size_t base = 0;
+  if (!embedded_script_at(scene, offset_of(scene.text, position_param(params)), script, base)) return nullptr;
+  Position local = position_of(script.text, offset_of(scene.text, position_param(params)) - base);
+  json p = params;
+  p["position"] = {{"line", local.line}, {"character", local.character}};
+  json result = method == "textDocument/hover"        ? hover(script, p)
+                : method == "textDocument/definition" ? definition(script, p)
+                                                      : signature_help(script, p);
+  if (result.is_object() && result.contains("range")) {
+    for (const char* end : {"start", "end"}) {
+      Position q{result["range"][end]["line"].get<uint32_t>(), result["range"][end]["character"].get<uint32_t>()};
+      Position out = position_of(scene.text, base + offset_of(script.text, q));
+      result["range"][end] = {{"line", out.line}, {"character", out.character}};
+    }
+  }
+  return result;
 }
 
 void Server::notification(const std::string& method, const json& params, std::vector<json>& out) {

@@ -29,6 +29,7 @@ class Server {
   void notification(const std::string& method, const json& params, std::vector<json>& out);
   json initialize_result() const;
   void publish(const Document& d, std::vector<json>& out);
+  json in_embedded_script(const Document& scene, const std::string& method, const json& params);
 
   Documents docs_;
   bool initialized_ = false, shutdown_ = false, exited_ = false;

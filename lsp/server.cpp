@@ -100,7 +100,8 @@ json Server::request(const std::string& method, const json& params, std::vector<
     Document* d = doc();
     if (!d) return no_doc();
     if (d->scene && (method == "textDocument/hover" || method == "textDocument/definition" ||
-                     method == "textDocument/signatureHelp"))
+                     method == "textDocument/signatureHelp" || method == "textDocument/references" ||
+                     method == "textDocument/rename"))
       return in_embedded_script(*d, method, params);
     if (method == "textDocument/hover") return hover(*d, params);
     if (method == "textDocument/completion") return completion(*d, params);
@@ -117,8 +118,34 @@ json Server::request(const std::string& method, const json& params, std::vector<
   return {{"__error", kMethodNotFound}, {"message", "unknown method '" + method + "'"}};
 }
 
-// Hover, definition and signature help on the FScript inside a .wrl: the feature runs on the
-// script as a document of its own, and every range comes back in .wrl positions.
+namespace {
+
+// Every "range" in `result`, from positions in `script` (which starts at byte `base` of `scene`)
+// to positions in the .wrl.
+void map_ranges(json& result, const Document& script, const Document& scene, size_t base) {
+  if (result.is_array()) {
+    for (json& item : result) map_ranges(item, script, scene, base);
+    return;
+  }
+  if (!result.is_object()) return;
+  for (auto& [key, value] : result.items()) {
+    if (key != "range") {
+      map_ranges(value, script, scene, base);
+      continue;
+    }
+    for (const char* end : {"start", "end"}) {
+      Position q{value[end]["line"].get<uint32_t>(), value[end]["character"].get<uint32_t>()};
+      Position out = position_of(scene.text, base + offset_of(script.text, q));
+      value[end] = {{"line", out.line}, {"character", out.character}};
+    }
+  }
+}
+
+}  // namespace
+
+// Hover, definition, signature help, references and rename on the FScript inside a .wrl: the
+// feature runs on the script as a document of its own, and every range comes back in .wrl
+// positions.
 json Server::in_embedded_script(const Document& scene, const std::string& method, const json& params) {
   Document script;
   size_t base = 0;
@@ -126,16 +153,12 @@ json Server::in_embedded_script(const Document& scene, const std::string& method
   Position local = position_of(script.text, offset_of(scene.text, position_param(params)) - base);
   json p = params;
   p["position"] = {{"line", local.line}, {"character", local.character}};
-  json result = method == "textDocument/hover"        ? hover(script, p)
-                : method == "textDocument/definition" ? definition(script, p)
-                                                      : signature_help(script, p);
-  if (result.is_object() && result.contains("range")) {
-    for (const char* end : {"start", "end"}) {
-      Position q{result["range"][end]["line"].get<uint32_t>(), result["range"][end]["character"].get<uint32_t>()};
-      Position out = position_of(scene.text, base + offset_of(script.text, q));
-      result["range"][end] = {{"line", out.line}, {"character", out.character}};
-    }
-  }
+  json result = method == "textDocument/hover"          ? hover(script, p)
+                : method == "textDocument/definition"   ? definition(script, p)
+                : method == "textDocument/references"   ? references(script, p)
+                : method == "textDocument/rename"       ? rename(script, p)
+                                                        : signature_help(script, p);
+  if (!result.contains("__error")) map_ranges(result, script, scene, base);
   return result;
 }
 

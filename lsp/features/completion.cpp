@@ -76,9 +76,16 @@ json completion(const Document& d, const json& params) {
     add(frontend::kBuiltins[i].name, kFunctionKind, frontend::kBuiltins[i].signature);
   if (!d.scene) {
     auto a = analyze(d);
+    // Locals only of the function the cursor is in: the variables in scope there.
+    int here = -1;
+    for (size_t f = 0; f < a->script.sema.functions.size(); ++f) {
+      const frontend::Stmt* decl = a->script.sema.functions[f].decl;
+      if (decl && decl->span.begin <= at && at <= decl->span.end) here = static_cast<int>(f);
+    }
     for (const auto& f : a->script.sema.functions) add(f.name, kFunctionKind, "user function");
     for (const auto& s : a->script.sema.symbols) {
       if (s.kind == frontend::SymKind::Function || s.kind == frontend::SymKind::Builtin) continue;
+      if (s.kind == frontend::SymKind::Local && s.owner != here) continue;
       add(s.name, s.kind == frontend::SymKind::Constant ? kConstantKind : kVariableKind,
           s.kind == frontend::SymKind::Local ? "local" : "global");
     }

@@ -1,6 +1,7 @@
 // The language server's layers: framing on good and bad streams, UTF-16 positions and edits, and
 // the server on a 5 MB document and on messages of every wrong shape (never an exception).
 #include <catch2/catch.hpp>
+#include <set>
 #include <sstream>
 
 #include "lsp/documents.h"
@@ -106,4 +107,27 @@ TEST_CASE("lsp fuzz: random and mutated byte streams through the transport and t
       REQUIRE(++guard < 100);
     }
   }
+}
+
+TEST_CASE("lsp completion: the locals in scope are those of the function the cursor is in") {
+  Server s;
+  s.handle_text("{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}");
+  std::string text = "function f(alpha) {\n  var beta = alpha;\n  return beta;\n}\nfunction g(gamma) {\n  return gamma;\n}\n";
+  s.handle({{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
+            {"params", {{"textDocument", {{"uri", "file:///s.fs"}, {"version", 1}, {"text", text}}}}}});
+  auto labels_at = [&](uint32_t line, uint32_t ch) {
+    json position = {{"line", line}, {"character", ch}};
+    json params = {{"textDocument", {{"uri", "file:///s.fs"}}}, {"position", position}};
+    auto out = s.handle({{"jsonrpc", "2.0"}, {"id", 2}, {"method", "textDocument/completion"}, {"params", params}});
+    std::set<std::string> labels;
+    for (const auto& item : out.at(0)["result"]["items"]) labels.insert(item["label"].get<std::string>());
+    return labels;
+  };
+  auto in_f = labels_at(2, 2), in_g = labels_at(5, 2);
+  CHECK(in_f.count("alpha"));
+  CHECK(in_f.count("beta"));
+  CHECK_FALSE(in_f.count("gamma"));
+  CHECK(in_g.count("gamma"));
+  CHECK_FALSE(in_g.count("beta"));
+  CHECK(in_g.count("f"));  // functions everywhere
 }

@@ -7,10 +7,9 @@
 namespace fscript::lsp {
 
 json definition(const Document& d, const json& params) {
-  if (d.scene) return nullptr;
   size_t b, e;
-  if (!word_at(d.text, offset_of(d.text, position_param(params)), b, e)) return nullptr;
-  std::string word = d.text.substr(b, e - b);
+  std::string word;
+  if (!name_at(d, params, b, e, word)) return nullptr;
   auto a = analyze(d);
   const auto& sema = a->script.sema;
   frontend::Span target{0, 0};

@@ -50,6 +50,23 @@ def expect(name, text, pattern):
         failures.append(f"{name}: wanted /{pattern}/ in:\n{text}")
 
 
+def wait_exit(pid, fd, name, timeout=30.0):
+    """The exit status of the session, or a failure (and the process killed) if it does not end."""
+    global checks
+    checks += 1
+    end = time.time() + timeout
+    while time.time() < end:
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            if not os.WIFEXITED(status) or os.WEXITSTATUS(status) != 0:
+                failures.append(f"{name}: the session ended with status {status}")
+            return
+        read_until(fd, r"$^", timeout=0.2)  # keep the terminal drained
+    os.kill(pid, 9)
+    os.waitpid(pid, 0)
+    failures.append(f"{name}: the session did not end")
+
+
 def type_line(fd, line, until=r"(fs|\.\.\.)> $"):
     os.write(fd, (line + "\r").encode())
     return read_until(fd, until)
@@ -106,18 +123,19 @@ with tempfile.TemporaryDirectory() as tmp:
     # Ctrl-C during a long evaluation stops it and keeps the session.
     type_line(fd, ":backend vm")
     os.write(fd, b"var s = 0; while (true) { s = s + 1; }\r")
-    time.sleep(1.0)
-    os.write(fd, b"\x03")
-    expect("ctrl-c", read_until(fd, r"interrupted[\s\S]*fs> $"), r"interrupted")
+    seen = ""
+    for _ in range(40):  # until the evaluation has started and is stopped (a slow build compiles longer)
+        time.sleep(0.5)
+        os.write(fd, b"\x03")
+        seen += read_until(fd, r"interrupted[\s\S]*fs> $", timeout=0.5)
+        if re.search(r"interrupted[\s\S]*fs> $", seen):
+            break
+    expect("ctrl-c", seen, r"interrupted")
     expect("alive after ctrl-c", type_line(fd, "sq(2)"), r"\r\n8\r\n")
     expect("reset", type_line(fd, ":reset"), r"forgotten")
     expect("reset forgets", type_line(fd, "sq(2)"), r"unknown function 'sq'")
-    os.write(fd, b"\x04")  # Ctrl-D
-    read_until(fd, r"$^", timeout=2)
-    _, status = os.waitpid(pid, 0)
-    checks += 1
-    if os.WEXITSTATUS(status) != 0:
-        failures.append(f"Ctrl-D: exit status {os.WEXITSTATUS(status)}")
+    os.write(fd, b"\x15\x04")  # clear the line, then Ctrl-D on the empty line
+    wait_exit(pid, fd, "Ctrl-D")
     with open(history) as h:
         expect("history kept", h.read(), r"sq\(7\)")
     # :quit, and the history read back by the next session (arrow up recalls it).
@@ -126,11 +144,8 @@ with tempfile.TemporaryDirectory() as tmp:
     os.write(fd, b"\x1b[A")
     expect("history recalled", read_until(fd, r"sq\(2\)"), r"sq\(2\)")
     os.write(fd, b"\x15")  # kill the recalled line
-    type_line(fd, ":quit", r"$^")
-    _, status = os.waitpid(pid, 0)
-    checks += 1
-    if os.WEXITSTATUS(status) != 0:
-        failures.append(f":quit: exit status {os.WEXITSTATUS(status)}")
+    os.write(fd, b":quit\r")
+    wait_exit(pid, fd, ":quit")
 
 for f in failures:
     print("FAIL " + f)

@@ -55,16 +55,17 @@ def wait_exit(pid, fd, name, timeout=30.0):
     global checks
     checks += 1
     end = time.time() + timeout
+    screen = ""
     while time.time() < end:
         done, status = os.waitpid(pid, os.WNOHANG)
         if done:
             if not os.WIFEXITED(status) or os.WEXITSTATUS(status) != 0:
                 failures.append(f"{name}: the session ended with status {status}")
             return
-        read_until(fd, r"$^", timeout=0.2)  # keep the terminal drained
+        screen += read_until(fd, r"$^", timeout=0.2)  # keep the terminal drained
     os.kill(pid, 9)
     os.waitpid(pid, 0)
-    failures.append(f"{name}: the session did not end")
+    failures.append(f"{name}: the session did not end; the screen showed {screen[-300:]!r}")
 
 
 def type_line(fd, line, until=r"(fs|\.\.\.)> $"):

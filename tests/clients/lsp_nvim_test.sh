@@ -41,22 +41,21 @@ fi
 printf 'function FRep(x, y, z, t) {\n  return 1 - Q;\n}\n' > "$T/bad.fs"
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1 - x*x - QQ" } }\n' > "$T/bad.wrl"
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "function g(a) { return a * a; }\nfunction FRep(x, y, z, t) { return 1 - g(x) - sqrt(y) - QQ; }" } }\n' > "$T/bad2.wrl"
+with_config() {  # FILE QUERIES: Neovim with editors/nvim/fscript.lua, then nvim_config_check.lua
+  (cd "$T" && FSCRIPT_LSP="$LSP" QUERIES=$2 timeout 60 nvim --headless --clean -n -u NONE \
+     -c "luafile $SRC/editors/nvim/fscript.lua" -c "edit $1" -c "luafile $SRC/tests/clients/nvim_config_check.lua" 2>&1)
+}
 for f in bad.fs bad.wrl; do
-  out=$(cd "$T" && FSCRIPT_LSP="$LSP" timeout 60 nvim --headless --clean -n -u NONE -c "luafile $SRC/editors/nvim/fscript.lua" \
-        -c "edit $f" -c "luafile $SRC/tests/clients/nvim_config_check.lua" 2>&1)
+  out=$(with_config "$f" "")
   want "editors/nvim/fscript.lua on $f" "$out" "clients=fscript-lsp diagnostic=unknown name 'Q"
 done
 # Hover, completion and definition through Neovim's own client, in a .fs and inside a .wrl string.
 printf 'function sq(a) {\n  return a * a;\n}\nfunction FRep(x, y, z, t) {\n  return 1 - sqrt(sq(x)) - Q;\n}\n' > "$T/feat.fs"
-out=$(cd "$T" && FSCRIPT_LSP="$LSP" QUERIES='textDocument/hover@4:14;textDocument/completion@4:15;textDocument/definition@4:19' \
-      timeout 60 nvim --headless --clean -n -u NONE -c "luafile $SRC/editors/nvim/fscript.lua" -c "edit feat.fs" \
-      -c "luafile $SRC/tests/clients/nvim_config_check.lua" 2>&1)
+out=$(with_config feat.fs 'textDocument/hover@4:14;textDocument/completion@4:15;textDocument/definition@4:19')
 want "nvim .fs hover" "$out" 'textDocument/hover => .*sqrt\(x\)'
 want "nvim .fs completion" "$out" 'textDocument/completion => .*"label": ?"sqrt"'
 want "nvim .fs definition" "$out" 'textDocument/definition => .*"start": ?\{"character": ?9, ?"line": ?0\}'
-out=$(cd "$T" && FSCRIPT_LSP="$LSP" QUERIES='textDocument/hover@2:47;textDocument/definition@2:39;textDocument/completion@1:11' \
-      timeout 60 nvim --headless --clean -n -u NONE -c "luafile $SRC/editors/nvim/fscript.lua" -c "edit bad2.wrl" \
-      -c "luafile $SRC/tests/clients/nvim_config_check.lua" 2>&1)
+out=$(with_config bad2.wrl 'textDocument/hover@2:47;textDocument/definition@2:39;textDocument/completion@1:11')
 want "nvim .wrl diagnostics" "$out" "diagnostic=unknown name 'QQ'"
 want "nvim .wrl hover in a script" "$out" 'textDocument/hover => .*sqrt\(x\)'
 want "nvim .wrl definition in a script" "$out" 'textDocument/definition => .*"start": ?\{"character": ?51, ?"line": ?1\}'

@@ -4,13 +4,16 @@
 #   ./dev.sh test    install what is missing, build, run every test (ctest)
 #   SANITIZE=1 ./dev.sh test   the same with AddressSanitizer + UndefinedBehaviorSanitizer
 #   ./dev.sh build   build only
+# With CI set (CI=true ./dev.sh test), a test skipped because something is missing fails instead.
+# FVRML_SHARED=DIR names the shared folder (corpus, paper data) when it is not ../shared.
 set -euo pipefail
 cd "$(dirname "$0")"
 
-PACKAGES=(cmake ninja-build g++ python3 catch2 nlohmann-json3-dev libcli11-dev libpng-dev libedit-dev llvm-19-dev)
-# For the tests only: a real VRML97 browser (view3dscene, run under a virtual X server), and
-# Neovim as a real LSP client.
-TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim)
+PACKAGES=(cmake ninja-build ccache g++ python3 catch2 nlohmann-json3-dev libcli11-dev libpng-dev libedit-dev llvm-19-dev)
+# For the tests only: a real VRML97 browser (view3dscene, run under a virtual X server), Neovim as
+# a real LSP client, objdump (binutils) for the x86 encoder, node for the glTF validator and the
+# LSP client libraries (npm below).
+TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim nodejs)
 
 install_missing() {
   local missing=()
@@ -30,6 +33,7 @@ build() {
   if [ "${SANITIZE:-0}" = 1 ]; then
     dir=build-asan type=RelWithDebInfo extra=(-DFS_SANITIZE=ON)
   fi
+  [ -n "${FVRML_SHARED:-}" ] && extra+=(-DFS_SHARED_DIR="$(cd "$FVRML_SHARED" && pwd)")
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" "${extra[@]}" >/dev/null
   ninja -C "$dir" >&2
   BUILD_DIR=$dir
@@ -39,10 +43,11 @@ cmd="${1:-demo}"
 install_missing "${PACKAGES[@]}"
 build
 # npm tools for the tests: the Khronos glTF validator and Microsoft's LSP client libraries; the
-# checks that need one that could not be installed are skipped.
+# checks that need one that could not be installed are skipped out loud (failures under CI).
 NPM_TOOLS=(gltf-validator@2.0.0-dev.3.10 vscode-jsonrpc@10.0.0 vscode-languageserver-protocol@3.18.5)
 install_npm_tools() {
-  command -v npm > /dev/null || return 0
+  command -v npm > /dev/null || install_missing npm || true
+  command -v npm > /dev/null || { echo "note: npm could not be installed"; return 0; }
   local missing=()
   for t in "${NPM_TOOLS[@]}"; do [ -d "$BUILD_DIR/npm/node_modules/${t%@*}" ] || missing+=("$t"); done
   [ ${#missing[@]} -eq 0 ] && return 0
@@ -58,7 +63,17 @@ case "$cmd" in
     install_npm_tools
     export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
     export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-    (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)")
+    rm -f "$BUILD_DIR/skipped.txt"
+    status=0
+    (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)") || status=$?
+    # Every skip, in CI or not, shows here (tests/support/skip.*).
+    if [ -s "$BUILD_DIR/skipped.txt" ]; then
+      echo "---- skipped checks ($(wc -l < "$BUILD_DIR/skipped.txt")):"
+      sort "$BUILD_DIR/skipped.txt"
+    else
+      echo "---- no check was skipped"
+    fi
+    exit "$status"
     ;;
   demo)
     mkdir -p out

@@ -2,6 +2,7 @@
 """The fscript REPL driven as a person would: under a pseudo-terminal, typing definitions,
 expressions, errors, multi-line input and commands, pressing Ctrl-C during a long evaluation and
 Ctrl-D at the end, and reading what the screen shows. usage: repl_test.py FSCRIPT SOURCE_DIR"""
+import math
 import os
 import pty
 import re
@@ -73,6 +74,33 @@ def type_line(fd, line, until=r"(fs|\.\.\.)> $"):
     return read_until(fd, until)
 
 
+def reply(fd, line):
+    """What the REPL printed for `line`: the screen after the terminal's echo of the typed line and
+    before the next prompt, lines joined with \n (so a pattern cannot match the typed command)."""
+    text = type_line(fd, line)
+    _, _, after = text.partition("\r\n")
+    return re.sub(r"(fs|\.\.\.)> $", "", after).replace("\r\n", "\n")
+
+
+def check_chart(name, text, f, a, b, width=72, rows=16):
+    """A 1D :plot: `rows` rows of `width` columns, one '*' per column at the row of f(x) (within one
+    row: the tool rounds in float), and the x range under it."""
+    global checks
+    checks += 1
+    grid = [ln.split(" |", 1)[1] for ln in text.split("\n") if " |" in ln]
+    if len(grid) != rows or any(len(g) != width for g in grid):
+        failures.append(f"{name}: wanted {rows} rows of {width} columns, got:\n{text}")
+        return
+    ys = [f(a + (b - a) * c / (width - 1)) for c in range(width)]
+    lo, hi = min(ys), max(ys)
+    for c, y in enumerate(ys):
+        stars = [r for r in range(rows) if grid[r][c] == "*"]
+        want = (hi - y) / (hi - lo) * (rows - 1)
+        if len(stars) != 1 or abs(stars[0] - want) > 1:
+            failures.append(f"{name}: column {c} (f = {y:.3f}) wants its '*' near row {want:.1f}, has {stars}:\n{text}")
+            return
+
+
 with tempfile.TemporaryDirectory() as tmp:
     history = os.path.join(tmp, "history")
     pid, fd = start(["--max-loop-iterations", "4000000000000"], {"FSCRIPT_HISTORY": history})
@@ -99,15 +127,17 @@ with tempfile.TemporaryDirectory() as tmp:
     expect("bad definition refused", type_line(fd, "function h2(x) { return x + ; }"), r"error")
     expect("unknown name", type_line(fd, "h2(1)"), r"unknown function 'h2'")
     expect("help", type_line(fd, ":help"), r":plot EXPR")
-    expect("backend sse", type_line(fd, ":backend sse"), r"backend sse")
+    expect("backend sse", reply(fd, ":backend sse"), r"^backend sse\n$")
+    expect("backend without an argument", reply(fd, ":backend"), r"^backend sse\n$")
     expect("value on sse", type_line(fd, "sq(1.5)"), r"\r\n3\.375\r\n")
     expect("asm on sse", type_line(fd, ":asm sq"), r"mulps")
     expect("ir", type_line(fd, ":ir sq"), r"fmul")
-    expect("bad backend", type_line(fd, ":backend gpu"), r"unknown backend 'gpu'")
+    expect("bad backend", reply(fd, ":backend gpu"), r"^error: unknown backend 'gpu'")
+    expect("backend kept after a bad one", reply(fd, ":backend"), r"^backend sse\n$")
     expect("time", type_line(fd, ":time sq(1.25) + 1"), r"evaluations/s")
-    plot = type_line(fd, ":plot sin(x * 3) from -3 to 3")
-    expect("plot 1d", plot, r"\*")
-    expect("plot 1d axis", plot, r"x from -3 to 3")
+    plot = reply(fd, ":plot sin(x * 3) from -3 to 3")
+    check_chart("plot 1d", plot, lambda x: math.sin(x * 3), -3, 3)
+    expect("plot 1d axis", plot, r"\n +x from -3 to 3\n$")
     expect("plot 2d", type_line(fd, ":plot x * x + y * y - 0.5"), r"\(y up\)")
     scene = os.path.join(SRC, "examples", "paper", "figure3-colour.wrl")
     loaded = type_line(fd, f":load {scene}")
@@ -119,7 +149,7 @@ with tempfile.TemporaryDirectory() as tmp:
     fs_file = os.path.join(tmp, "defs.fs")
     with open(fs_file, "w") as f:
         f.write("function cube(x) { return x * x * x; }\n")
-    expect("load fs", type_line(fd, f":load {fs_file}"), r"loaded")
+    expect("load fs", reply(fd, f":load {fs_file}"), r"^loaded ")
     expect("loaded function", type_line(fd, "cube(3)"), r"\r\n27\r\n")
     # Ctrl-C during a long evaluation stops it and keeps the session.
     type_line(fd, ":backend vm")

@@ -2,13 +2,14 @@
 # fscript-lsp in a real editor: Neovim (Debian `neovim`, headless) opens a .fs and a .wrl through
 # its built-in LSP client (the shared probe ../shared/tools/clients/nvim_lsp_probe.lua), receives
 # diagnostics, hover, completion and go-to-definition, edits the buffer and gets fresh
-# diagnostics. Exit 77 (skipped) when nvim or the probe is missing.
+# diagnostics. Skipped (exit 77) when nvim or the probe is missing; a failure under CI.
 # usage: lsp_nvim_test.sh FSCRIPT_LSP SOURCE_DIR
 set -uo pipefail
 LSP=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 SRC=$(cd "$2" && pwd)
-PROBE="$SRC/../shared/tools/clients/nvim_lsp_probe.lua"
-command -v nvim > /dev/null || { echo "skipped: needs nvim (Debian neovim)"; exit 77; }
+PROBE="${FS_SHARED_DIR:-$SRC/../shared}/tools/clients/nvim_lsp_probe.lua"
+. "$SRC/tests/support/skip.sh"
+command -v nvim > /dev/null || { fs_skip missing lsp_nvim "nvim is not installed (Debian neovim)" && exit 77; exit 1; }
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
 fails=0
@@ -35,7 +36,7 @@ if [ -f "$PROBE" ]; then  # the shared probe, when ../shared is there
   want "wrl: an FScript error inside the .wrl after an edit" "$out" "\"phase\": \"edit\".*unknown name 'qq'"
   want "wrl: clean shutdown" "$out" '"status": 0, "ok": true'
 else
-  echo "note: $PROBE not found; its checks are left out"
+  fs_skip missing "lsp_nvim shared probe" "$PROBE not found (the shared folder is absent)" || fails=$((fails + 1))
 fi
 # The Neovim set-up the README documents (editors/nvim/fscript.lua), on a .fs and a .wrl.
 printf 'function FRep(x, y, z, t) {\n  return 1 - Q;\n}\n' > "$T/bad.fs"

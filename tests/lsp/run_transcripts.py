@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Runs LSP transcript files against fscript-lsp: each `--> JSON` line is sent framed, each `==> TEXT`
 line sent as raw bytes (escapes like \\r\\n resolved, for malformed frames), each `<-- JSON` line is
-the next message the server must send, matched as a subset (objects: the keys given; lists: each
-item given matches some item; strings starting with "re:" are regular expressions), `exit N` is the
-status the server must end with once its input closes. usage: run_transcripts.py FSCRIPT_LSP FILES..."""
+the next message the server must send, matched against what it gives (objects: the keys given; lists:
+the same number of items, each matched by a different item, in any order, or, when the first item is
+"...", at least the items given; strings starting with "re:" are regular expressions), `exit N` is
+the status the server must end with once its input closes. A message the transcript does not expect,
+even after its last line, is a failure. usage: run_transcripts.py FSCRIPT_LSP FILES..."""
 import json
 import re
 import subprocess
@@ -20,10 +22,32 @@ def matches(want, got):
     if isinstance(want, list) and all(not isinstance(w, (dict, list)) for w in want):
         return want == got  # a list of plain values (semantic token data): exactly, in order
     if isinstance(want, list):
-        return isinstance(got, list) and all(any(matches(w, g) for g in got) for w in want)
+        if not isinstance(got, list):
+            return False
+        at_least = bool(want) and want[0] == "..."
+        want = want[1:] if at_least else want
+        return (len(got) >= len(want) if at_least else len(got) == len(want)) and one_to_one(want, got)
     if isinstance(want, str) and want.startswith("re:"):
         return isinstance(got, str) and re.search(want[3:], got) is not None
     return want == got
+
+
+def one_to_one(want, got):
+    """Each item of `want` matched by a different item of `got` (a small bipartite search)."""
+    taken = [False] * len(got)
+
+    def place(i):
+        if i == len(want):
+            return True
+        for j, g in enumerate(got):
+            if not taken[j] and matches(want[i], g):
+                taken[j] = True
+                if place(i + 1):
+                    return True
+                taken[j] = False
+        return False
+
+    return place(0)
 
 
 def reader(stream, out):
@@ -77,6 +101,14 @@ def run(path):
         status = None
     if want_exit is not None and status != want_exit:
         failures.append(f"{path}: exit status {status}, wanted {want_exit}")
+    while True:  # everything the server sent that no `<--` line asked for
+        try:
+            extra = replies.get(timeout=2)
+        except queue.Empty:
+            break
+        if extra is None:
+            break
+        failures.append(f"{path}: a message the transcript does not expect: {json.dumps(extra)[:500]}")
     return failures
 
 

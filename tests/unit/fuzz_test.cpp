@@ -1,10 +1,13 @@
 // A mutation fuzzer in the test suite: every golden case and a few seeds are mutated at random
 // (bytes and tokens deleted, duplicated, swapped, truncated) and pushed through the whole compiler
-// and the VM with small budgets. Nothing may crash, hang or throw; diagnostics are fine.
+// and the VM with small budgets. Nothing may crash, hang or throw; a refused program has an error
+// diagnostic; a program that runs gives the same bits with and without optimisation.
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <random>
 #include <sstream>
 
@@ -36,18 +39,51 @@ std::string mutate(std::string s, std::mt19937& rng) {
   return s;
 }
 
-void compile_and_run(const std::string& text) {
+struct Tally {
+  int compiled = 0, refused = 0, ran = 0, compared = 0;
+};
+
+bool same_bits(float a, float b) { return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0; }
+
+void compile_and_run(const std::string& text, Tally& tally) {
   backend::Budgets small;
   small.max_loop_iterations = 2000;
   small.max_call_depth = 30;
   small.max_array_elements = 1000;
+  std::vector<float> results[2];
+  bool ran[2] = {false, false};
   for (bool optimize : {false, true}) {
     auto b = test::build(text, "", optimize, small);
     if (b->module) REQUIRE(ir::verify(*b->module) == "");
-    if (!b->ok) continue;
-    std::vector<float> in(b->kernel->num_inputs(), 0.5f), out(b->kernel->num_outputs());
-    backend::RuntimeError err;
-    b->kernel->eval(in.data(), out.data(), err);
+    if (!b->ok) {
+      if (!optimize) ++tally.refused;
+      // A refusal always says why: an error, or no entry point to call.
+      if (!b->diag.has_errors()) REQUIRE(b->module == nullptr);
+      continue;
+    }
+    if (!optimize) ++tally.compiled;
+    std::vector<float>& out = results[optimize];
+    for (float v : {0.5f, -1.25f, 3.0f}) {
+      std::vector<float> in(b->kernel->num_inputs(), v), o(b->kernel->num_outputs());
+      backend::RuntimeError err;
+      if (!b->kernel->eval(in.data(), o.data(), err)) {
+        REQUIRE(!err.message.empty());
+        o.assign(o.size(), -777.0f);  // a runtime error, as a value the comparison sees
+      }
+      out.insert(out.end(), o.begin(), o.end());
+    }
+    ran[optimize] = true;
+  }
+  if (ran[0]) ++tally.ran;
+  if (!ran[0] || !ran[1]) return;
+  ++tally.compared;
+  INFO(text);
+  REQUIRE(results[0].size() == results[1].size());
+  for (size_t i = 0; i < results[0].size(); ++i) {
+    // Budgets count differently once calls are inlined: an error on one side only is allowed.
+    if (results[0][i] == -777.0f || results[1][i] == -777.0f) continue;
+    INFO("output " << i << ": " << results[0][i] << " unoptimised, " << results[1][i] << " optimised");
+    CHECK(same_bits(results[0][i], results[1][i]));
   }
 }
 
@@ -70,13 +106,14 @@ TEST_CASE("fuzz: mutated programs never crash the compiler or the VM") {
   const char* seed_env = std::getenv("FSCRIPT_FUZZ_SEED");
   int rounds = rounds_env ? std::atoi(rounds_env) : 400;
   std::mt19937 rng(seed_env ? static_cast<unsigned>(std::atoi(seed_env)) : 2026u);
-  int runs = 0;
+  Tally tally;
   frontend::run_with_big_stack([&] {
     for (int round = 0; round < rounds; ++round)
-      for (const auto& seed : seeds) {
-        compile_and_run(mutate(seed, rng));
-        ++runs;
-      }
+      for (const auto& seed : seeds) compile_and_run(mutate(seed, rng), tally);
   });
-  CHECK(runs > 500);
+  // The mutants must reach both sides of the compiler: some refused, and enough accepted and run
+  // to compare optimised with unoptimised code (a broken parser or a dead VM shows here).
+  INFO(tally.compiled << " compiled, " << tally.refused << " refused, " << tally.compared << " compared");
+  CHECK(tally.refused > rounds);
+  CHECK(tally.compared > rounds);
 }

@@ -157,6 +157,7 @@ TEST_CASE("vrml: hostile input never crashes") {
 #include <filesystem>
 
 #include "frontend/vrml/writer.h"
+#include "tests/support/skip.h"
 
 TEST_CASE("vrml: write -> read gives the same graph, on a rich file and on every corpus file") {
   std::vector<std::pair<std::string, std::string>> files = {{"inline", R"(#VRML V2.0 utf8
@@ -171,7 +172,8 @@ DEF TS TimeSensor { cycleInterval 0.1 startTime 1e9 }
 ROUTE TS.cycleTime TO TS.set_startTime
 )"}};
   std::string corpus = FS_CORPUS_DIR;
-  if (std::filesystem::exists(corpus))
+  if (!std::filesystem::exists(corpus)) test::skip(test::SkipKind::Missing, "the shared corpus folder is absent: " + corpus);
+  else
     for (const auto& e : std::filesystem::recursive_directory_iterator(corpus)) {
       if (e.path().extension() != ".wrl") continue;
       std::string text, err;

@@ -92,6 +92,28 @@ uintptr_t stack_limit() {
   return limit;
 }
 
+uint64_t on_budget_stack(uint64_t (*thunk)(void*), void* ctx, uint64_t fallback) {
+  // 1 GiB: kCallDepthCeiling frames of up to 10 KiB (the widest vector spills) with room to spare.
+  constexpr size_t kBytes = size_t{1} << 30;
+  struct Job {
+    uint64_t (*thunk)(void*);
+    void* ctx;
+    uint64_t result;
+  } job{thunk, ctx, fallback};
+  pthread_attr_t attr;
+  pthread_t thread;
+  auto run = [](void* p) -> void* {
+    auto* j = static_cast<Job*>(p);
+    j->result = j->thunk(j->ctx);
+    return nullptr;
+  };
+  bool made = pthread_attr_init(&attr) == 0 && pthread_attr_setstacksize(&attr, kBytes) == 0 &&
+              pthread_create(&thread, &attr, run, &job) == 0;
+  pthread_attr_destroy(&attr);
+  if (made) pthread_join(thread, nullptr);
+  return job.result;
+}
+
 extern "C" uint32_t fs_ticks_carry(int32_t* counters, uint64_t budget) {
   // Invariant: a lane's ticks so far = totals + counters. The counter restarts so that it passes
   // the generated code's int32 threshold exactly when the lane passes the budget (or, when that

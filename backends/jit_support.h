@@ -38,6 +38,24 @@ bool jit_status(uint64_t code, const LaneArrays& arrays, const Budgets& budgets,
 // plus a margin for the runtime functions generated code calls. Found once per thread.
 uintptr_t stack_limit();
 
+// Runs `thunk(ctx)` on a fresh thread with a stack that holds the deepest recursion the call budget
+// allows (kCallDepthCeiling frames; reserved, committed only as touched). Returns its result, or
+// `fallback` when no such thread can be made.
+uint64_t on_budget_stack(uint64_t (*thunk)(void*), void* ctx, uint64_t fallback);
+
+// Calls generated code (`call()` returns its status). When its recursion outgrew this thread's
+// stack (status 4), calls it again on a stack sized for the budget: the call budget, not the host's
+// stack limit, decides how deep recursion goes. Generated code is a pure function of its inputs
+// (outputs are overwritten, arrays start afresh per group), so the second call gives what one call
+// on a big stack would have given.
+template <typename Call>
+uint64_t call_generated(const Call& call) {
+  uint64_t code = call();
+  if ((code >> 32) != 4) return code;
+  auto thunk = [](void* c) -> uint64_t { return (*static_cast<const Call*>(c))(); };
+  return on_budget_stack(thunk, const_cast<Call*>(&call), code);
+}
+
 // The SSE backend's loop counters for budgets beyond int32, called when a lane's int32 counter at
 // `counters` passes INT32_MAX - 1: moves the counts into the four int64 totals that follow them
 // (16 bytes on) and returns 1 when a lane is over the budget.

@@ -55,7 +55,8 @@ bool LlvmKernel::eval_batch(const float* const* inputs, float* const* outputs, s
   backend::LaneArrays arrays;
   if (!arrays_.empty()) arrays.init(width_, budgets_.max_array_elements, arrays_);
   return backend::run_padded(width_, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
-    return backend::jit_status(f(in, out, 0, count, &arrays, backend::stack_limit()), arrays, budgets_, err);
+    uint64_t code = backend::call_generated([&] { return f(in, out, 0, count, &arrays, backend::stack_limit()); });
+    return backend::jit_status(code, arrays, budgets_, err);
   });
 }
 

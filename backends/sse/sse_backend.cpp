@@ -57,7 +57,8 @@ bool SseKernel::run(KernelFn f, const float* const* inputs, float* const* output
   backend::LaneArrays arrays;
   if (!arrays_.empty()) arrays = fresh_arrays();
   return backend::run_padded(4, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
-    return backend::jit_status(f(in, out, 0, count, &arrays, backend::stack_limit()), arrays, budgets_, err);
+    uint64_t code = backend::call_generated([&] { return f(in, out, 0, count, &arrays, backend::stack_limit()); });
+    return backend::jit_status(code, arrays, budgets_, err);
   });
 }
 

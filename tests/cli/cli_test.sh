@@ -6,31 +6,7 @@ F="$1"
 SRC="$2"
 R="${3:-}"  # fvrml-run
 D="${4:-}"  # fvrml-meshdiff
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-fails=0
-n=0
-SHARED="${FS_SHARED_DIR:-$SRC/../shared}"
-. "$SRC/tests/support/skip.sh"
-# skip_missing NAME WHY: a visible skip, or a failure under CI.
-skip_missing() { fs_skip missing "cli $1" "$2" || fails=$((fails + 1)); }
-
-# check NAME WANT_STATUS WANT_PATTERN(grep -E on stdout+stderr, "" for none) -- command...
-check() {
-  local name="$1" want="$2" pat="$3"
-  shift 4
-  n=$((n + 1))
-  local out status
-  "$@" > "$T/out.txt" 2>&1
-  status=$?
-  out=$(tr -d '\000' < "$T/out.txt")
-  if [ "$status" != "$want" ]; then
-    echo "FAIL $name: exit $status, wanted $want"; echo "$out" | head -20; fails=$((fails + 1)); return
-  fi
-  if [ -n "$pat" ] && ! grep -qE -- "$pat" <<<"$out"; then
-    echo "FAIL $name: output does not match /$pat/"; echo "$out" | head -20; fails=$((fails + 1)); return
-  fi
-}
+. "$SRC/tests/cli/lib.sh"
 
 cat > "$T/sphere.fs" <<'FS'
 function FRep(x, y, z, t) { return 1 - x*x - y*y - z*z; }
@@ -345,5 +321,4 @@ if [ -n "$D" ] && [ -n "$R" ]; then
   check fvrml-run-check-missing 1 'none.ply: error: cannot read' -- "$R" "$T/r1.wrl" --check "$T/none.ply"
 fi
 
-echo "$((n - fails)) of $n CLI checks passed"
-[ "$fails" = 0 ]
+finish CLI

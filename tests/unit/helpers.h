@@ -1,6 +1,9 @@
 #pragma once
 // Small helpers shared by the unit tests: compile a script text, evaluate an entry.
+#include <pthread.h>
+
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -46,5 +49,22 @@ inline float eval1(const Built& b, std::vector<float> in) {
 }
 
 inline std::string messages(const frontend::DiagnosticSink& d) { return frontend::render_all(d); }
+
+// Runs `fn` on a thread with exactly `stack_bytes` of stack (whatever `ulimit -s` says), so tests of
+// deep recursion see the same stack on every machine.
+template <typename Fn>
+void on_thread_with_stack(size_t stack_bytes, Fn fn) {
+  pthread_attr_t attr;
+  pthread_t thread;
+  pthread_attr_init(&attr);
+  pthread_attr_setstacksize(&attr, stack_bytes);
+  auto run = [](void* p) -> void* {
+    (*static_cast<Fn*>(p))();
+    return nullptr;
+  };
+  if (pthread_create(&thread, &attr, run, &fn) != 0) throw std::runtime_error("cannot start a thread");
+  pthread_attr_destroy(&attr);
+  pthread_join(thread, nullptr);
+}
 
 }  // namespace fscript::test

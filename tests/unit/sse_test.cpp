@@ -171,7 +171,7 @@ TEST_CASE("sse: recursive functions run packed under the caller's lanes, with th
     agree(std::string(test::kRecursiveSetup) + body, test::kRecursivePrelude);
 }
 
-TEST_CASE("sse: the call depth budget and a stack too small for the recursion give errors, not crashes") {
+TEST_CASE("sse: the call depth budget, not the caller's stack, decides how deep recursion goes") {
   std::string text = "function down(n) { if (n <= 0) return 0; return 1 + down(n - 1); }\n"
                      "function FRep(x, y, z, t) { return down(x); }";
   backend::Budgets budgets;
@@ -187,19 +187,38 @@ TEST_CASE("sse: the call depth budget and a stack too small for the recursion gi
   CHECK_FALSE(sse->kernel->eval(in, &out, e2));
   CHECK(e2.message == e1.message);
   CHECK(e2.line == e1.line);
-  // 100,000 nested calls on a thread with a small stack: the generated code stops before the end.
+  // 99,000 nested calls within a budget of 100,000: the budget decides, not the caller's stack.
+  // On a thread of 1 MiB (the guard stops the generated code, which runs again on a stack sized for
+  // the budget), of 64 MiB and of 1 GiB, as under any `ulimit -s`.
   budgets.max_call_depth = backend::kCallDepthCeiling;
   auto deep = test::build(text, "", true, budgets, "sse");
   REQUIRE(deep->ok);
-  backend::RuntimeError e3;
-  bool ok = true;
-  std::thread small([&] {
-    float p[4] = {99000, 0, 0, 0}, r = 0;
-    ok = deep->kernel->eval(p, &r, e3);
-  });
-  small.join();
-  CHECK_FALSE(ok);
-  CHECK(e3.message.find("recursion too deep for this thread's stack") != std::string::npos);
+  for (size_t stack : {size_t{1} << 20, size_t{64} << 20, size_t{1} << 30}) {
+    INFO("a thread with " << (stack >> 20) << " MiB of stack");
+    backend::RuntimeError e3;
+    bool ok = false;
+    float r = 0;
+    test::on_thread_with_stack(stack, [&] {
+      float p[4] = {99000, 0, 0, 0};
+      ok = deep->kernel->eval(p, &r, e3);
+    });
+    CHECK(ok);
+    CHECK(r == 99000.0f);
+    CHECK(e3.message == "");
+  }
+  // One more than the budget: the budget's error, on every stack.
+  budgets.max_call_depth = 1000;
+  auto capped = test::build(text, "", true, budgets, "sse");
+  for (size_t stack : {size_t{1} << 20, size_t{1} << 30}) {
+    backend::RuntimeError e4;
+    bool ok = true;
+    test::on_thread_with_stack(stack, [&] {
+      float p[4] = {1001, 0, 0, 0}, r = 0;
+      ok = capped->kernel->eval(p, &r, e4);
+    });
+    CHECK_FALSE(ok);
+    CHECK(e4.message == "call depth budget exceeded: more than 1000 nested calls");
+  }
 }
 
 TEST_CASE("sse: a function of 100,000 operations compiles and agrees with the VM") {

@@ -1,0 +1,124 @@
+#!/usr/bin/env python3
+"""Mutation testing: applies each mutant of tests/mutation/mutants.txt, one at a time, to a copy of the
+tree, rebuilds, runs the tests the mutant names and reports which mutants survived (the tests stayed
+green). usage: run.py [--work DIR] [--only ID,ID...] [--report FILE]
+
+mutants.txt, one mutant per block (blank lines between blocks, '#' lines are comments):
+    id: time-end-boundary
+    file: runtime/scene/time_model.cpp
+    find: if (end <= 0) return s;
+    replace: if (end < 0) return s;
+    tests: unit_time_model|cli
+    why: (optional) what the mutant stands for; `equivalent: REASON` marks a known equivalent mutant
+`find` must occur exactly once in the file (a mutant never lands somewhere unintended)."""
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+SRC = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def load(path):
+    mutants, cur = [], {}
+    for line in open(path, encoding="utf-8"):
+        line = line.rstrip("\n")
+        if line.startswith("#"):
+            continue
+        if not line.strip():
+            if cur:
+                mutants.append(cur)
+            cur = {}
+            continue
+        key, _, value = line.partition(": ")
+        if key not in ("id", "file", "find", "replace", "tests", "why", "equivalent"):
+            sys.exit(f"{path}: unknown key in line {line!r}")
+        cur[key] = value.replace("\\n", "\n")
+    if cur:
+        mutants.append(cur)
+    for m in mutants:
+        for key in ("id", "file", "find", "replace", "tests"):
+            if key not in m:
+                sys.exit(f"{path}: mutant {m.get('id', '?')} has no '{key}'")
+    return mutants
+
+
+def sh(cmd, cwd, log, timeout=None):
+    with open(log, "a") as f:
+        f.write(f"$ {' '.join(cmd)}\n")
+        f.flush()
+        try:
+            return subprocess.run(cmd, cwd=cwd, stdout=f, stderr=subprocess.STDOUT, timeout=timeout).returncode
+        except subprocess.TimeoutExpired:
+            f.write("(timed out)\n")
+            return 124
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--work", default="/tmp/fvrml-mutation")
+    ap.add_argument("--only", default="")
+    ap.add_argument("--report", default="")
+    args = ap.parse_args()
+    mutants = load(os.path.join(SRC, "tests", "mutation", "mutants.txt"))
+    if args.only:
+        keep = set(args.only.split(","))
+        mutants = [m for m in mutants if m["id"] in keep]
+    tree, build, log = os.path.join(args.work, "tree"), os.path.join(args.work, "build"), os.path.join(args.work, "log.txt")
+    os.makedirs(args.work, exist_ok=True)
+    open(log, "w").close()
+    # A copy of the tracked files (the working tree's versions), so the checkout is never touched.
+    files = subprocess.run(["git", "ls-files", "-z"], cwd=SRC, capture_output=True, check=True).stdout.decode().split("\0")
+    for rel in filter(None, files):
+        dst = os.path.join(tree, rel)
+        os.makedirs(os.path.dirname(dst), exist_ok=True)
+        if not os.path.exists(dst) or open(os.path.join(SRC, rel), "rb").read() != open(dst, "rb").read():
+            shutil.copy2(os.path.join(SRC, rel), dst)
+    shared = os.environ.get("FVRML_SHARED", os.path.join(os.path.dirname(SRC), "shared"))
+    cfg = ["cmake", "-S", tree, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release", f"-DFS_SHARED_DIR={shared}"]
+    if sh(cfg, tree, log) or sh(["ninja", "-C", build], tree, log):
+        sys.exit(f"the unmutated tree does not build; see {log}")
+    env_ok = True
+    for m in mutants:  # every mutant's text must be there exactly once
+        text = open(os.path.join(tree, m["file"]), encoding="utf-8").read()
+        if text.count(m["find"]) != 1:
+            print(f"BAD MUTANT {m['id']}: its text occurs {text.count(m['find'])} times in {m['file']}")
+            env_ok = False
+    if not env_ok:
+        sys.exit(1)
+    results = []
+    for k, m in enumerate(mutants, 1):
+        path = os.path.join(tree, m["file"])
+        original = open(path, encoding="utf-8").read()
+        open(path, "w", encoding="utf-8").write(original.replace(m["find"], m["replace"], 1))
+        start = time.time()
+        if sh(["ninja", "-C", build], tree, log):
+            verdict = "does not build"
+        else:
+            status = sh(["ctest", "--test-dir", build, "-j", "2", "-R", m["tests"], "--timeout", "300"], tree, log, timeout=1800)
+            verdict = "killed" if status else ("equivalent" if "equivalent" in m else "SURVIVED")
+        open(path, "w", encoding="utf-8").write(original)
+        results.append((m, verdict, time.time() - start))
+        print(f"[{k}/{len(mutants)}] {m['id']}: {verdict} ({time.time() - start:.0f} s)", flush=True)
+    sh(["ninja", "-C", build], tree, log)  # back to the unmutated build
+    killed = sum(1 for _, v, _ in results if v == "killed")
+    equivalent = sum(1 for _, v, _ in results if v == "equivalent")
+    stillborn = sum(1 for _, v, _ in results if v == "does not build")
+    scored = len(results) - stillborn - equivalent
+    lines = [f"{killed} of {scored} mutants killed ({100.0 * killed / max(1, scored):.1f}%); "
+             f"{equivalent} documented as equivalent, {stillborn} did not build", "",
+             "| mutant | file | verdict | tests run |", "|---|---|---|---|"]
+    for m, v, _ in results:
+        lines.append(f"| {m['id']} | {m['file']} | {v} | {m['tests']} |")
+    report = "\n".join(lines) + "\n"
+    print(report)
+    if args.report:
+        open(args.report, "w").write(report)
+    sys.exit(0 if killed == scored else 1)
+
+
+if __name__ == "__main__":
+    main()

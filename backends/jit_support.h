@@ -74,7 +74,7 @@ struct Scratch {
 };
 
 // Runs `group_fn(inputs, outputs, count)` on the whole groups of `width` points, then on the
-// last points copied into one padded group (zeros in the unused lanes).
+// last points copied into one padded group (the unused lanes repeat the last point).
 template <typename GroupFn>
 bool run_padded(uint32_t width, size_t num_inputs, size_t num_outputs, const float* const* inputs,
                 float* const* outputs, size_t n, GroupFn group_fn) {
@@ -84,9 +84,11 @@ bool run_padded(uint32_t width, size_t num_inputs, size_t num_outputs, const flo
   Scratch<float, 256> in(width * num_inputs), out(width * num_outputs);
   Scratch<const float*> ip(num_inputs);
   Scratch<float*> op(num_outputs);
-  std::fill_n(in.data, width * num_inputs, 0.0f);
+  // The padding lanes repeat the last point: a lane of made-up inputs (zeros) could raise a runtime
+  // error no real point raises (an index out of a zero-length array, a loop that never ends).
   for (size_t k = 0; k < num_inputs; ++k) {
     std::copy(inputs[k] + whole, inputs[k] + n, in.data + width * k);
+    std::fill(in.data + width * k + (n - whole), in.data + width * (k + 1), inputs[k][n - 1]);
     ip.data[k] = in.data + width * k;
   }
   for (size_t k = 0; k < num_outputs; ++k) op.data[k] = out.data + width * k;

@@ -1,4 +1,6 @@
 // llvm::ObjectCache over files: <hash>.o and <hash>.key, written atomically (temporary + rename).
+// The .key file holds the program's key and a digest of the object, so a damaged or truncated
+// object is a miss (compiled again and stored afresh), never code handed to the linker.
 #include "backends/llvm/llvm_disk_cache.h"
 
 #include <llvm/ExecutionEngine/ObjectCache.h>
@@ -29,24 +31,39 @@ class DiskCache : public llvm::ObjectCache {
     std::lock_guard<std::mutex> lock(mutex);
     if (dir.empty() || m->getModuleIdentifier() != disk_name(expected_key)) return;
     std::string base = (fs::path(dir) / m->getModuleIdentifier()).string();
-    write(base + ".key", expected_key.data(), expected_key.size());
+    std::string stamp = expected_key + '\0' + digest(obj.getBufferStart(), obj.getBufferSize());
     write(base + ".o", obj.getBufferStart(), obj.getBufferSize());
+    write(base + ".key", stamp.data(), stamp.size());
   }
   std::unique_ptr<llvm::MemoryBuffer> getObject(const llvm::Module* m) override {
     std::lock_guard<std::mutex> lock(mutex);
-    if (dir.empty() || !matches(m->getModuleIdentifier(), expected_key)) return nullptr;
+    std::string want;
+    if (dir.empty() || !matches(m->getModuleIdentifier(), expected_key, &want)) return nullptr;
     auto buffer = llvm::MemoryBuffer::getFile((fs::path(dir) / (m->getModuleIdentifier() + ".o")).string());
-    return buffer ? std::move(*buffer) : nullptr;
+    if (!buffer || digest((*buffer)->getBufferStart(), (*buffer)->getBufferSize()) != want) return nullptr;
+    return std::move(*buffer);
   }
-  bool matches(const std::string& name, const std::string& key) {
+  // Whether the .key file names `key` and the object exists; `object_digest` gets the digest stored.
+  bool matches(const std::string& name, const std::string& key, std::string* object_digest = nullptr) {
     std::ifstream in(fs::path(dir) / (name + ".key"), std::ios::binary);
     if (!in) return false;
     std::ostringstream text;
     text << in.rdbuf();
-    return text.str() == key && fs::exists(fs::path(dir) / (name + ".o"));
+    std::string stamp = text.str();
+    size_t cut = stamp.rfind('\0');
+    if (cut == std::string::npos || stamp.compare(0, cut, key) != 0 || cut != key.size()) return false;
+    if (object_digest) *object_digest = stamp.substr(cut + 1);
+    return fs::exists(fs::path(dir) / (name + ".o"));
   }
 
  private:
+  static std::string digest(const char* data, size_t size) {
+    uint64_t h = 14695981039346656037ull;  // FNV-1a over the object's bytes, and its size
+    for (size_t i = 0; i < size; ++i) h = (h ^ static_cast<unsigned char>(data[i])) * 1099511628211ull;
+    char text[48];
+    std::snprintf(text, sizeof text, "%016llx-%zx", static_cast<unsigned long long>(h), size);
+    return text;
+  }
   // A failed write leaves no file behind: the cache is an optimisation.
   static void write(const std::string& path, const char* data, size_t size) {
     std::string tmp = path + ".tmp" + std::to_string(::getpid());

@@ -49,7 +49,7 @@ except ValueError as e:
     print(f"not JSON: {e}")
     sys.exit(1)
 near = lambda a, b, tol=1e-9: abs(a - b) <= tol
-sys.exit(0 if eval(sys.argv[2]) else 1)
+sys.exit(0 if eval("(" + sys.argv[2] + "\n)") else 1)
 PY
 }
 

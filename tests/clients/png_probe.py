@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 # Reads a PNG (8-bit RGB or RGBA, any filter; standard library only) and prints, as JSON, the
-# number of pixels whose colour is close to R,G,B and their mean column and row.
-# usage: png_probe.py FILE.png R G B [TOLERANCE]
+# number of pixels whose colour is close to R,G,B and their mean column and row; or, with --tiles,
+# per tile of a grid the pixels that differ from the background.
+# usage: png_probe.py FILE.png R G B [TOLERANCE] | png_probe.py FILE.png --tiles COLUMNS ROWS
 import json, struct, sys, zlib
 
 def read_png(path):
@@ -37,14 +38,40 @@ def read_png(path):
         prev = line
     return w, h, bpp, rows
 
-path, want = sys.argv[1], [int(v) for v in sys.argv[2:5]]
-tol = int(sys.argv[5]) if len(sys.argv) > 5 else 60
-w, h, bpp, rows = read_png(path)
-count = sx = sy = 0
-for y, line in enumerate(rows):
-    for x in range(w):
-        px = line[x * bpp:x * bpp + 3]
-        if all(abs(px[k] - want[k]) <= tol for k in range(3)):
-            count, sx, sy = count + 1, sx + x, sy + y
-print(json.dumps({'width': w, 'height': h, 'count': count,
-                  'x': sx / count if count else None, 'y': sy / count if count else None}))
+def colour_mode(path, want, tol):
+    w, h, bpp, rows = read_png(path)
+    count = sx = sy = 0
+    for y, line in enumerate(rows):
+        for x in range(w):
+            px = line[x * bpp:x * bpp + 3]
+            if all(abs(px[k] - want[k]) <= tol for k in range(3)):
+                count, sx, sy = count + 1, sx + x, sy + y
+    print(json.dumps({'width': w, 'height': h, 'count': count,
+                      'x': sx / count if count else None, 'y': sy / count if count else None}))
+
+
+def tiles_mode(path, cols, nrows):
+    """Per tile of a cols x nrows grid: how many pixels differ from the background (the picture's
+    top-left pixel), their mean column and row inside the tile, and a digest of the tile."""
+    w, h, bpp, rows = read_png(path)
+    bg = bytes(rows[0][0:3])
+    tw, th = w // cols, h // nrows
+    tiles = []
+    for ty in range(nrows):
+        for tx in range(cols):
+            drawn = sx = sy = 0
+            digest = zlib.crc32(b''.join(bytes(rows[ty * th + y][tx * tw * bpp:(tx + 1) * tw * bpp]) for y in range(th)))
+            for y in range(th):
+                line = rows[ty * th + y]
+                for x in range(tw):
+                    if bytes(line[(tx * tw + x) * bpp:(tx * tw + x) * bpp + 3]) != bg:
+                        drawn, sx, sy = drawn + 1, sx + x, sy + y
+            tiles.append({'drawn': drawn, 'x': sx / drawn if drawn else None, 'y': sy / drawn if drawn else None,
+                          'digest': digest})
+    print(json.dumps({'width': w, 'height': h, 'tiles': tiles}))
+
+
+if len(sys.argv) == 5 and sys.argv[2] == '--tiles':
+    tiles_mode(sys.argv[1], int(sys.argv[3]), int(sys.argv[4]))
+else:
+    colour_mode(sys.argv[1], [int(v) for v in sys.argv[2:5]], int(sys.argv[5]) if len(sys.argv) > 5 else 60)

@@ -36,6 +36,14 @@ inline const std::vector<const char*> kTranscendentalBodies = {
     "return atan(x);", "return sinh(x);", "return cosh(x);", "return tanh(x);", "return noise(x, y, z);",
     "return sin(x) + cos(y) * sin(z);"};
 
+// Programs whose runtime errors depend on the inputs: every batch length must run exactly the
+// points given (the padding of a last, partial group of lanes must not raise an error of its own).
+inline const std::vector<const char*> kInputDependentErrors = {
+    "function FRep(x, y, z, t) { var a = new Array(x); a[x - 1] = 2; return a[0] + a.length; }",
+    "function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 1 / x; i++) s = s + 1; return s; }",
+    "function f(n) { if (n <= 0) return 0; return 1 + f(n - 1); }\n"
+    "function FRep(x, y, z, t) { return f(20 / x); }"};
+
 inline const char* kRecursivePrelude =
     "function fact(n) { if (n <= 1) return 1; return n * fact(n - 1); }\n"
     "function fib(n) { return n < 2 ? n : fib(n - 1) + fib(n - 2); }\n"

@@ -87,6 +87,32 @@ TEST_CASE("llvm: recursive functions run under the caller's lanes, with the VM's
     agree(std::string(test::kRecursiveSetup) + body, test::kRecursivePrelude);
 }
 
+TEST_CASE("llvm: a partial last group runs only the points given (errors that depend on the inputs)") {
+  backend::Budgets budgets;
+  budgets.max_loop_iterations = 100;
+  budgets.max_call_depth = 50;
+  for (const char* text : test::kInputDependentErrors) {
+    INFO(text);
+    auto vm = test::build(text, "", true, budgets, "vm");
+    REQUIRE(vm->ok);
+    for (uint32_t w : kWidths) {
+      auto k = llvm_kernel(*vm->module, w, budgets);
+      for (size_t n = 1; n <= 17; ++n) {
+        std::vector<float> x(n), zero(n, 0.0f), a(n), b(n);
+        for (size_t i = 0; i < n; ++i) x[i] = 1.0f + static_cast<float>(i);
+        const float* in[4] = {x.data(), zero.data(), zero.data(), zero.data()};
+        float* oa[1] = {a.data()};
+        float* ob[1] = {b.data()};
+        backend::RuntimeError ea, eb;
+        INFO("width " << w << ", n = " << n);
+        REQUIRE(vm->kernel->eval_batch(in, oa, n, ea));
+        REQUIRE(k->eval_batch(in, ob, n, eb));
+        CHECK(a == b);
+      }
+    }
+  }
+}
+
 TEST_CASE("llvm: the budgets give the VM's errors; the budget, not the caller's stack, decides how deep recursion goes") {
   std::string text = "function down(n) { if (n <= 0) return 0; return 1 + down(n - 1); }\n"
                      "function FRep(x, y, z, t) { return down(x); }";

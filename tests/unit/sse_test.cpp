@@ -96,6 +96,30 @@ TEST_CASE("sse: every batch length, the one-point call, and several outputs") {
   for (int k = 0; k < 3; ++k) CHECK(same(o1[k], o2[k]));
 }
 
+TEST_CASE("sse: a partial last group runs only the points given (errors that depend on the inputs)") {
+  backend::Budgets budgets;
+  budgets.max_loop_iterations = 100;
+  budgets.max_call_depth = 50;
+  for (const char* text : test::kInputDependentErrors) {
+    INFO(text);
+    auto vm = test::build(text, "", true, budgets, "vm");
+    auto sse = test::build(text, "", true, budgets, "sse");
+    REQUIRE(sse->ok);
+    for (size_t n = 1; n <= 9; ++n) {
+      std::vector<float> x(n), zero(n, 0.0f), a(n), b(n);
+      for (size_t i = 0; i < n; ++i) x[i] = 1.0f + static_cast<float>(i);
+      const float* in[4] = {x.data(), zero.data(), zero.data(), zero.data()};
+      float* oa[1] = {a.data()};
+      float* ob[1] = {b.data()};
+      backend::RuntimeError ea, eb;
+      INFO("n = " << n);
+      REQUIRE(vm->kernel->eval_batch(in, oa, n, ea));
+      REQUIRE(sse->kernel->eval_batch(in, ob, n, eb));
+      CHECK(a == b);
+    }
+  }
+}
+
 TEST_CASE("sse: many kernels compiled and freed") {
   for (int i = 0; i < 300; ++i) {
     auto b = test::build("function FRep(x, y, z, t) { return x * " + std::to_string(i) + " + sin(y); }", "", true, {}, "sse");

@@ -1,0 +1,223 @@
+#!/usr/bin/env bash
+# Behaviour the docs promise, checked by its results rather than by exit statuses: the time model
+# through ROUTEs, budgets and their ceilings on every backend, frames and their clamp, glTF STEP
+# timing, picture sizes and contact sheets, Viewpoints, --format, the llvm disk cache, every
+# --stats field, the same bytes for any --threads, pattern colours, blends and mirrored transforms.
+# usage: behaviour_test.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
+set -u
+F="$1"
+SRC="$2"
+R="$3"
+D="$4"
+. "$SRC/tests/cli/lib.sh"
+P="$SRC/examples/paper"
+BACKENDS="vm sse"
+[ "${FS_HAVE_LLVM:-1}" = 1 ] && BACKENDS="vm sse llvm"
+
+# ---- The time model through ROUTEs (docs/scenes.md, VRML97 TimeSensor rules) ----
+# Figure 3: a 5 s looping TimeSensor routed to the shape's set_fraction; its colour's timeSpan is
+# [-pi, pi]. The end of a cycle gives 1.0, not 0.0.
+for tf in 0:0 2:0.4 5:1 9.5:0.9 12.5:0.5; do
+  t=${tf%%:*} f=${tf#*:}
+  jcheck "figure 3 at --time $t: fraction $f" err \
+    "near(j['shapes'][0]['fraction'], $f) and near(j['shapes'][0]['colour']['t'], -3.1415926 + $f * 2 * 3.1415926, 1e-6)" \
+    -- "$R" "$P/figure3-colour.wrl" --stats --time "$t"
+done
+# Figure 2: the shape's own single 5 s cycle, restarted by a 7 s loop's cycleTime routed to its
+# startTime; the texture's timeSpan is [0, 0.4].
+for tf in 3:0.6 6:1 9.5:0.5 13:1 15:0.2; do
+  t=${tf%%:*} f=${tf#*:}
+  jcheck "figure 2 at --time $t: fraction $f" err \
+    "near(j['shapes'][0]['fraction'], $f) and near(j['shapes'][0]['texture']['t'], 0.4 * $f)" \
+    -- "$R" "$P/figure2-texture.wrl" --stats --time "$t"
+done
+# A sensor whose single cycle ended exactly at load (time 0) never sends an event; one that ends
+# just after load does (a stopTime before the startTime is ignored); the default stopTime 0, after
+# a negative startTime, stops it at load.
+printf '#VRML V2.0 utf8\nDEF S FShape { startTime -1 stopTime -2 cycleInterval 1 geometry FGeometry { definition "0.5-x*x-y*y-z*z" } }\n' > "$T/ended.wrl"
+jcheck "a cycle that ended at load never ran" err "j['shapes'][0]['fraction'] == 0 and not j['shapes'][0]['active']" \
+  -- "$R" "$T/ended.wrl" --stats --time 3
+sed -i 's/startTime -1/startTime -0.5/' "$T/ended.wrl"
+jcheck "a cycle that ended after load holds 1.0" err "j['shapes'][0]['fraction'] == 1 and not j['shapes'][0]['active']" \
+  -- "$R" "$T/ended.wrl" --stats --time 3
+jcheck "a cycle running at --time 0.25" err "near(j['shapes'][0]['fraction'], 0.75) and j['shapes'][0]['active']" \
+  -- "$R" "$T/ended.wrl" --stats --time 0.25
+sed -i 's/ stopTime -2//' "$T/ended.wrl"
+jcheck "stopTime 0 after a negative startTime stops the sensor at load" err "j['shapes'][0]['fraction'] == 0 and not j['shapes'][0]['active']" \
+  -- "$R" "$T/ended.wrl" --stats --time 0.25
+jcheck "--fraction overrides the clock" err "near(j['shapes'][0]['fraction'], 0.3)" \
+  -- "$R" "$P/figure3-colour.wrl" --stats --time 9.5 --fraction 0.3
+
+# ---- Budgets and their ceilings, the same on every backend ----
+printf 'function down(n) { if (n <= 0) return 0; return 1 + down(n - 1); }\n' > "$T/down.fs"
+printf 'function f(n) { var a = new Array(n); a[0] = 2; return a[0] + a.length; }\n' > "$T/arr.fs"
+printf 'function f(n) { var s = 0; for (var i = 0; i < n; i++) s = s + 1; return s; }\n' > "$T/loop.fs"
+for b in $BACKENDS; do
+  # down(n) makes n + 1 nested calls.
+  check "call depth 5 allows down(4) on $b" 0 '^4$' -- "$F" run "$T/down.fs" 4 --max-call-depth 5 --backend "$b"
+  check "call depth 5 refuses down(5) on $b" 1 'down.fs:1: error: call depth budget exceeded: more than 5 nested calls' \
+    -- "$F" run "$T/down.fs" 5 --max-call-depth 5 --backend "$b"
+  check "the call depth ceiling, 100,000, reached on $b" 0 '^99999$' -- "$F" run "$T/down.fs" 99999 --max-call-depth 100000 --backend "$b"
+  check "default call depth 1,000 on $b" 1 'more than 1000 nested calls' -- "$F" run "$T/down.fs" 1000 --backend "$b"
+  check "array of the budget's size on $b" 0 '^1002$' -- "$F" run "$T/arr.fs" 1000 --max-array-elements 1000 --backend "$b"
+  check "array one over the budget on $b" 1 "arr.fs:1: error: array 'a' of 1001 elements: .*budget of 1000 elements" \
+    -- "$F" run "$T/arr.fs" 1001 --max-array-elements 1000 --backend "$b"
+  check "loop of the budget's length on $b" 0 '^50$' -- "$F" run "$T/loop.fs" 50 --max-loop-iterations 50 --backend "$b"
+  check "loop one over the budget on $b" 1 'loop.fs:1: error: loop iteration budget exceeded: more than 50 iterations' \
+    -- "$F" run "$T/loop.fs" 51 --max-loop-iterations 50 --backend "$b"
+done
+check "call depth above the ceiling" 2 'max-call-depth: Value 100001 not in range 1 to 100000' -- "$F" run "$T/down.fs" 1 --max-call-depth 100001
+check "fvrml-run call depth above the ceiling" 2 'max-call-depth' -- "$R" "$P/figure1-morphing.wrl" --stats --max-call-depth 100001
+
+# ---- Frames: the clamp, glTF STEP timing, contact sheets ----
+printf '#VRML V2.0 utf8\nFShape { frames 1500 geometry FGeometry { definition "0.5^2-x^2-y^2-z^2+0.01*t" bboxSize 2 2 2 resolution [4] } }\n' > "$T/many.wrl"
+jcheck "a file's frames above 1000 are clamped to 1000" err \
+  "j['shapes'][0]['frames'] == 1500 and j['animations'][0]['frames'] == 1000" -- "$R" "$T/many.wrl" --stats -o "$T/many.glb"
+check "--frames above 1000 is refused" 2 'frames: Value 1001 not in range 1 to 1000' -- "$R" "$T/many.wrl" --frames 1001 -o "$T/x.glb"
+"$R" "$P/figure1-morphing.wrl" --frames 4 -o "$T/anim.glb" --resolution-scale 0.3 2> /dev/null
+# Figure 1's cycleInterval is 5: frame k shows during [1.25k, 1.25(k+1)), a last key at 5 repeats the first.
+jcheck "glTF: 4 frames switched by STEP scale keys over the 5 s cycle" out "
+len(j['channels']) == 4 and all(c['interpolation'] == 'STEP' and c['path'] == 'scale' for c in j['channels']) and
+all(near(a, b, 1e-6) for c in j['channels'] for a, b in zip(c['times'], [0, 1.25, 2.5, 3.75, 5])) and
+all(len(c['times']) == 5 for c in j['channels']) and
+all(c['values'][i] == ([1.0, 1.0, 1.0] if i % 4 == k else [0.0, 0.0, 0.0]) for k, c in enumerate(j['channels']) for i in range(5))
+" -- python3 "$SRC/tests/clients/gltf_probe.py" "$T/anim.glb"
+"$R" "$P/figure1-morphing.wrl" --frames 4 -o "$T/sheet.png" --width 128 --height 96 2> /dev/null
+# A 2 x 2 sheet of 64 x 48 tiles, each holding a drawn frame, the frames different.
+jcheck "contact sheet: 2 x 2 tiles of 64 x 48, each drawn, the morph changing" out "
+j['width'] == 128 and j['height'] == 96 and len(j['tiles']) == 4 and
+all(t['drawn'] > 200 for t in j['tiles']) and len(set(t['digest'] for t in j['tiles'])) == 4
+" -- python3 "$SRC/tests/clients/png_probe.py" "$T/sheet.png" --tiles 2 2
+
+# ---- Pictures: size options, the Viewpoint ----
+printf '#VRML V2.0 utf8\nViewpoint { position 0 0 3 }\nFShape { geometry FGeometry { definition "0.5^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [16] } }\n' > "$T/vp3.wrl"
+sed 's/position 0 0 3/position 0 0 6/' "$T/vp3.wrl" > "$T/vp6.wrl"
+sed 's/position 0 0 3/position 0.6 0 3/' "$T/vp3.wrl" > "$T/vpx.wrl"
+for v in vp3 vp6 vpx; do "$R" "$T/$v.wrl" -o "$T/$v.png" --width 80 --height 60 2> /dev/null; done
+jcheck "--width 80 --height 60 gives an 80 x 60 picture" out "j['width'] == 80 and j['height'] == 60" \
+  -- python3 "$SRC/tests/clients/png_probe.py" "$T/vp3.png" --tiles 1 1
+# The ball (radius 0.5) seen from 3 units covers about twice the width it covers from 6 (a
+# quarter of the pixels), centred; a camera moved right sees it to the left of the centre.
+python3 - "$SRC/tests/clients/png_probe.py" "$T" <<'PY' || fail "Viewpoint position: the ball's size and place follow the camera"
+import json, subprocess, sys
+probe, d = sys.argv[1], sys.argv[2]
+def drawn(name):
+    return json.loads(subprocess.run([sys.executable, probe, f"{d}/{name}.png", "--tiles", "1", "1"],
+                                     capture_output=True, text=True, check=True).stdout)["tiles"][0]
+near, far, moved = drawn("vp3"), drawn("vp6"), drawn("vpx")
+ratio = near["drawn"] / max(1, far["drawn"])
+print(near, far, moved, ratio)
+ok = 3.0 < ratio < 5.5 and abs(near["x"] - 39.5) < 2 and abs(near["y"] - 29.5) < 2 and moved["x"] < near["x"] - 5
+sys.exit(0 if ok else 1)
+PY
+n=$((n + 1))
+
+# ---- --format: the format named, whatever the file is called ----
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "0.5^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [8] } }\n' > "$T/ball.wrl"
+for fm in ply:ply obj:'v ' wrl:'#VRML V2.0 utf8' glb:glTF png:PNG; do
+  check "--format ${fm%%:*}" 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.out" --format "${fm%%:*}"
+  head -c 64 "$T/ball.out" | tr -d '\000' | grep -qa -- "${fm#*:}" || fail "--format ${fm%%:*} did not write ${fm%%:*}"
+done
+# Binary STL: an 80-byte header, the triangle count, 50 bytes per triangle.
+check "--format stl" 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.out" --format stl
+python3 -c "
+import struct, sys
+d = open(sys.argv[1], 'rb').read()
+sys.exit(0 if len(d) > 84 and len(d) == 84 + 50 * struct.unpack('<I', d[80:84])[0] else 1)" "$T/ball.out" ||
+  fail "--format stl did not write binary STL"
+check "--format unknown" 2 "format" -- "$R" "$T/ball.wrl" -o "$T/ball.out" --format dxf
+
+# ---- The llvm disk cache: the second run loads the object the first one stored ----
+if [ "${FS_HAVE_LLVM:-1}" = 1 ]; then
+  export XDG_CACHE_HOME="$T/xdg"
+  check "llvm disk cache: first run" 0 '^99$' -- "$F" run "$T/down.fs" 99 --backend llvm --llvm-disk-cache
+  before=$(stat -c '%i %Y %s' "$T"/xdg/fscript/llvm/* 2> /dev/null | sort)
+  [ -n "$before" ] || fail "llvm disk cache: nothing stored"
+  touch -d '2001-01-01' "$T"/xdg/fscript/llvm/*
+  before=$(stat -c '%n %i %Y %s' "$T"/xdg/fscript/llvm/* | sort)
+  check "llvm disk cache: second run" 0 '^99$' -- "$F" run "$T/down.fs" 99 --backend llvm --llvm-disk-cache
+  after=$(stat -c '%n %i %Y %s' "$T"/xdg/fscript/llvm/* | sort)
+  [ "$before" = "$after" ] || fail "llvm disk cache: the second run compiled and stored again (before: $before; after: $after)"
+  # A damaged object is not trusted: the run recompiles, answers right and stores a good one.
+  for o in "$T"/xdg/fscript/llvm/*.o; do printf 'garbage' > "$o"; done
+  check "llvm disk cache: a damaged object" 0 '^99$' -- "$F" run "$T/down.fs" 99 --backend llvm --llvm-disk-cache
+  unset XDG_CACHE_HOME
+fi
+
+# ---- Every --stats field ----
+jcheck "--stats fields of a single run" err "
+set(j) == {'compile_ms', 'evaluation_ms', 'ftransforms', 'parse_ms', 'polygonize_ms', 'shapes', 'write_ms'} and
+all(j[k] >= 0 for k in ('compile_ms', 'evaluation_ms', 'parse_ms', 'polygonize_ms', 'write_ms')) and
+set(j['shapes'][0]) == {'active', 'domain', 'fraction', 'frames', 'geometry', 'kind', 'line', 'resolution', 'transform', 'triangles', 'vertices'} and
+j['shapes'][0]['kind'] == 'implicit' and j['shapes'][0]['line'] == 2 and j['shapes'][0]['resolution'] == [8, 8, 8] and
+j['shapes'][0]['domain'] == [-1, 1, -1, 1, -1, 1] and j['shapes'][0]['triangles'] > 0 and
+j['shapes'][0]['vertices'] * 2 - 4 == j['shapes'][0]['triangles'] and
+set(j['shapes'][0]['geometry']) == {'field', 't', 'timeSpan'}
+" -- "$R" "$T/ball.wrl" --stats -o "$T/b.ply"
+jcheck "--stats fields of an FTransform" err "
+set(j['ftransforms'][0]) == {'affine', 'fraction', 'ftransforms', 'operation', 'parent', 'shapes', 'type'} and
+j['ftransforms'][0]['type'] == 'analytical' and j['ftransforms'][0]['shapes'] == [0, 1] and j['ftransforms'][0]['parent'] == -1 and
+all(s['ftransform'] == 0 for s in j['shapes'])
+" -- "$R" "$P/listing1-operation.wrl" --stats
+jcheck "--stats fields of animated output" err "
+set(j['animations'][0]) == {'bytes_per_triangle', 'cache_bytes', 'constant', 'frames', 'line', 'triangles'} and
+j['animations'][0]['frames'] == 4 and not j['animations'][0]['constant'] and
+near(j['animations'][0]['bytes_per_triangle'], j['animations'][0]['cache_bytes'] / j['animations'][0]['triangles'])
+" -- "$R" "$P/figure1-morphing.wrl" --frames 4 -o "$T/a.wrl" --stats --resolution-scale 0.3
+jcheck "--stats fields of numbered frames" err "
+[f['fraction'] for f in j['frames']] == [0, 0.5] and all(f['triangles'] > 0 and f['vertices'] > 0 for f in j['frames'])
+" -- "$R" "$P/figure1-morphing.wrl" --frames 2 -o "$T/fr.ply" --stats --resolution-scale 0.3
+
+# ---- The same bytes for any --threads, every format, several scenes ----
+for w in figure1-morphing figure2-texture figure6-blends listing1-operation; do
+  for fmt in wrl glb ply obj stl png; do
+    for th in 1 2 3 7; do
+      "$R" "$P/$w.wrl" -o "$T/th$th.$fmt" --threads "$th" --resolution-scale 0.2 --width 48 --height 48 2> /dev/null ||
+        fail "$w.$fmt with --threads $th"
+    done
+    n=$((n + 1))
+    for th in 2 3 7; do
+      cmp -s "$T/th1.$fmt" "$T/th$th.$fmt" || fail "$w.$fmt: --threads $th differs from --threads 1"
+    done
+  done
+done
+
+# ---- Colours through patternKey / patternColor: piecewise linear in the value, clamped ----
+printf '#VRML V2.0 utf8\nFShape { appearance FAppearance { material FMaterial { diffuseColor "x" patternKey [-0.5 0 0.5] patternColor [1 0 0, 0 1 0, 0 0 1] } }\n geometry FGeometry { definition "0.8^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [12] } }\n' > "$T/pattern.wrl"
+"$R" "$T/pattern.wrl" -o "$T/pattern-out.wrl" 2> /dev/null
+jcheck "patternKey/patternColor: every vertex coloured by its x" out "
+len(j['points']) > 100 and all(len(p) == 6 for p in j['points']) and all(
+  max(abs(a - b) for a, b in zip(p[3:], [min(1, max(0, -2 * p[0])), max(0, 1 - 2 * abs(p[0])), min(1, max(0, 2 * p[0]))])) < 2e-3
+  for p in j['points'])
+" -- python3 "$SRC/tests/clients/mesh_probe.py" "$T/pattern-out.wrl" --vertices
+
+# ---- Blends: Figure 6's blended spheres are one closed surface, bigger than the plain union ----
+"$R" "$P/figure6-blends.wrl" --fraction 0.5 -o "$T/f6.obj" --resolution-scale 0.4 2> /dev/null
+jcheck "Figure 6: the blend is closed, oriented and 2-manifold" out "
+all(j['a'][k] for k in ('watertight', 'oriented', 'manifold')) and j['a']['euler'] % 2 == 0
+" -- "$D" "$T/f6.obj" "$T/f6.obj"
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "function frep(x,y,z,t){ var f = 0.3^2-(x-0.35)^2-y^2-z^2; var g = 0.3^2-(x+0.35)^2-y^2-z^2; return BODY; }" bboxSize 2 2 2 resolution [48] } }\n' > "$T/blend.tpl"
+sed 's|BODY|max(f, g)|' "$T/blend.tpl" > "$T/union.wrl"
+sed 's|BODY|f + g + sqrt(f*f + g*g) + 0.02 / (1 + (f/0.1)^2 + (g/0.1)^2)|' "$T/blend.tpl" > "$T/blend.wrl"
+"$R" "$T/union.wrl" -o "$T/union.obj" 2> /dev/null
+"$R" "$T/blend.wrl" -o "$T/blend.obj" 2> /dev/null
+python3 - "$SRC/tests/clients/mesh_probe.py" "$T" <<'PY' || fail "a blend union: one body, more volume than the plain union, less than its box"
+import json, math, subprocess, sys
+probe, d = sys.argv[1], sys.argv[2]
+vol = lambda n: json.loads(subprocess.run([sys.executable, probe, f"{d}/{n}.obj"], capture_output=True, text=True, check=True).stdout)["volume"]
+u, b = vol("union"), vol("blend")
+spheres = 2 * 4 / 3 * math.pi * 0.3 ** 3
+print(u, b, spheres)
+sys.exit(0 if abs(u - spheres) < 0.03 * spheres and spheres * 1.02 < b < spheres * 2 else 1)
+PY
+n=$((n + 1))
+
+# ---- A mirroring Transform keeps faces outward (the winding flips with the matrix) ----
+for s in "1 1 1" "-1 1 1" "-1 -1 -1" "1 -2 1"; do
+  printf '#VRML V2.0 utf8\nTransform { scale %s children FShape { geometry FGeometry { definition "0.5^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [16] } } }\n' "$s" > "$T/mirror.wrl"
+  "$R" "$T/mirror.wrl" -o "$T/mirror.obj" 2> /dev/null
+  jcheck "scale $s: faces outward (positive volume)" out "j['volume'] > 0.9 * 4 / 3 * 3.14159 * 0.125 * abs($(tr ' ' '*' <<< "$s"))" \
+    -- python3 "$SRC/tests/clients/mesh_probe.py" "$T/mirror.obj"
+done
+
+finish behaviour

@@ -117,8 +117,20 @@ check emit-ir 0 'fn @kernel\(4\) -> 1 kernel' -- "$F" emit-ir "$T/sphere.fs" --o
 check emit-ir-passes 0 'fmul' -- "$F" emit-ir "$T/sphere.fs" --passes inline,fold
 check emit-ir-bad-pass 1 "unknown pass 'nope'" -- "$F" emit-ir "$T/sphere.fs" --passes nope
 check emit-asm-vm 0 'registers' -- "$F" emit-asm "$T/sphere.fs" --backend vm
-check bench 0 'ns/eval' -- "$F" bench "$T/sphere.fs" --entry FRep --points 10000 --threads 2
-check bench-one-point 0 'evals/s' -- "$F" bench "$T/sphere.fs" --entry FRep --points 1000 --one-point
+# bench: the operation count of the kernel, and evals/s and ns/eval that describe the same rate.
+bench_ok() {
+  python3 -c "
+import re, sys
+t = sys.stdin.read()
+ops = re.search(r'compile: [0-9.e+-]+ ms for ([0-9]+) IR operations', t)
+rate = re.search(r'^([0-9.e+]+) evals/s$', t, re.M)
+ns = re.search(r'^([0-9.e+]+) ns/eval$', t, re.M)
+ok = ops and rate and ns and int(ops.group(1)) > 0 and abs(float(rate.group(1)) * float(ns.group(1)) / 1e9 - 1) < 0.01
+sys.exit(0 if ok else 1)"
+}
+"$F" bench "$T/sphere.fs" --entry FRep --points 10000 --threads 2 2>&1 | bench_ok || fail "bench: figures"
+"$F" bench "$T/sphere.fs" --entry FRep --points 1000 --one-point 2>&1 | bench_ok || fail "bench --one-point: figures"
+n=$((n + 2))
 
 # render2d: a disc of radius 1 sampled on 101x101 over [-1.5, 1.5]^2; the count is computed
 # independently here (float arithmetic as the tool samples it).
@@ -309,15 +321,18 @@ if [ -n "$D" ] && [ -n "$R" ]; then
   printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1-x^2-y^2-z^2" bboxSize 3 3 3 resolution [24] } }\n' > "$T/r1.wrl"
   printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1.1^2-x^2-y^2-z^2" bboxSize 3 3 3 resolution [24] } }\n' > "$T/r11.wrl"
   "$R" "$T/r1.wrl" -o "$T/r1.ply" && "$R" "$T/r11.wrl" -o "$T/r11.stl" && "$R" "$T/r1.wrl" -o "$T/r1.obj"
-  check meshdiff-spheres 0 '"hausdorff": 0\.1' -- "$D" "$T/r1.ply" "$T/r11.stl"
+  # Spheres of radius 1 and 1.1: both distances are 0.1, give or take the meshes' own error.
+  jcheck meshdiff-spheres out "near(j['hausdorff'], 0.1, 0.01) and near(j['chamfer'], 0.1, 0.005) and
+    near(j['hausdorff_relative'], j['hausdorff'] / j['bbox_diagonal_a']) and j['a']['triangles'] > 1000" -- "$D" "$T/r1.ply" "$T/r11.stl"
   check meshdiff-watertight 0 '"watertight": true' -- "$D" "$T/r1.obj" "$T/r11.stl"
   check meshdiff-euler 0 '"euler": 2' -- "$D" "$T/r1.ply" "$T/r1.obj"
   check meshdiff-missing 1 'cannot read' -- "$D" "$T/none.ply" "$T/r1.ply"
   printf 'not a mesh' > "$T/bad.ply"
   check meshdiff-bad 1 'bad.ply: error: not a PLY file' -- "$D" "$T/bad.ply" "$T/r1.ply"
   check meshdiff-usage 2 '' -- "$D" "$T/r1.ply"
-  check fvrml-run-check 0 '"hausdorff":0\.1' -- "$R" "$T/r1.wrl" --check "$T/r11.stl"
-  check fvrml-run-check-self 0 '"hausdorff":([0-9.]+e-1[0-9]|0[,}])' -- "$R" "$T/r1.wrl" --check "$T/r1.ply"
+  jcheck fvrml-run-check out "near(j['hausdorff'], 0.1, 0.01) and near(j['chamfer'], 0.1, 0.005) and j['watertight']" \
+    -- "$R" "$T/r1.wrl" --check "$T/r11.stl"
+  jcheck fvrml-run-check-self out "j['hausdorff'] < 1e-6 and j['chamfer'] < 1e-6 and j['euler'] == 2" -- "$R" "$T/r1.wrl" --check "$T/r1.ply"
   check fvrml-run-check-missing 1 'none.ply: error: cannot read' -- "$R" "$T/r1.wrl" --check "$T/none.ply"
 fi
 

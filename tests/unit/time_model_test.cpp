@@ -82,3 +82,28 @@ TEST_CASE("time: node t from the fraction and timeSpan") {
   CHECK(node_time(0.5, -3.1415926, 3.1415926) == Approx(0));
   CHECK(node_time(1, 2, 5) == 5);
 }
+
+TEST_CASE("time: an active period that ends exactly at load never sends an event; a moment later it does") {
+  auto at_load = at(-2, -5, 2, false, 1);  // [-2, 0]: over when the world starts
+  CHECK(!at_load.ever_active);
+  CHECK(at_load.fraction == 0);
+  auto stopped_at_load = at(-2, 0, 5, true, 1);  // stopTime 0 ends it at load too
+  CHECK(!stopped_at_load.ever_active);
+  auto after = at(-2, -5, 2.5, false, 1);  // [-2, 0.5]: its last event (at 0.5) says 1.0
+  CHECK(after.ever_active);
+  CHECK(!after.active);
+  CHECK(after.fraction == 1.0);
+  CHECK(after.time_of_last_event == 0.5);
+  CHECK(after.cycle_time == 0);  // cycleTime was sent at -2, seen as the world's start
+}
+
+TEST_CASE("time: active up to, not at, the end of the period; cycleTime at each cycle's start") {
+  CHECK(at(1, 0, 2, false, 2.999).active);
+  CHECK(!at(1, 0, 2, false, 3).active);
+  CHECK(at(1, 0, 2, false, 3).fraction == 1.0);
+  CHECK(at(1, 0, 2, false, 3).cycle_time == 1);  // the end of the only cycle still belongs to it
+  CHECK(at(1, 0, 2, true, 5).cycle_time == 3);
+  CHECK(at(1, 0, 2, true, 5.5).cycle_time == 5);
+  CHECK(at(1, 0, 2, true, 1).fraction == 0);   // at startTime itself
+  CHECK(!at(1, 0, 2, true, 0.999).ever_active);
+}

@@ -52,20 +52,57 @@ TEST_CASE("lsp server: a 5 MB document, and messages of every wrong shape") {
   auto out = s.handle(open);
   REQUIRE(out.size() == 1);
   CHECK(out[0]["params"]["diagnostics"].empty());
-  for (const char* bad : {"", "null", "42", "\"x\"", "{}", "{\"method\":7}", "{\"id\":1,\"method\":\"textDocument/hover\"}",
-                          "{\"id\":1,\"method\":\"textDocument/hover\",\"params\":{\"textDocument\":{\"uri\":5}}}",
-                          "{\"method\":\"textDocument/didChange\",\"params\":{\"textDocument\":{\"uri\":\"file:///big.fs\"},"
-                          "\"contentChanges\":[{\"range\":{\"start\":{\"line\":-1}}}]}}",
-                          "{\"method\":\"textDocument/didOpen\",\"params\":{\"textDocument\":{}}}"}) {
-    INFO(bad);
-    CHECK_NOTHROW(s.handle_text(bad));
+  // Each wrong message gets the JSON-RPC answer it calls for: a parse error (-32700) for what is
+  // not JSON, an invalid request (-32600) for what is not a request, invalid params (-32602) for a
+  // request with wrong params, an unknown method (-32601); a bad notification gets no answer.
+  struct Bad {
+    const char* text;
+    int code;  // 0: no answer at all
+    json id;
+  };
+  const Bad bads[] = {
+      {"", -32700, nullptr},
+      {"{\"id\":3,", -32700, nullptr},
+      {"null", -32600, nullptr},
+      {"42", -32600, nullptr},
+      {"\"x\"", -32600, nullptr},
+      {"{}", -32600, nullptr},
+      {"{\"method\":7}", -32600, nullptr},
+      {"{\"id\":[1],\"method\":\"textDocument/hover\"}", -32600, nullptr},
+      {"{\"id\":1,\"method\":\"textDocument/hover\"}", -32602, 1},
+      {"{\"id\":\"h\",\"method\":\"textDocument/hover\",\"params\":{\"textDocument\":{\"uri\":5}}}", -32602, "h"},
+      {"{\"id\":2,\"method\":\"textDocument/frobnicate\",\"params\":{}}", -32601, 2},
+      {"{\"method\":\"textDocument/didChange\",\"params\":{\"textDocument\":{\"uri\":\"file:///big.fs\"},"
+       "\"contentChanges\":[{\"range\":{\"start\":{\"line\":-1}}}]}}", 0, nullptr},
+      {"{\"method\":\"textDocument/didOpen\",\"params\":{\"textDocument\":{}}}", 0, nullptr},
+      {"{\"method\":\"$/unknownNotification\"}", 0, nullptr}};
+  for (const Bad& bad : bads) {
+    INFO(bad.text);
+    std::vector<json> replies;
+    REQUIRE_NOTHROW(replies = s.handle_text(bad.text));
+    if (bad.code == 0) {
+      CHECK(replies.empty());
+      continue;
+    }
+    REQUIRE(replies.size() == 1);
+    CHECK(replies[0]["jsonrpc"] == "2.0");
+    CHECK(replies[0]["id"] == bad.id);
+    CHECK(replies[0]["error"]["code"] == bad.code);
+    CHECK_FALSE(replies[0]["error"]["message"].get<std::string>().empty());
   }
+  // The document survived the bad edits, and requests still work.
+  auto hover = s.handle({{"jsonrpc", "2.0"}, {"id", 9}, {"method", "textDocument/hover"},
+                         {"params", {{"textDocument", {{"uri", "file:///big.fs"}}}, {"position", {{"line", 0}, {"character", 10}}}}}});
+  REQUIRE(hover.size() == 1);
+  CHECK(hover[0]["id"] == 9);
+  CHECK(hover[0]["result"]["contents"]["value"].get<std::string>().find("f0(x)") != std::string::npos);
   CHECK_FALSE(s.exited());
 }
 
 TEST_CASE("lsp fuzz: random and mutated byte streams through the transport and the server") {
   // Valid messages cut, spliced and bit-flipped, and plain noise: every byte stream must end in
-  // End, with no exception and no hang.
+  // End, with no exception and no hang; every request (an object with an id and a method) gets
+  // exactly one answer with its id, and what is not JSON gets a parse error.
   std::vector<std::string> seeds = {
       "{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}",
       "{\"jsonrpc\":\"2.0\",\"method\":\"textDocument/didOpen\",\"params\":{\"textDocument\":{\"uri\":\"file:///f.fs\","
@@ -84,6 +121,7 @@ TEST_CASE("lsp fuzz: random and mutated byte streams through the transport and t
     rng ^= rng << 17;
     return rng;
   };
+  int requests = 0;
   for (int round = 0; round < 400; ++round) {
     std::string stream;
     for (int m = 0; m < 6; ++m) {
@@ -103,10 +141,27 @@ TEST_CASE("lsp fuzz: random and mutated byte streams through the transport and t
     for (;;) {
       ReadStatus st = read_message(in, body, error);
       if (st == ReadStatus::End) break;
-      if (st == ReadStatus::Message) CHECK_NOTHROW(s.handle_text(body));
+      if (st == ReadStatus::Message) {
+        std::vector<json> replies;
+        REQUIRE_NOTHROW(replies = s.handle_text(body));
+        json parsed = json::parse(body, nullptr, false);
+        if (parsed.is_discarded()) {
+          REQUIRE(replies.size() == 1);
+          CHECK(replies[0]["error"]["code"] == -32700);
+        } else if (parsed.is_object() && parsed.contains("method") && parsed["method"].is_string() &&
+                   parsed.contains("id") && (parsed["id"].is_number_integer() || parsed["id"].is_string())) {
+          INFO(body);
+          int answers = 0;
+          for (const json& r : replies)
+            if (r.contains("id") && r["id"] == parsed["id"] && (r.contains("result") != r.contains("error"))) ++answers;
+          CHECK(answers == 1);
+          ++requests;
+        }
+      }
       REQUIRE(++guard < 100);
     }
   }
+  CHECK(requests > 100);  // enough requests come through whole to be checked
 }
 
 TEST_CASE("lsp completion: the locals in scope are those of the function the cursor is in") {

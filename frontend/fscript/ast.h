@@ -32,6 +32,7 @@ struct Expr {
   Span span;
   Tok op = Tok::Eof;
   bool prefix = false;
+  bool builtin_only = false;  // Math.NAME: the built-in NAME, even where a user function takes its name
   double num = 0;
   std::string name;  // Name, Call callee, Index/Length array
   Span name_span;

@@ -464,6 +464,7 @@ class Parser {
     } else {
       e->name = callee->name;
       e->name_span = callee->span;
+      e->builtin_only = callee->builtin_only;
     }
     if (!at(Tok::RParen)) {
       do {
@@ -503,6 +504,7 @@ class Parser {
       Expr* e = prog_->new_expr(ExprKind::Name, from(obj->span));
       e->name = field == "PI" ? "pi" : field;
       e->name_span = e->span;
+      e->builtin_only = true;
       return e;
     }
     if (field == "length" && obj->kind == ExprKind::Name) {

@@ -460,7 +460,7 @@ class Sema {
     }
     std::string name = e->name;
     int arity = -1;
-    auto fn = fn_syms_.find(name);
+    auto fn = e->builtin_only ? fn_syms_.end() : fn_syms_.find(name);
     int builtin = find_builtin(name);
     if (fn == fn_syms_.end() && builtin < 0) {
       std::string alt = case_slip(name, true);
@@ -470,7 +470,7 @@ class Sema {
       }
       warning(e->name_span, "'" + name + "' is not defined; using '" + alt + "' (names are case-sensitive)");
       name = alt;
-      fn = fn_syms_.find(name);
+      fn = e->builtin_only ? fn_syms_.end() : fn_syms_.find(name);
       builtin = find_builtin(name);
     }
     if (fn != fn_syms_.end()) {

@@ -1,7 +1,7 @@
 # Skips that cannot hide (sourced by the shell tests; tests/support/skip.h is the Catch2 side).
-# Every skip prints one line and is appended to $FS_SKIP_LOG, which ./dev.sh test prints at the end. A skip because something is not
-# installed or not found ("missing") is a failure when CI is set; only a skip because this machine
-# cannot run the check at all ("machine") stays a skip there.
+# Every skip prints one line and is appended to $FS_SKIP_LOG, which ./dev.sh test prints at the
+# end. A skip because something is not installed or not found ("missing") is a failure when CI is
+# set; only a skip because this machine cannot run the check at all ("machine") stays a skip there.
 
 fs_ci() { case "${CI:-}" in "" | 0 | false | no) return 1 ;; *) return 0 ;; esac; }
 

@@ -67,7 +67,11 @@ def main():
     if args.only:
         keep = set(args.only.split(","))
         mutants = [m for m in mutants if m["id"] in keep]
-    tree, build, log = os.path.join(args.work, "tree"), os.path.join(args.work, "build"), os.path.join(args.work, "log.txt")
+    # The build inside the copy, as build/ is inside the checkout: with CCACHE_BASEDIR above both,
+    # ccache sees the same relative paths and the copy's first build comes from the cache.
+    tree, log = os.path.join(args.work, "tree"), os.path.join(args.work, "log.txt")
+    build = os.path.join(tree, "build")
+    os.environ.setdefault("CCACHE_BASEDIR", os.path.commonpath([os.path.realpath(SRC), os.path.realpath(args.work)]))
     os.makedirs(args.work, exist_ok=True)
     open(log, "w").close()
     # A copy of the tracked files (the working tree's versions), so the checkout is never touched.
@@ -89,6 +93,10 @@ def main():
             env_ok = False
     if not env_ok:
         sys.exit(1)
+    # Every test a mutant names must pass on the unmutated tree, or a "kill" would mean nothing.
+    every = "|".join(sorted({t for m in mutants for t in m["tests"].split("|")}))
+    if sh(["ctest", "--test-dir", build, "-j", "2", "-R", every, "--timeout", "300"], tree, log, timeout=3600):
+        sys.exit(f"the tests fail on the unmutated tree; see {log}")
     results = []
     for k, m in enumerate(mutants, 1):
         path = os.path.join(tree, m["file"])

@@ -4,6 +4,7 @@
 #   ./dev.sh test    install what is missing, build, run every test (ctest)
 #   SANITIZE=1 ./dev.sh test   the same with AddressSanitizer + UndefinedBehaviorSanitizer
 #   ./dev.sh build   build only
+#   ./dev.sh mutation [--only ID,...]   mutation testing (tests/mutation/run.sh; docs/testing.md)
 # With CI set (CI=true ./dev.sh test), a test skipped because something is missing fails instead.
 # FVRML_SHARED=DIR names the shared folder (corpus, paper data) when it is not ../shared.
 set -euo pipefail
@@ -83,5 +84,9 @@ case "$cmd" in
     echo "wrote out/figure1.png (the paper's Figure 1 halfway through the morph) and out/figure1.wrl"
     echo "(VRML97: the morph as 8 frames under a Switch driven by a TimeSensor; open it in any VRML97 browser)"
     ;;
-  *) echo "usage: ./dev.sh demo|test|build" >&2; exit 2 ;;
+  mutation)
+    shift
+    exec tests/mutation/run.sh "$@"
+    ;;
+  *) echo "usage: ./dev.sh demo|test|build|mutation" >&2; exit 2 ;;
 esac

@@ -5,7 +5,10 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <string>
 #include <vector>
+
+#include "backends/backend.h"
 
 namespace fscript::test {
 
@@ -43,6 +46,24 @@ inline const std::vector<const char*> kInputDependentErrors = {
     "function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 1 / x; i++) s = s + 1; return s; }",
     "function f(n) { if (n <= 0) return 0; return 1 + f(n - 1); }\n"
     "function FRep(x, y, z, t) { return f(20 / x); }"};
+
+// "" when `jit` gives the VM's results for x = 1, 2, ... n (y = z = t = 0) at every batch length
+// n up to `max_n`, else what differed.
+inline std::string partial_group_mismatch(const backend::Kernel& vm, const backend::Kernel& jit, size_t max_n) {
+  for (size_t n = 1; n <= max_n; ++n) {
+    std::vector<float> x(n), zero(n, 0.0f), a(n), b(n);
+    for (size_t i = 0; i < n; ++i) x[i] = 1.0f + static_cast<float>(i);
+    const float* in[4] = {x.data(), zero.data(), zero.data(), zero.data()};
+    float* oa[1] = {a.data()};
+    float* ob[1] = {b.data()};
+    backend::RuntimeError ea, eb;
+    if (!vm.eval_batch(in, oa, n, ea)) return "the VM failed: " + ea.message;
+    if (!jit.eval_batch(in, ob, n, eb)) return "n = " + std::to_string(n) + ": " + eb.message;
+    for (size_t i = 0; i < n; ++i)
+      if (!same(a[i], b[i])) return "n = " + std::to_string(n) + ": point " + std::to_string(i) + " differs";
+  }
+  return "";
+}
 
 inline const char* kRecursivePrelude =
     "function fact(n) { if (n <= 1) return 1; return n * fact(n - 1); }\n"

@@ -231,7 +231,6 @@ PY
   cmp -s "$T/t1.ply" "$T/t2.ply" || { echo "FAIL fvrml-run-threads-identical"; fails=$((fails + 1)); }
   check fvrml-run-frames 0 '"frames":\[' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 3 -o "$T/fr.ply" --stats --resolution-scale 0.3
   for k in 0 1 2; do [ -s "$T/fr-$k.ply" ] || { echo "FAIL frames file $k"; fails=$((fails + 1)); }; done
-  check fvrml-run-sheet 0 '' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 4 -o "$T/sheet.png" --width 64 --height 64
   check fvrml-run-frames-needs-o 2 'needs -o' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 3 --format ply
   # Animated VRML97: the frames under a Switch, a TimeSensor with the node's timing, a Script.
   check fvrml-run-frames-wrl 0 '"bytes_per_triangle":' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 4 -o "$T/anim.wrl" --resolution-scale 0.3 --stats
@@ -248,8 +247,6 @@ PY
   check fvrml-run-frames-field 0 '"frames":10' -- "$R" "$SRC/examples/paper/figure6-blends.wrl" -o "$T/f6.wrl" --resolution-scale 0.15 --stats
   grep -q 'Switch' "$T/f6.wrl" || { echo "FAIL figure 6 is not animated"; fails=$((fails + 1)); }
   check fvrml-run-frames-glb 0 '"animations":\[\{' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --frames 4 -o "$T/anim.glb" --resolution-scale 0.3 --stats
-  printf '#VRML V2.0 utf8\nViewpoint { position 0 0 3 }\nFShape { geometry FGeometry { definition "0.5^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [16] } }\n' > "$T/vp.wrl"
-  check fvrml-run-viewpoint 0 '' -- "$R" "$T/vp.wrl" -o "$T/vp.png" --width 64 --height 64
   check fvrml-run-png 0 '' -- "$R" "$T/ball.wrl" -o "$T/ball.png" --width 64 --height 48
   head -c 8 "$T/ball.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' || { echo "FAIL fvrml-run-png-magic"; fails=$((fails + 1)); }
   # Pictures keep the standard geometry and the Background of the scene.

@@ -202,3 +202,69 @@ TEST_CASE("mesh: the same mesh, vertex for vertex, for 1, 2 and 5 threads") {
     CHECK(m.normals == ref.normals);
   }
 }
+
+// ---- The topology checks themselves, on meshes made by hand ----
+namespace {
+mesh::Mesh tetrahedron(float dx = 0) {
+  mesh::Mesh m;
+  m.positions = {{dx, 0, 0}, {dx + 1, 0, 0}, {dx, 1, 0}, {dx, 0, 1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};  // outward
+  return m;
+}
+}  // namespace
+
+TEST_CASE("topology: a closed tetrahedron, and what breaks each property") {
+  auto t = mesh::topology(tetrahedron());
+  CHECK(t.watertight);
+  CHECK(t.oriented);
+  CHECK(t.manifold);
+  CHECK(t.euler == 2);
+  CHECK(t.boundary_edges == 0);
+
+  auto flipped = tetrahedron();  // one face turned over: closed, not oriented
+  std::swap(flipped.triangles[3][1], flipped.triangles[3][2]);
+  auto f = mesh::topology(flipped);
+  CHECK(f.watertight);
+  CHECK_FALSE(f.oriented);
+
+  auto open = tetrahedron();  // a face missing: three boundary edges, Euler characteristic 1
+  open.triangles.pop_back();
+  auto o = mesh::topology(open);
+  CHECK_FALSE(o.watertight);
+  CHECK(o.boundary_edges == 3);
+  CHECK(o.euler == 1);
+
+  auto fin = tetrahedron();  // a third triangle on an edge
+  fin.positions.push_back({0.5f, -1, 0});
+  fin.triangles.push_back({0, 1, 4});
+  CHECK_FALSE(mesh::topology(fin).watertight);
+
+  auto degenerate = tetrahedron();
+  degenerate.triangles.push_back({1, 1, 2});
+  CHECK(mesh::topology(degenerate).degenerate_triangles == 1);
+  CHECK(mesh::topology(degenerate).euler == 2);
+}
+
+TEST_CASE("topology: two closed bodies touching at one vertex are not a 2-manifold") {
+  mesh::Mesh a = tetrahedron(), b;
+  // The second body shares vertex 0: mirrored through it, so the two meet only there.
+  b.positions = {{0, 0, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  b.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  auto apart = a;
+  apart.append(b);  // two separate bodies: still manifold, Euler characteristic 4
+  auto s = mesh::topology(apart);
+  CHECK(s.watertight);
+  CHECK(s.oriented);
+  CHECK(s.manifold);
+  CHECK(s.euler == 4);
+  CHECK(apart.triangles.size() == 8);
+  CHECK(apart.triangles[4][0] == 4);  // the second body's indices moved past the first's vertices
+  auto bowtie = apart;  // now make them share vertex 0 (drop b's copy of it)
+  for (auto& tri : bowtie.triangles)
+    for (auto& v : tri)
+      if (v == 4) v = 0;
+  auto w = mesh::topology(bowtie);
+  CHECK(w.watertight);
+  CHECK_FALSE(w.manifold);
+  CHECK(w.euler == 3);  // 7 used vertices - 12 edges + 8 faces
+}

@@ -193,3 +193,30 @@ ROUTE TS.cycleTime TO TS.set_startTime
     CHECK(vrml::write_scene(b) == written);
   }
 }
+
+TEST_CASE("vrml: exposedField events by their set_ and _changed names, and field value rules") {
+  auto ok = parse(R"(DEF A Transform { } DEF B Transform { } DEF C Transform { }
+    ROUTE A.translation_changed TO B.set_translation
+    ROUTE A.translation TO C.translation
+    ROUTE B.rotation_changed TO C.set_rotation
+    PixelTexture { image 1 1 4 0xFF0000FF }
+    PixelTexture { image 0 0 0 }
+    DEF S Switch { whichChoice -1 }
+  )");
+  INFO(ok->text());
+  CHECK(ok->ok);
+  CHECK(ok->scene.routes.size() == 3);
+  auto bad = parse(R"(DEF A Transform { } DEF B Transform { }
+    ROUTE A.translation_change TO B.set_translation
+    ROUTE A.translation_changed TO B.sett_translation
+    PixelTexture { image 1 1 5 0 }
+    Switch { whichChoice 1.5 }
+  )");
+  std::string t = bad->text();
+  INFO(t);
+  CHECK(t.find("has no eventOut 'translation_change'") != std::string::npos);
+  CHECK(t.find("has no eventIn 'sett_translation'") != std::string::npos);
+  CHECK(t.find("t.wrl:5:32: error: expected a valid image size (SFImage)") != std::string::npos);  // 5 components
+  CHECK(t.find("t.wrl:6:26: error: expected an integer (SFInt32)") != std::string::npos);
+  CHECK(bad->diag.error_count() == 4);
+}

@@ -15,22 +15,24 @@ BACKENDS="vm sse"
 [ "${FS_HAVE_LLVM:-1}" = 1 ] && BACKENDS="vm sse llvm"
 
 # ---- The time model through ROUTEs (docs/scenes.md, VRML97 TimeSensor rules) ----
-# Figure 3: a 5 s looping TimeSensor routed to the shape's set_fraction; its colour's timeSpan is
-# [-pi, pi]. The end of a cycle gives 1.0, not 0.0.
-for tf in 0:0 2:0.4 5:1 9.5:0.9 12.5:0.5; do
-  t=${tf%%:*} f=${tf#*:}
-  jcheck "figure 3 at --time $t: fraction $f" err \
-    "near(j['shapes'][0]['fraction'], $f) and near(j['shapes'][0]['colour']['t'], -3.1415926 + $f * 2 * 3.1415926, 1e-6)" \
-    -- "$R" "$P/figure3-colour.wrl" --stats --time "$t"
-done
+# fractions SCENE NODE SPAN0 SPAN1 TIME:FRACTION...: the shape's fraction at each --time, and the t
+# of its NODE (colour, texture) mapped onto the node's timeSpan.
+fractions() {
+  local scene="$1" node="$2" s0="$3" s1="$4"
+  shift 4
+  for tf in "$@"; do
+    local t=${tf%%:*} f=${tf#*:}
+    jcheck "$(basename "$scene") at --time $t: fraction $f" err \
+      "near(j['shapes'][0]['fraction'], $f) and near(j['shapes'][0]['$node']['t'], $s0 + $f * ($s1 - $s0), 1e-6)" \
+      -- "$R" "$scene" --stats --time "$t"
+  done
+}
+# Figure 3: a 5 s looping TimeSensor routed to the shape's set_fraction. The end of a cycle gives
+# 1.0, not 0.0.
+fractions "$P/figure3-colour.wrl" colour -3.1415926 3.1415926 0:0 2:0.4 5:1 9.5:0.9 12.5:0.5
 # Figure 2: the shape's own single 5 s cycle, restarted by a 7 s loop's cycleTime routed to its
-# startTime; the texture's timeSpan is [0, 0.4].
-for tf in 3:0.6 6:1 9.5:0.5 13:1 15:0.2; do
-  t=${tf%%:*} f=${tf#*:}
-  jcheck "figure 2 at --time $t: fraction $f" err \
-    "near(j['shapes'][0]['fraction'], $f) and near(j['shapes'][0]['texture']['t'], 0.4 * $f)" \
-    -- "$R" "$P/figure2-texture.wrl" --stats --time "$t"
-done
+# startTime.
+fractions "$P/figure2-texture.wrl" texture 0 0.4 3:0.6 6:1 9.5:0.5 13:1 15:0.2
 # A sensor whose single cycle ended exactly at load (time 0) never sends an event; one that ends
 # just after load does (a stopTime before the startTime is ignored); the default stopTime 0, after
 # a negative startTime, stops it at load.

@@ -16,6 +16,7 @@
 #include "ir/analysis.h"
 #include "ir/passes/passes.h"
 #include "ir/ranges.h"
+#include "runtime/math/trig_constants.h"
 
 namespace fscript::llvmjit {
 namespace {
@@ -291,32 +292,22 @@ class FnLower {
     auto f = [&](float v) { return llvm::ConstantFP::get(s_.vf, v); };
     auto d = [&](double v) { return llvm::ConstantFP::get(vd, v); };
     auto i = [&](uint32_t v) { return llvm::ConstantInt::get(s_.vi, v); };
-    llvm::Value* fast = b_.CreateFCmpOLE(unary(llvm::Intrinsic::fabs, x), f(8.0e5f));
+    using namespace math::trig;
+    llvm::Value* fast = b_.CreateFCmpOLE(unary(llvm::Intrinsic::fabs, x), f(kFastLimit));
     llvm::Value* xd = b_.CreateFPExt(b_.CreateSelect(fast, x, f(0.0f)), vd);
-    llvm::Value* magic = d(6755399441055744.0);
-    llvm::Value* jd = b_.CreateFSub(b_.CreateFAdd(b_.CreateFMul(xd, d(0.63661977236758134308)), magic), magic);
-    llvm::Value* r = b_.CreateFSub(b_.CreateFSub(xd, b_.CreateFMul(jd, d(1.57079632673412561417e+00))),
-                                   b_.CreateFMul(jd, d(6.07710050650619224932e-11)));
+    llvm::Value* magic = d(kRoundMagic);
+    llvm::Value* jd = b_.CreateFSub(b_.CreateFAdd(b_.CreateFMul(xd, d(kTwoOverPi)), magic), magic);
+    llvm::Value* r = b_.CreateFSub(b_.CreateFSub(xd, b_.CreateFMul(jd, d(kPio2Hi))), b_.CreateFMul(jd, d(kPio2Lo)));
     llvm::Value* q = b_.CreateAdd(b_.CreateFPToSI(jd, s_.vi), i(static_cast<uint32_t>(offset)));
     llvm::Value* rf = b_.CreateFPTrunc(r, s_.vf);
     llvm::Value* z = b_.CreateFMul(rf, rf);
+    auto mul = [&](llvm::Value* a, llvm::Value* b) { return b_.CreateFMul(a, b); };
+    // sin: ((kSin1 z + kSin2) z - kSin3) z r + r;  cos: ((kCos1 z - kCos2) z + kCos3) z z - 0.5 z + 1
     llvm::Value* sp = b_.CreateFAdd(
-        b_.CreateFMul(b_.CreateFMul(b_.CreateFSub(b_.CreateFMul(b_.CreateFAdd(b_.CreateFMul(f(-1.9515295891e-4f), z),
-                                                                                f(8.3321608736e-3f)),
-                                                                  z),
-                                                  f(1.6666654611e-1f)),
-                                    z),
-                      rf),
-        rf);
+        mul(mul(b_.CreateFSub(mul(b_.CreateFAdd(mul(f(kSin1), z), f(kSin2)), z), f(kSin3)), z), rf), rf);
     llvm::Value* cp = b_.CreateFAdd(
-        b_.CreateFSub(
-            b_.CreateFMul(b_.CreateFMul(b_.CreateFAdd(b_.CreateFMul(b_.CreateFSub(b_.CreateFMul(f(2.443315711809948e-5f), z),
-                                                                                f(1.388731625493765e-3f)),
-                                                                  z),
-                                                      f(4.166664568298827e-2f)),
-                                        z),
-                          z),
-            b_.CreateFMul(f(0.5f), z)),
+        b_.CreateFSub(mul(mul(b_.CreateFAdd(mul(b_.CreateFSub(mul(f(kCos1), z), f(kCos2)), z), f(kCos3)), z), z),
+                      mul(f(0.5f), z)),
         f(1.0f));
     llvm::Value* odd = b_.CreateICmpNE(b_.CreateAnd(q, i(1)), i(0));
     llvm::Value* v = b_.CreateBitCast(b_.CreateSelect(odd, cp, sp), s_.vi);

@@ -17,6 +17,7 @@
 #include "ir/ir.h"
 #include "ir/ranges.h"
 #include "runtime/math/math.h"
+#include "runtime/math/trig_constants.h"
 
 namespace fscript::sse::detail {
 
@@ -247,14 +248,14 @@ class LaneCode {
   // the batch function's, bit for bit. A group with a lane outside the fast range (huge, inf,
   // NaN) takes the batch function itself, out of line.
   void trig(const ir::Inst& in, int pos, int offset) {
-    constexpr float kLimit = 8.0e5f;
+    using namespace math::trig;
     Src a = src(in.args[0]);
     Xmm d = alloc(pos), t0 = temp(pos), t1 = temp(pos), t2 = temp(pos), t3 = temp(pos);
     load(Xmm::x1, a);
     a_.movaps(at(kScratch), Xmm::x1);
     a_.movaps(Xmm::x0, Xmm::x1);
     a_.andps(Xmm::x0, bits(0x7FFFFFFFu));
-    a_.cmpps(Xmm::x0, k(kLimit), Pred::Le);
+    a_.cmpps(Xmm::x0, k(kFastLimit), Pred::Le);
     a_.movmskps(Gp::rax, Xmm::x0);
     a_.cmp(Gp::rax, 15);
     SlowPath sp{a_.new_label(), a_.new_label(), d, offset ? reinterpret_cast<const void*>(&math::cos_batch)
@@ -265,14 +266,14 @@ class LaneCode {
     a_.cvtps2pd(t1, Xmm::x1);
     for (auto [h, j] : {std::pair{t0, t2}, std::pair{t1, t3}}) {  // each pair of lanes in double
       a_.movaps(j, h);
-      a_.mulpd(j, dbl(0.63661977236758134308));
-      a_.addpd(j, dbl(6755399441055744.0));
-      a_.subpd(j, dbl(6755399441055744.0));
+      a_.mulpd(j, dbl(kTwoOverPi));
+      a_.addpd(j, dbl(kRoundMagic));
+      a_.subpd(j, dbl(kRoundMagic));
       a_.movaps(Xmm::x0, j);
-      a_.mulpd(Xmm::x0, dbl(1.57079632673412561417e+00));
+      a_.mulpd(Xmm::x0, dbl(kPio2Hi));
       a_.subpd(h, Xmm::x0);
       a_.movaps(Xmm::x0, j);
-      a_.mulpd(Xmm::x0, dbl(6.07710050650619224932e-11));
+      a_.mulpd(Xmm::x0, dbl(kPio2Lo));
       a_.subpd(h, Xmm::x0);
       a_.cvttpd2dq(j, j);
       a_.cvtpd2ps(h, h);
@@ -282,19 +283,19 @@ class LaneCode {
     if (offset) a_.paddd(t2, bits(1));
     a_.movaps(t1, t0);
     a_.mulps(t1, t0);  // z = r * r
-    a_.movaps(t3, k(-1.9515295891e-4f));  // sin: ((c1 z + c2) z - c3) z r + r
+    a_.movaps(t3, k(kSin1));  // sin: ((kSin1 z + kSin2) z - kSin3) z r + r
     a_.mulps(t3, t1);
-    a_.addps(t3, k(8.3321608736e-3f));
+    a_.addps(t3, k(kSin2));
     a_.mulps(t3, t1);
-    a_.subps(t3, k(1.6666654611e-1f));
+    a_.subps(t3, k(kSin3));
     a_.mulps(t3, t1);
     a_.mulps(t3, t0);
     a_.addps(t3, t0);
-    a_.movaps(d, k(2.443315711809948e-5f));  // cos: ((d1 z - d2) z + d3) z z - 0.5 z + 1
+    a_.movaps(d, k(kCos1));  // cos: ((kCos1 z - kCos2) z + kCos3) z z - 0.5 z + 1
     a_.mulps(d, t1);
-    a_.subps(d, k(1.388731625493765e-3f));
+    a_.subps(d, k(kCos2));
     a_.mulps(d, t1);
-    a_.addps(d, k(4.166664568298827e-2f));
+    a_.addps(d, k(kCos3));
     a_.mulps(d, t1);
     a_.mulps(d, t1);
     a_.movaps(Xmm::x1, k(0.5f));

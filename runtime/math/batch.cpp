@@ -8,6 +8,7 @@
 
 #include "runtime/math/batch_isa.h"
 #include "runtime/math/math.h"
+#include "runtime/math/trig_constants.h"
 
 #ifndef FS_ISA
 #error "batch.cpp is compiled once per ISA with FS_ISA set (see CMakeLists.txt)"
@@ -16,20 +17,16 @@
 namespace fscript::math::FS_ISA {
 namespace {
 
-constexpr double kTwoOverPi = 0.63661977236758134308;
-constexpr double kPio2Hi = 1.57079632673412561417e+00;  // first 33 bits of pi/2: j * kPio2Hi is exact
-constexpr double kPio2Lo = 6.07710050650619224932e-11;  // pi/2 - kPio2Hi
-constexpr double kRoundMagic = 6755399441055744.0;     // 1.5 * 2^52: adding it rounds to integer
-constexpr float kTrigLimit = 8.0e5f;                    // j stays below 2^20
+using namespace trig;
 
-// sin on the reduced argument r in [-pi/4, pi/4] (Cephes sinf/cosf minimax coefficients).
+// sin and cos on the reduced argument r in [-pi/4, pi/4] (trig_constants.h).
 inline float sin_poly(float r) {
   float z = r * r;
-  return ((-1.9515295891e-4f * z + 8.3321608736e-3f) * z - 1.6666654611e-1f) * z * r + r;
+  return ((kSin1 * z + kSin2) * z - kSin3) * z * r + r;
 }
 inline float cos_poly(float r) {
   float z = r * r;
-  return ((2.443315711809948e-5f * z - 1.388731625493765e-3f) * z + 4.166664568298827e-2f) * z * z - 0.5f * z + 1.0f;
+  return ((kCos1 * z - kCos2) * z + kCos3) * z * z - 0.5f * z + 1.0f;
 }
 
 // Branch-free selection by bit masks: the vectoriser if-converts these where it gives up on ?:.
@@ -40,7 +37,7 @@ inline float pick(uint32_t m, float a, float b) {
 
 // quadrant_offset 0: sin, 1: cos (cos x = sin(x + pi/2)).
 inline float trig_lane(float x, int quadrant_offset) {
-  float xs = pick(mask_of(std::fabs(x) <= kTrigLimit), x, 0.0f);
+  float xs = pick(mask_of(std::fabs(x) <= kFastLimit), x, 0.0f);
   double xd = static_cast<double>(xs);
   double jd = (xd * kTwoOverPi + kRoundMagic) - kRoundMagic;
   double r = (xd - jd * kPio2Hi) - jd * kPio2Lo;
@@ -99,12 +96,12 @@ inline float log_lane(float x) {
 
 void sin_batch(const float* a, float* out, size_t n) {
   for (size_t i = 0; i < n; ++i) out[i] = trig_lane(a[i], 0);
-  fix_up<fscript::math::sin>(a, out, n, [](float v) { return !(std::fabs(v) <= kTrigLimit); });
+  fix_up<fscript::math::sin>(a, out, n, [](float v) { return !(std::fabs(v) <= kFastLimit); });
 }
 
 void cos_batch(const float* a, float* out, size_t n) {
   for (size_t i = 0; i < n; ++i) out[i] = trig_lane(a[i], 1);
-  fix_up<fscript::math::cos>(a, out, n, [](float v) { return !(std::fabs(v) <= kTrigLimit); });
+  fix_up<fscript::math::cos>(a, out, n, [](float v) { return !(std::fabs(v) <= kFastLimit); });
 }
 
 void exp_batch(const float* a, float* out, size_t n) {

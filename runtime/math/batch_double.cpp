@@ -8,6 +8,7 @@
 
 #include "runtime/math/batch_isa.h"
 #include "runtime/math/math.h"
+#include "runtime/math/trig_constants.h"
 
 #ifndef FS_ISA
 #error "batch_double.cpp is compiled once per ISA with FS_ISA set (see CMakeLists.txt)"
@@ -19,7 +20,7 @@ namespace {
 constexpr double kLn2Hi = 6.93147180369123816490e-01;  // high bits of ln 2
 constexpr double kLn2Lo = 1.90821492927058770002e-10;
 constexpr double kLog2e = 1.44269504088896338700e+00;
-constexpr double kRound = 6755399441055744.0;  // 1.5 * 2^52
+constexpr double kRound = trig::kRoundMagic;  // 1.5 * 2^52
 constexpr double kPi = 3.14159265358979311600e+00;
 constexpr double kPio2 = 1.57079632679489655800e+00;
 constexpr double kPio4 = 7.85398163397448278999e-01;
@@ -91,9 +92,9 @@ inline double cos_r(double r) {
 inline float f(double d) { return static_cast<float>(d); }
 
 inline float tan_lane(float x) {
-  double xd = std::fabs(x) <= 8.0e5f ? static_cast<double>(x) : 0.0;
-  double j = (xd * 0.63661977236758134308 + kRound) - kRound;
-  double r = (xd - j * 1.57079632673412561417e+00) - j * 6.07710050650619224932e-11;
+  double xd = std::fabs(x) <= trig::kFastLimit ? static_cast<double>(x) : 0.0;
+  double j = (xd * trig::kTwoOverPi + kRound) - kRound;
+  double r = (xd - j * trig::kPio2Hi) - j * trig::kPio2Lo;
   double s = sin_r(r), c = cos_r(r);
   uint64_t odd = dmask(static_cast<int64_t>(j) & 1);
   return f(dpick(odd, -c / s, s / c));
@@ -175,7 +176,7 @@ inline bool finite(float v) { return std::fabs(v) <= 3.40282347e+38f; }
 }  // namespace
 
 void tan_batch(const float* a, float* o, size_t n) {
-  unary<tan_lane, math::tan>(a, o, n, [](float v) { return std::fabs(v) <= 8.0e5f; });
+  unary<tan_lane, math::tan>(a, o, n, [](float v) { return std::fabs(v) <= trig::kFastLimit; });
 }
 void asin_batch(const float* a, float* o, size_t n) {
   unary<asin_lane, math::asin>(a, o, n, [](float v) { return std::fabs(v) < 1.0f; });

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "backends/runtime_errors.h"
 #include "ir/analysis.h"
 #include "ir/passes/passes.h"
 
@@ -62,14 +63,9 @@ bool jit_status(uint64_t code, const LaneArrays& arrays, const Budgets& budgets,
   if (code == 0) return true;
   err.line = static_cast<uint32_t>(code);
   switch (code >> 32) {
-    case 1:
-      err.message = "loop iteration budget exceeded: more than " + std::to_string(budgets.max_loop_iterations) +
-                    " iterations in one evaluation";
-      break;
+    case 1: err.message = errors::loop_budget(budgets.max_loop_iterations); break;
     case 2: err.message = arrays.message; break;
-    case 3:
-      err.message = "call depth budget exceeded: more than " + std::to_string(budgets.max_call_depth) + " nested calls";
-      break;
+    case 3: err.message = errors::call_depth(budgets.max_call_depth); break;
     default:
       err.message = "recursion too deep for this thread's stack (the budget allows " +
                     std::to_string(budgets.max_call_depth) + " nested calls); lower --max-call-depth or use --backend vm";

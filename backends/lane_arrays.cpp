@@ -2,9 +2,9 @@
 #include "backends/lane_arrays.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cstring>
 
+#include "backends/runtime_errors.h"
 #include "runtime/math/math.h"
 
 namespace fscript::backend {
@@ -12,15 +12,9 @@ namespace {
 
 bool on(const uint32_t* mask, uint32_t lane) { return mask[lane] != 0; }
 
-std::string fmt(float v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.9g", static_cast<double>(v));
-  return b;
-}
-
 bool created(LaneArrays* s, uint32_t slot, uint32_t lane) {
   if (s->off[slot * s->lanes + lane] >= 0) return true;
-  s->message = "array '" + s->names[slot] + "' is used before it is created";
+  s->message = errors::array_unset(s->names[slot]);
   return false;
 }
 
@@ -51,9 +45,7 @@ uint32_t fs_lanes_anew(LaneArrays* s, uint32_t slot, const float* size, const ui
     float n = math::round(size[i]);
     if (!(n >= 0) || n > static_cast<float>(s->max_elements) ||
         s->heap[i].size() + static_cast<size_t>(n) > s->max_elements) {
-      s->message = "array '" + s->names[slot] + "' of " + fmt(size[i]) +
-                   " elements: sizes must be whole numbers from 0 to the budget of " +
-                   std::to_string(s->max_elements) + " elements per evaluation";
+      s->message = errors::array_size(s->names[slot], size[i], s->max_elements);
       return 1;
     }
     s->off[slot * s->lanes + i] = static_cast<int64_t>(s->heap[i].size());
@@ -68,8 +60,7 @@ static float* element(LaneArrays* s, uint32_t slot, const float* index, uint32_t
   if (!created(s, slot, i)) return nullptr;
   long idx = math::array_index(index[i], s->len[slot * s->lanes + i]);
   if (idx < 0) {
-    s->message = "index " + fmt(index[i]) + " is out of range for array '" + s->names[slot] + "' of " +
-                 std::to_string(s->len[slot * s->lanes + i]) + " elements";
+    s->message = errors::array_index(s->names[slot], index[i], s->len[slot * s->lanes + i]);
     return nullptr;
   }
   return &s->heap[i][static_cast<size_t>(s->off[slot * s->lanes + i] + idx)];

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <vector>
 
+#include "backends/runtime_errors.h"
 #include "runtime/math/batch_isa.h"
 #include "runtime/math/math.h"
 
@@ -22,6 +23,7 @@ namespace {
 using backend::Budgets;
 using backend::RuntimeError;
 using ir::Op;
+namespace errors = backend::errors;
 using Mask = uint32_t;  // all ones: the lane is present
 
 // Per-lane state of one evaluation: budgets used so far and the lane's array storage.
@@ -50,12 +52,6 @@ struct Frame {
   uint32_t gstride;
   std::vector<int64_t> arr_off, arr_len;  // local arrays, [slot * lanes + i]
 };
-
-std::string fmt(float v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.9g", static_cast<double>(v));
-  return b;
-}
 
 // Batch frames keep every register as kChunkLanes lanes, 64-byte aligned, and the lane loops
 // below always run all kChunkLanes lanes (lanes past the chunk's end compute garbage that is never
@@ -437,9 +433,7 @@ bool Executor::lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err)
     case Op::GStore: fr.gmem[size_t(v.aux) * fr.gstride + i] = reg(v.a); return true;
     case Op::Tick:
       if (++env.ticks > budgets_.max_loop_iterations) {
-        err = {"loop iteration budget exceeded: more than " + std::to_string(budgets_.max_loop_iterations) +
-                   " iterations in one evaluation",
-               v.line};
+        err = {errors::loop_budget(budgets_.max_loop_iterations), v.line};
         return false;
       }
       return true;
@@ -453,9 +447,7 @@ bool Executor::lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err)
     float n = math::round(reg(v.a));
     if (!(n >= 0) || n > static_cast<float>(budgets_.max_array_elements) ||
         env.heap.size() + static_cast<size_t>(n) > budgets_.max_array_elements) {
-      err = {"array '" + name + "' of " + fmt(reg(v.a)) + " elements: sizes must be whole numbers from 0 to the budget of " +
-                 std::to_string(budgets_.max_array_elements) + " elements per evaluation",
-             v.line};
+      err = {errors::array_size(name, reg(v.a), budgets_.max_array_elements), v.line};
       return false;
     }
     *off = static_cast<int64_t>(env.heap.size());
@@ -464,7 +456,7 @@ bool Executor::lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err)
     return true;
   }
   if (*off < 0) {
-    err = {"array '" + name + "' is used before it is created", v.line};
+    err = {errors::array_unset(name), v.line};
     return false;
   }
   if (v.op == Op::ALen) {
@@ -473,8 +465,7 @@ bool Executor::lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err)
   }
   long idx = math::array_index(reg(v.a), *len);
   if (idx < 0) {
-    err = {"index " + fmt(reg(v.a)) + " is out of range for array '" + name + "' of " + std::to_string(*len) + " elements",
-           v.line};
+    err = {errors::array_index(name, reg(v.a), *len), v.line};
     return false;
   }
   if (v.op == Op::ALoad) reg(v.dst) = env.heap[*off + idx];
@@ -489,7 +480,7 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
   LaneEnv& env = *fr.env[i];
   const VmFunction& callee = p_.functions[v.c];
   if (callee.recursive && env.depth + 1 > budgets_.max_call_depth) {
-    err = {"call depth budget exceeded: more than " + std::to_string(budgets_.max_call_depth) + " nested calls", v.line};
+    err = {errors::call_depth(budgets_.max_call_depth), v.line};
     return false;
   }
   std::vector<float> regs(std::max<uint32_t>(callee.num_regs, 1));

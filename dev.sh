@@ -31,6 +31,9 @@ install_missing() {
 
 build() {
   local dir=build type=Release extra=()
+  # ccache (when installed) keyed by paths relative to the folder above the checkout, so a second
+  # checkout beside this one (a CI clone) reuses what this one compiled.
+  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(dirname "$PWD")}"
   if [ "${SANITIZE:-0}" = 1 ]; then
     dir=build-asan type=RelWithDebInfo extra=(-DFS_SANITIZE=ON)
   fi

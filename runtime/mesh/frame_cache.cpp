@@ -3,7 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
+
+#include "runtime/support/parallel.h"
 
 namespace fscript::mesh {
 namespace {
@@ -152,21 +153,11 @@ bool FrameCache::fill(int threads, backend::RuntimeError& err) {
   for (size_t i = 0; i < frames_; ++i)
     if (!has(i)) missing.push_back(i);
   int n = std::max(1, std::min<int>(threads, static_cast<int>(missing.size())));
-  std::vector<backend::RuntimeError> errs(n);
-  std::vector<char> ok(n, 1);
-  auto worker = [&](int w) {  // frames w, w + n, ...: the same frames whatever the timing
-    for (size_t k = w; k < missing.size() && ok[w]; k += n) ok[w] = make(missing[k], errs[w]);
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < n; ++w) pool.emplace_back(worker, w);
-  worker(0);
-  for (auto& t : pool) t.join();
-  for (int w = 0; w < n; ++w)
-    if (!ok[w]) {
-      err = errs[w];
-      return false;
-    }
-  return true;
+  return support::run_parts(n, [&](int w, backend::RuntimeError& e) {  // frames w, w + n, ...
+    for (size_t k = static_cast<size_t>(w); k < missing.size(); k += static_cast<size_t>(n))
+      if (!make(missing[k], e)) return false;
+    return true;
+  }, err);
 }
 
 bool FrameCache::peek(size_t i, Mesh& out) const {

@@ -9,7 +9,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <thread>
+
+#include "runtime/support/parallel.h"
 
 namespace fscript::mesh {
 namespace {
@@ -275,18 +276,10 @@ class Slab {
 template <class Fn>
 bool split(size_t n, int threads, Fn fn, backend::RuntimeError& err) {
   int t = std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(1, n / 4096))));
-  std::vector<backend::RuntimeError> errs(t);
-  std::vector<char> ok(t, 1);
-  std::vector<std::thread> pool;
-  for (int k = 1; k < t; ++k) pool.emplace_back([&, k] { ok[k] = fn(n * k / t, n * (k + 1) / t, errs[k]); });
-  ok[0] = fn(0, n / t, errs[0]);
-  for (auto& th : pool) th.join();
-  for (int k = 0; k < t; ++k)
-    if (!ok[k]) {
-      err = errs[k];
-      return false;
-    }
-  return true;
+  size_t parts = static_cast<size_t>(t);
+  return support::run_parts(t, [&](int k, backend::RuntimeError& e) {
+    return fn(n * static_cast<size_t>(k) / parts, n * static_cast<size_t>(k + 1) / parts, e);
+  }, err);
 }
 
 // Regula falsi on the real function along each interior edge, in blocks of vertices so the
@@ -424,17 +417,8 @@ bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backend::RuntimeErro
   int parts = std::max(1, std::min(job.threads, layers / 8));
   std::vector<Slab> slabs;
   for (int s = 0; s < parts; ++s) slabs.emplace_back(g, *job.field, -1 + layers * s / parts, -1 + layers * (s + 1) / parts);
-  std::vector<backend::RuntimeError> errs(parts);
-  std::vector<char> ok(parts, 1);
-  std::vector<std::thread> pool;
-  for (int s = 1; s < parts; ++s) pool.emplace_back([&, s] { ok[s] = slabs[s].run(errs[s]); });
-  ok[0] = slabs[0].run(errs[0]);
-  for (auto& th : pool) th.join();
-  for (int s = 0; s < parts; ++s)
-    if (!ok[s]) {
-      err = errs[s];
-      return false;
-    }
+  if (!support::run_parts(parts, [&](int s, backend::RuntimeError& e) { return slabs[static_cast<size_t>(s)].run(e); }, err))
+    return false;
   std::vector<Edge> edges;
   if (!merge(slabs, out, edges, err)) return false;
   slabs.clear();

@@ -6,12 +6,12 @@
 #include <cstdio>
 #include <iostream>
 #include <sstream>
-#include <thread>
 
 #ifdef FS_HAVE_LLVM
 #include "backends/llvm/llvm_jit.h"
 #endif
 #include "runtime/render/png.h"
+#include "runtime/support/parallel.h"
 #include "tools/fscript/commands.h"
 
 namespace fscript::cli {
@@ -20,26 +20,21 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr size_t kBatch = 4096;  // points per eval_batch call in bench and render2d
 
-// Runs `work(begin, end)` over [0, n) in kBatch slices on `threads` threads; false on any error.
+// Runs `work(begin, end)` over [0, n) in kBatch slices taken by `threads` threads as they come
+// free (every point's value is its own, so the schedule changes no result); the first error stops
+// every thread.
 template <class Work>
 bool parallel_slices(size_t n, unsigned threads, Work work, backend::RuntimeError& err) {
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
-  std::vector<backend::RuntimeError> errs(threads);
-  auto worker = [&](unsigned id) {
+  return support::run_parts(static_cast<int>(threads), [&](int, backend::RuntimeError& e) {
     while (!failed) {
       size_t b = next.fetch_add(kBatch);
-      if (b >= n) return;
-      if (!work(b, std::min(n, b + kBatch), errs[id])) failed = true;
+      if (b >= n) return true;
+      if (!work(b, std::min(n, b + kBatch), e)) return !(failed = true);
     }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker, t);
-  worker(0);
-  for (auto& th : pool) th.join();
-  for (auto& e : errs)
-    if (!e.message.empty()) err = e;
-  return !failed;
+    return true;
+  }, err);
 }
 
 // Varied inputs: a 3D grid over [-1, 1]^3 (the shared benchmarks' dense grid), t = 0.

@@ -4,7 +4,6 @@
 #include <atomic>
 #include <cmath>
 #include <iostream>
-#include <thread>
 
 #include "frontend/source.h"
 #include "runtime/mesh/field.h"
@@ -13,6 +12,7 @@
 #include "runtime/render/png.h"
 #include "runtime/scene/shape_mesh.h"
 #include "runtime/scene/vrml_export.h"
+#include "runtime/support/parallel.h"
 #include "tools/fvrml-run/run.h"
 
 namespace fvrml_run {
@@ -25,16 +25,11 @@ constexpr int kMaxFrames = 1000;  // a file's `frames` beyond this is clamped (t
 template <class Fn>
 bool parallel_for(int n, int threads, Fn fn) {
   int t = std::max(1, std::min(threads, n));
-  std::atomic<bool> ok{true};
-  auto worker = [&](int w) {
-    for (int i = w; i < n; i += t)
-      if (!fn(i)) ok = false;
-  };
-  std::vector<std::thread> pool;
-  for (int w = 1; w < t; ++w) pool.emplace_back(worker, w);
-  worker(0);
-  for (auto& th : pool) th.join();
-  return ok;
+  return fscript::support::run_parts(t, [&](int w) {
+    bool ok = true;
+    for (int i = w; i < n; i += t) ok = fn(i) && ok;
+    return ok;
+  });
 }
 
 // The scene at fractions i / n, built one after another so diagnostics stay in order (printed

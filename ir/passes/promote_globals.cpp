@@ -56,7 +56,9 @@ class Promoter {
     }
     auto it = entry_loads_.find(g);
     if (it != entry_loads_.end()) return it->second;
-    return entry_loads_[g] = at_entry(Op::GLoad, g);
+    Inst* load = at_entry(Op::GLoad, g);
+    kept_loads_.insert(load);
+    return entry_loads_[g] = load;
   }
   Inst* at_entry(Op op, int aux) {
     Block* e = f_.entry();
@@ -88,6 +90,7 @@ class Promoter {
         for (int g = 0; g < n_; ++g) {
           Inst* l = make(Op::GLoad, b, g, {});
           b->insts.push_back(l);
+          kept_loads_.insert(l);
           ssa_.write(g, b, l);
         }
       } else if (i->op == Op::Ret && !f_.kernel) {
@@ -100,12 +103,15 @@ class Promoter {
   }
 
   // Stores the current value of every global (all of them, or those this function writes),
-  // except where that value was just loaded from the same global: memory already holds it.
+  // except where that value is a load of the same global that this pass keeps (at the entry or
+  // after a call): memory already holds it. A load of the program's own is no such proof: it is
+  // replaced by the value it would read, and the memory behind it may never have been written
+  // (`acc = 0; acc = acc; f();` must store 0 before calling f).
   void flush(Block* b, bool all) {
     for (int g = 0; g < n_; ++g) {
       if (!all && !written_.count(g)) continue;
       Inst* v = ssa_.read(g, b);
-      if (v->op == Op::GLoad && v->aux == g) continue;
+      if (v->op == Op::GLoad && v->aux == g && kept_loads_.count(v)) continue;
       b->insts.push_back(make(Op::GStore, b, g, {v}));
     }
   }
@@ -121,6 +127,7 @@ class Promoter {
   std::unordered_set<int> written_;
   std::unordered_set<Block*> filled_;
   std::unordered_map<int, Inst*> entry_loads_;
+  std::unordered_set<Inst*> kept_loads_;  // the loads this pass adds, which stay real loads
   std::vector<std::pair<Inst*, Inst*>> replaced_;
   Inst* nan_ = nullptr;
 };

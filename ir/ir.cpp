@@ -11,23 +11,32 @@ const OpInfo kOpInfo[] = {
 #include "ir/opcodes.def"
 };
 
-bool Inst::defines_value() const {
-  switch (op) {
-    case Op::GStore: case Op::AStore: case Op::ANew: case Op::Tick:
-    case Op::Jump: case Op::Branch: case Op::Ret:
-      return false;
-    case Op::Const: case Op::Param: case Op::Phi: case Op::Add: case Op::Sub: case Op::Mul:
-    case Op::Div: case Op::Mod: case Op::Neg: case Op::Min: case Op::Max: case Op::Abs:
-    case Op::Sqrt: case Op::Floor: case Op::Ceil: case Op::Round: case Op::Sign: case Op::Clamp:
-    case Op::Pow: case Op::Exp: case Op::Log: case Op::Log10: case Op::Sin: case Op::Cos:
-    case Op::Tan: case Op::Asin: case Op::Acos: case Op::Atan: case Op::Atan2: case Op::Sinh:
-    case Op::Cosh: case Op::Tanh: case Op::Noise: case Op::Eq: case Op::Ne: case Op::Lt:
-    case Op::Le: case Op::Gt: case Op::Ge: case Op::Not: case Op::Truth: case Op::Select:
-    case Op::GLoad: case Op::ALoad: case Op::ALen: case Op::Call:
-      return true;
-  }
-  return true;
-}
+namespace {
+constexpr int kOpArity[] = {
+#define FS_OP(N, M, A, F) A,
+#include "ir/opcodes.def"
+};
+constexpr uint32_t kOpFlags[] = {
+#define FS_OP(N, M, A, F) (F),
+#include "ir/opcodes.def"
+};
+}  // namespace
+
+bool Inst::defines_value() const { return !has_flag(op, static_cast<OpFlag>(NoValue | Terminator)); }
+
+// The math table agrees with the op table: arities match, and the ops that call the runtime are
+// exactly the Batch and Trig rows.
+#define FS_MATH(N, FN, A, HOW)                                                                       \
+  static_assert(kOpArity[static_cast<int>(Op::N)] == A, #N ": arity differs from opcodes.def");     \
+  static_assert(((kOpFlags[static_cast<int>(Op::N)] & CallsRuntime) != 0) == (#HOW[0] != 'L'), \
+                #N ": CallsRuntime in opcodes.def must match Batch/Trig in math_ops.def");
+#include "ir/math_ops.def"
+static_assert(0
+#define FS_OP(N, M, A, F) + (((F) & CallsRuntime) != 0)
+#include "ir/opcodes.def"
+#define FS_MATH(N, FN, A, HOW) -(#HOW[0] != 'L')
+#include "ir/math_ops.def"
+              == 0, "every CallsRuntime op needs a Batch or Trig row in math_ops.def");
 
 std::vector<Block*> Block::succs() const {
   Inst* t = terminator();

@@ -21,6 +21,7 @@ enum OpFlag : uint32_t {
   CallsRuntime = 1u << 3,
   Traps = 1u << 4,
   Memory = 1u << 5,
+  NoValue = 1u << 6,
 };
 
 struct OpInfo {

@@ -4,36 +4,14 @@
 
 namespace fscript::math {
 
-#define FS_BATCH_DISPATCH(name)                                   \
-  void name(const float* a, float* out, size_t n) {               \
-    switch (active_isa()) {                                       \
-      case Isa::Base: return isa_base::name(a, out, n);           \
-      case Isa::Avx2: return isa_avx2::name(a, out, n);           \
-      case Isa::Avx512: return isa_avx512::name(a, out, n);       \
-    }                                                             \
-  }
-FS_BATCH_DISPATCH(sin_batch)
-FS_BATCH_DISPATCH(cos_batch)
-FS_BATCH_DISPATCH(exp_batch)
-FS_BATCH_DISPATCH(log_batch)
-FS_BATCH_DISPATCH(tan_batch)
-FS_BATCH_DISPATCH(asin_batch)
-FS_BATCH_DISPATCH(acos_batch)
-FS_BATCH_DISPATCH(atan_batch)
-FS_BATCH_DISPATCH(sinh_batch)
-FS_BATCH_DISPATCH(cosh_batch)
-FS_BATCH_DISPATCH(tanh_batch)
-FS_BATCH_DISPATCH(log10_batch)
-
-#define FS_BATCH2_DISPATCH(name)                                          \
-  void name(const float* a, const float* b, float* out, size_t n) {       \
+#define FS_BATCH_FN(name, arity)                                          \
+  void name##_batch(FS_BATCH_PARAMS_##arity) {                            \
     switch (active_isa()) {                                               \
-      case Isa::Base: return isa_base::name(a, b, out, n);                \
-      case Isa::Avx2: return isa_avx2::name(a, b, out, n);                \
-      case Isa::Avx512: return isa_avx512::name(a, b, out, n);            \
+      case Isa::Base: return isa_base::name##_batch(FS_BATCH_ARGS_##arity);     \
+      case Isa::Avx2: return isa_avx2::name##_batch(FS_BATCH_ARGS_##arity);     \
+      case Isa::Avx512: return isa_avx512::name##_batch(FS_BATCH_ARGS_##arity); \
     }                                                                     \
   }
-FS_BATCH2_DISPATCH(pow_batch)
-FS_BATCH2_DISPATCH(atan2_batch)
+#include "runtime/math/batch_functions.def"
 
 }  // namespace fscript::math

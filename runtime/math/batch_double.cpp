@@ -202,4 +202,8 @@ void atan2_batch(const float* y, const float* x, float* o, size_t n) {
   });
 }
 
+void noise_batch(const float* x, const float* y, const float* z, float* o, size_t n) {
+  for (size_t i = 0; i < n; ++i) o[i] = math::noise(x[i], y[i], z[i]);
+}
+
 }  // namespace fscript::math::FS_ISA

@@ -4,6 +4,14 @@
 // Transcendentals are computed in double and rounded once, so they are within 1 ulp.
 #include <cstddef>
 
+// The parameter list of a batch function of `arity` inputs (batch_functions.def), and its names.
+#define FS_BATCH_PARAMS_1 const float* a, float* out, size_t n
+#define FS_BATCH_PARAMS_2 const float* a, const float* b, float* out, size_t n
+#define FS_BATCH_PARAMS_3 const float* a, const float* b, const float* c, float* out, size_t n
+#define FS_BATCH_ARGS_1 a, out, n
+#define FS_BATCH_ARGS_2 a, b, out, n
+#define FS_BATCH_ARGS_3 a, b, c, out, n
+
 namespace fscript::math {
 
 // ---- exact operations (bit-identical on every backend, up to the sign of a zero result) ----
@@ -70,19 +78,8 @@ long array_index(float a, long length);
 // Vectorised lane code, compiled per ISA (isa.h): 4 lanes SSE2, 8 AVX2, 16 AVX-512. sin, cos, exp
 // and log evaluate float polynomials after a double-precision reduction (within 2 ulp of the
 // scalar definition); the others compute in double and round once (within 1 ulp).
-void sin_batch(const float* a, float* out, size_t n);
-void cos_batch(const float* a, float* out, size_t n);
-void exp_batch(const float* a, float* out, size_t n);
-void log_batch(const float* a, float* out, size_t n);
-void tan_batch(const float* a, float* out, size_t n);
-void asin_batch(const float* a, float* out, size_t n);
-void acos_batch(const float* a, float* out, size_t n);
-void atan_batch(const float* a, float* out, size_t n);
-void sinh_batch(const float* a, float* out, size_t n);
-void cosh_batch(const float* a, float* out, size_t n);
-void tanh_batch(const float* a, float* out, size_t n);
-void log10_batch(const float* a, float* out, size_t n);
-void pow_batch(const float* a, const float* b, float* out, size_t n);
-void atan2_batch(const float* y, const float* x, float* out, size_t n);
+// noise_batch is the scalar noise per lane. Every one is listed in batch_functions.def.
+#define FS_BATCH_FN(name, arity) void name##_batch(FS_BATCH_PARAMS_##arity);
+#include "runtime/math/batch_functions.def"
 
 }  // namespace fscript::math

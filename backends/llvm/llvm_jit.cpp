@@ -25,18 +25,16 @@
 namespace fscript::llvmjit {
 namespace {
 
-// runtime/math's batch functions under the names generated code calls.
+// runtime/math's batch functions under the names generated code calls: fs_rt_NAME for every
+// Batch and Trig row of ir/math_ops.def.
 extern "C" {
-#define FS_RT1(name) \
-  void fs_rt_##name(const float* a, float* out, size_t n) { math::name##_batch(a, out, n); }
-FS_RT1(exp) FS_RT1(log) FS_RT1(log10) FS_RT1(sin) FS_RT1(cos) FS_RT1(tan) FS_RT1(asin) FS_RT1(acos)
-FS_RT1(atan) FS_RT1(sinh) FS_RT1(cosh) FS_RT1(tanh)
-#undef FS_RT1
-void fs_rt_pow(const float* a, const float* b, float* out, size_t n) { math::pow_batch(a, b, out, n); }
-void fs_rt_atan2(const float* a, const float* b, float* out, size_t n) { math::atan2_batch(a, b, out, n); }
-void fs_rt_noise(const float* x, const float* y, const float* z, float* out, size_t n) {
-  for (size_t i = 0; i < n; ++i) out[i] = math::noise(x[i], y[i], z[i]);
-}
+#define FS_RT_Lane(FN, A)
+#define FS_RT_Batch(FN, A) \
+  void fs_rt_##FN(FS_BATCH_PARAMS_##A) { math::FN##_batch(FS_BATCH_ARGS_##A); }
+#define FS_RT_Trig FS_RT_Batch
+#define FS_MATH(N, FN, A, HOW) FS_RT_##HOW(FN, A)
+#include "ir/math_ops.def"
+#undef FS_RT_Batch
 }
 
 // Every symbol generated code may call, the one table the JIT resolves them from.
@@ -46,9 +44,12 @@ struct RuntimeSymbol {
 };
 #define FS_SYM(f) {#f, reinterpret_cast<const void*>(&f)}
 const RuntimeSymbol kRuntimeSymbols[] = {
-    FS_SYM(fs_rt_exp), FS_SYM(fs_rt_log), FS_SYM(fs_rt_log10), FS_SYM(fs_rt_sin), FS_SYM(fs_rt_cos),
-    FS_SYM(fs_rt_tan), FS_SYM(fs_rt_asin), FS_SYM(fs_rt_acos), FS_SYM(fs_rt_atan), FS_SYM(fs_rt_sinh),
-    FS_SYM(fs_rt_cosh), FS_SYM(fs_rt_tanh), FS_SYM(fs_rt_pow), FS_SYM(fs_rt_atan2), FS_SYM(fs_rt_noise),
+#define FS_RT_Batch(FN, A) FS_SYM(fs_rt_##FN),
+#define FS_MATH(N, FN, A, HOW) FS_RT_##HOW(FN, A)
+#include "ir/math_ops.def"
+#undef FS_RT_Lane
+#undef FS_RT_Batch
+#undef FS_RT_Trig
 #define FS_LANES(f) {#f, reinterpret_cast<const void*>(&backend::f)}
     FS_LANES(fs_lanes_reset), FS_LANES(fs_lanes_anew), FS_LANES(fs_lanes_aload), FS_LANES(fs_lanes_astore),
     FS_LANES(fs_lanes_alen), FS_LANES(fs_lanes_enter), FS_LANES(fs_lanes_leave),

@@ -372,21 +372,18 @@ class FnLower {
         llvm::Value* lo = minmax(a(0), in.args[1], a(1), false);
         return define(in, minmax(lo, in.args[2], a(2), true));
       }
-      case Op::Pow: return define(in, batch("fs_rt_pow", in));
-      case Op::Exp: return define(in, batch("fs_rt_exp", in));
-      case Op::Log: return define(in, batch("fs_rt_log", in));
-      case Op::Log10: return define(in, batch("fs_rt_log10", in));
-      case Op::Sin: return define(in, trig(in, 0, "fs_rt_sin"));
-      case Op::Cos: return define(in, trig(in, 1, "fs_rt_cos"));
-      case Op::Tan: return define(in, batch("fs_rt_tan", in));
-      case Op::Asin: return define(in, batch("fs_rt_asin", in));
-      case Op::Acos: return define(in, batch("fs_rt_acos", in));
-      case Op::Atan: return define(in, batch("fs_rt_atan", in));
-      case Op::Atan2: return define(in, batch("fs_rt_atan2", in));
-      case Op::Sinh: return define(in, batch("fs_rt_sinh", in));
-      case Op::Cosh: return define(in, batch("fs_rt_cosh", in));
-      case Op::Tanh: return define(in, batch("fs_rt_tanh", in));
-      case Op::Noise: return define(in, batch("fs_rt_noise", in));
+      // Batch rows of ir/math_ops.def call runtime/math's batch function through its runtime
+      // symbol (llvm_jit.cpp); Trig rows inline it; Lane rows have their own cases.
+#define FS_LLVM_Lane(N, FN)
+#define FS_LLVM_Batch(N, FN) \
+  case Op::N: return define(in, batch("fs_rt_" #FN, in));
+#define FS_LLVM_Trig(N, FN) \
+  case Op::N: return define(in, trig(in, in.op == Op::Cos, "fs_rt_" #FN));
+#define FS_MATH(N, FN, A, HOW) FS_LLVM_##HOW(N, FN)
+#include "ir/math_ops.def"
+#undef FS_LLVM_Lane
+#undef FS_LLVM_Batch
+#undef FS_LLVM_Trig
       case Op::Eq: return define(in, bool_float(b_.CreateFCmpOEQ(a(0), a(1))));
       case Op::Ne: return define(in, bool_float(b_.CreateFCmpUNE(a(0), a(1))));
       case Op::Lt: return define(in, bool_float(b_.CreateFCmpOLT(a(0), a(1))));

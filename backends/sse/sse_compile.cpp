@@ -32,9 +32,6 @@ using namespace detail;
 void mod_batch(const float* a, const float* b, float* out, size_t n) {
   for (size_t i = 0; i < n; ++i) out[i] = math::mod(a[i], b[i]);
 }
-void noise_batch(const float* x, const float* y, const float* z, float* out, size_t n) {
-  for (size_t i = 0; i < n; ++i) out[i] = math::noise(x[i], y[i], z[i]);
-}
 
 // The functions compiled into one piece of code: the kernel first (the code's start), then every
 // function it calls, directly or not. Calls left after inlining are of recursive functions.
@@ -471,21 +468,18 @@ class Codegen : public detail::LaneCode {
         return true;
       }
       case Op::Mod: return call(in, pos, reinterpret_cast<const void*>(&mod_batch));
-      case Op::Pow: return call(in, pos, reinterpret_cast<const void*>(&math::pow_batch));
-      case Op::Exp: return call(in, pos, reinterpret_cast<const void*>(&math::exp_batch));
-      case Op::Log: return call(in, pos, reinterpret_cast<const void*>(&math::log_batch));
-      case Op::Log10: return call(in, pos, reinterpret_cast<const void*>(&math::log10_batch));
-      case Op::Sin: return trig(in, pos, 0), true;
-      case Op::Cos: return trig(in, pos, 1), true;
-      case Op::Tan: return call(in, pos, reinterpret_cast<const void*>(&math::tan_batch));
-      case Op::Asin: return call(in, pos, reinterpret_cast<const void*>(&math::asin_batch));
-      case Op::Acos: return call(in, pos, reinterpret_cast<const void*>(&math::acos_batch));
-      case Op::Atan: return call(in, pos, reinterpret_cast<const void*>(&math::atan_batch));
-      case Op::Atan2: return call(in, pos, reinterpret_cast<const void*>(&math::atan2_batch));
-      case Op::Sinh: return call(in, pos, reinterpret_cast<const void*>(&math::sinh_batch));
-      case Op::Cosh: return call(in, pos, reinterpret_cast<const void*>(&math::cosh_batch));
-      case Op::Tanh: return call(in, pos, reinterpret_cast<const void*>(&math::tanh_batch));
-      case Op::Noise: return call(in, pos, reinterpret_cast<const void*>(&noise_batch));
+      // Batch rows of ir/math_ops.def call runtime/math's batch function; Trig rows inline it
+      // (lane_code.h); Lane rows have their own cases above.
+#define FS_SSE_Lane(N, FN)
+#define FS_SSE_Batch(N, FN) \
+  case Op::N: return call(in, pos, reinterpret_cast<const void*>(&math::FN##_batch));
+#define FS_SSE_Trig(N, FN) \
+  case Op::N: return trig(in, pos, in.op == Op::Cos), true;
+#define FS_MATH(N, FN, A, HOW) FS_SSE_##HOW(N, FN)
+#include "ir/math_ops.def"
+#undef FS_SSE_Lane
+#undef FS_SSE_Batch
+#undef FS_SSE_Trig
       case Op::Ret:
         for (size_t o = 0; o < in.args.size(); ++o) {
           Src s = src(in.args[o]);

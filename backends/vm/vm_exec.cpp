@@ -131,6 +131,40 @@ inline void batched2(const VInst& v, float* R, const Mask* m, bool full,
     for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? tmp[i] : d[i];
 }
 
+// The same for a ternary one (its operands are always registers).
+inline void batched3(const VInst& v, float* R, const Mask* m, bool full,
+                     void (*fn)(const float*, const float*, const float*, float*, size_t)) {
+  alignas(64) float tmp[K];
+  float* d = reg(R, v.dst);
+  fn(reg(R, v.a), reg(R, v.b), reg(R, v.c), full ? d : tmp, K);
+  if (!full)
+    for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? tmp[i] : d[i];
+}
+
+// How each row of ir/math_ops.def runs, by its kind and arity: on the batch path (FS_VM_*) and on
+// the one-point path (FS_ONE_*), where transcendentals go through the same batch functions (n = 1)
+// so a point gives the same bits either way.
+#define FS_VM_Lane1(N, FN) case Op::N: unary(v, R, m, full, [](float a) { return M::FN(a); }); return true;
+#define FS_VM_Lane2(N, FN) case Op::N: binary(v, R, m, full, [](float a, float b) { return M::FN(a, b); }); return true;
+#define FS_VM_Lane3(N, FN) \
+  case Op::N: ternary(v, R, m, full, [](float a, float b, float c) { return M::FN(a, b, c); }); return true;
+#define FS_VM_Batch1(N, FN) case Op::N: batched(v, R, m, full, M::FS_ISA::FN##_batch); return true;
+#define FS_VM_Batch2(N, FN) case Op::N: batched2(v, R, m, full, M::FS_ISA::FN##_batch); return true;
+#define FS_VM_Batch3(N, FN) case Op::N: batched3(v, R, m, full, M::FS_ISA::FN##_batch); return true;
+#define FS_VM_Trig1 FS_VM_Batch1
+#define FS_ONE_Lane1(N, FN) case Op::N: *d = M::FN(a); return true;
+#define FS_ONE_Lane2(N, FN) case Op::N: *d = M::FN(a, b); return true;
+#define FS_ONE_Lane3(N, FN) case Op::N: *d = M::FN(a, b, R[v.c]); return true;
+#define FS_ONE_Batch1(N, FN) case Op::N: I::FN##_batch(&a, d, 1); return true;
+#define FS_ONE_Batch2(N, FN) case Op::N: I::FN##_batch(&a, &b, d, 1); return true;
+#define FS_ONE_Batch3(N, FN) \
+  case Op::N: {              \
+    const float c = R[v.c];  \
+    I::FN##_batch(&a, &b, &c, d, 1); \
+    return true;             \
+  }
+#define FS_ONE_Trig1 FS_ONE_Batch1
+
 // A 64-byte aligned, growable scratch buffer (one per thread).
 struct AlignedFloats {
   float* p = nullptr;
@@ -300,45 +334,8 @@ bool Executor::exec(Frame& fr, const VInst& v, const Mask* m, bool full, Runtime
   uint32_t L = fr.lanes;
   namespace M = fscript::math;
   switch (v.op) {
-    case Op::Add: binary(v, R, m, full, [](float a, float b) { return a + b; }); return true;
-    case Op::Sub: binary(v, R, m, full, [](float a, float b) { return a - b; }); return true;
-    case Op::Mul: binary(v, R, m, full, [](float a, float b) { return a * b; }); return true;
-    case Op::Div: binary(v, R, m, full, [](float a, float b) { return a / b; }); return true;
-    case Op::Mod: binary(v, R, m, full, [](float a, float b) { return M::mod(a, b); }); return true;
-    case Op::Min: binary(v, R, m, full, [](float a, float b) { return M::min(a, b); }); return true;
-    case Op::Max: binary(v, R, m, full, [](float a, float b) { return M::max(a, b); }); return true;
-    case Op::Pow: batched2(v, R, m, full, M::FS_ISA::pow_batch); return true;
-    case Op::Atan2: batched2(v, R, m, full, M::FS_ISA::atan2_batch); return true;
-    case Op::Eq: binary(v, R, m, full, [](float a, float b) { return M::eq(a, b); }); return true;
-    case Op::Ne: binary(v, R, m, full, [](float a, float b) { return M::ne(a, b); }); return true;
-    case Op::Lt: binary(v, R, m, full, [](float a, float b) { return M::lt(a, b); }); return true;
-    case Op::Le: binary(v, R, m, full, [](float a, float b) { return M::le(a, b); }); return true;
-    case Op::Gt: binary(v, R, m, full, [](float a, float b) { return M::gt(a, b); }); return true;
-    case Op::Ge: binary(v, R, m, full, [](float a, float b) { return M::ge(a, b); }); return true;
-    case Op::Neg: unary(v, R, m, full, [](float a) { return M::neg(a); }); return true;
-    case Op::Abs: unary(v, R, m, full, [](float a) { return M::abs(a); }); return true;
-    case Op::Sqrt: unary(v, R, m, full, [](float a) { return M::sqrt(a); }); return true;
-    case Op::Floor: unary(v, R, m, full, [](float a) { return M::floor(a); }); return true;
-    case Op::Ceil: unary(v, R, m, full, [](float a) { return M::ceil(a); }); return true;
-    case Op::Round: unary(v, R, m, full, [](float a) { return M::round(a); }); return true;
-    case Op::Sign: unary(v, R, m, full, [](float a) { return M::sign(a); }); return true;
-    case Op::Not: unary(v, R, m, full, [](float a) { return M::not_(a); }); return true;
-    case Op::Truth: unary(v, R, m, full, [](float a) { return M::truth(a); }); return true;
-    case Op::Log10: batched(v, R, m, full, M::FS_ISA::log10_batch); return true;
-    case Op::Tan: batched(v, R, m, full, M::FS_ISA::tan_batch); return true;
-    case Op::Asin: batched(v, R, m, full, M::FS_ISA::asin_batch); return true;
-    case Op::Acos: batched(v, R, m, full, M::FS_ISA::acos_batch); return true;
-    case Op::Atan: batched(v, R, m, full, M::FS_ISA::atan_batch); return true;
-    case Op::Sinh: batched(v, R, m, full, M::FS_ISA::sinh_batch); return true;
-    case Op::Cosh: batched(v, R, m, full, M::FS_ISA::cosh_batch); return true;
-    case Op::Tanh: batched(v, R, m, full, M::FS_ISA::tanh_batch); return true;
-    case Op::Sin: batched(v, R, m, full, M::FS_ISA::sin_batch); return true;
-    case Op::Cos: batched(v, R, m, full, M::FS_ISA::cos_batch); return true;
-    case Op::Exp: batched(v, R, m, full, M::FS_ISA::exp_batch); return true;
-    case Op::Log: batched(v, R, m, full, M::FS_ISA::log_batch); return true;
-    case Op::Clamp: ternary(v, R, m, full, [](float a, float b, float c) { return M::clamp(a, b, c); }); return true;
-    case Op::Select: ternary(v, R, m, full, [](float a, float b, float c) { return M::select(a, b, c); }); return true;
-    case Op::Noise: ternary(v, R, m, full, [](float a, float b, float c) { return M::noise(a, b, c); }); return true;
+#define FS_MATH(N, FN, A, HOW) FS_VM_##HOW##A(N, FN)
+#include "ir/math_ops.def"
     case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
     case Op::Call: case Op::Tick:
       for (uint32_t i = 0; i < L; ++i)
@@ -362,45 +359,8 @@ bool Executor::exec_one(Frame& fr, const VInst& v, RuntimeError& err) {
   const float b = (v.kinds & 2) ? v.imm_b : (v.b != kNoReg ? R[v.b] : 0.0f);
   float* d = v.dst != kNoReg ? &R[v.dst] : nullptr;
   switch (v.op) {
-    case Op::Add: *d = a + b; return true;
-    case Op::Sub: *d = a - b; return true;
-    case Op::Mul: *d = a * b; return true;
-    case Op::Div: *d = a / b; return true;
-    case Op::Mod: *d = M::mod(a, b); return true;
-    case Op::Min: *d = M::min(a, b); return true;
-    case Op::Max: *d = M::max(a, b); return true;
-    case Op::Eq: *d = M::eq(a, b); return true;
-    case Op::Ne: *d = M::ne(a, b); return true;
-    case Op::Lt: *d = M::lt(a, b); return true;
-    case Op::Le: *d = M::le(a, b); return true;
-    case Op::Gt: *d = M::gt(a, b); return true;
-    case Op::Ge: *d = M::ge(a, b); return true;
-    case Op::Neg: *d = -a; return true;
-    case Op::Abs: *d = M::abs(a); return true;
-    case Op::Sqrt: *d = M::sqrt(a); return true;
-    case Op::Floor: *d = M::floor(a); return true;
-    case Op::Ceil: *d = M::ceil(a); return true;
-    case Op::Round: *d = M::round(a); return true;
-    case Op::Sign: *d = M::sign(a); return true;
-    case Op::Not: *d = M::not_(a); return true;
-    case Op::Truth: *d = M::truth(a); return true;
-    case Op::Clamp: *d = M::clamp(a, b, R[v.c]); return true;
-    case Op::Select: *d = M::select(a, b, R[v.c]); return true;
-    case Op::Noise: *d = M::noise(a, b, R[v.c]); return true;
-    case Op::Pow: I::pow_batch(&a, &b, d, 1); return true;
-    case Op::Atan2: I::atan2_batch(&a, &b, d, 1); return true;
-    case Op::Sin: I::sin_batch(&a, d, 1); return true;
-    case Op::Cos: I::cos_batch(&a, d, 1); return true;
-    case Op::Tan: I::tan_batch(&a, d, 1); return true;
-    case Op::Exp: I::exp_batch(&a, d, 1); return true;
-    case Op::Log: I::log_batch(&a, d, 1); return true;
-    case Op::Log10: I::log10_batch(&a, d, 1); return true;
-    case Op::Asin: I::asin_batch(&a, d, 1); return true;
-    case Op::Acos: I::acos_batch(&a, d, 1); return true;
-    case Op::Atan: I::atan_batch(&a, d, 1); return true;
-    case Op::Sinh: I::sinh_batch(&a, d, 1); return true;
-    case Op::Cosh: I::cosh_batch(&a, d, 1); return true;
-    case Op::Tanh: I::tanh_batch(&a, d, 1); return true;
+#define FS_MATH(N, FN, A, HOW) FS_ONE_##HOW##A(N, FN)
+#include "ir/math_ops.def"
     case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
     case Op::Call: case Op::Tick:
       return lane_op(fr, v, 0, err);

@@ -71,6 +71,12 @@ Range range_of(const Inst& in, const std::vector<Range>& r, double bound) {
       return {std::floor(arg(0).lo), std::ceil(arg(0).hi), arg(0).nan};
     case Op::Sign: return {-1, 1, arg(0).nan};
     case Op::Sin: case Op::Cos: return {-1, 1, arg(0).nan || !finite(arg(0))};
+    case Op::Hypot: {  // between the larger magnitude and the length of the largest corner
+      auto least = [](const Range& r) { return r.lo <= 0 && r.hi >= 0 ? 0.0 : std::min(std::fabs(r.lo), std::fabs(r.hi)); };
+      auto most = [](const Range& r) { return std::max(std::fabs(r.lo), std::fabs(r.hi)); };
+      double hi = std::sqrt(most(arg(0)) * most(arg(0)) + most(arg(1)) * most(arg(1)));
+      return widen(std::max(least(arg(0)), least(arg(1))), hi, arg(0).nan || arg(1).nan);
+    }
     case Op::Eq: case Op::Ne: case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge: case Op::Not: case Op::Truth:
       return {0, 1, false};
     case Op::Select: return join(arg(1), arg(2));

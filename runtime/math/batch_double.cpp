@@ -202,6 +202,15 @@ void atan2_batch(const float* y, const float* x, float* o, size_t n) {
   });
 }
 
+// The scalar definition's arithmetic lane by lane (so the bits agree); infinities take the scalar.
+inline float hypot_lane(float x, float y) {
+  double dx = x, dy = y;
+  return f(std::sqrt(dx * dx + dy * dy));
+}
+void hypot_batch(const float* a, const float* b, float* o, size_t n) {
+  binary<hypot_lane, math::hypot>(a, b, o, n, [](float x, float y) { return !std::isinf(x) & !std::isinf(y); });
+}
+
 void noise_batch(const float* x, const float* y, const float* z, float* o, size_t n) {
   for (size_t i = 0; i < n; ++i) o[i] = math::noise(x[i], y[i], z[i]);
 }

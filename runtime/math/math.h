@@ -66,6 +66,7 @@ float asin(float a);
 float acos(float a);
 float atan(float a);
 float atan2(float y, float x);
+float hypot(float x, float y);  // Math.hypot of two: +inf if either is infinite (even with a NaN)
 float sinh(float a);
 float cosh(float a);
 float tanh(float a);

@@ -29,6 +29,12 @@ float asin(float a) { return d2f(std::asin(static_cast<double>(a))); }
 float acos(float a) { return d2f(std::acos(static_cast<double>(a))); }
 float atan(float a) { return d2f(std::atan(static_cast<double>(a))); }
 float atan2(float y, float x) { return d2f(std::atan2(static_cast<double>(y), static_cast<double>(x))); }
+// In double the squares are exact and the sum cannot overflow: one rounding, then sqrt, then float.
+float hypot(float x, float y) {
+  if (std::isinf(x) || std::isinf(y)) return INFINITY;
+  double dx = x, dy = y;
+  return d2f(std::sqrt(dx * dx + dy * dy));
+}
 float sinh(float a) { return d2f(std::sinh(static_cast<double>(a))); }
 float cosh(float a) { return d2f(std::cosh(static_cast<double>(a))); }
 float tanh(float a) { return d2f(std::tanh(static_cast<double>(a))); }

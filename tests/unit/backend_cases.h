@@ -37,7 +37,7 @@ inline const std::vector<const char*> kTranscendentalBodies = {
     "return sin(x);", "return cos(x) * y;", "return tan(x);", "return exp(x);", "return log(x);",
     "return log10(x);", "return pow(x, y);", "return atan2(x, y);", "return asin(x);", "return acos(x);",
     "return atan(x);", "return sinh(x);", "return cosh(x);", "return tanh(x);", "return noise(x, y, z);",
-    "return sin(x) + cos(y) * sin(z);"};
+    "return sin(x) + cos(y) * sin(z);", "return hypot(x, y);", "return hypot(x * 1e30, y) - hypot(y, -x);"};
 
 // Programs whose runtime errors depend on the inputs: every batch length must run exactly the
 // points given (the padding of a last, partial group of lanes must not raise an error of its own).

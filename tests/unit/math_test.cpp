@@ -204,6 +204,32 @@ TEST_CASE("math: binary batch twins (pow, atan2)") {
   uint64_t wa = 0;
   for (size_t i = 0; i < a.size(); ++i) wa = std::max(wa, ulps(out[i], math::atan2(a[i], b[i])));
   CHECK(wa <= 2);
+  math::hypot_batch(a.data(), b.data(), out.data(), a.size());
+  uint64_t wh = 0;
+  for (size_t i = 0; i < a.size(); ++i) wh = std::max(wh, ulps(out[i], math::hypot(a[i], b[i])));
+  CHECK(wh == 0);  // the same arithmetic lane by lane
+}
+
+TEST_CASE("math: hypot within 1 ulp, without overflow or underflow; Math.hypot's special cases") {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> any(-100.0f, 100.0f);
+  std::uniform_int_distribution<int> scale(-140, 120);
+  uint64_t w = 0;
+  for (int i = 0; i < 1'000'000; ++i) {
+    float x = std::ldexp(any(rng), scale(rng)), y = std::ldexp(any(rng), scale(rng));
+    w = std::max(w, ulps(math::hypot(x, y), static_cast<float>(hypotl(x, y))));
+  }
+  INFO("worst " << w << " ulp");
+  CHECK(w <= 1);
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  CHECK(math::hypot(3, 4) == 5);
+  CHECK(math::hypot(-3, 4) == 5);
+  CHECK(math::hypot(3e30f, 4e30f) == 5e30f);  // no overflow in the squares
+  CHECK(math::hypot(3e-30f, 4e-30f) == 5e-30f);  // no underflow either
+  CHECK(math::hypot(inf, nan) == inf);
+  CHECK(math::hypot(nan, -inf) == inf);
+  CHECK(std::isnan(math::hypot(nan, 1)));
+  CHECK(math::hypot(0, -0.0f) == 0);
 }
 
 TEST_CASE("math: noise is in [-1, 1], zero on the lattice, continuous, NaN for non-finite input") {

@@ -186,3 +186,21 @@ TEST_CASE("lsp completion: the locals in scope are those of the function the cur
   CHECK_FALSE(in_g.count("beta"));
   CHECK(in_g.count("f"));  // functions everywhere
 }
+
+TEST_CASE("lsp completion in a .wrl: the enclosing node's fields, whatever the space before its brace") {
+  Server s;
+  s.handle_text("{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}");
+  std::string text = "#VRML V2.0 utf8\nFShape   {\n  geo\n  geometry FGeometry\n\n   {\n    res\n  }\n}\n";
+  s.handle({{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
+            {"params", {{"textDocument", {{"uri", "file:///w.wrl"}, {"version", 1}, {"text", text}}}}}});
+  auto labels_at = [&](uint32_t line, uint32_t ch) {
+    json position = {{"line", line}, {"character", ch}};
+    json params = {{"textDocument", {{"uri", "file:///w.wrl"}}}, {"position", position}};
+    auto out = s.handle({{"jsonrpc", "2.0"}, {"id", 2}, {"method", "textDocument/completion"}, {"params", params}});
+    std::set<std::string> labels;
+    for (const auto& item : out.at(0)["result"]["items"]) labels.insert(item["label"].get<std::string>());
+    return labels;
+  };
+  CHECK(labels_at(2, 5) == std::set<std::string>{"geometry"});       // FShape's field, three spaces before '{'
+  CHECK(labels_at(6, 7) == std::set<std::string>{"resolution"});     // FGeometry's, a blank line before '{'
+}

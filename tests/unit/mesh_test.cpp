@@ -268,3 +268,30 @@ TEST_CASE("topology: two closed bodies touching at one vertex are not a 2-manifo
   CHECK_FALSE(w.manifold);
   CHECK(w.euler == 3);  // 7 used vertices - 12 edges + 8 faces
 }
+
+TEST_CASE("mesh: a crossing starts at the linear estimate along its edge, exact for a plane") {
+  // With no refinement step the vertices of f = 0.3 - x lie on the plane x = 0.3 exactly where
+  // the linear estimate puts them; the others close the box on its faces.
+  auto b = test::build("0.3 - x");
+  REQUIRE(b->ok);
+  mesh::KernelField field(*b->kernel, 0);
+  mesh::ImplicitJob job;
+  job.field = &field;
+  job.box = {-1, 1, -1, 1, -1, 1};
+  job.cells = {10, 10, 10};
+  job.refine_steps = 0;
+  mesh::Mesh m;
+  backend::RuntimeError err;
+  REQUIRE(mesh::polygonize_implicit(job, m, err));
+  size_t on_plane = 0;
+  for (const auto& p : m.positions) {
+    bool plane = std::fabs(p[0] - 0.3f) < 1e-5f;
+    bool face = std::fabs(std::fabs(p[0]) - 1) < 1e-5f || std::fabs(std::fabs(p[1]) - 1) < 1e-5f ||
+                std::fabs(std::fabs(p[2]) - 1) < 1e-5f;
+    INFO(p[0] << " " << p[1] << " " << p[2]);
+    REQUIRE((plane || face));
+    on_plane += plane;
+  }
+  CHECK(on_plane > 100);
+  CHECK(mesh::topology(m).watertight);
+}

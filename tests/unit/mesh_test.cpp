@@ -231,6 +231,7 @@ TEST_CASE("topology: a closed tetrahedron, and what breaks each property") {
   open.triangles.pop_back();
   auto o = mesh::topology(open);
   CHECK_FALSE(o.watertight);
+  CHECK_FALSE(o.oriented);  // a boundary edge is used in one direction only
   CHECK(o.boundary_edges == 3);
   CHECK(o.euler == 1);
 

@@ -47,6 +47,14 @@ inline const std::vector<const char*> kInputDependentErrors = {
     "function f(n) { if (n <= 0) return 0; return 1 + f(n - 1); }\n"
     "function FRep(x, y, z, t) { return f(20 / x); }"};
 
+// The budgets those programs run under (small, so their errors come quickly).
+inline backend::Budgets input_dependent_budgets() {
+  backend::Budgets b;
+  b.max_loop_iterations = 100;
+  b.max_call_depth = 50;
+  return b;
+}
+
 // "" when `jit` gives the VM's results for x = 1, 2, ... n (y = z = t = 0) at every batch length
 // n up to `max_n`, else what differed.
 inline std::string partial_group_mismatch(const backend::Kernel& vm, const backend::Kernel& jit, size_t max_n) {

@@ -88,9 +88,7 @@ TEST_CASE("llvm: recursive functions run under the caller's lanes, with the VM's
 }
 
 TEST_CASE("llvm: a partial last group runs only the points given (errors that depend on the inputs)") {
-  backend::Budgets budgets;
-  budgets.max_loop_iterations = 100;
-  budgets.max_call_depth = 50;
+  backend::Budgets budgets = test::input_dependent_budgets();
   for (const char* text : test::kInputDependentErrors) {
     INFO(text);
     auto vm = test::build(text, "", true, budgets, "vm");

@@ -97,9 +97,7 @@ TEST_CASE("sse: every batch length, the one-point call, and several outputs") {
 }
 
 TEST_CASE("sse: a partial last group runs only the points given (errors that depend on the inputs)") {
-  backend::Budgets budgets;
-  budgets.max_loop_iterations = 100;
-  budgets.max_call_depth = 50;
+  backend::Budgets budgets = test::input_dependent_budgets();
   for (const char* text : test::kInputDependentErrors) {
     INFO(text);
     auto vm = test::build(text, "", true, budgets, "vm");

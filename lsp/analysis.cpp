@@ -49,6 +49,11 @@ int find_function(const frontend::SemaResult& sema, const std::string& name) {
   return i >= 0 ? i : sema.function_index(name, true);
 }
 
+// A call of the user function `name` (Math.NAME always calls the built-in).
+static bool calls(const frontend::Expr& ex, const std::string& name) {
+  return ex.kind == frontend::ExprKind::Call && ex.name == name && !ex.builtin_only;
+}
+
 std::vector<frontend::Span> occurrences(const Analysis& a, const std::string& text, size_t offset) {
   size_t b, e;
   std::vector<frontend::Span> out;
@@ -62,12 +67,13 @@ std::vector<frontend::Span> occurrences(const Analysis& a, const std::string& te
   bool on_function = false;
   if (f >= 0 && sema.functions[static_cast<size_t>(f)].decl) {
     on_function = covers(sema.functions[static_cast<size_t>(f)].decl->name_span);
-    for (const auto& ex : prog.expr_arena) on_function |= ex->kind == frontend::ExprKind::Call && ex->name == word && covers(ex->name_span);
+    for (const auto& ex : prog.expr_arena)
+      on_function |= calls(*ex, word) && covers(ex->name_span);
   }
   if (on_function) {
     out.push_back(sema.functions[static_cast<size_t>(f)].decl->name_span);
     for (const auto& ex : prog.expr_arena)
-      if (ex->kind == frontend::ExprKind::Call && ex->name == word) out.push_back(ex->name_span);
+      if (calls(*ex, word)) out.push_back(ex->name_span);
     return out;
   }
   // A variable: the symbol of the name under the cursor, then everything that resolves to it.

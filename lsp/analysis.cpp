@@ -8,7 +8,7 @@
 
 namespace fscript::lsp {
 
-std::shared_ptr<const Analysis> analyze(const Document& d) {
+std::shared_ptr<const Analysis> analyze_document(const Document& d) {
   if (d.analysis && d.analysed_revision == d.revision) return d.analysis;
   auto a = std::make_shared<Analysis>();
   frontend::load_script(std::make_unique<frontend::SourceFile>(d.uri, d.text), a->diag, a->script);

@@ -16,7 +16,7 @@ struct Analysis {
 };
 
 // The document's analysis, made once per revision of its text and shared by the features.
-std::shared_ptr<const Analysis> analyze(const Document& d);
+std::shared_ptr<const Analysis> analyze_document(const Document& d);
 
 // The identifier around byte `offset` ([begin, end)); false when there is none.
 bool word_at(const std::string& text, size_t offset, size_t& begin, size_t& end);

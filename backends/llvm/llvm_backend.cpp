@@ -14,7 +14,7 @@ std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, con
                     " loops " + std::to_string(budgets.max_loop_iterations) + " depth " +
                     std::to_string(budgets.max_call_depth) + " elements " + std::to_string(budgets.max_array_elements);
   if (std::shared_ptr<Program> hit = cached(key)) return hit;
-  if (!lower(m, width, budgets, bounded, lowered, error)) return nullptr;
+  if (!lower_to_llvm(m, width, budgets, bounded, lowered, error)) return nullptr;
   return llvmjit::compile(std::move(lowered), key, compile_ms, error);
 }
 
@@ -66,7 +66,7 @@ bool LlvmKernel::eval(const float* inputs, float* outputs, backend::RuntimeError
 
 std::string kernel_text(const ir::Module& m, const backend::Budgets& budgets, bool assembly, std::string& error) {
   Lowered lowered;
-  if (!lower(m, host_width(), budgets, true, lowered, error)) return "";
+  if (!lower_to_llvm(m, host_width(), budgets, true, lowered, error)) return "";
   std::string head = "; " + std::to_string(host_width()) + " lanes" +
                      (lowered.param_bound > 0 ? "; inputs finite with |x| <= " + std::to_string(static_cast<int>(lowered.param_bound)) +
                                                     " (other batches run the general code)"

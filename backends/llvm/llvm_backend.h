@@ -50,7 +50,7 @@ class LlvmBackend : public backend::Backend {
   mutable double last_ms_ = 0;
 };
 
-// Compiles the module's kernel at `width` lanes; `bounded` as in lower().
+// Compiles the module's kernel at `width` lanes; `bounded` as in lower_to_llvm().
 std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, const backend::Budgets& budgets,
                                         bool bounded, Lowered& lowered, double& compile_ms, std::string& error);
 

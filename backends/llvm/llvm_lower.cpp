@@ -40,9 +40,9 @@ struct Shared {
 
 enum CtxField : unsigned { kGlobals, kCounters, kArrays, kDepth, kStackLimit };
 
-class FnLower {
+class LlvmFunctionLowering {
  public:
-  FnLower(Shared& s, const ir::Function& fn, llvm::Function* out, bool callee, uint32_t local_arrays,
+  LlvmFunctionLowering(Shared& s, const ir::Function& fn, llvm::Function* out, bool callee, uint32_t local_arrays,
           std::vector<ir::Range> ranges)
       : s_(s), fn_(fn), f_(out), b_(s.c), callee_(callee), local_arrays_(local_arrays), ranges_(std::move(ranges)) {}
 
@@ -530,7 +530,7 @@ Lowered::Lowered() = default;
 Lowered::~Lowered() = default;
 Lowered::Lowered(Lowered&&) noexcept = default;
 
-bool lower(const ir::Module& module, uint32_t width, const backend::Budgets& budgets, bool bounded, Lowered& out,
+bool lower_to_llvm(const ir::Module& module, uint32_t width, const backend::Budgets& budgets, bool bounded, Lowered& out,
            std::string& error) {
   backend::JitProgram jp;
   if (!backend::prepare_program(module, jp, error)) return false;
@@ -567,7 +567,7 @@ bool lower(const ir::Module& module, uint32_t width, const backend::Budgets& bud
     std::vector<ir::Range> ranges;
     if (f == kernel && bounded && (out.param_bound = ir::best_param_bound(fn)) > 0)
       ranges = ir::value_ranges(fn, out.param_bound);
-    FnLower(s, fn, s.fns[static_cast<size_t>(f)], f != kernel, static_cast<uint32_t>(out.array_names.size()),
+    LlvmFunctionLowering(s, fn, s.fns[static_cast<size_t>(f)], f != kernel, static_cast<uint32_t>(out.array_names.size()),
             std::move(ranges))
         .run();
     out.array_names.insert(out.array_names.end(), fn.arrays.begin(), fn.arrays.end());

@@ -19,7 +19,7 @@ bool load_script(std::unique_ptr<SourceFile> file, DiagnosticSink& diag, Script&
 
 std::unique_ptr<ir::Module> build_module(const Script& s, const KernelSpec& spec, DiagnosticSink& diag,
                                          const BuildOptions& opts, std::string& error) {
-  auto m = lower(*s.prog, s.sema, spec, *s.file, diag);
+  auto m = lower_to_ir(*s.prog, s.sema, spec, *s.file, diag);
   if (opts.verify_each) {
     error = ir::verify(*m);
     if (!error.empty()) {

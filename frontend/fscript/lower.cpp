@@ -61,9 +61,9 @@ struct Shared {
   int value_slot = -1;  // "$value" for expression-form scripts
 };
 
-class FnLowerer {
+class AstLowering {
  public:
-  FnLowerer(Shared& sh, ir::Function* fn, int owner)
+  AstLowering(Shared& sh, ir::Function* fn, int owner)
       : sh_(sh), fn_(fn), owner_(owner), ssa_(*fn, [this](int var) { return undefined(var); }) {
     cur_ = fn_->add_block();
     ssa_.seal(cur_);
@@ -531,7 +531,7 @@ class FnLowerer {
 
 }  // namespace
 
-std::unique_ptr<ir::Module> lower(const Program& prog, const SemaResult& sema, const KernelSpec& spec,
+std::unique_ptr<ir::Module> lower_to_ir(const Program& prog, const SemaResult& sema, const KernelSpec& spec,
                                   const SourceFile& file, DiagnosticSink& diag) {
   auto mod = std::make_unique<ir::Module>();
   mod->globals = sema.globals;
@@ -548,7 +548,7 @@ std::unique_ptr<ir::Module> lower(const Program& prog, const SemaResult& sema, c
   for (size_t i = 0; i < sema.functions.size(); ++i) {
     ir::Function* fn = mod->functions[i].get();
     fn->arrays = sema.local_arrays[i + 1];
-    FnLowerer(sh, fn, static_cast<int>(i)).lower_function(sema.functions[i]);
+    AstLowering(sh, fn, static_cast<int>(i)).lower_function(sema.functions[i]);
   }
   auto k = std::make_unique<ir::Function>();
   k->name = kKernelName;
@@ -558,7 +558,7 @@ std::unique_ptr<ir::Module> lower(const Program& prog, const SemaResult& sema, c
   k->kernel = true;
   ir::Function* kp = k.get();
   mod->functions.push_back(std::move(k));
-  FnLowerer(sh, kp, -1).lower_kernel(spec);
+  AstLowering(sh, kp, -1).lower_kernel(spec);
   for (auto& f : mod->functions) f->renumber();
   return mod;
 }

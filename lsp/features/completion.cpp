@@ -75,7 +75,7 @@ json completion(const Document& d, const json& params) {
   for (int i = 0; i < frontend::kNumBuiltins; ++i)
     add(frontend::kBuiltins[i].name, kFunctionKind, frontend::kBuiltins[i].signature);
   if (!d.scene) {
-    auto a = analyze(d);
+    auto a = analyze_document(d);
     // Locals only of the function the cursor is in: the variables in scope there.
     int here = -1;
     for (size_t f = 0; f < a->script.sema.functions.size(); ++f) {

@@ -35,7 +35,7 @@ json diagnostics(const Document& d) {
   if (d.scene) {
     frontend::check_scene(d.uri, d.text, sink);
   } else {  // check_script's steps, on the analysis the other features share
-    auto a = analyze(d);
+    auto a = analyze_document(d);
     all = a->diag.all();
     if (!a->diag.has_errors()) frontend::lowering_warnings(a->script, sink);
   }

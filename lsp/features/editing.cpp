@@ -29,7 +29,7 @@ bool valid_name(const std::string& n) {
 json references(const Document& d, const json& params) {
   json list = json::array();
   if (d.scene) return list;
-  auto a = analyze(d);
+  auto a = analyze_document(d);
   for (const auto& s : occurrences(*a, d.text, offset_of(d.text, position_param(params))))
     list.push_back({{"uri", d.uri}, {"range", range_of_span(d.text, s.begin, s.end)}});
   return list;
@@ -39,7 +39,7 @@ json rename(const Document& d, const json& params) {
   std::string name = params.at("newName").get<std::string>();
   if (!valid_name(name)) return {{"__error", -32602}, {"message", "'" + name + "' is not a name a script can use"}};
   if (d.scene) return nullptr;
-  auto a = analyze(d);
+  auto a = analyze_document(d);
   json edits = json::array();
   for (const auto& s : occurrences(*a, d.text, offset_of(d.text, position_param(params))))
     edits.push_back({{"range", range_of_span(d.text, s.begin, s.end)}, {"newText", name}});
@@ -81,7 +81,7 @@ json signature_help(const Document& d, const json& params) {
       p = q == std::string::npos ? q : q + 1;
     }
   } else if (!d.scene) {
-    auto a = analyze(d);
+    auto a = analyze_document(d);
     int f = find_function(a->script.sema, name);
     if (f < 0) return nullptr;
     const auto& fi = a->script.sema.functions[static_cast<size_t>(f)];
@@ -102,7 +102,7 @@ json signature_help(const Document& d, const json& params) {
 json folding_ranges(const Document& d) {
   json list = json::array();
   if (d.scene) return list;
-  auto a = analyze(d);
+  auto a = analyze_document(d);
   std::set<std::pair<uint32_t, uint32_t>> seen;
   auto add = [&](uint32_t begin, uint32_t end, const char* kind) {
     Position p = position_of(d.text, begin), q = position_of(d.text, end > begin ? end - 1 : begin);

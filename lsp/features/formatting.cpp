@@ -7,7 +7,7 @@ namespace fscript::lsp {
 
 json formatting(const Document& d) {
   if (d.scene) return json::array();
-  auto a = analyze(d);
+  auto a = analyze_document(d);
   if (a->diag.has_errors()) return nullptr;  // LSP: null when the document cannot be formatted
   std::string text = frontend::format_program(*a->script.prog, d.text);
   if (text == d.text) return json::array();

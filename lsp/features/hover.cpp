@@ -22,7 +22,7 @@ json hover(const Document& d, const json& params) {
   size_t b, e;
   std::string word;
   if (!name_at(d, params, b, e, word)) return nullptr;
-  auto a = analyze(d);
+  auto a = analyze_document(d);
   const auto& sema = a->script.sema;
   json result;
   if (int f = find_function(sema, word); f >= 0) {

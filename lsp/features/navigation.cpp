@@ -10,7 +10,7 @@ json definition(const Document& d, const json& params) {
   size_t b, e;
   std::string word;
   if (!name_at(d, params, b, e, word)) return nullptr;
-  auto a = analyze(d);
+  auto a = analyze_document(d);
   const auto& sema = a->script.sema;
   frontend::Span target{0, 0};
   bool found = false;
@@ -30,7 +30,7 @@ json definition(const Document& d, const json& params) {
 json document_symbols(const Document& d) {
   json list = json::array();
   if (d.scene) return list;
-  auto a = analyze(d);
+  auto a = analyze_document(d);
   const auto& sema = a->script.sema;
   constexpr int kFunctionKind = 12, kVariableKind = 13;
   for (const auto& f : sema.functions) {

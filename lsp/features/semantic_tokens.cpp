@@ -51,7 +51,7 @@ json semantic_tokens_legend() {
 json semantic_tokens(const Document& d) {
   json data = json::array();
   if (d.scene) return {{"data", data}};
-  auto a = analyze(d);
+  auto a = analyze_document(d);
   frontend::DiagnosticSink ignored;
   frontend::SourceFile file(d.uri, d.text);
   frontend::LexResult lexed = frontend::lex(file, ignored);

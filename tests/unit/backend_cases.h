@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "backends/backend.h"
+#include "tests/unit/helpers.h"
 
 namespace fscript::test {
 
@@ -69,6 +70,25 @@ inline std::string partial_group_mismatch(const backend::Kernel& vm, const backe
     if (!jit.eval_batch(in, ob, n, eb)) return "n = " + std::to_string(n) + ": " + eb.message;
     for (size_t i = 0; i < n; ++i)
       if (!same(a[i], b[i])) return "n = " + std::to_string(n) + ": point " + std::to_string(i) + " differs";
+  }
+  return "";
+}
+
+// "" when `k` (with a call budget of at least 99,001) evaluates 99,000 nested calls of the FRep
+// argument's recursion to 99,000 on a thread of 1 MiB (the guard stops the generated code, which
+// runs again on a stack sized for the budget), of 64 MiB and of 1 GiB, as under any `ulimit -s`;
+// else what went wrong.
+inline std::string deep_recursion_mismatch(const backend::Kernel& k) {
+  for (size_t stack : {size_t{1} << 20, size_t{64} << 20, size_t{1} << 30}) {
+    backend::RuntimeError err;
+    bool ok = false;
+    float r = 0;
+    on_thread_with_stack(stack, [&] {
+      float p[4] = {99000, 0, 0, 0};
+      ok = k.eval(p, &r, err);
+    });
+    if (!ok || r != 99000.0f)
+      return "a thread of " + std::to_string(stack >> 20) + " MiB: " + (ok ? std::to_string(r) : err.message);
   }
   return "";
 }

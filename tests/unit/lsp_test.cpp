@@ -164,20 +164,23 @@ TEST_CASE("lsp fuzz: random and mutated byte streams through the transport and t
   CHECK(requests > 100);  // enough requests come through whole to be checked
 }
 
+// The labels the server offers for completion at (line, ch) of the open document `uri`.
+static std::set<std::string> completion_labels(Server& s, const std::string& uri, uint32_t line, uint32_t ch) {
+  json position = {{"line", line}, {"character", ch}};
+  json params = {{"textDocument", {{"uri", uri}}}, {"position", position}};
+  auto out = s.handle({{"jsonrpc", "2.0"}, {"id", 2}, {"method", "textDocument/completion"}, {"params", params}});
+  std::set<std::string> labels;
+  for (const auto& item : out.at(0)["result"]["items"]) labels.insert(item["label"].get<std::string>());
+  return labels;
+}
+
 TEST_CASE("lsp completion: the locals in scope are those of the function the cursor is in") {
   Server s;
   s.handle_text("{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}");
   std::string text = "function f(alpha) {\n  var beta = alpha;\n  return beta;\n}\nfunction g(gamma) {\n  return gamma;\n}\n";
   s.handle({{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
             {"params", {{"textDocument", {{"uri", "file:///s.fs"}, {"version", 1}, {"text", text}}}}}});
-  auto labels_at = [&](uint32_t line, uint32_t ch) {
-    json position = {{"line", line}, {"character", ch}};
-    json params = {{"textDocument", {{"uri", "file:///s.fs"}}}, {"position", position}};
-    auto out = s.handle({{"jsonrpc", "2.0"}, {"id", 2}, {"method", "textDocument/completion"}, {"params", params}});
-    std::set<std::string> labels;
-    for (const auto& item : out.at(0)["result"]["items"]) labels.insert(item["label"].get<std::string>());
-    return labels;
-  };
+  auto labels_at = [&](uint32_t line, uint32_t ch) { return completion_labels(s, "file:///s.fs", line, ch); };
   auto in_f = labels_at(2, 2), in_g = labels_at(5, 2);
   CHECK(in_f.count("alpha"));
   CHECK(in_f.count("beta"));
@@ -193,14 +196,7 @@ TEST_CASE("lsp completion in a .wrl: the enclosing node's fields, whatever the s
   std::string text = "#VRML V2.0 utf8\nFShape   {\n  geo\n  geometry FGeometry\n\n   {\n    res\n  }\n}\n";
   s.handle({{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
             {"params", {{"textDocument", {{"uri", "file:///w.wrl"}, {"version", 1}, {"text", text}}}}}});
-  auto labels_at = [&](uint32_t line, uint32_t ch) {
-    json position = {{"line", line}, {"character", ch}};
-    json params = {{"textDocument", {{"uri", "file:///w.wrl"}}}, {"position", position}};
-    auto out = s.handle({{"jsonrpc", "2.0"}, {"id", 2}, {"method", "textDocument/completion"}, {"params", params}});
-    std::set<std::string> labels;
-    for (const auto& item : out.at(0)["result"]["items"]) labels.insert(item["label"].get<std::string>());
-    return labels;
-  };
+  auto labels_at = [&](uint32_t line, uint32_t ch) { return completion_labels(s, "file:///w.wrl", line, ch); };
   CHECK(labels_at(2, 5) == std::set<std::string>{"geometry"});       // FShape's field, three spaces before '{'
   CHECK(labels_at(6, 7) == std::set<std::string>{"resolution"});     // FGeometry's, a blank line before '{'
 }

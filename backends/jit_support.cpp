@@ -11,6 +11,7 @@
 #include "backends/runtime_errors.h"
 #include "ir/analysis.h"
 #include "ir/passes/passes.h"
+#include "runtime/support/big_stack.h"
 
 namespace fscript::backend {
 
@@ -89,25 +90,11 @@ uintptr_t stack_limit() {
 }
 
 uint64_t on_budget_stack(uint64_t (*thunk)(void*), void* ctx, uint64_t fallback) {
-  // 1 GiB: kCallDepthCeiling frames of up to 10 KiB (the widest vector spills) with room to spare.
-  constexpr size_t kBytes = size_t{1} << 30;
-  struct Job {
-    uint64_t (*thunk)(void*);
-    void* ctx;
-    uint64_t result;
-  } job{thunk, ctx, fallback};
-  pthread_attr_t attr;
-  pthread_t thread;
-  auto run = [](void* p) -> void* {
-    auto* j = static_cast<Job*>(p);
-    j->result = j->thunk(j->ctx);
-    return nullptr;
-  };
-  bool made = pthread_attr_init(&attr) == 0 && pthread_attr_setstacksize(&attr, kBytes) == 0 &&
-              pthread_create(&thread, &attr, run, &job) == 0;
-  pthread_attr_destroy(&attr);
-  if (made) pthread_join(thread, nullptr);
-  return job.result;
+  // 1 GiB (the default): kCallDepthCeiling frames of up to 10 KiB (the widest vector spills) with
+  // room to spare. If no such thread can be made the thunk runs here and overflows its guard again.
+  uint64_t result = fallback;
+  support::run_with_big_stack([&] { result = thunk(ctx); });
+  return result;
 }
 
 extern "C" uint32_t fs_ticks_carry(int32_t* counters, uint64_t budget) {

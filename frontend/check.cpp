@@ -1,25 +1,21 @@
 // Whole-file checking shared by `fscript check` and the language server.
 #include "frontend/check.h"
 
-#include "frontend/fscript/compiler.h"
 #include "frontend/fscript/embedded.h"
+#include "frontend/fscript/entry.h"
+#include "frontend/fscript/lower.h"
+#include "frontend/fscript/script.h"
 #include "frontend/vrml/scene_scripts.h"
 #include "frontend/vrml/vrml_parser.h"
 
 namespace fscript::frontend {
 
-namespace {
-
-}  // namespace
-
-// Lowering too, for its warnings (unoptimised: checking only).
+// Lowering too, for its warnings (checking only: nothing is optimised or compiled).
 void lowering_warnings(const Script& s, DiagnosticSink& diag) {
   KernelSpec spec;
   std::string err;
   if (!default_spec(s.sema, spec, err)) spec = {};
-  BuildOptions bo;
-  bo.optimize = false;
-  build_module(s, spec, diag, bo, err);
+  lower_to_ir(*s.prog, s.sema, spec, *s.file, diag);
 }
 
 namespace {

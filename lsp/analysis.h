@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "frontend/fscript/compiler.h"
+#include "frontend/fscript/script.h"
 #include "lsp/documents.h"
 
 namespace fscript::lsp {

@@ -2,14 +2,14 @@
 // Runs on a thread with a large stack, like fscript: deeply nested input never overflows it.
 #include <iostream>
 
-#include "frontend/big_stack.h"
+#include "runtime/support/big_stack.h"
 #include "lsp/server.h"
 #include "lsp/transport.h"
 
 int main() {
   std::ios::sync_with_stdio(false);
   int rc = 1;
-  fscript::frontend::run_with_big_stack([&] {
+  fscript::support::run_with_big_stack([&] {
     fscript::lsp::Server server;
     std::string body, error;
     for (;;) {

@@ -4,6 +4,7 @@
 #include <zlib.h>
 
 #include "frontend/source.h"
+#include "runtime/support/files.h"
 
 namespace fscript::vrml {
 
@@ -35,7 +36,7 @@ bool gunzip(const std::string& data, std::string& out, std::string& error) {
 
 bool read_scene_text(const std::string& path, std::string& text, std::string& error) {
   std::string raw;
-  if (!frontend::read_file(path, raw, error)) {
+  if (!support::read_file(path, raw, error)) {
     error = "cannot read the file: " + error;
     return false;
   }

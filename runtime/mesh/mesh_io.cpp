@@ -1,7 +1,7 @@
 // Mesh writers.
 #include "runtime/mesh/mesh_io.h"
 
-#include "frontend/source.h"
+#include "runtime/support/files.h"
 #include "runtime/mesh/gltf.h"
 
 #include <cmath>
@@ -105,7 +105,7 @@ std::string encode_mesh(const Mesh& m, MeshFormat f) {
 }
 
 bool write_mesh(const Mesh& m, MeshFormat f, const std::string& path, std::string& error) {
-  return frontend::write_file_atomic(path, encode_mesh(m, f), error);
+  return support::write_file_atomic(path, encode_mesh(m, f), error);
 }
 
 }  // namespace fscript::mesh

@@ -8,7 +8,7 @@
 #include <map>
 #include <sstream>
 
-#include "frontend/source.h"
+#include "runtime/support/files.h"
 
 namespace fscript::mesh {
 namespace {
@@ -238,7 +238,7 @@ bool parse_mesh(const std::string& bytes, const std::string& name, Mesh& out, st
 
 bool read_mesh(const std::string& path, Mesh& out, std::string& error) {
   std::string bytes;
-  if (!frontend::read_file(path, bytes, error)) {
+  if (!support::read_file(path, bytes, error)) {
     error = "cannot read the file: " + error;
     return false;
   }

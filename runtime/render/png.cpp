@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "frontend/source.h"
+#include "runtime/support/files.h"
 
 namespace fscript::render {
 
@@ -49,7 +49,7 @@ bool write_png(const std::string& path, uint32_t width, uint32_t height, int cha
     return false;
   }
   std::string bytes;
-  return encode(width, height, channels, pixels, bytes, error) && frontend::write_file_atomic(path, bytes, error);
+  return encode(width, height, channels, pixels, bytes, error) && support::write_file_atomic(path, bytes, error);
 }
 
 }  // namespace fscript::render

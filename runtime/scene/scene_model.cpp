@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "frontend/fscript/compiler.h"
 #include "frontend/fscript/embedded.h"
 #include "frontend/fscript/entry.h"
 #include "frontend/vrml/instantiate.h"
+#include "runtime/driver/driver.h"
 
 namespace fscript::scene {
 
@@ -130,27 +130,32 @@ class Builder {
     frontend::LineCol lc = slot ? scene_.file->position(v->str_spans[0].begin) : frontend::LineCol{n.span.begin, 1};
     auto file = std::make_unique<frontend::SourceFile>(scene_.file->path(), v->strs[0], lc.line, lc.col);
     file->set_outer_lines(lines_);
-    frontend::Script s;
-    if (!frontend::load_script(std::move(file), diag_, s, extra)) return false;
-    frontend::KernelSpec spec;
-    std::string err;
-    bool ok = role == Role::Point       ? frontend::point_spec(s.sema, spec, out.rgb, err)
-              : role == Role::Operation ? frontend::named_inputs_spec(s.sema, operation_inputs(), spec, err)
-                                        : frontend::default_spec(s.sema, spec, err);
-    if (implicit) *implicit = s.sema.entry.frep >= 0 || s.sema.form == frontend::ScriptForm::Expression;
-    if (ok && role == Role::Geometry && !*implicit) ok = geometry_outputs(s.sema, spec, err);
-    if (!ok) {
-      diag_.error(*s.file, {0, 1}, "'" + std::string(field) + "' of " + n.type + ": " + err);
+    auto entry = [&](const frontend::SemaResult& sema, frontend::KernelSpec& spec, std::string& err) {
+      bool ok = role == Role::Point       ? frontend::point_spec(sema, spec, out.rgb, err)
+                : role == Role::Operation ? frontend::named_inputs_spec(sema, operation_inputs(), spec, err)
+                                          : frontend::default_spec(sema, spec, err);
+      if (implicit) *implicit = sema.entry.frep >= 0 || sema.form == frontend::ScriptForm::Expression;
+      if (ok && role == Role::Geometry && !*implicit) ok = geometry_outputs(sema, spec, err);
+      return ok;
+    };
+    driver::Compiled c;
+    driver::Outcome r = driver::compile(std::move(file), entry, options(extra), diag_, c);
+    if (r.stage == driver::Stage::Source) return false;
+    if (!r.ok()) {
+      std::string what = r.stage == driver::Stage::Entry ? "'" + std::string(field) + "' of " + n.type + ": "
+                                                         : "cannot compile '" + std::string(field) + "': ";
+      diag_.error(*c.script.file, {0, 1}, what + r.error);
       return false;
     }
-    auto m = frontend::build_module(s, spec, diag_, {}, err);
-    auto be = backend::make_backend(opts_.backend);
-    if (!m || !be || !(out.kernel = be->compile(*m, opts_.budgets, err))) {
-      diag_.error(*s.file, {0, 1}, "cannot compile '" + std::string(field) + "': " + err);
-      return false;
-    }
+    out.kernel = std::move(c.kernel);
     out.field = field;
     return true;
+  }
+
+  driver::CompileOptions options(const std::vector<std::string>& extra = {}) const {
+    driver::CompileOptions o = opts_.compile;
+    o.extra_globals = extra;
+    return o;
   }
 
   // An affine field written as FScript components ("0.5*t, 0, 0"): one kernel per component.
@@ -184,17 +189,17 @@ class Builder {
   bool compile_text(const frontend::EmbeddedScript& e, CompiledField& out) {
     auto file = std::make_unique<frontend::SourceFile>(scene_.file->path(), e.text, e.line, e.col);
     file->set_outer_lines(lines_);
-    frontend::Script s;
-    if (!frontend::load_script(std::move(file), diag_, s)) return false;
-    frontend::KernelSpec spec;
-    std::string err;
-    if (!frontend::point_spec(s.sema, spec, out.rgb, err)) {
-      diag_.error(*s.file, {0, 1}, err);
+    auto entry = [&](const frontend::SemaResult& sema, frontend::KernelSpec& spec, std::string& err) {
+      return frontend::point_spec(sema, spec, out.rgb, err);
+    };
+    driver::Compiled c;
+    driver::Outcome r = driver::compile(std::move(file), entry, options(), diag_, c);
+    if (r.stage == driver::Stage::Source) return false;
+    if (!r.ok()) {
+      diag_.error(*c.script.file, {0, 1}, r.stage == driver::Stage::Entry ? r.error : "cannot compile '" + e.field + "': " + r.error);
       return false;
     }
-    auto m = frontend::build_module(s, spec, diag_, {}, err);
-    auto be = backend::make_backend(opts_.backend);
-    if (!m || !be || !(out.kernel = be->compile(*m, opts_.budgets, err))) return false;
+    out.kernel = std::move(c.kernel);
     out.field = e.field;
     return true;
   }

@@ -12,6 +12,7 @@
 #include "backends/backend.h"
 #include "frontend/diagnostics.h"
 #include "frontend/vrml/scene_graph.h"
+#include "runtime/driver/driver.h"
 #include "runtime/scene/time_model.h"
 
 namespace fscript::scene {
@@ -77,8 +78,12 @@ struct Group {
 };
 
 struct ModelOptions {
-  std::string backend = "vm";
-  backend::Budgets budgets;
+  // Every script of the scene compiles with these (the VM unless the caller says otherwise).
+  driver::CompileOptions compile = [] {
+    driver::CompileOptions o;
+    o.backend = "vm";
+    return o;
+  }();
   double now = 0;                   // --time
   std::optional<double> fraction;   // --fraction: every node as if set_fraction had been received
   double resolution_scale = 1;

@@ -18,8 +18,8 @@
 #include <sstream>
 
 #include "backends/backend.h"
-#include "frontend/big_stack.h"
-#include "frontend/fscript/compiler.h"
+#include "runtime/support/big_stack.h"
+#include "runtime/driver/driver.h"
 #include "ir/passes/passes.h"
 #include "ir/text.h"
 #include "ir/verifier.h"
@@ -198,9 +198,9 @@ void check_ir_blocks(Case& c, const frontend::Script& s, const frontend::KernelS
   for (auto& b : c.irs) {
     frontend::DiagnosticSink quiet;
     std::string err;
-    frontend::BuildOptions bo;
+    driver::BuildOptions bo;
     bo.optimize = false;
-    auto m = frontend::build_module(s, spec, quiet, bo, err);
+    auto m = driver::build_module(s, spec, quiet, bo, err);
     REQUIRE(m);
     ir::PassOptions po;
     po.verify_each = true;
@@ -248,10 +248,10 @@ void check_run(const Case& c, const frontend::Script& s, const RunLine& r) {
   REQUIRE(have);
   for (bool optimize : {false, true}) {
     frontend::DiagnosticSink quiet;
-    frontend::BuildOptions bo;
+    driver::BuildOptions bo;
     bo.optimize = optimize;
     bo.verify_each = true;
-    auto m = frontend::build_module(s, spec, quiet, bo, err);
+    auto m = driver::build_module(s, spec, quiet, bo, err);
     INFO(err);
     REQUIRE(m);
     for (const auto& name : backend::available_backends()) {
@@ -292,10 +292,10 @@ void run_case(const fs::path& p, bool bless) {
   if (!frontend::default_spec(s.sema, spec, err)) spec = {};
   std::unique_ptr<ir::Module> m;
   if (ok) {
-    frontend::BuildOptions bo;
+    driver::BuildOptions bo;
     bo.optimize = false;
     bo.verify_each = true;
-    m = frontend::build_module(s, spec, sink, bo, err);
+    m = driver::build_module(s, spec, sink, bo, err);
     INFO(c.path << ": " << err);
     REQUIRE(m);
   }
@@ -325,7 +325,7 @@ TEST_CASE("golden cases") {
   for (const auto& f : files) {
     DYNAMIC_SECTION(f.lexically_relative(FS_GOLDEN_DIR).string()) {
       // The calling thread waits, so Catch2 sees one thread at a time; failures are rethrown here.
-      frontend::run_with_big_stack([&] { run_case(f, bless); });
+      support::run_with_big_stack([&] { run_case(f, bless); });
     }
   }
 }

@@ -4,13 +4,14 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 
-#include "frontend/fscript/compiler.h"
+#include "runtime/driver/driver.h"
 #include "frontend/fscript/embedded.h"
 #include "frontend/vrml/scene_scripts.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "tests/support/skip.h"
 #include "tests/unit/backend_cases.h"
 #include "tests/unit/helpers.h"
+#include "runtime/support/files.h"
 
 using namespace fscript;
 namespace fsys = std::filesystem;
@@ -24,7 +25,7 @@ TEST_CASE("corpus: every script compiles and runs") {
   for (const auto& e : fsys::recursive_directory_iterator(FS_CORPUS_DIR)) {
     if (e.path().extension() != ".wrl") continue;
     std::string text, err;
-    REQUIRE(frontend::read_file(e.path().string(), text, err));
+    REQUIRE(support::read_file(e.path().string(), text, err));
     std::vector<std::string> lines = frontend::split_lines(text);
     frontend::DiagnosticSink vdiag;
     vrml::Scene scene;
@@ -50,7 +51,7 @@ TEST_CASE("corpus: every script compiles and runs") {
       REQUIRE(ok);
       frontend::KernelSpec spec;
       REQUIRE(frontend::default_spec(script.sema, spec, err));
-      auto m = frontend::build_module(script, spec, diag, {}, err);
+      auto m = driver::build_module(script, spec, diag, {}, err);
       REQUIRE(m);
       // On every backend this build has, each giving the VM's bits (NaN for NaN) at each point.
       std::vector<float> reference;

@@ -12,7 +12,7 @@
 #include <random>
 #include <sstream>
 
-#include "frontend/big_stack.h"
+#include "runtime/support/big_stack.h"
 #include "ir/verifier.h"
 #include "tests/unit/helpers.h"
 
@@ -119,7 +119,7 @@ TEST_CASE("fuzz: mutated programs never crash the compiler or the VM") {
   int rounds = rounds_env ? std::atoi(rounds_env) : 400;
   std::mt19937 rng(seed_env ? static_cast<unsigned>(std::atoi(seed_env)) : 2026u);
   Tally tally;
-  frontend::run_with_big_stack([&] {
+  support::run_with_big_stack([&] {
     for (int round = 0; round < rounds; ++round)
       for (const auto& seed : seeds) compile_and_run(mutate(seed, rng), tally);
   });

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "backends/backend.h"
-#include "frontend/fscript/compiler.h"
+#include "runtime/driver/driver.h"
 
 namespace fscript::test {
 
@@ -30,10 +30,10 @@ inline std::unique_ptr<Built> build(const std::string& text, const std::string& 
   bool have = entry.empty() ? frontend::default_spec(b->script.sema, spec, err)
                             : frontend::function_spec(b->script.sema, entry, spec, err);
   if (!have) return b;
-  frontend::BuildOptions bo;
+  driver::BuildOptions bo;
   bo.optimize = optimize;
   bo.verify_each = true;
-  b->module = frontend::build_module(b->script, spec, b->diag, bo, err);
+  b->module = driver::build_module(b->script, spec, b->diag, bo, err);
   if (!b->module) return b;
   b->kernel = backend::make_backend(be)->compile(*b->module, budgets, err);
   b->ok = b->kernel != nullptr;

@@ -1,7 +1,7 @@
 // Parser: precedence (checked through the formatter), recovery, limits.
 #include <catch2/catch.hpp>
 
-#include "frontend/big_stack.h"
+#include "runtime/support/big_stack.h"
 #include "frontend/fscript/formatter.h"
 #include "frontend/fscript/parser.h"
 
@@ -52,7 +52,7 @@ TEST_CASE("parser: 100,000-deep nesting is one clear error, not a crash") {
   std::string s = "a = " + std::string(100000, '(') + "1" + std::string(100000, ')') + ";";
   SourceFile f("t.fs", s);
   DiagnosticSink d;
-  run_with_big_stack([&] { parse(f, d); });
+  fscript::support::run_with_big_stack([&] { parse(f, d); });
   REQUIRE(d.error_count() == 1);
   CHECK(d.all()[0].message.find("nesting deeper than") != std::string::npos);
 }
@@ -64,7 +64,7 @@ TEST_CASE("parser: a 1 MB expression parses") {
   SourceFile f("t.fs", s);
   DiagnosticSink d;
   std::unique_ptr<Program> p;
-  run_with_big_stack([&] { p = parse(f, d); });
+  fscript::support::run_with_big_stack([&] { p = parse(f, d); });
   CHECK(!d.has_errors());
   REQUIRE(p->top.size() == 1);
 }

@@ -2,7 +2,7 @@
 // FVRML nodes, and every kind of bad input (one run, exact positions, never a crash).
 #include <catch2/catch.hpp>
 
-#include "frontend/big_stack.h"
+#include "runtime/support/big_stack.h"
 #include "frontend/vrml/scene_scripts.h"
 #include "frontend/vrml/vrml_parser.h"
 
@@ -20,7 +20,7 @@ struct Parsed {
 std::unique_ptr<Parsed> parse(const std::string& body, bool with_header = true) {
   auto p = std::make_unique<Parsed>();
   std::string text = (with_header ? "#VRML V2.0 utf8\n" : "") + body;
-  frontend::run_with_big_stack(
+  support::run_with_big_stack(
       [&] { p->ok = vrml::parse_scene(std::make_unique<frontend::SourceFile>("t.wrl", text), p->diag, p->scene); });
   return p;
 }
@@ -158,6 +158,7 @@ TEST_CASE("vrml: hostile input never crashes") {
 
 #include "frontend/vrml/writer.h"
 #include "tests/support/skip.h"
+#include "runtime/support/files.h"
 
 TEST_CASE("vrml: write -> read gives the same graph, on a rich file and on every corpus file") {
   std::vector<std::pair<std::string, std::string>> files = {{"inline", R"(#VRML V2.0 utf8
@@ -177,7 +178,7 @@ ROUTE TS.cycleTime TO TS.set_startTime
     for (const auto& e : std::filesystem::recursive_directory_iterator(corpus)) {
       if (e.path().extension() != ".wrl") continue;
       std::string text, err;
-      REQUIRE(frontend::read_file(e.path().string(), text, err));
+      REQUIRE(support::read_file(e.path().string(), text, err));
       if (text.rfind("BSCRYPT", 0) == 0) continue;
       files.push_back({e.path().string(), text});
     }

@@ -146,23 +146,23 @@ int cmd_check(const std::vector<std::string>& files) {
 }
 
 int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes, bool llvm) {
-  Options o;
   Compiled c;
   std::string text;
   if (!read_source(file, text)) return kExitInput;
   frontend::DiagnosticSink diag;
-  if (!frontend::load_script(std::make_unique<frontend::SourceFile>(file, text), diag, c.script)) {
-    print_diagnostics(diag);
-    return kExitInput;
-  }
-  std::string error;
-  bool have = entry.empty() ? frontend::default_spec(c.script.sema, c.spec, error)
-                            : frontend::function_spec(c.script.sema, entry, c.spec, error);
-  if (!have) c.spec = {};  // no entry point: show the functions with an empty kernel
-  frontend::BuildOptions bo;
-  bo.optimize = (opt || llvm) && passes.empty();
-  c.module = frontend::build_module(c.script, c.spec, diag, bo, error);
+  // No entry point is fine here: the listing shows the functions with an empty kernel.
+  driver::EntryChoice chosen = driver::named_entry(entry);
+  auto any_entry = [&](const frontend::SemaResult& sema, frontend::KernelSpec& spec, std::string& error) {
+    if (!chosen(sema, spec, error)) spec = {};
+    return true;
+  };
+  Options o;
+  o.build.optimize = (opt || llvm) && passes.empty();
+  o.want_kernel = false;
+  driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>(file, text), any_entry, o, diag, c);
   print_diagnostics(diag);
+  if (r.stage == driver::Stage::Source) return kExitInput;
+  std::string error = r.error;
   if (c.module && !passes.empty()) error = ir::run_passes(*c.module, passes);
   if (!c.module || !error.empty()) {
     std::cerr << "error: " << error << "\n";
@@ -207,8 +207,8 @@ std::string backend_listing(const std::string& name, const ir::Module& m, const 
 
 int cmd_emit_asm(const Options& o, const std::string& file, const std::string& entry) {
   std::string name = o.backend.empty() ? backend::available_backends().front() : o.backend;
-  if (!backend::make_backend(name)) {
-    pick_backend(name);
+  if (!backend::make_backend(name)) {  // a usage error before any compile
+    std::cerr << "error: " << backend::missing_backend_message(name) << "\n";
     return kExitUsage;
   }
   Compiled c;

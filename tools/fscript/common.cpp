@@ -7,7 +7,7 @@
 #include <iostream>
 #include <iterator>
 
-#include "frontend/fscript/entry.h"
+#include "runtime/support/files.h"
 
 namespace fscript::cli {
 
@@ -17,19 +17,12 @@ bool read_source(const std::string& path, std::string& text) {
     return true;
   }
   std::string err;
-  if (frontend::read_file(path, text, err)) return true;
+  if (support::read_file(path, text, err)) return true;
   std::cerr << path << ": error: cannot read the file: " << err << "\n";
   return false;
 }
 
 void print_diagnostics(const frontend::DiagnosticSink& sink) { std::cerr << frontend::render_all(sink); }
-
-std::unique_ptr<backend::Backend> pick_backend(const std::string& name) {
-  std::string n = name.empty() ? backend::available_backends().front() : name;
-  auto b = backend::make_backend(n);
-  if (!b) std::cerr << "error: " << backend::missing_backend_message(n) << "\n";
-  return b;
-}
 
 int compile_file(const std::string& path, const std::string& entry, const Options& opts, Compiled& out,
                  bool want_kernel) {
@@ -37,35 +30,19 @@ int compile_file(const std::string& path, const std::string& entry, const Option
   if (!read_source(path, text)) return kExitInput;
   frontend::DiagnosticSink diag;
   auto file = std::make_unique<frontend::SourceFile>(path == "-" ? "<stdin>" : path, std::move(text));
-  bool ok = frontend::load_script(std::move(file), diag, out.script);
-  if (!ok) {
-    print_diagnostics(diag);
-    return kExitInput;
-  }
-  std::string error;
-  bool have_spec = entry.empty() ? frontend::default_spec(out.script.sema, out.spec, error)
-                                 : frontend::function_spec(out.script.sema, entry, out.spec, error);
-  if (!have_spec) {
-    print_diagnostics(diag);
-    std::cerr << out.script.file->path() << ": error: " << error << "\n";
-    return kExitInput;
-  }
-  frontend::BuildOptions bo;
-  out.module = frontend::build_module(out.script, out.spec, diag, bo, error);
+  Options o = opts;
+  o.want_kernel = want_kernel;
+  driver::Outcome r = driver::compile(std::move(file), driver::named_entry(entry), o, diag, out);
   print_diagnostics(diag);
-  if (!out.module) {
-    std::cerr << "internal error: " << error << "\n";
-    return kExitInput;
+  switch (r.stage) {
+    case driver::Stage::Done: return kExitOk;
+    case driver::Stage::Source: return kExitInput;
+    case driver::Stage::Entry: std::cerr << out.script.file->path() << ": error: " << r.error << "\n"; return kExitInput;
+    case driver::Stage::Internal: std::cerr << "internal error: " << r.error << "\n"; return kExitInput;
+    case driver::Stage::NoBackend: std::cerr << "error: " << r.error << "\n"; return kExitUsage;
+    case driver::Stage::Backend: std::cerr << "error: " << r.error << "\n"; return kExitInput;
   }
-  if (!want_kernel) return kExitOk;
-  auto be = pick_backend(opts.backend);
-  if (!be) return kExitUsage;
-  out.kernel = be->compile(*out.module, opts.budgets, error);
-  if (!out.kernel) {
-    std::cerr << "error: " << error << "\n";
-    return kExitInput;
-  }
-  return kExitOk;
+  return kExitInput;
 }
 
 bool is_scene_path(const std::string& p) {

@@ -7,7 +7,7 @@
 
 #include "backends/backend.h"
 #include "frontend/diagnostics.h"
-#include "frontend/fscript/compiler.h"
+#include "runtime/driver/driver.h"
 
 namespace fscript::cli {
 
@@ -15,17 +15,9 @@ constexpr int kExitOk = 0;
 constexpr int kExitInput = 1;
 constexpr int kExitUsage = 2;
 
-struct Options {
-  std::string backend;        // empty: the fastest built
-  backend::Budgets budgets;
-};
-
-struct Compiled {
-  frontend::Script script;
-  frontend::KernelSpec spec;
-  std::unique_ptr<ir::Module> module;
-  std::unique_ptr<backend::Kernel> kernel;
-};
+// The command line's choices are the compile driver's options (backend "" = the fastest built).
+using Options = driver::CompileOptions;
+using Compiled = driver::Compiled;
 
 // Reads FILE ("-" is standard input). On failure prints "error: cannot read ..." and returns false.
 bool read_source(const std::string& path, std::string& text);
@@ -38,13 +30,10 @@ void print_diagnostics(const frontend::DiagnosticSink& sink);
 std::string backend_listing(const std::string& name, const ir::Module& m, const backend::Kernel* kernel,
                             const backend::Budgets& budgets, std::string& error);
 
-// Loads, analyses, lowers, optimises and compiles `path` for `entry` ("" = the script's entry
-// point; "FRep" style names match without case). Returns an exit status (0 = ready).
+// Reads `path` and runs the compile driver for `entry` ("" = the script's entry point; "FRep"
+// style names match without case), printing what went wrong. Returns an exit status (0 = ready).
 int compile_file(const std::string& path, const std::string& entry, const Options& opts, Compiled& out,
                  bool want_kernel = true);
-
-// The backend for `name` ("" = default); prints a usage error and returns nullptr if not built.
-std::unique_ptr<backend::Backend> pick_backend(const std::string& name);
 
 // Numbers: %.9g, nan (never -nan), inf, -inf.
 std::string format_number(float v);

@@ -5,7 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "frontend/big_stack.h"
+#include "runtime/support/big_stack.h"
 #include "tools/fscript/commands.h"
 #include "tools/fscript/repl.h"
 
@@ -120,7 +120,7 @@ int real_main(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   int rc = 0;
-  fscript::frontend::run_with_big_stack([&] { rc = fscript::cli::real_main(argc, argv); });
+  fscript::support::run_with_big_stack([&] { rc = fscript::cli::real_main(argc, argv); });
   std::cout.flush();
   return rc;
 }

@@ -63,9 +63,9 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
   auto best_compile = [&] {
     double ms = 1e30;
     for (int k = 0; k < 3; ++k) {
-      std::string error;
+      std::unique_ptr<backend::Kernel> again;
       auto t = Clock::now();
-      auto again = backend::make_backend(name)->compile(*c.module, o.budgets, error);
+      driver::compile_kernel(*c.module, name, o.budgets, again);
       ms = std::min(ms, std::chrono::duration<double, std::milli>(Clock::now() - t).count());
     }
     return ms;

@@ -13,7 +13,6 @@
 #include <iostream>
 #include <regex>
 
-#include "frontend/fscript/compiler.h"
 #include "frontend/fscript/embedded.h"
 
 namespace fscript::cli {
@@ -185,27 +184,20 @@ bool Session::compile(const std::string& name, const std::vector<std::string>& p
   uint32_t first = count_lines(prefix) + count_lines(body.substr(0, at == std::string::npos ? 0 : at)) + 1;
   frontend::DiagnosticSink diag;
   auto file = std::make_unique<frontend::SourceFile>("<input>", prefix + body + "\n}\n");
-  if (!frontend::load_script(std::move(file), diag, c.script)) {
-    out += render_mapped(diag, first, input_text);
-    return false;
+  driver::Outcome r = driver::compile(std::move(file), driver::named_entry(name), opts_, diag, c);
+  return report_compile(r, r.stage == driver::Stage::Source ? render_mapped(diag, first, input_text) : "", out);
+}
+
+bool report_compile(const driver::Outcome& r, const std::string& source_errors, std::string& out) {
+  switch (r.stage) {
+    case driver::Stage::Done: return true;
+    case driver::Stage::Source: out += source_errors; return false;
+    case driver::Stage::Internal: out += "internal error: " + r.error + "\n"; return false;
+    case driver::Stage::Entry:
+    case driver::Stage::NoBackend:
+    case driver::Stage::Backend: out += "error: " + r.error + "\n"; return false;
   }
-  std::string error;
-  if (!frontend::function_spec(c.script.sema, name, c.spec, error)) {
-    out += "error: " + error + "\n";
-    return false;
-  }
-  c.module = frontend::build_module(c.script, c.spec, diag, frontend::BuildOptions{}, error);
-  if (!c.module) {
-    out += "internal error: " + error + "\n";
-    return false;
-  }
-  auto be = backend::make_backend(opts_.backend);
-  c.kernel = be ? be->compile(*c.module, opts_.budgets, error) : nullptr;
-  if (!c.kernel) {
-    out += "error: " + error + "\n";
-    return false;
-  }
-  return true;
+  return false;
 }
 
 bool Session::handle(const std::string& raw, std::string& out) {

@@ -56,6 +56,10 @@ bool input_complete(const std::string& text);
 // it and returns "interrupted". The session survives anything the evaluation does.
 std::string run_interruptible(const std::function<std::string()>& work);
 
+// The REPL's words for where the compile driver stopped: `source_errors` (the diagnostics, rendered
+// by the caller) for errors in the text, else one "error:" line. True when it did not stop.
+bool report_compile(const driver::Outcome& r, const std::string& source_errors, std::string& out);
+
 int run_repl(const Options& o);
 
 }  // namespace fscript::cli

@@ -5,12 +5,12 @@
 #include <regex>
 #include <sstream>
 
-#include "frontend/fscript/compiler.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/scene_scripts.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "ir/text.h"
 #include "tools/fscript/repl.h"
+#include "runtime/support/files.h"
 
 namespace fscript::cli {
 
@@ -127,25 +127,16 @@ bool Session::command(const std::string& input, std::string& out) {
 // The session as one program with NAME as the kernel.
 static bool compile_named(const Session& s, const std::string& name, const Options& o, Compiled& c, std::string& out,
                           bool want_kernel) {
+  auto entry = [&](const frontend::SemaResult& sema, frontend::KernelSpec& spec, std::string& error) {
+    if (name.empty()) error = "which function? (:ir NAME, :asm NAME)";
+    return !name.empty() && frontend::function_spec(sema, name, spec, error);
+  };
+  Options with = o;
+  with.want_kernel = want_kernel;
   frontend::DiagnosticSink diag;
-  if (!frontend::load_script(std::make_unique<frontend::SourceFile>("<session>", s.program()), diag, c.script)) {
-    out += frontend::render_all(diag);
-    return false;
-  }
-  std::string error;
-  if (name.empty() || !frontend::function_spec(c.script.sema, name, c.spec, error)) {
-    out += "error: " + (name.empty() ? std::string("which function? (:ir NAME, :asm NAME)") : error) + "\n";
-    return false;
-  }
-  c.module = frontend::build_module(c.script, c.spec, diag, frontend::BuildOptions{}, error);
-  if (!c.module) {
-    out += "internal error: " + error + "\n";
-    return false;
-  }
-  if (!want_kernel) return true;
-  c.kernel = backend::make_backend(o.backend)->compile(*c.module, o.budgets, error);
-  if (!c.kernel) out += "error: " + error + "\n";
-  return c.kernel != nullptr;
+  driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>("<session>", s.program()), entry, with,
+                                      diag, c);
+  return report_compile(r, frontend::render_all(diag), out);
 }
 
 void Session::cmd_ir(const std::string& arg, std::string& out) {
@@ -234,7 +225,7 @@ void Session::cmd_load(const std::string& path, std::string& out) {
   }
   std::string text, error;
   if (!is_scene_path(path)) {
-    if (!frontend::read_file(path, text, error)) {
+    if (!support::read_file(path, text, error)) {
       out += path + ": error: " + error + "\n";
       return;
     }
@@ -296,14 +287,9 @@ bool Session::call_scene_script(const std::string& input, std::string& out) {
   }
   Compiled c;
   frontend::DiagnosticSink diag;
-  std::string error;
-  if (!frontend::load_script(std::make_unique<frontend::SourceFile>(sc.where, sc.text), diag, c.script) ||
-      !frontend::default_spec(c.script.sema, c.spec, error) ||
-      !(c.module = frontend::build_module(c.script, c.spec, diag, frontend::BuildOptions{}, error)) ||
-      !(c.kernel = backend::make_backend(opts_.backend)->compile(*c.module, opts_.budgets, error))) {
-    out += frontend::render_all(diag) + (error.empty() ? "" : "error: " + error + "\n");
-    return true;
-  }
+  driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>(sc.where, sc.text), driver::default_entry(),
+                                      opts_, diag, c);
+  if (!report_compile(r, frontend::render_all(diag), out)) return true;
   args.resize(c.kernel->num_inputs(), 0.0f);
   const backend::Kernel& k = *c.kernel;
   out += run_interruptible([&k, &args] {

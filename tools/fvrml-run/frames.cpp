@@ -14,6 +14,7 @@
 #include "runtime/scene/vrml_export.h"
 #include "runtime/support/parallel.h"
 #include "tools/fvrml-run/run.h"
+#include "runtime/support/files.h"
 
 namespace fvrml_run {
 namespace {
@@ -58,7 +59,7 @@ bool write_text(const Options& o, const std::string& text) {
     return true;
   }
   std::string error;
-  if (fscript::frontend::write_file_atomic(o.output, text, error)) return true;
+  if (fscript::support::write_file_atomic(o.output, text, error)) return true;
   std::cerr << "error: " << error << "\n";
   return false;
 }
@@ -181,7 +182,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
   bool written = false;
   if (world) {
     std::string error;
-    written = fscript::frontend::write_file_atomic(o.output, mesh::encode_glb(merged(meshed), gltf), error);
+    written = fscript::support::write_file_atomic(o.output, mesh::encode_glb(merged(meshed), gltf), error);
     if (!written) std::cerr << "error: " << error << "\n";
   } else {
     written = write_text(o, fscript::scene::export_vrml(l.scene, meshed.by_node, animations));

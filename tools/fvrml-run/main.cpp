@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "backends/backend.h"
-#include "frontend/big_stack.h"
+#include "runtime/support/big_stack.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "runtime/mesh/distance.h"
@@ -26,6 +26,7 @@
 #include "runtime/scene/shape_mesh.h"
 #include "runtime/scene/vrml_export.h"
 #include "tools/fvrml-run/run.h"
+#include "runtime/support/files.h"
 
 namespace fvrml_run {
 namespace {
@@ -120,7 +121,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
     if (o.format == "wrl") {
       std::string text = fscript::scene::export_vrml(l.scene, meshed.by_node);
       if (o.output.empty() || o.output == "-") std::cout << text;
-      else if (!fscript::frontend::write_file_atomic(o.output, text, error)) return std::cerr << "error: " << error << "\n", 1;
+      else if (!fscript::support::write_file_atomic(o.output, text, error)) return std::cerr << "error: " << error << "\n", 1;
     } else if (o.format == "png") {
       fscript::render::RenderOptions ro = render_options(o, l.scene, o.width, o.height);
       if (!fscript::render::write_png(o.output, ro.width, ro.height, 3, fscript::render::render(picture(meshed, l.scene), ro), error))
@@ -140,10 +141,10 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
 int run(int argc, char** argv) {
   CLI::App app{"fvrml-run: FVRML scenes (VRML97 with function-defined shapes)"};
   Options o;
-  o.model.backend = fscript::backend::available_backends().front();
+  o.model.compile.backend = fscript::backend::available_backends().front();
   o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   app.add_option("SCENE", o.path, "the .wrl scene (plain or gzip)")->required();
-  app.add_option("--backend", o.model.backend, "evaluation backend: vm, sse or llvm (default: vm)");
+  app.add_option("--backend", o.model.compile.backend, "evaluation backend: vm, sse or llvm (default: vm)");
   bool disk_cache = false;
   app.add_flag("--llvm-disk-cache", disk_cache,
                "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
@@ -173,8 +174,8 @@ int run(int argc, char** argv) {
     std::cerr << "error: " << message << "\n";
     return 2;
   }
-  if (!fscript::backend::make_backend(o.model.backend)) {
-    std::cerr << "error: " << fscript::backend::missing_backend_message(o.model.backend) << "\n";
+  if (!fscript::backend::make_backend(o.model.compile.backend)) {
+    std::cerr << "error: " << fscript::backend::missing_backend_message(o.model.compile.backend) << "\n";
     return 2;
   }
   if (o.format.empty() && !o.output.empty()) o.format = o.output.substr(o.output.find_last_of('.') + 1);
@@ -212,6 +213,6 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   int rc = 0;
-  fscript::frontend::run_with_big_stack([&] { rc = fvrml_run::run(argc, argv); });
+  fscript::support::run_with_big_stack([&] { rc = fvrml_run::run(argc, argv); });
   return rc;
 }

@@ -1,11 +1,11 @@
 // A pthread with a large stack for the compiler's recursive descent.
-#include "frontend/big_stack.h"
+#include "runtime/support/big_stack.h"
 
 #include <pthread.h>
 
 #include <exception>
 
-namespace fscript::frontend {
+namespace fscript::support {
 
 namespace {
 struct Job {
@@ -38,4 +38,4 @@ void run_with_big_stack(const std::function<void()>& fn, size_t stack_bytes) {
   fn();
 }
 
-}  // namespace fscript::frontend
+}  // namespace fscript::support

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <functional>
 
-namespace fscript::frontend {
+namespace fscript::support {
 
 constexpr size_t kBigStackBytes = size_t{1} << 30;  // reserved, committed only as touched
 
@@ -12,4 +12,4 @@ constexpr size_t kBigStackBytes = size_t{1} << 30;  // reserved, committed only 
 // directly if such a thread cannot be created. An exception `fn` throws is rethrown here.
 void run_with_big_stack(const std::function<void()>& fn, size_t stack_bytes = kBigStackBytes);
 
-}  // namespace fscript::frontend
+}  // namespace fscript::support

@@ -68,8 +68,7 @@ bool jit_status(uint64_t code, const LaneArrays& arrays, const Budgets& budgets,
     case 2: err.message = arrays.message; break;
     case 3: err.message = errors::call_depth(budgets.max_call_depth); break;
     default:
-      err.message = "recursion too deep for this thread's stack (the budget allows " +
-                    std::to_string(budgets.max_call_depth) + " nested calls); lower --max-call-depth or use --backend vm";
+      err.message = errors::recursion_stack(budgets.max_call_depth);
       break;
   }
   return false;

@@ -22,6 +22,11 @@ std::string call_depth(uint32_t max_call_depth) {
   return "call depth budget exceeded: more than " + std::to_string(max_call_depth) + " nested calls";
 }
 
+std::string recursion_stack(uint32_t max_call_depth) {
+  return "recursion too deep for this thread's stack (the budget allows " + std::to_string(max_call_depth) +
+         " nested calls); lower --max-call-depth";
+}
+
 std::string array_size(const std::string& array, float size, uint64_t max_array_elements) {
   return "array '" + array + "' of " + number(size) + " elements: sizes must be whole numbers from 0 to the budget of " +
          std::to_string(max_array_elements) + " elements per evaluation";

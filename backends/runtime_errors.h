@@ -9,6 +9,8 @@ namespace fscript::backend::errors {
 
 std::string loop_budget(uint64_t max_loop_iterations);
 std::string call_depth(uint32_t max_call_depth);
+// Only when even a stack sized for the budget (1 GiB) could not be had.
+std::string recursion_stack(uint32_t max_call_depth);
 std::string array_size(const std::string& array, float size, uint64_t max_array_elements);
 std::string array_index(const std::string& array, float index, int64_t length);
 std::string array_unset(const std::string& array);

@@ -2,17 +2,32 @@
 #include "backends/vm/vm_backend.h"
 
 #include "backends/vm/vm_exec.h"
+#include "runtime/support/big_stack.h"
 
 namespace fscript::vm {
 
-bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,
-               float* const* outputs, size_t n, backend::RuntimeError& err) {
+namespace {
+bool run_isa(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,
+             float* const* outputs, size_t n, backend::RuntimeError& err, bool& out_of_stack) {
   switch (math::active_isa()) {
-    case math::Isa::Base: return isa_base::run_batch(p, budgets, inputs, outputs, n, err);
-    case math::Isa::Avx2: return isa_avx2::run_batch(p, budgets, inputs, outputs, n, err);
-    case math::Isa::Avx512: return isa_avx512::run_batch(p, budgets, inputs, outputs, n, err);
+    case math::Isa::Base: return isa_base::run_batch(p, budgets, inputs, outputs, n, err, out_of_stack);
+    case math::Isa::Avx2: return isa_avx2::run_batch(p, budgets, inputs, outputs, n, err, out_of_stack);
+    case math::Isa::Avx512: return isa_avx512::run_batch(p, budgets, inputs, outputs, n, err, out_of_stack);
   }
   return false;
+}
+}  // namespace
+
+bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,
+               float* const* outputs, size_t n, backend::RuntimeError& err) {
+  bool out_of_stack = false;
+  bool ok = run_isa(p, budgets, inputs, outputs, n, err, out_of_stack);
+  if (!out_of_stack) return ok;
+  // The whole batch again (evaluation is a pure function of the inputs) on a 1 GiB stack, which
+  // holds kCallDepthCeiling levels of the executor's recursion.
+  out_of_stack = false;
+  support::run_with_big_stack([&] { ok = run_isa(p, budgets, inputs, outputs, n, err, out_of_stack); });
+  return ok;
 }
 
 std::unique_ptr<backend::Kernel> VmBackend::compile(const ir::Module& m, const backend::Budgets& b,

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <vector>
 
+#include "backends/jit_support.h"
 #include "backends/runtime_errors.h"
 #include "runtime/math/batch_isa.h"
 #include "runtime/math/math.h"
@@ -186,6 +187,7 @@ class Executor {
   Executor(const VmProgram& p, const Budgets& b) : p_(p), budgets_(b) {}
 
   bool run_chunk(const float* const* in, float* const* out, size_t base, uint32_t L, RuntimeError& err);
+  bool out_of_stack() const { return out_of_stack_; }
 
  private:
   bool run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, size_t base, float* result, RuntimeError& err);
@@ -195,6 +197,7 @@ class Executor {
   bool call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err);
   bool array_slot(Frame& fr, const VInst& v, uint32_t i, int64_t*& off, int64_t*& len, std::string& name);
   void edge_moves(Frame& fr, const Edge& e, const Mask* m);
+  bool out_of_stack_ = false;
   static void init_frame(Frame& fr) {
     const VmFunction& f = *fr.f;
     for (auto [r, v] : f.consts) std::fill_n(fr.regs + size_t(r) * fr.stride, fr.stride, v);
@@ -443,6 +446,11 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
     err = {errors::call_depth(budgets_.max_call_depth), v.line};
     return false;
   }
+  if (callee.recursive && reinterpret_cast<uintptr_t>(__builtin_frame_address(0)) < backend::stack_limit()) {
+    out_of_stack_ = true;
+    err = {errors::recursion_stack(budgets_.max_call_depth), v.line};
+    return false;
+  }
   std::vector<float> regs(std::max<uint32_t>(callee.num_regs, 1));
   Frame sub{&callee, regs.data(), 1, 1, fr.env + i, fr.gmem + i, fr.gstride, {}, {}};
   init_frame(sub);
@@ -462,11 +470,14 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
 }  // namespace
 
 bool run_batch(const VmProgram& p, const Budgets& budgets, const float* const* inputs, float* const* outputs,
-               size_t n, RuntimeError& err) {
+               size_t n, RuntimeError& err, bool& out_of_stack) {
   Executor ex(p, budgets);
   for (size_t base = 0; base < n; base += kChunkLanes) {
     uint32_t L = static_cast<uint32_t>(std::min<size_t>(kChunkLanes, n - base));
-    if (!ex.run_chunk(inputs, outputs, base, L, err)) return false;
+    if (!ex.run_chunk(inputs, outputs, base, L, err)) {
+      out_of_stack = ex.out_of_stack();
+      return false;
+    }
   }
   return true;
 }

@@ -9,14 +9,17 @@
 
 namespace fscript::vm {
 
-// Evaluates points [0, n) of `inputs` into `outputs`, chunk by chunk; one variant per ISA.
+// Evaluates points [0, n) of `inputs` into `outputs`, chunk by chunk; one variant per ISA. A
+// recursion that nears the end of this thread's stack stops the batch with `out_of_stack` set
+// (the caller runs it again on a stack sized for the budget).
 #define FS_VM_RUN_BATCH                                                                                    \
   bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,         \
-                 float* const* outputs, size_t n, backend::RuntimeError& err)
+                 float* const* outputs, size_t n, backend::RuntimeError& err, bool& out_of_stack)
 FS_FOR_EACH_ISA_DECLARE(FS_VM_RUN_BATCH)
 #undef FS_VM_RUN_BATCH
 
-// The variant of the active ISA.
+// The variant of the active ISA; a recursion deeper than the caller's stack allows runs again on a
+// stack sized for the budget, so the call budget, not `ulimit -s`, decides how deep it goes.
 bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,
                float* const* outputs, size_t n, backend::RuntimeError& err);
 

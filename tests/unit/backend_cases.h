@@ -1,5 +1,6 @@
 #pragma once
-// The programs and inputs every JIT backend is checked on against the VM (sse_test, llvm_test):
+// The programs and inputs every backend is checked on against the VM (backends_test, and the
+// sse and llvm tests for what is their own):
 // special values, one body per operation, transcendentals, and recursion with lanes of different
 // depths.
 #include <cmath>
@@ -39,6 +40,21 @@ inline const std::vector<const char*> kTranscendentalBodies = {
     "return log10(x);", "return pow(x, y);", "return atan2(x, y);", "return asin(x);", "return acos(x);",
     "return atan(x);", "return sinh(x);", "return cosh(x);", "return tanh(x);", "return noise(x, y, z);",
     "return sin(x) + cos(y) * sin(z);", "return hypot(x, y);", "return hypot(x * 1e30, y) - hypot(y, -x);"};
+
+// Branches and loops whose lanes take different paths (the JITs run them masked).
+inline const std::vector<const char*> kControlFlowBodies = {
+    "if (x < 0) { return -x; } else { return x * 2; }",
+    "if (x > 0) return y; else if (x < -1) return z; return 7;",
+    "var s = 0; for (var i = 0; i < abs(x) && i < 40; i++) s = s + i * y; return s;",
+    "var s = 0; for (var i = 0; i < 20; i++) { if (i > abs(x)) break; s += i * y; } return s;",
+    "var i = 0; while (true) { if (i * i > abs(x) * 10) break; i++; if (i > 50) break; } return i;",
+    "var n = 0; var v = abs(x); while (v > 1 && n < 50) { v = v / 2; n++; } return n + v;",
+    "var s = 0; for (var i = 0; i < 8; i++) { if (i % 2 == 0) continue; s = s + i; } return s + x;",
+    "var c = 0; for (var i = 0; i < 5; i++) for (var j = 0; j < 5; j++) { if (j > i + x) break; c += 1; } return c;",
+    "var k = floor(clamp(x, -3, 30)); var a = 0; var b = 1; while (k > 0) { var t = a + b; a = b; b = t; k -= 1; } return a;",
+    "var s = 0; do { s = s + 1; } while (s < y && s < 20); return s;",
+    "if (x) return sin(y); else if (y) return cos(x); return z;",
+    "var a = new Array(5); for (var i = 0; i < 5; i++) a[i] = i * x; return a[y == y ? min(abs(floor(y)), 4) : 0] + a.length;"};
 
 // Programs whose runtime errors depend on the inputs: every batch length must run exactly the
 // points given (the padding of a last, partial group of lanes must not raise an error of its own).

@@ -24,19 +24,17 @@ struct Built {
 inline std::unique_ptr<Built> build(const std::string& text, const std::string& entry = "", bool optimize = true,
                                     const backend::Budgets& budgets = {}, const std::string& be = "vm") {
   auto b = std::make_unique<Built>();
-  if (!frontend::load_script(std::make_unique<frontend::SourceFile>("test.fs", text), b->diag, b->script)) return b;
-  frontend::KernelSpec spec;
-  std::string err;
-  bool have = entry.empty() ? frontend::default_spec(b->script.sema, spec, err)
-                            : frontend::function_spec(b->script.sema, entry, spec, err);
-  if (!have) return b;
-  driver::BuildOptions bo;
-  bo.optimize = optimize;
-  bo.verify_each = true;
-  b->module = driver::build_module(b->script, spec, b->diag, bo, err);
-  if (!b->module) return b;
-  b->kernel = backend::make_backend(be)->compile(*b->module, budgets, err);
-  b->ok = b->kernel != nullptr;
+  driver::CompileOptions o;
+  o.backend = be;
+  o.budgets = budgets;
+  o.build.optimize = optimize;
+  o.build.verify_each = true;
+  driver::Compiled c;
+  b->ok = driver::compile(std::make_unique<frontend::SourceFile>("test.fs", text), driver::named_entry(entry), o,
+                          b->diag, c).ok();
+  b->script = std::move(c.script);
+  b->module = std::move(c.module);
+  b->kernel = std::move(c.kernel);
   return b;
 }
 

@@ -38,56 +38,6 @@ TEST_CASE("vm: a batch gives the same results as one point at a time, with diver
   CHECK(mismatches == 0);
 }
 
-TEST_CASE("vm: every pure op matches ir::eval_pure (runtime/math) on special values") {
-  const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
-  const std::vector<float> vals = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, inf, -inf, nan, 1e-38f, 1e-45f, 3e38f,
-                                   static_cast<float>(M_PI / 2), static_cast<float>(2 * M_PI), 100.0f, -100.0f};
-  for (int k = 0; k < ir::kNumOps; ++k) {
-    ir::Op op = static_cast<ir::Op>(k);
-    if (!ir::has_flag(op, ir::Pure) || op == ir::Op::Const || op == ir::Op::Param) continue;
-    int arity = ir::op_info(op).arity;
-    // A kernel applying op to its parameters: fn @kernel(arity) -> 1 kernel { ... }.
-    std::string text = "fn @kernel(" + std::to_string(arity) + ") -> 1 kernel {\nb0:\n";
-    std::string args;
-    for (int a = 0; a < arity; ++a) {
-      text += "  v" + std::to_string(a) + " = param " + std::to_string(a) + "\n";
-      args += (a ? ", v" : " v") + std::to_string(a);
-    }
-    text += "  v9 = " + std::string(ir::mnemonic(op)) + args + "\n  ret v9\n}\n";
-    std::string err;
-    auto m = ir::read(text, err);
-    INFO(ir::mnemonic(op) << ": " << err);
-    REQUIRE(m);
-    auto kernel = backend::make_backend("vm")->compile(*m, {}, err);
-    REQUIRE(kernel);
-    // Every combination of special values, evaluated as one batch.
-    size_t combos = 1;
-    for (int a = 0; a < arity; ++a) combos *= vals.size();
-    std::vector<std::vector<float>> cols(arity, std::vector<float>(combos));
-    for (size_t c = 0; c < combos; ++c)
-      for (int a = 0, r = static_cast<int>(c); a < arity; ++a, r /= static_cast<int>(vals.size()))
-        cols[a][c] = vals[r % vals.size()];
-    std::vector<const float*> in;
-    for (auto& col : cols) in.push_back(col.data());
-    std::vector<float> out(combos);
-    float* outs[] = {out.data()};
-    backend::RuntimeError rerr;
-    REQUIRE(kernel->eval_batch(in.data(), outs, combos, rerr));
-    int bad = 0;
-    bool transcendental = ir::has_flag(op, ir::CallsRuntime);
-    for (size_t c = 0; c < combos; ++c) {
-      float a[3] = {0, 0, 0}, want;
-      for (int i = 0; i < arity; ++i) a[i] = cols[i][c];
-      REQUIRE(ir::eval_pure(op, a, want));
-      bool ok = same(out[c], want) || (out[c] == 0 && want == 0);
-      if (!ok && transcendental && std::isfinite(want) && std::isfinite(out[c]))
-        ok = std::fabs(out[c] - want) <= 4 * std::fabs(std::nextafter(want, inf) - want);
-      bad += !ok;
-    }
-    CHECK(bad == 0);
-  }
-}
-
 TEST_CASE("vm: budgets stop runaway scripts and name the line") {
   backend::Budgets small;
   small.max_loop_iterations = 1000;

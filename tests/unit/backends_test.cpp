@@ -1,0 +1,297 @@
+// Every backend the build has, by construction: the list comes from backend::available_backends()
+// (the llvm backend at each vector width), so a new backend is tested here the day it is
+// registered. Every pure operation of the op table on special values against the reference
+// evaluator, and the shared program bodies against the VM, bit for bit.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <functional>
+
+#include "backends/sse/sse_backend.h"
+#include "ir/eval.h"
+#include "ir/text.h"
+#include "tests/unit/backend_cases.h"
+#include "tests/unit/helpers.h"
+#ifdef FS_HAVE_LLVM
+#include "backends/llvm/llvm_backend.h"
+#endif
+
+using namespace fscript;
+using test::same;
+
+namespace {
+
+struct Variant {
+  std::string name;  // "vm", "sse", "llvm/8"...
+  std::function<std::unique_ptr<backend::Kernel>(const ir::Module&, const backend::Budgets&, std::string&)> compile;
+};
+
+// One entry per backend this binary has; a backend with its own shapes (llvm's widths) has one each.
+std::vector<Variant> variants() {
+  std::vector<Variant> out;
+  for (const std::string& name : backend::available_backends()) {
+    if (name == "llvm") {
+#ifdef FS_HAVE_LLVM
+      for (uint32_t w : {4u, 8u, 16u})
+        out.push_back({"llvm/" + std::to_string(w), [w](const ir::Module& m, const backend::Budgets& b, std::string& e) {
+                         return llvmjit::LlvmBackend(w).compile(m, b, e);
+                       }});
+#endif
+      continue;
+    }
+    out.push_back({name, [name](const ir::Module& m, const backend::Budgets& b, std::string& e) {
+                     return backend::make_backend(name)->compile(m, b, e);
+                   }});
+  }
+  return out;
+}
+
+std::unique_ptr<backend::Kernel> compile_on(const Variant& v, const ir::Module& m, const backend::Budgets& b = {}) {
+  std::string error;
+  auto k = v.compile(m, b, error);
+  INFO(v.name << ": " << error);
+  REQUIRE(k);
+  return k;
+}
+
+// Every combination of `vals` for `arity` inputs, as columns, plus one ordinary point so the batch
+// length is no multiple of any width (padded tails run too).
+std::vector<std::vector<float>> combinations(const std::vector<float>& vals, int arity) {
+  size_t combos = 1;
+  for (int a = 0; a < arity; ++a) combos *= vals.size();
+  std::vector<std::vector<float>> cols(static_cast<size_t>(std::max(arity, 1)), std::vector<float>(combos + 1, 0.25f));
+  for (size_t c = 0; c < combos; ++c)
+    for (size_t a = 0, r = c; a < static_cast<size_t>(arity); ++a, r /= vals.size()) cols[a][c] = vals[r % vals.size()];
+  return cols;
+}
+
+std::vector<float> run(const backend::Kernel& k, const std::vector<std::vector<float>>& cols) {
+  size_t n = cols[0].size();
+  std::vector<const float*> in;
+  for (const auto& c : cols) in.push_back(c.data());
+  std::vector<float> out(n);
+  float* outs[] = {out.data()};
+  backend::RuntimeError err;
+  INFO(err.message);
+  REQUIRE(k.eval_batch(in.data(), outs, n, err));
+  return out;
+}
+
+// `body` (an FRep over x, y, z) on every backend against the VM over every pair of special values.
+void agree_with_vm(const std::string& body, const std::string& prelude = "") {
+  std::string text = prelude + "function FRep(x, y, z, t) { " + body + " }";
+  auto vm = test::build(text, "", true, {}, "vm");
+  INFO(body << "\n" << test::messages(vm->diag));
+  REQUIRE(vm->ok);
+  auto cols = combinations(test::kSpecial, 2);
+  cols.push_back(cols[0]);
+  cols.push_back(std::vector<float>(cols[0].size(), 0.0f));
+  for (size_t i = 0; i < cols[2].size(); ++i) cols[2][i] = test::kSpecial[(i * 7) % test::kSpecial.size()];
+  std::vector<float> want = run(*vm->kernel, cols);
+  for (const Variant& v : variants()) {
+    std::vector<float> got = run(*compile_on(v, *vm->module), cols);
+    int bad = 0;
+    for (size_t i = 0; i < want.size() && bad < 5; ++i)
+      if (!same(want[i], got[i])) {
+        ++bad;
+        FAIL_CHECK(v.name << " x=" << cols[0][i] << " y=" << cols[1][i] << " z=" << cols[2][i] << ": vm " << want[i]
+                          << ", " << v.name << " " << got[i]);
+      }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("backends: the list covers every backend this binary has") {
+  std::vector<std::string> names;
+  for (const Variant& v : variants()) names.push_back(v.name.substr(0, v.name.find('/')));
+  for (const std::string& b : backend::available_backends())
+    CHECK(std::find(names.begin(), names.end(), b) != names.end());
+#ifdef FS_HAVE_LLVM
+  CHECK(std::find(names.begin(), names.end(), "llvm") != names.end());
+#endif
+  CHECK(std::find(names.begin(), names.end(), "sse") != names.end());
+}
+
+TEST_CASE("backends: every pure op of the op table matches ir::eval_pure on special values, on every backend") {
+  const float inf = test::kInf, nan = test::kNan;
+  const std::vector<float> vals = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, inf, -inf, nan, 1e-38f, 1e-45f, 3e38f,
+                                   static_cast<float>(M_PI / 2), static_cast<float>(2 * M_PI), 100.0f, -100.0f};
+  int swept = 0;
+  for (int k = 0; k < ir::kNumOps; ++k) {
+    ir::Op op = static_cast<ir::Op>(k);
+    if (!ir::has_flag(op, ir::Pure) || op == ir::Op::Const || op == ir::Op::Param) continue;
+    ++swept;
+    int arity = ir::op_info(op).arity;
+    std::string text = "fn @kernel(" + std::to_string(std::max(arity, 1)) + ") -> 1 kernel {\nb0:\n", args;
+    for (int a = 0; a < std::max(arity, 1); ++a) text += "  v" + std::to_string(a) + " = param " + std::to_string(a) + "\n";
+    for (int a = 0; a < arity; ++a) args += (a ? ", v" : " v") + std::to_string(a);
+    text += "  v9 = " + std::string(ir::mnemonic(op)) + args + "\n  ret v9\n}\n";
+    std::string err;
+    auto m = ir::read(text, err);
+    INFO(ir::mnemonic(op) << ": " << err);
+    REQUIRE(m);
+    auto cols = combinations(vals, arity);
+    bool runtime_call = ir::has_flag(op, ir::CallsRuntime);
+    for (const Variant& v : variants()) {
+      std::vector<float> out = run(*compile_on(v, *m), cols);
+      int bad = 0;
+      for (size_t c = 0; c < out.size(); ++c) {
+        float a[3] = {0, 0, 0}, want;
+        for (int i = 0; i < arity; ++i) a[i] = cols[static_cast<size_t>(i)][c];
+        REQUIRE(ir::eval_pure(op, a, want));
+        // Bit for bit, except that a zero's sign and a runtime function's last few ulps are the
+        // math library's (the batch twins are within 4 ulp of the scalar definition).
+        bool ok = same(out[c], want) || (out[c] == 0 && want == 0);
+        if (!ok && runtime_call && std::isfinite(want) && std::isfinite(out[c]))
+          ok = std::fabs(out[c] - want) <= 4 * std::fabs(std::nextafter(want, inf) - want);
+        if (!ok && bad++ < 3)
+          FAIL_CHECK(v.name << " " << ir::mnemonic(op) << "(" << a[0] << ", " << a[1] << ", " << a[2] << ") = " << out[c]
+                            << ", want " << want);
+      }
+    }
+  }
+  CHECK(swept >= 40);  // the loop saw the table (40 pure value ops today)
+}
+
+TEST_CASE("backends: arithmetic, min/max, comparisons and selects are bit-identical to the VM") {
+  for (const char* body : test::kArithmeticBodies) agree_with_vm(body);
+}
+
+TEST_CASE("backends: transcendentals and noise agree with the VM (the same runtime/math functions)") {
+  for (const char* body : test::kTranscendentalBodies) agree_with_vm(body);
+}
+
+TEST_CASE("backends: branches, loops, globals and arrays run masked, lane by lane as the VM runs them") {
+  for (const char* body : test::kControlFlowBodies) agree_with_vm(body);
+  agree_with_vm("g = x; if (y > 0) g = g + 1; return g * 2;", "var g = 0;\n");
+}
+
+TEST_CASE("backends: recursive functions run under the caller's lanes, with the VM's results") {
+  for (const char* body : test::kRecursiveBodies)
+    agree_with_vm(std::string(test::kRecursiveSetup) + body, test::kRecursivePrelude);
+}
+
+TEST_CASE("backends: a partial last group runs only the points given (errors that depend on the inputs)") {
+  backend::Budgets budgets = test::input_dependent_budgets();
+  for (const char* text : test::kInputDependentErrors) {
+    INFO(text);
+    auto vm = test::build(text, "", true, budgets, "vm");
+    REQUIRE(vm->ok);
+    for (const Variant& v : variants()) {
+      INFO(v.name);
+      CHECK(test::partial_group_mismatch(*vm->kernel, *compile_on(v, *vm->module, budgets), 17) == "");
+    }
+  }
+}
+
+TEST_CASE("backends: many kernels compiled and freed") {
+  for (const Variant& v : variants()) {
+    for (int i = 0; i < 100; ++i) {
+      auto b = test::build("function FRep(x, y, z, t) { return x * " + std::to_string(i) + " + sin(y); }");
+      REQUIRE(b->ok);
+      auto k = compile_on(v, *b->module);
+      float in[4] = {1, 0, 0, 0}, out = 0;
+      backend::RuntimeError err;
+      REQUIRE(k->eval(in, &out, err));
+      CHECK(out == static_cast<float>(i));
+    }
+  }
+}
+
+TEST_CASE("backends: every batch length, the one-point call, and several outputs") {
+  auto vm = test::build("x = u * 2 + w; y = sin(v) - u; z = min(u, v);");
+  REQUIRE(vm->ok);
+  for (const Variant& v : variants()) {
+    auto k = compile_on(v, *vm->module);
+    REQUIRE(k->num_outputs() == 3);
+    for (size_t n = 0; n <= 17; ++n) {
+      std::vector<float> u(n), vv(n), w(n), t(n, 0);
+      for (size_t i = 0; i < n; ++i) u[i] = 0.3f * i, vv[i] = 1.0f - 0.2f * i, w[i] = -0.1f * i;
+      std::vector<std::vector<float>> a(3, std::vector<float>(n + 1, 42)), b = a;
+      const float* in[4] = {u.data(), vv.data(), w.data(), t.data()};
+      float* oa[3] = {a[0].data(), a[1].data(), a[2].data()};
+      float* ob[3] = {b[0].data(), b[1].data(), b[2].data()};
+      backend::RuntimeError err;
+      REQUIRE(vm->kernel->eval_batch(in, oa, n, err));
+      REQUIRE(k->eval_batch(in, ob, n, err));
+      INFO(v.name << " n = " << n);
+      CHECK(a == b);  // including the untouched element after the batch
+    }
+    float in[4] = {0.5f, 0.25f, 2.0f, 0}, o1[3], o2[3];
+    backend::RuntimeError err;
+    REQUIRE(vm->kernel->eval(in, o1, err));
+    REQUIRE(k->eval(in, o2, err));
+    for (int j = 0; j < 3; ++j) CHECK(same(o1[j], o2[j]));
+  }
+}
+
+TEST_CASE("backends: globals start as NaN in every evaluation and follow the lanes' paths") {
+  agree_with_vm("g = 0; if (x > 0) g = y; return g + 1;");
+  agree_with_vm("if (x > 0) h = 1; return h;");  // NaN where x <= 0: the global was never set
+}
+
+// The first error of a batch, on `k`, as "message @ line" ("" when the batch ran).
+static std::string batch_error(const backend::Kernel& k, std::vector<float> xs) {
+  std::vector<float> zero(xs.size(), 0), out(xs.size());
+  const float* in[4] = {xs.data(), zero.data(), zero.data(), zero.data()};
+  float* outs[1] = {out.data()};
+  backend::RuntimeError err;
+  if (k.eval_batch(in, outs, xs.size(), err)) return "";
+  return err.message + " @ " + std::to_string(err.line);
+}
+
+TEST_CASE("backends: the loop and array budgets stop a lane with the VM's message and line") {
+  backend::Budgets small;
+  small.max_loop_iterations = 1000;
+  small.max_array_elements = 10;
+  const char* loop = "function FRep(x, y, z, t) {\n  var s = 0;\n  while (s < x) s = s + 1;\n  return s;\n}";
+  const char* index = "function FRep(x, y, z, t) {\n  var a = new Array(3);\n  return a[x];\n}";
+  const char* size = "function FRep(x, y, z, t) {\n  var a = new Array(x);\n  return a.length;\n}";
+  const char* forever = "function FRep(x, y, z, t) { var s = 0; while (true) s++; return s; }";
+  auto vl = test::build(loop, "", true, small), vi = test::build(index, "", true, small),
+       vs = test::build(size, "", true, small), vf = test::build(forever, "", true, small);
+  REQUIRE((vl->ok && vi->ok && vs->ok && vf->ok));
+  CHECK(batch_error(*vl->kernel, {1, 2, 5000, 3, 4}) ==
+        "loop iteration budget exceeded: more than 1000 iterations in one evaluation @ 3");
+  CHECK(batch_error(*vi->kernel, {0, 1, 2, 7, 1}) == "index 7 is out of range for array 'a' of 3 elements @ 3");
+  CHECK(batch_error(*vs->kernel, {10, 11}).find("sizes must be whole numbers from 0 to the budget of 10") !=
+        std::string::npos);
+  for (const Variant& v : variants()) {
+    INFO(v.name);
+    CHECK(batch_error(*compile_on(v, *vl->module, small), {1, 2, 500, 3}) == "");
+    CHECK(batch_error(*compile_on(v, *vl->module, small), {1, 2, 5000, 3, 4}) == batch_error(*vl->kernel, {1, 2, 5000, 3, 4}));
+    CHECK(batch_error(*compile_on(v, *vi->module, small), {0, 1, 2, 7, 1}) == batch_error(*vi->kernel, {0, 1, 2, 7, 1}));
+    CHECK(batch_error(*compile_on(v, *vs->module, small), {10}) == "");
+    CHECK(batch_error(*compile_on(v, *vs->module, small), {10, 11}) == batch_error(*vs->kernel, {10, 11}));
+    CHECK(batch_error(*compile_on(v, *vf->module, small), {0}) == batch_error(*vf->kernel, {0}));
+  }
+}
+
+TEST_CASE("backends: the call depth budget, not the caller's stack, decides how deep recursion goes") {
+  std::string text = "function down(n) { if (n <= 0) return 0; return 1 + down(n - 1); }\n"
+                     "function FRep(x, y, z, t) { return down(x); }";
+  backend::Budgets budgets;
+  budgets.max_call_depth = 50;
+  auto vm = test::build(text, "", true, budgets);
+  REQUIRE(vm->ok);
+  std::string over = batch_error(*vm->kernel, {51});
+  CHECK(over.find("call depth budget exceeded") == 0);
+  backend::Budgets ceiling, capped;
+  ceiling.max_call_depth = backend::kCallDepthCeiling;
+  capped.max_call_depth = 1000;
+  for (const Variant& v : variants()) {
+    INFO(v.name);
+    auto k = compile_on(v, *vm->module, budgets);
+    CHECK(batch_error(*k, {49, 3}) == "");
+    CHECK(batch_error(*k, {3, 51}) == over);
+    // 99,000 nested calls within a budget of 100,000, on stacks of 1 MiB to 1 GiB.
+    CHECK(test::deep_recursion_mismatch(*compile_on(v, *vm->module, ceiling)) == "");
+    // One more than the budget: the budget's error, on every stack.
+    auto k1000 = compile_on(v, *vm->module, capped);
+    for (size_t stack : {size_t{1} << 20, size_t{1} << 30}) {
+      std::string got;
+      test::on_thread_with_stack(stack, [&] { got = batch_error(*k1000, {1001}); });
+      CHECK(got.find("call depth budget exceeded: more than 1000 nested calls") == 0);
+    }
+  }
+}

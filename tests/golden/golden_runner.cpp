@@ -2,7 +2,8 @@
 //   // error: TEXT          on the offending line (an error whose message contains TEXT);
 //   // error@COL: TEXT      the same with a column;   // warning: TEXT   likewise for warnings
 //   // run: f(1, 2) == 3    call f (`$` = the script's entry) on every backend, before and after
-//                           optimisation; `~=` allows 4 ulp; `== a, b` for several outputs;
+//                           optimisation, alone and as lanes of a batch with f's other runs and
+//                           other points; `~=` allows 4 ulp; `== a, b` for several outputs;
 //                           `error: TEXT` expects a runtime error;  nan, inf, -inf, -0 allowed
 //   // ir-after: fold,dce   then `//   ` lines: the IR after those passes, exactly
 //   // flags: max-loop=N max-depth=N max-array=N
@@ -14,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -237,14 +239,86 @@ void bless_file(Case& c) {
   for (const auto& l : out) f << l << "\n";
 }
 
-// Runs the sse backend made: every run of every case, counted so a silent skip would show.
-int g_sse_ran = 0, g_runs = 0;
+// Runs per backend, one-point and batched: the last test case checks every backend the build has
+// ran as many as the VM (a backend missing from the count is a failure, never a skip).
+std::map<std::string, int> g_ran, g_batched;
 
-void check_run(const Case& c, const frontend::Script& s, const RunLine& r) {
+// The result of one point on `k` (false with the message on a runtime error).
+bool eval_point(const backend::Kernel& k, std::vector<float> in, std::vector<float>& out, backend::RuntimeError& err) {
+  in.resize(k.num_inputs(), 0.0f);
+  out.assign(k.num_outputs(), 0.0f);
+  return k.eval(in.data(), out.data(), err);
+}
+
+void check_point(const Case& c, const backend::Kernel& k, const RunLine& r) {
+  std::vector<float> out;
+  backend::RuntimeError rerr;
+  bool ok = eval_point(k, r.args, out, rerr);
+  if (!r.error.empty()) {
+    INFO("message: " << rerr.message);
+    CHECK(!ok);
+    CHECK(rerr.message.find(r.error) != std::string::npos);
+    return;
+  }
+  INFO("runtime error: " << rerr.message << " at line " << rerr.line);
+  REQUIRE(ok);
+  REQUIRE(out.size() == r.want.size());
+  for (size_t j = 0; j < out.size(); ++j) {
+    INFO(c.path << ":" << r.line << ": output " << j << ": got " << out[j] << " want " << r.want[j]);
+    CHECK(ulp_distance(out[j], r.want[j]) <= (r.approx ? 4u : 0u));
+  }
+}
+
+// The function's runs as lanes of one batch, mixed with other points so that lanes take different
+// branches, each run at several lane positions (no multiple of 4, 8 or 16 apart). Every lane must
+// give what that point gives alone: the run's expectation, or for an extra point its one-point
+// result on the same kernel. Extra points that stop with a runtime error alone are left out.
+void check_batch(const Case& c, const backend::Kernel& k, const std::vector<const RunLine*>& runs) {
+  struct Lane {
+    std::vector<float> in, want;
+    const RunLine* run;  // nullptr: an extra point
+  };
+  std::vector<Lane> pool;
+  for (const RunLine* r : runs)
+    if (r->error.empty()) pool.push_back({r->args, r->want, r});
+  if (pool.empty()) return;
+  const float extra[] = {0.0f, 1.0f, -1.0f, 2.5f, -3.0f, 7.0f, 0.5f, 12.0f};
+  for (int e = 0; e < 5; ++e) {
+    std::vector<float> in(k.num_inputs()), out;
+    for (size_t a = 0; a < in.size(); ++a) in[a] = extra[(static_cast<size_t>(e) * 3 + a * 5) % 8];
+    backend::RuntimeError err;
+    if (eval_point(k, in, out, err)) pool.push_back({in, out, nullptr});
+  }
+  size_t n = pool.size() * 3 + 5;
+  std::vector<std::vector<float>> cols(k.num_inputs(), std::vector<float>(n)), outs(k.num_outputs(), std::vector<float>(n));
+  std::vector<size_t> which(n);
+  for (size_t i = 0; i < n; ++i) {
+    which[i] = (i * 7 + i / pool.size()) % pool.size();
+    for (size_t a = 0; a < cols.size(); ++a) cols[a][i] = a < pool[which[i]].in.size() ? pool[which[i]].in[a] : 0.0f;
+  }
+  std::vector<const float*> in;
+  std::vector<float*> out;
+  for (auto& col : cols) in.push_back(col.data());
+  for (auto& col : outs) out.push_back(col.data());
+  backend::RuntimeError err;
+  INFO("batch of " << n << " lanes: " << err.message);
+  REQUIRE(k.eval_batch(in.data(), out.data(), n, err));
+  for (size_t i = 0; i < n; ++i) {
+    const Lane& l = pool[which[i]];
+    for (size_t j = 0; j < outs.size() && j < l.want.size(); ++j) {
+      INFO(c.path << ":" << (l.run ? l.run->line : 0) << ": lane " << i << " output " << j << ": got " << outs[j][i]
+                  << " want " << l.want[j]);
+      CHECK(ulp_distance(outs[j][i], l.want[j]) <= (l.run && l.run->approx ? 4u : 0u));
+    }
+  }
+}
+
+// Every run of function `fn`, on every backend, before and after optimisation.
+void check_runs(const Case& c, const frontend::Script& s, const std::string& fn, const std::vector<const RunLine*>& runs) {
   frontend::KernelSpec spec;
   std::string err;
-  bool have = r.fn == "$" ? frontend::default_spec(s.sema, spec, err) : frontend::function_spec(s.sema, r.fn, spec, err);
-  INFO(c.path << ":" << r.line << ": " << err);
+  bool have = fn == "$" ? frontend::default_spec(s.sema, spec, err) : frontend::function_spec(s.sema, fn, spec, err);
+  INFO(c.path << ":" << runs[0]->line << ": " << err);
   REQUIRE(have);
   for (bool optimize : {false, true}) {
     frontend::DiagnosticSink quiet;
@@ -255,29 +329,17 @@ void check_run(const Case& c, const frontend::Script& s, const RunLine& r) {
     INFO(err);
     REQUIRE(m);
     for (const auto& name : backend::available_backends()) {
-      auto kernel = backend::make_backend(name)->compile(*m, c.budgets, err);
-      INFO("backend " << name << ": " << err);
-      REQUIRE(kernel);
-      if (name == "sse") ++g_sse_ran;
-      if (name == "vm") ++g_runs;
-      std::vector<float> in = r.args, out(kernel->num_outputs());
-      in.resize(kernel->num_inputs(), 0.0f);
-      backend::RuntimeError rerr;
-      bool ok = kernel->eval(in.data(), out.data(), rerr);
-      INFO(c.path << ":" << r.line << ": backend " << name << (optimize ? " (optimised)" : " (unoptimised)"));
-      if (!r.error.empty()) {
-        INFO("message: " << rerr.message);
-        CHECK(!ok);
-        CHECK(rerr.message.find(r.error) != std::string::npos);
-        continue;
+      std::unique_ptr<backend::Kernel> kernel;
+      driver::Outcome o = driver::compile_kernel(*m, name, c.budgets, kernel);
+      INFO("backend " << name << (optimize ? " (optimised)" : " (unoptimised)") << ": " << o.error);
+      REQUIRE(o.ok());
+      for (const RunLine* r : runs) {
+        INFO(c.path << ":" << r->line);
+        check_point(c, *kernel, *r);
+        ++g_ran[name];
       }
-      INFO("runtime error: " << rerr.message << " at line " << rerr.line);
-      REQUIRE(ok);
-      REQUIRE(out.size() == r.want.size());
-      for (size_t k = 0; k < out.size(); ++k) {
-        INFO("output " << k << ": got " << out[k] << " want " << r.want[k]);
-        CHECK(ulp_distance(out[k], r.want[k]) <= (r.approx ? 4u : 0u));
-      }
+      check_batch(c, *kernel, runs);
+      ++g_batched[name];
     }
   }
 }
@@ -310,7 +372,13 @@ void run_case(const fs::path& p, bool bless) {
   round_trip(c, *m, "after optimisation");
   check_ir_blocks(c, s, spec, bless);
   if (bless && !c.irs.empty()) bless_file(c);
-  for (const auto& r : c.runs) check_run(c, s, r);
+  std::vector<std::string> fns;  // in the order of their first run
+  std::map<std::string, std::vector<const RunLine*>> by_fn;
+  for (const auto& r : c.runs) {
+    if (!by_fn.count(r.fn)) fns.push_back(r.fn);
+    by_fn[r.fn].push_back(&r);
+  }
+  for (const auto& fn : fns) check_runs(c, s, fn, by_fn[fn]);
 }
 
 }  // namespace
@@ -330,9 +398,20 @@ TEST_CASE("golden cases") {
   }
 }
 
-// After every case (Catch2 runs test cases in declaration order): the sse backend ran every run
-// the VM ran.
-TEST_CASE("golden cases: the sse backend ran them all") {
-  CHECK(g_runs > 250);
-  CHECK(g_sse_ran == g_runs);
+// After every case (Catch2 runs test cases in declaration order): every backend this build has
+// ran every run the VM ran, one point at a time and in batches.
+TEST_CASE("golden cases: every backend of the build ran them all") {
+  std::vector<std::string> built = {"vm", "sse"};
+#ifdef FS_HAVE_LLVM
+  built.push_back("llvm");
+#endif
+  CHECK(g_ran["vm"] > 300);
+  CHECK(g_batched["vm"] > 200);
+  for (const auto& name : built) {
+    INFO("backend " << name << ": " << g_ran[name] << " runs, " << g_batched[name] << " batches; the VM "
+                    << g_ran["vm"] << " and " << g_batched["vm"]);
+    CHECK(g_ran[name] == g_ran["vm"]);
+    CHECK(g_batched[name] == g_batched["vm"]);
+  }
+  CHECK(backend::available_backends().size() == built.size());
 }

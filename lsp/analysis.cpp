@@ -44,56 +44,71 @@ bool embedded_script_at(const Document& scene, size_t offset, Document& script, 
   return false;
 }
 
-int find_function(const frontend::SemaResult& sema, const std::string& name) {
-  int i = sema.function_index(name, false);
-  return i >= 0 ? i : sema.function_index(name, true);
-}
-
 // A call of the user function `name` (Math.NAME always calls the built-in).
 static bool calls(const frontend::Expr& ex, const std::string& name) {
   return ex.kind == frontend::ExprKind::Call && ex.name == name && !ex.builtin_only;
 }
 
-std::vector<frontend::Span> occurrences(const Analysis& a, const std::string& text, size_t offset) {
+SymbolRef symbol_at(const Analysis& a, const std::string& text, size_t offset) {
+  SymbolRef r;
   size_t b, e;
-  std::vector<frontend::Span> out;
-  if (!word_at(text, offset, b, e)) return out;
-  std::string word = text.substr(b, e - b);
+  if (!word_at(text, offset, b, e)) return r;
+  r.word = text.substr(b, e - b);
+  r.name = {static_cast<uint32_t>(b), static_cast<uint32_t>(e)};
   const auto& sema = a.script.sema;
   const auto& prog = *a.script.prog;
-  auto covers = [&](const frontend::Span& s) { return s.begin <= b && b < s.end; };
-  // A function: its declaration or one of its calls is under the cursor.
-  int f = sema.function_index(word, false);
-  bool on_function = false;
-  if (f >= 0 && sema.functions[static_cast<size_t>(f)].decl) {
-    on_function = covers(sema.functions[static_cast<size_t>(f)].decl->name_span);
-    for (const auto& ex : prog.expr_arena)
-      on_function |= calls(*ex, word) && covers(ex->name_span);
+  auto covers = [&](const frontend::Span& s) { return s.begin <= b && b < std::max(s.end, s.begin + 1); };
+  auto found = [&](SymbolRef::Kind k, int index) {
+    r.kind = k;
+    r.index = index;
+    return r;
+  };
+  // A user function's declaration or one of its calls; Math.NAME always names the built-in.
+  int f = sema.function_index(r.word, false);
+  bool user = f >= 0 && sema.functions[static_cast<size_t>(f)].decl;
+  if (user && covers(sema.functions[static_cast<size_t>(f)].decl->name_span)) return found(SymbolRef::Kind::Function, f);
+  for (const auto& ex : prog.expr_arena) {
+    if (ex->kind != frontend::ExprKind::Call || ex->name != r.word || !covers(ex->name_span)) continue;
+    if (user && !ex->builtin_only) return found(SymbolRef::Kind::Function, f);
+    int k = frontend::find_builtin(r.word);
+    return k >= 0 ? found(SymbolRef::Kind::Builtin, k) : r;
   }
-  if (on_function) {
-    out.push_back(sema.functions[static_cast<size_t>(f)].decl->name_span);
+  // A variable: an occurrence sema resolved, a declaration, or a parameter.
+  for (const auto& ex : prog.expr_arena)
+    if (ex->sym >= 0 && ex->name == r.word && covers(ex->name_span)) return found(SymbolRef::Kind::Variable, ex->sym);
+  for (const auto& st : prog.stmt_arena)
+    for (const auto& d : st->decls)
+      if (d.sym >= 0 && d.name == r.word && covers(d.span)) return found(SymbolRef::Kind::Variable, d.sym);
+  for (size_t k = 0; k < sema.symbols.size(); ++k)
+    if (sema.symbols[k].name == r.word && sema.symbols[k].decl.begin == b)
+      return found(SymbolRef::Kind::Variable, static_cast<int>(k));
+  if (user) return found(SymbolRef::Kind::Function, f);
+  if (int k = frontend::find_builtin(r.word); k >= 0) return found(SymbolRef::Kind::Builtin, k);
+  return r;
+}
+
+std::vector<frontend::Span> occurrences(const Analysis& a, const std::string& text, size_t offset) {
+  std::vector<frontend::Span> out;
+  SymbolRef r = symbol_at(a, text, offset);
+  const auto& sema = a.script.sema;
+  const auto& prog = *a.script.prog;
+  if (r.kind == SymbolRef::Kind::Function) {
+    out.push_back(sema.functions[static_cast<size_t>(r.index)].decl->name_span);
     for (const auto& ex : prog.expr_arena)
-      if (calls(*ex, word)) out.push_back(ex->name_span);
+      if (calls(*ex, r.word)) out.push_back(ex->name_span);
     return out;
   }
-  // A variable: the symbol of the name under the cursor, then everything that resolves to it.
-  int sym = -1;
-  for (const auto& ex : prog.expr_arena)
-    if (ex->sym >= 0 && ex->name == word && covers(ex->name_span)) sym = ex->sym;
+  if (r.kind != SymbolRef::Kind::Variable) return out;
   for (const auto& st : prog.stmt_arena)
     for (const auto& d : st->decls)
-      if (d.sym >= 0 && d.name == word && covers(d.span)) sym = d.sym;
-  if (sym < 0) return out;
-  for (const auto& st : prog.stmt_arena)
-    for (const auto& d : st->decls)
-      if (d.sym == sym) out.push_back({d.span.begin, d.span.begin + static_cast<uint32_t>(d.name.size())});
+      if (d.sym == r.index) out.push_back({d.span.begin, d.span.begin + static_cast<uint32_t>(d.name.size())});
   for (const auto& ex : prog.expr_arena)
-    if (ex->sym == sym && ex->name == word) out.push_back(ex->name_span);
-  const frontend::Symbol& s = sema.symbols[static_cast<size_t>(sym)];
+    if (ex->sym == r.index && ex->name == r.word) out.push_back(ex->name_span);
+  const frontend::Symbol& s = sema.symbols[static_cast<size_t>(r.index)];
   if (out.empty() || s.kind == frontend::SymKind::Global) {
     bool have = false;
     for (const auto& o : out) have |= o.begin == s.decl.begin;
-    if (!have && s.decl.end > s.decl.begin) out.push_back({s.decl.begin, s.decl.begin + static_cast<uint32_t>(word.size())});
+    if (!have && s.decl.end > s.decl.begin) out.push_back({s.decl.begin, s.decl.begin + static_cast<uint32_t>(r.word.size())});
   }
   return out;
 }

@@ -21,16 +21,26 @@ std::shared_ptr<const Analysis> analyze_document(const Document& d);
 // The identifier around byte `offset` ([begin, end)); false when there is none.
 bool word_at(const std::string& text, size_t offset, size_t& begin, size_t& end);
 
-// The user function named `name` (exact, then ignoring case), or -1.
-int find_function(const frontend::SemaResult& sema, const std::string& name);
+// What the name under a position stands for: the one answer hover, definition, references and
+// rename all build on. Words are found by word_at (a cursor just after a name is on it); names
+// are exact (FScript is case-sensitive); a variable occurrence sema resolved wins over a function
+// of the same name, then a user function, then a built-in.
+struct SymbolRef {
+  enum class Kind { None, Function, Variable, Builtin };
+  Kind kind = Kind::None;
+  int index = -1;          // sema.functions, sema.symbols or kBuiltins
+  frontend::Span name{};   // the word under the cursor
+  std::string word;
+};
+SymbolRef symbol_at(const Analysis& a, const std::string& text, size_t offset);
 
 // The FScript string of a .wrl document that holds byte `offset`: a document of its own (same
 // uri) and the byte offset in the .wrl where its text starts. False outside every script, or for
 // a string with escapes (its text and the .wrl bytes would not line up).
 bool embedded_script_at(const Document& scene, size_t offset, Document& script, size_t& base);
 
-// Every place the name at byte `offset` stands for the same thing: a user function (its
-// declaration and calls) or a variable (its declaration, parameters and uses). Empty when the
+// Every place the name at byte `offset` stands for the same thing (symbol_at): a user function
+// (its declaration and calls) or a variable (its declaration, parameters and uses). Empty when the
 // position is on no such name.
 std::vector<frontend::Span> occurrences(const Analysis& a, const std::string& text, size_t offset);
 

@@ -23,12 +23,6 @@ Position position_param(const json& params) {
   return p;
 }
 
-bool name_at(const Document& d, const json& params, size_t& begin, size_t& end, std::string& word) {
-  if (d.scene || !word_at(d.text, offset_of(d.text, position_param(params)), begin, end)) return false;
-  word = d.text.substr(begin, end - begin);
-  return true;
-}
-
 json diagnostics(const Document& d) {
   frontend::DiagnosticSink sink;
   std::vector<frontend::Diagnostic> all;

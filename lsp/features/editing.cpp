@@ -67,11 +67,20 @@ json signature_help(const Document& d, const json& params) {
   size_t end = open;
   while (end > 0 && d.text[end - 1] == ' ') --end;
   if (end == 0 || !word_at(d.text, end - 1, b, e)) return nullptr;
-  std::string name = d.text.substr(b, e - b);
+  // The callee, as hover and definition see it (a user function shadows the built-in).
+  SymbolRef r;
+  std::shared_ptr<const Analysis> a;
+  if (!d.scene) {
+    a = analyze_document(d);
+    r = symbol_at(*a, d.text, b);
+  } else if (int k = frontend::find_builtin(d.text.substr(b, e - b)); k >= 0) {
+    r.kind = SymbolRef::Kind::Builtin;
+    r.index = k;
+  }
   std::string label;
   std::vector<std::string> params_list;
-  if (int k = frontend::find_builtin(name); k >= 0) {
-    label = frontend::kBuiltins[k].signature;
+  if (r.kind == SymbolRef::Kind::Builtin) {
+    label = frontend::kBuiltins[r.index].signature;
     std::string inside = label.substr(label.find('(') + 1);
     inside = inside.substr(0, inside.find(')'));
     for (size_t p = 0; !inside.empty() && p != std::string::npos;) {
@@ -80,11 +89,8 @@ json signature_help(const Document& d, const json& params) {
       params_list.push_back(one.substr(one.find_first_not_of(' ')));
       p = q == std::string::npos ? q : q + 1;
     }
-  } else if (!d.scene) {
-    auto a = analyze_document(d);
-    int f = find_function(a->script.sema, name);
-    if (f < 0) return nullptr;
-    const auto& fi = a->script.sema.functions[static_cast<size_t>(f)];
+  } else if (r.kind == SymbolRef::Kind::Function) {
+    const auto& fi = a->script.sema.functions[static_cast<size_t>(r.index)];
     for (int p : fi.params) params_list.push_back(a->script.sema.symbols[static_cast<size_t>(p)].name);
     label = fi.name + "(";
     for (size_t i = 0; i < params_list.size(); ++i) label += (i ? ", " : "") + params_list[i];

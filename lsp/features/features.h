@@ -27,7 +27,5 @@ json semantic_tokens_legend();
 json range_of(const std::string& text, uint32_t line, uint32_t col, uint32_t length);
 json range_of_span(const std::string& text, uint32_t begin, uint32_t end);
 Position position_param(const json& params);
-// The name at the request's position in a .fs document: its bytes [begin, end) and text.
-bool name_at(const Document& d, const json& params, size_t& begin, size_t& end, std::string& word);
 
 }  // namespace fscript::lsp

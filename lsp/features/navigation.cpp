@@ -7,23 +7,17 @@
 namespace fscript::lsp {
 
 json definition(const Document& d, const json& params) {
-  size_t b, e;
-  std::string word;
-  if (!name_at(d, params, b, e, word)) return nullptr;
+  if (d.scene) return nullptr;
   auto a = analyze_document(d);
   const auto& sema = a->script.sema;
+  SymbolRef r = symbol_at(*a, d.text, offset_of(d.text, position_param(params)));
   frontend::Span target{0, 0};
-  bool found = false;
-  if (int f = find_function(sema, word); f >= 0 && sema.functions[static_cast<size_t>(f)].decl) {
-    target = sema.functions[static_cast<size_t>(f)].decl->name_span;
-    found = true;
+  switch (r.kind) {
+    case SymbolRef::Kind::None:
+    case SymbolRef::Kind::Builtin: return nullptr;
+    case SymbolRef::Kind::Function: target = sema.functions[static_cast<size_t>(r.index)].decl->name_span; break;
+    case SymbolRef::Kind::Variable: target = sema.symbols[static_cast<size_t>(r.index)].decl; break;
   }
-  for (const auto& ex : a->script.prog->expr_arena)  // the symbol this very occurrence resolves to
-    if (!found && ex->sym >= 0 && ex->name == word && ex->name_span.begin <= b && b < ex->name_span.end) {
-      target = sema.symbols[static_cast<size_t>(ex->sym)].decl;
-      found = true;
-    }
-  if (!found) return nullptr;
   return {{"uri", d.uri}, {"range", range_of_span(d.text, target.begin, target.end)}};
 }
 

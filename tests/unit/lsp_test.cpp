@@ -200,3 +200,57 @@ TEST_CASE("lsp completion in a .wrl: the enclosing node's fields, whatever the s
   CHECK(labels_at(2, 5) == std::set<std::string>{"geometry"});       // FShape's field, three spaces before '{'
   CHECK(labels_at(6, 7) == std::set<std::string>{"resolution"});     // FGeometry's, a blank line before '{'
 }
+
+// One request of `method` at (line, ch) of the open document `uri`.
+static json request_at(Server& s, const std::string& method, const std::string& uri, uint32_t line, uint32_t ch) {
+  json params = {{"textDocument", {{"uri", uri}}}, {"position", {{"line", line}, {"character", ch}}}};
+  if (method == "textDocument/references") params["context"] = {{"includeDeclaration", true}};
+  auto out = s.handle({{"jsonrpc", "2.0"}, {"id", 3}, {"method", method}, {"params", params}});
+  return out.empty() ? json() : out.at(0)["result"];
+}
+
+TEST_CASE("lsp: hover, definition and references agree at every position, edges and case included") {
+  Server s;
+  s.handle_text("{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}");
+  // `frep` (a variable) beside `FRep` (a function): names are exact; `sin` is a built-in.
+  std::vector<std::string> lines = {"var frep = 2;", "function FRep(x, y, z) {", "  var k = frep * x;",
+                                    "  return FRep2(k) + sin(y) - z;", "}", "function FRep2(a) { return a * frep; }"};
+  std::string text;
+  for (const auto& l : lines) text += l + "\n";
+  s.handle({{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
+            {"params", {{"textDocument", {{"uri", "file:///a.fs"}, {"version", 1}, {"text", text}}}}}});
+  int named = 0;
+  for (uint32_t line = 0; line < lines.size(); ++line)
+    for (uint32_t ch = 0; ch <= lines[line].size(); ++ch) {
+      json hover = request_at(s, "textDocument/hover", "file:///a.fs", line, ch);
+      json def = request_at(s, "textDocument/definition", "file:///a.fs", line, ch);
+      json refs = request_at(s, "textDocument/references", "file:///a.fs", line, ch);
+      INFO("line " << line << " char " << ch << ": hover " << hover.dump() << " definition " << def.dump()
+                   << " references " << refs.dump());
+      bool builtin = !hover.is_null() && hover["contents"]["value"].get<std::string>().find("user function") == std::string::npos &&
+                     hover["contents"]["value"].get<std::string>().find("defined at") == std::string::npos;
+      // A definition exactly where there are references; hover wherever either is.
+      CHECK(def.is_null() == (refs.is_null() || refs.empty()));
+      if (!def.is_null()) {
+        ++named;
+        CHECK_FALSE(hover.is_null());
+        CHECK_FALSE(builtin);
+        bool listed = false;  // the definition is one of the references
+        for (const auto& r : refs) listed |= r["range"]["start"] == def["range"]["start"];
+        CHECK(listed);
+      }
+      // A word's last byte and the position just after it are on the same name.
+      if (ch > 0 && !hover.is_null() && ch == hover["range"]["end"]["character"].get<uint32_t>())
+        CHECK(request_at(s, "textDocument/hover", "file:///a.fs", line, ch - 1) == hover);
+    }
+  CHECK(named > 30);
+  // `frep` in line 2 is the variable of line 0, never the function FRep of line 1.
+  json def = request_at(s, "textDocument/definition", "file:///a.fs", 2, 11);
+  CHECK(def["range"]["start"] == json({{"line", 0}, {"character", 4}}));
+  CHECK(request_at(s, "textDocument/hover", "file:///a.fs", 2, 11)["contents"]["value"].get<std::string>().find(
+            "global variable") != std::string::npos);
+  CHECK(request_at(s, "textDocument/references", "file:///a.fs", 1, 10).size() == 1);  // FRep: its declaration only
+  CHECK(request_at(s, "textDocument/references", "file:///a.fs", 3, 10).size() == 2);  // FRep2: declaration and call
+  CHECK(request_at(s, "textDocument/hover", "file:///a.fs", 3, 22)["contents"]["value"].get<std::string>().find(
+            "sin(") != std::string::npos);
+}

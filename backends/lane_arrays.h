@@ -1,7 +1,8 @@
 #pragma once
-// Arrays for the JIT backends' packed code: the per-lane array storage of one group of lanes (4 for
-// sse, the vector width for llvm), and the helpers generated code calls for anew / aload / astore
-// / alen under the block's lane mask. Semantics, budgets and messages are the VM's (vm_exec.cpp).
+// Arrays of every backend: the per-lane array storage of one group of lanes (a VM chunk, 4 for sse,
+// the vector width for llvm), one lane's operations (the VM calls them), and the helpers generated
+// code calls for anew / aload / astore / alen under the block's lane mask. One implementation, so
+// the budgets, the semantics and the messages are the same on every backend.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -20,6 +21,20 @@ struct LaneArrays {
 
   // Storage for `slot_names` (display names made here) with the given budget.
   void init(uint32_t lane_count, uint64_t budget, const std::vector<std::string>& slot_names);
+  // Every array of every lane gone (a new evaluation).
+  void reset();
+
+  // One lane's operations; each returns false (nullptr) with `message` set.
+  bool create(uint32_t slot, uint32_t lane, float size);
+  float* element(uint32_t slot, uint32_t lane, float index);
+  bool length(uint32_t slot, uint32_t lane, float& out);
+  // A function activation's own arrays, slots [first, first + count) of one lane: entering saves
+  // them (2 * count int64) and marks them not created; leaving puts the caller's back.
+  void enter(uint32_t first, uint32_t count, uint32_t lane, int64_t* save);
+  void leave(uint32_t first, uint32_t count, uint32_t lane, const int64_t* save);
+
+ private:
+  bool created(uint32_t slot, uint32_t lane);
 };
 
 // Each returns 0, or 1 with `message` set. Masks are one 32-bit word per lane, nonzero where the

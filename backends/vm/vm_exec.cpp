@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "backends/jit_support.h"
+#include "backends/lane_arrays.h"
 #include "backends/runtime_errors.h"
 #include "runtime/math/batch_isa.h"
 #include "runtime/math/math.h"
@@ -27,18 +28,13 @@ using ir::Op;
 namespace errors = backend::errors;
 using Mask = uint32_t;  // all ones: the lane is present
 
-// Per-lane state of one evaluation: budgets used so far and the lane's array storage.
+// Per-lane budgets used so far in one evaluation (arrays live in the chunk's LaneArrays).
 struct LaneEnv {
   uint64_t ticks = 0;
   uint32_t depth = 0;
-  std::vector<float> heap;
-  std::vector<int64_t> garr_off, garr_len;  // global arrays (-1: not created yet)
-  void reset(uint32_t n_global_arrays) {
+  void reset() {
     ticks = 0;
     depth = 0;
-    heap.clear();
-    garr_off.assign(n_global_arrays, -1);
-    garr_len.assign(n_global_arrays, 0);
   }
 };
 
@@ -51,7 +47,7 @@ struct Frame {
   LaneEnv** env;     // env[i]: lane i's state
   float* gmem;       // global g of lane i is gmem[g * gstride + i]
   uint32_t gstride;
-  std::vector<int64_t> arr_off, arr_len;  // local arrays, [slot * lanes + i]
+  uint32_t lane0;    // the chunk lane of this frame's lane 0 (its arrays' lane)
 };
 
 // Batch frames keep every register as kChunkLanes lanes, 64-byte aligned, and the lane loops
@@ -184,7 +180,16 @@ struct AlignedFloats {
 
 class Executor {
  public:
-  Executor(const VmProgram& p, const Budgets& b) : p_(p), budgets_(b) {}
+  Executor(const VmProgram& p, const Budgets& b) : p_(p), budgets_(b), arrays_(thread_arrays()) {
+    if (!p.needs_lane_state) return;
+    // Array slots: the module's global arrays, then each function's own (as the JITs number them).
+    std::vector<std::string> names = p.global_array_names;
+    for (const VmFunction& f : p.functions) {
+      slot_base_.push_back(static_cast<uint32_t>(names.size()));
+      names.insert(names.end(), f.array_names.begin(), f.array_names.end());
+    }
+    arrays_.init(kChunkLanes, b.max_array_elements, names);
+  }
 
   bool run_chunk(const float* const* in, float* const* out, size_t base, uint32_t L, RuntimeError& err);
   bool out_of_stack() const { return out_of_stack_; }
@@ -195,18 +200,26 @@ class Executor {
   bool exec_one(Frame& fr, const VInst& v, RuntimeError& err);
   bool lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err);
   bool call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err);
-  bool array_slot(Frame& fr, const VInst& v, uint32_t i, int64_t*& off, int64_t*& len, std::string& name);
+  bool array_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err);
   void edge_moves(Frame& fr, const Edge& e, const Mask* m);
   bool out_of_stack_ = false;
   static void init_frame(Frame& fr) {
     const VmFunction& f = *fr.f;
     for (auto [r, v] : f.consts) std::fill_n(fr.regs + size_t(r) * fr.stride, fr.stride, v);
-    fr.arr_off.assign(size_t(f.num_arrays) * fr.lanes, -1);
-    fr.arr_len.assign(size_t(f.num_arrays) * fr.lanes, 0);
+  }
+  uint32_t slot_of(const Frame& fr, const VInst& v) const {
+    return v.array_global ? v.aux : slot_base_[static_cast<size_t>(fr.f - p_.functions.data())] + v.aux;
   }
 
   const VmProgram& p_;
   const Budgets& budgets_;
+  std::vector<uint32_t> slot_base_;  // per function: its first array slot
+  backend::LaneArrays& arrays_;      // the thread's, so storage is reused from batch to batch
+
+  static backend::LaneArrays& thread_arrays() {
+    thread_local backend::LaneArrays arrays;
+    return arrays;
+  }
 };
 
 bool Executor::run_chunk(const float* const* in, float* const* out, size_t base, uint32_t L, RuntimeError& err) {
@@ -220,14 +233,15 @@ bool Executor::run_chunk(const float* const* in, float* const* out, size_t base,
     envs.resize(K);
     env_ptrs.resize(K);
     for (uint32_t i = 0; i < L; ++i) {
-      envs[i].reset(p_.num_global_arrays);
+      envs[i].reset();
       env_ptrs[i] = &envs[i];
     }
+    arrays_.reset();
     gmem.assign(size_t(p_.num_globals) * L, __builtin_nanf(""));
   }
   // One point (eval) runs as a one-lane frame with scalar code; a batch uses full K-lane registers.
   uint32_t S = L == 1 ? 1 : K;
-  Frame fr{&k, regs.get(size_t(std::max<uint32_t>(k.num_regs, 1)) * S), L, S, env_ptrs.data(), gmem.data(), L, {}, {}};
+  Frame fr{&k, regs.get(size_t(std::max<uint32_t>(k.num_regs, 1)) * S), L, S, env_ptrs.data(), gmem.data(), L, 0};
   init_frame(fr);
   for (uint32_t p = 0; p < k.num_params; ++p)
     if (k.param_regs[p] != kNoReg) std::memcpy(fr.regs + size_t(k.param_regs[p]) * S, in[p] + base, L * sizeof(float));
@@ -373,19 +387,6 @@ bool Executor::exec_one(Frame& fr, const VInst& v, RuntimeError& err) {
   return true;
 }
 
-bool Executor::array_slot(Frame& fr, const VInst& v, uint32_t i, int64_t*& off, int64_t*& len, std::string& name) {
-  if (v.array_global) {
-    off = &fr.env[i]->garr_off[v.aux];
-    len = &fr.env[i]->garr_len[v.aux];
-    name = p_.global_array_names[v.aux];
-  } else {
-    off = &fr.arr_off[size_t(v.aux) * fr.lanes + i];
-    len = &fr.arr_len[size_t(v.aux) * fr.lanes + i];
-    name = backend::array_display_name(fr.f->array_names[v.aux]);
-  }
-  return true;
-}
-
 bool Executor::lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
   float* R = fr.regs;
   uint32_t S = fr.stride;
@@ -403,37 +404,26 @@ bool Executor::lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err)
     case Op::Call: return call(fr, v, i, err);
     default: break;
   }
-  int64_t *off, *len;
-  std::string name;
-  array_slot(fr, v, i, off, len, name);
+  return array_op(fr, v, i, err);
+}
+
+bool Executor::array_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
+  float* R = fr.regs;
+  auto reg = [&](uint32_t r) -> float& { return R[size_t(r) * fr.stride + i]; };
+  uint32_t slot = slot_of(fr, v), lane = fr.lane0 + i;
+  bool ok;
   if (v.op == Op::ANew) {
-    float n = math::round(reg(v.a));
-    if (!(n >= 0) || n > static_cast<float>(budgets_.max_array_elements) ||
-        env.heap.size() + static_cast<size_t>(n) > budgets_.max_array_elements) {
-      err = {errors::array_size(name, reg(v.a), budgets_.max_array_elements), v.line};
-      return false;
-    }
-    *off = static_cast<int64_t>(env.heap.size());
-    *len = static_cast<int64_t>(n);
-    env.heap.resize(env.heap.size() + static_cast<size_t>(n), 0.0f);
-    return true;
+    ok = arrays_.create(slot, lane, reg(v.a));
+  } else if (v.op == Op::ALen) {
+    ok = arrays_.length(slot, lane, reg(v.dst));
+  } else {  // ALoad, AStore
+    float* e = arrays_.element(slot, lane, reg(v.a));
+    ok = e != nullptr;
+    if (ok && v.op == Op::ALoad) reg(v.dst) = *e;
+    if (ok && v.op == Op::AStore) *e = reg(v.b);
   }
-  if (*off < 0) {
-    err = {errors::array_unset(name), v.line};
-    return false;
-  }
-  if (v.op == Op::ALen) {
-    reg(v.dst) = static_cast<float>(*len);
-    return true;
-  }
-  long idx = math::array_index(reg(v.a), *len);
-  if (idx < 0) {
-    err = {errors::array_index(name, reg(v.a), *len), v.line};
-    return false;
-  }
-  if (v.op == Op::ALoad) reg(v.dst) = env.heap[*off + idx];
-  else env.heap[*off + idx] = reg(v.b);
-  return true;
+  if (!ok) err = {arrays_.message, v.line};
+  return ok;
 }
 
 // A user call for lane i runs the callee alone (one lane): recursion never diverges a batch.
@@ -452,7 +442,7 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
     return false;
   }
   std::vector<float> regs(std::max<uint32_t>(callee.num_regs, 1));
-  Frame sub{&callee, regs.data(), 1, 1, fr.env + i, fr.gmem + i, fr.gstride, {}, {}};
+  Frame sub{&callee, regs.data(), 1, 1, fr.env + i, fr.gmem + i, fr.gstride, fr.lane0 + i};
   init_frame(sub);
   const auto& args = fr.f->lists[v.aux];
   for (size_t k = 0; k < args.size(); ++k)
@@ -461,7 +451,12 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
   env.depth += step;
   std::vector<Mask> one(1, ~Mask{0});
   float result = __builtin_nanf("");
+  // The callee's own arrays start unmade in every activation; the caller's come back after.
+  uint32_t first = slot_base_.empty() ? 0 : slot_base_[v.c];
+  std::vector<int64_t> saved(size_t{callee.num_arrays} * 2);
+  arrays_.enter(first, callee.num_arrays, sub.lane0, saved.data());
   bool ok = run(sub, one, nullptr, 0, &result, err);
+  arrays_.leave(first, callee.num_arrays, sub.lane0, saved.data());
   env.depth -= step;
   fr.regs[size_t(v.dst) * fr.stride + i] = result;
   return ok;

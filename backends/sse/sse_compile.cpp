@@ -312,161 +312,20 @@ class Codegen : public detail::LaneCode {
     return false;
   }
 
+  // One IR instruction: a dispatch by family; every op is named here (no default), so a new op
+  // fails the build until it has its instructions.
   bool inst(const ir::Inst& in, int pos, std::string& error) {
     using ir::Op;
-    auto arg = [&](int i) { return src(in.args[i]); };
-    // A simple destructive binary op may take over its first operand's register when it dies here.
-    auto dest_binary = [&]() {
-      const ir::Inst* a = in.args[0];
-      if (a->op != Op::Const && reg_of_[a->id] >= 0 && next_use(a->id, pos) == INT32_MAX) {
-        Xmm d = static_cast<Xmm>(reg_of_[a->id]);
-        held_[reg_of_[a->id]] = -1, reg_of_[a->id] = -1;
-        return d;
-      }
-      return alloc(pos);
-    };
     switch (in.op) {
       case Op::Const: return true;  // read from the constant pool where used
-      case Op::Param: {
-        Xmm d = alloc(pos);
-        if (callee_) {
-          a_.movaps(d, Mem::at(Gp::rbx, 16 * in.aux));
-          define(in, d);
-          return true;
-        }
-        a_.mov(Gp::rax, Mem::at(Gp::rbx, 8 * in.aux));
-        a_.movups(d, Mem::at(Gp::rax, Gp::r13, 1));
-        define(in, d);
-        return true;
-      }
-      case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: {
-        Src b = arg(1);
-        Src a = arg(0);
-        // a + b and a * b are b + a and b * a, bit for bit: when only b dies here, its register
-        // takes the result and no copy is needed.
-        const ir::Inst *ia = in.args[0], *ib = in.args[1];
-        auto dying = [&](const ir::Inst* v) {
-          return v->op != Op::Const && reg_of_[v->id] >= 0 && next_use(v->id, pos) == INT32_MAX;
-        };
-        if ((in.op == Op::Add || in.op == Op::Mul) && !dying(ia) && dying(ib) && ia != ib) {
-          Xmm d = static_cast<Xmm>(reg_of_[ib->id]);
-          drop(ib->id);
-          if (in.op == Op::Add) FS_APPLY(addps, d, a);
-          else FS_APPLY(mulps, d, a);
-          define(in, d);
-          return true;
-        }
-        Xmm d = dest_binary();
-        load(d, a);
-        if (in.op == Op::Add) FS_APPLY(addps, d, b);
-        if (in.op == Op::Sub) FS_APPLY(subps, d, b);
-        if (in.op == Op::Mul) FS_APPLY(mulps, d, b);
-        if (in.op == Op::Div) FS_APPLY(divps, d, b);
-        define(in, d);
-        return true;
-      }
-      case Op::Neg: case Op::Abs: {
-        Src a = arg(0);
-        Xmm d = dest_binary();
-        load(d, a);
-        if (in.op == Op::Neg) a_.xorps(d, bits(0x80000000u));
-        else a_.andps(d, bits(0x7FFFFFFFu));
-        define(in, d);
-        return true;
-      }
-      case Op::Sqrt: {
-        Xmm d = alloc(pos);
-        FS_APPLY(sqrtps, d, arg(0));
-        define(in, d);
-        return true;
-      }
-      case Op::Floor: case Op::Ceil: {
-        Xmm d = alloc(pos);
-        load(Xmm::x1, arg(0));
-        a_.roundps(d, Xmm::x1, in.op == Op::Floor ? Rounding::Down : Rounding::Up);
-        define(in, d);
-        return true;
-      }
-      case Op::Round: {  // f = floor(a); a - f >= 0.5 ? f + 1 : f
-        Xmm d = alloc(pos);
-        load(Xmm::x1, arg(0));
-        a_.roundps(d, Xmm::x1, Rounding::Down);
-        a_.subps(Xmm::x1, d);
-        a_.movaps(Xmm::x0, k(0.5f));
-        a_.cmpps(Xmm::x0, Xmm::x1, Pred::Le);
-        a_.movaps(Xmm::x1, d);
-        a_.addps(Xmm::x1, k(1.0f));
-        a_.blendvps(d, Xmm::x1);
-        define(in, d);
-        return true;
-      }
-      case Op::Sign: {  // a > 0 ? 1 : (a < 0 ? -1 : a)
-        Xmm d = alloc(pos);
-        Src a = arg(0);
-        a_.movaps(Xmm::x1, k(0.0f));
-        if (a.mem) a_.cmpps(Xmm::x1, a.m, Pred::Lt);
-        else a_.cmpps(Xmm::x1, a.x, Pred::Lt);
-        load(Xmm::x0, a);
-        a_.cmpps(Xmm::x0, k(0.0f), Pred::Lt);
-        load(d, a);
-        a_.blendvps(d, k(-1.0f));
-        a_.movaps(Xmm::x0, Xmm::x1);
-        a_.blendvps(d, k(1.0f));
-        define(in, d);
-        return true;
-      }
-      case Op::Min: case Op::Max: {
-        const ir::Inst* b = in.args[1];
-        Src sa = arg(0), sb = arg(1);
-        Xmm d;
-        if (b->op != Op::Const && reg_of_[b->id] >= 0 && next_use(b->id, pos) == INT32_MAX) {
-          d = static_cast<Xmm>(reg_of_[b->id]);  // b dies here: its register takes the result
-          drop(b->id);
-        } else {
-          d = alloc(pos);
-        }
-        minmax(d, sa, sb, !may_nan(b), in.op == Op::Min);
-        define(in, d);
-        return true;
-      }
-      case Op::Clamp: {  // min(max(a, lo), hi)
-        Xmm d = alloc(pos);
-        minmax(Xmm::x1, arg(0), arg(1), !may_nan(in.args[1]), false);
-        minmax(d, {false, Xmm::x1, {}}, arg(2), !may_nan(in.args[2]), true);
-        define(in, d);
-        return true;
-      }
-      case Op::Eq: case Op::Ne: case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge: {
-        Xmm d = alloc(pos);
-        Src a = arg(0), b = arg(1);
-        switch (in.op) {
-          case Op::Eq: compare(d, a, b, Pred::Eq); break;
-          case Op::Ne: compare(d, a, b, Pred::Neq); break;
-          case Op::Lt: compare(d, a, b, Pred::Lt); break;
-          case Op::Le: compare(d, a, b, Pred::Le); break;
-          case Op::Gt: compare(d, b, a, Pred::Lt); break;
-          default: compare(d, b, a, Pred::Le); break;  // Ge
-        }
-        define(in, d);
-        return true;
-      }
-      case Op::Not: case Op::Truth: {
-        Xmm d = alloc(pos);
-        truthy_mask(arg(0), may_nan(in.args[0]));
-        a_.movaps(d, Xmm::x0);
-        if (in.op == Op::Not) a_.andnps(d, k(1.0f));
-        else a_.andps(d, k(1.0f));
-        define(in, d);
-        return true;
-      }
-      case Op::Select: {
-        Xmm d = alloc(pos);
-        truthy_mask(arg(0), may_nan(in.args[0]));
-        load(d, arg(2));
-        FS_APPLY(blendvps, d, arg(1));
-        define(in, d);
-        return true;
-      }
+      case Op::Phi: return true;    // its home is written on the incoming edges
+      case Op::Param: return param(in, pos), true;
+      case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: return arithmetic(in, pos), true;
+      case Op::Neg: case Op::Abs: return sign_bit(in, pos), true;
+      case Op::Sqrt: case Op::Floor: case Op::Ceil: case Op::Round: case Op::Sign: return rounding(in, pos), true;
+      case Op::Min: case Op::Max: case Op::Clamp: return min_max(in, pos), true;
+      case Op::Eq: case Op::Ne: case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge: return comparison(in, pos), true;
+      case Op::Not: case Op::Truth: case Op::Select: return logic(in, pos), true;
       case Op::Mod: return call(in, pos, reinterpret_cast<const void*>(&mod_batch));
       // Batch rows of ir/math_ops.def call runtime/math's batch function; Trig rows inline it
       // (lane_code.h); Lane rows have their own cases above.
@@ -480,72 +339,216 @@ class Codegen : public detail::LaneCode {
 #undef FS_SSE_Lane
 #undef FS_SSE_Batch
 #undef FS_SSE_Trig
-      case Op::Ret:
-        for (size_t o = 0; o < in.args.size(); ++o) {
-          Src s = src(in.args[o]);
-          if (!straight_) {  // lanes return at different times: collect under the block's mask
-            masked_store(at(out_slot_ + 16 * static_cast<int32_t>(o)), s, at(kActive));
-            continue;
-          }
-          if (s.mem) a_.movaps(Xmm::x0, s.m), s = {false, Xmm::x0, {}};
-          a_.mov(Gp::rax, Mem::at(Gp::r12, 8 * static_cast<int32_t>(o)));
-          a_.movups(Mem::at(Gp::rax, Gp::r13, 1), s.x);
-        }
-        return true;
-      case Op::Jump:
-        a_.movaps(Xmm::x0, at(kActive));
-        a_.movaps(at(kEdge0), Xmm::x0);
-        edge(in.targets[0], at(kEdge0));
-        back_edge(in.targets[0], at(kEdge0));
-        return true;
-      case Op::Branch: {  // lanes where the condition is truthy take targets[0]
-        truthy_mask(arg(0), may_nan(in.args[0]));
-        a_.movaps(Xmm::x1, at(kActive));
-        a_.andps(Xmm::x1, Xmm::x0);
-        a_.movaps(at(kEdge0), Xmm::x1);
-        a_.andnps(Xmm::x0, at(kActive));
-        a_.movaps(at(kEdge1), Xmm::x0);
-        edge(in.targets[0], at(kEdge0));
-        edge(in.targets[1], at(kEdge1));
-        bool first_back = block_index_[in.targets[0]->id] <= block_index_[in.targets[1]->id];
-        back_edge(in.targets[first_back ? 0 : 1], at(first_back ? kEdge0 : kEdge1));
-        back_edge(in.targets[first_back ? 1 : 0], at(first_back ? kEdge1 : kEdge0));
-        return true;
-      }
-      case Op::Tick: {  // per-lane iteration counters (int32): counter - mask adds one per active lane
-        Mem counters = counters_mem();
-        a_.movaps(Xmm::x0, counters);
-        a_.psubd(Xmm::x0, at(kActive));
-        a_.movaps(counters, Xmm::x0);
-        a_.pcmpgtd(Xmm::x0, bits(static_cast<uint32_t>(budget_)));
-        a_.movmskps(Gp::rax, Xmm::x0);
-        a_.test(Gp::rax, Gp::rax);
-        if (loop_budget_ <= kCarryAt) {
-          a_.jcc(Cond::NE, trap(1, in.line));
-          return true;
-        }
-        // A budget beyond int32: at 2^30 the counts move into 64-bit totals, checked there.
-        carries_.push_back({a_.new_label(), a_.new_label(), trap(1, in.line)});
-        a_.jcc(Cond::NE, carries_.back().entry);
-        a_.bind(carries_.back().back);
-        return true;
-      }
-      case Op::GLoad: {
-        Xmm d = alloc(pos);
-        a_.movaps(d, global_mem(in.aux));
-        define(in, d);
-        return true;
-      }
-      case Op::GStore:
-        masked_store(global_mem(in.aux), arg(0), at(kActive));
-        return true;
-      case Op::Phi: return true;  // its home is written on the incoming edges
-      case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
-        array_op(in, pos);
-        return true;
+      case Op::Ret: return ret(in), true;
+      case Op::Jump: case Op::Branch: return jump(in), true;
+      case Op::Tick: return tick(in), true;
+      case Op::GLoad: case Op::GStore: return global(in, pos), true;
+      case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen: return array_op(in, pos), true;
       case Op::Call: return call_function(in, pos), true;
     }
     return unsupported(in, error);
+  }
+
+  Src arg(const ir::Inst& in, size_t i) { return src(in.args[i]); }
+
+  bool dies_here(const ir::Inst* v, int pos) const {
+    return v->op != ir::Op::Const && reg_of_[v->id] >= 0 && next_use(v->id, pos) == INT32_MAX;
+  }
+
+  // A simple destructive op may take over its first operand's register when it dies here.
+  Xmm dest_first(const ir::Inst& in, int pos) {
+    const ir::Inst* a = in.args[0];
+    if (!dies_here(a, pos)) return alloc(pos);
+    Xmm d = static_cast<Xmm>(reg_of_[a->id]);
+    held_[reg_of_[a->id]] = -1, reg_of_[a->id] = -1;
+    return d;
+  }
+
+  void param(const ir::Inst& in, int pos) {
+    Xmm d = alloc(pos);
+    if (callee_) {
+      a_.movaps(d, Mem::at(Gp::rbx, 16 * in.aux));
+    } else {
+      a_.mov(Gp::rax, Mem::at(Gp::rbx, 8 * in.aux));
+      a_.movups(d, Mem::at(Gp::rax, Gp::r13, 1));
+    }
+    define(in, d);
+  }
+
+  void arithmetic(const ir::Inst& in, int pos) {
+    using ir::Op;
+    Src b = arg(in, 1);
+    Src a = arg(in, 0);
+    // a + b and a * b are b + a and b * a, bit for bit: when only b dies here, its register
+    // takes the result and no copy is needed.
+    const ir::Inst *ia = in.args[0], *ib = in.args[1];
+    if ((in.op == Op::Add || in.op == Op::Mul) && !dies_here(ia, pos) && dies_here(ib, pos) && ia != ib) {
+      Xmm d = static_cast<Xmm>(reg_of_[ib->id]);
+      drop(ib->id);
+      if (in.op == Op::Add) FS_APPLY(addps, d, a);
+      else FS_APPLY(mulps, d, a);
+      define(in, d);
+      return;
+    }
+    Xmm d = dest_first(in, pos);
+    load(d, a);
+    if (in.op == Op::Add) FS_APPLY(addps, d, b);
+    if (in.op == Op::Sub) FS_APPLY(subps, d, b);
+    if (in.op == Op::Mul) FS_APPLY(mulps, d, b);
+    if (in.op == Op::Div) FS_APPLY(divps, d, b);
+    define(in, d);
+  }
+
+  void sign_bit(const ir::Inst& in, int pos) {  // neg flips it, abs clears it
+    Src a = arg(in, 0);
+    Xmm d = dest_first(in, pos);
+    load(d, a);
+    if (in.op == ir::Op::Neg) a_.xorps(d, bits(0x80000000u));
+    else a_.andps(d, bits(0x7FFFFFFFu));
+    define(in, d);
+  }
+
+  void rounding(const ir::Inst& in, int pos) {
+    using ir::Op;
+    Xmm d = alloc(pos);
+    if (in.op == Op::Sqrt) {
+      FS_APPLY(sqrtps, d, arg(in, 0));
+    } else if (in.op == Op::Floor || in.op == Op::Ceil) {
+      load(Xmm::x1, arg(in, 0));
+      a_.roundps(d, Xmm::x1, in.op == Op::Floor ? Rounding::Down : Rounding::Up);
+    } else if (in.op == Op::Round) {  // f = floor(a); a - f >= 0.5 ? f + 1 : f
+      load(Xmm::x1, arg(in, 0));
+      a_.roundps(d, Xmm::x1, Rounding::Down);
+      a_.subps(Xmm::x1, d);
+      a_.movaps(Xmm::x0, k(0.5f));
+      a_.cmpps(Xmm::x0, Xmm::x1, Pred::Le);
+      a_.movaps(Xmm::x1, d);
+      a_.addps(Xmm::x1, k(1.0f));
+      a_.blendvps(d, Xmm::x1);
+    } else {  // Sign: a > 0 ? 1 : (a < 0 ? -1 : a)
+      Src a = arg(in, 0);
+      a_.movaps(Xmm::x1, k(0.0f));
+      if (a.mem) a_.cmpps(Xmm::x1, a.m, Pred::Lt);
+      else a_.cmpps(Xmm::x1, a.x, Pred::Lt);
+      load(Xmm::x0, a);
+      a_.cmpps(Xmm::x0, k(0.0f), Pred::Lt);
+      load(d, a);
+      a_.blendvps(d, k(-1.0f));
+      a_.movaps(Xmm::x0, Xmm::x1);
+      a_.blendvps(d, k(1.0f));
+    }
+    define(in, d);
+  }
+
+  void min_max(const ir::Inst& in, int pos) {
+    if (in.op == ir::Op::Clamp) {  // min(max(a, lo), hi)
+      Xmm d = alloc(pos);
+      minmax(Xmm::x1, arg(in, 0), arg(in, 1), !may_nan(in.args[1]), false);
+      minmax(d, {false, Xmm::x1, {}}, arg(in, 2), !may_nan(in.args[2]), true);
+      define(in, d);
+      return;
+    }
+    const ir::Inst* b = in.args[1];
+    Src sa = arg(in, 0), sb = arg(in, 1);
+    Xmm d;
+    if (dies_here(b, pos)) {
+      d = static_cast<Xmm>(reg_of_[b->id]);  // b dies here: its register takes the result
+      drop(b->id);
+    } else {
+      d = alloc(pos);
+    }
+    minmax(d, sa, sb, !may_nan(b), in.op == ir::Op::Min);
+    define(in, d);
+  }
+
+  void comparison(const ir::Inst& in, int pos) {
+    using ir::Op;
+    Xmm d = alloc(pos);
+    Src a = arg(in, 0), b = arg(in, 1);
+    if (in.op == Op::Eq) compare(d, a, b, Pred::Eq);
+    if (in.op == Op::Ne) compare(d, a, b, Pred::Neq);
+    if (in.op == Op::Lt) compare(d, a, b, Pred::Lt);
+    if (in.op == Op::Le) compare(d, a, b, Pred::Le);
+    if (in.op == Op::Gt) compare(d, b, a, Pred::Lt);
+    if (in.op == Op::Ge) compare(d, b, a, Pred::Le);
+    define(in, d);
+  }
+
+  void logic(const ir::Inst& in, int pos) {  // not, truth (0 or 1), select
+    Xmm d = alloc(pos);
+    truthy_mask(arg(in, 0), may_nan(in.args[0]));
+    if (in.op == ir::Op::Select) {
+      load(d, arg(in, 2));
+      FS_APPLY(blendvps, d, arg(in, 1));
+    } else {
+      a_.movaps(d, Xmm::x0);
+      if (in.op == ir::Op::Not) a_.andnps(d, k(1.0f));
+      else a_.andps(d, k(1.0f));
+    }
+    define(in, d);
+  }
+
+  void ret(const ir::Inst& in) {
+    for (size_t o = 0; o < in.args.size(); ++o) {
+      Src s = src(in.args[o]);
+      if (!straight_) {  // lanes return at different times: collect under the block's mask
+        masked_store(at(out_slot_ + 16 * static_cast<int32_t>(o)), s, at(kActive));
+        continue;
+      }
+      if (s.mem) a_.movaps(Xmm::x0, s.m), s = {false, Xmm::x0, {}};
+      a_.mov(Gp::rax, Mem::at(Gp::r12, 8 * static_cast<int32_t>(o)));
+      a_.movups(Mem::at(Gp::rax, Gp::r13, 1), s.x);
+    }
+  }
+
+  void jump(const ir::Inst& in) {
+    if (in.op == ir::Op::Jump) {
+      a_.movaps(Xmm::x0, at(kActive));
+      a_.movaps(at(kEdge0), Xmm::x0);
+      edge(in.targets[0], at(kEdge0));
+      back_edge(in.targets[0], at(kEdge0));
+      return;
+    }
+    // Branch: lanes where the condition is truthy take targets[0].
+    truthy_mask(arg(in, 0), may_nan(in.args[0]));
+    a_.movaps(Xmm::x1, at(kActive));
+    a_.andps(Xmm::x1, Xmm::x0);
+    a_.movaps(at(kEdge0), Xmm::x1);
+    a_.andnps(Xmm::x0, at(kActive));
+    a_.movaps(at(kEdge1), Xmm::x0);
+    edge(in.targets[0], at(kEdge0));
+    edge(in.targets[1], at(kEdge1));
+    bool first_back = block_index_[in.targets[0]->id] <= block_index_[in.targets[1]->id];
+    back_edge(in.targets[first_back ? 0 : 1], at(first_back ? kEdge0 : kEdge1));
+    back_edge(in.targets[first_back ? 1 : 0], at(first_back ? kEdge1 : kEdge0));
+  }
+
+  void tick(const ir::Inst& in) {  // per-lane iteration counters (int32): counter - mask adds one per active lane
+    Mem counters = counters_mem();
+    a_.movaps(Xmm::x0, counters);
+    a_.psubd(Xmm::x0, at(kActive));
+    a_.movaps(counters, Xmm::x0);
+    a_.pcmpgtd(Xmm::x0, bits(static_cast<uint32_t>(budget_)));
+    a_.movmskps(Gp::rax, Xmm::x0);
+    a_.test(Gp::rax, Gp::rax);
+    if (loop_budget_ <= kCarryAt) {
+      a_.jcc(Cond::NE, trap(1, in.line));
+      return;
+    }
+    // A budget beyond int32: at 2^30 the counts move into 64-bit totals, checked there.
+    carries_.push_back({a_.new_label(), a_.new_label(), trap(1, in.line)});
+    a_.jcc(Cond::NE, carries_.back().entry);
+    a_.bind(carries_.back().back);
+  }
+
+  void global(const ir::Inst& in, int pos) {
+    if (in.op == ir::Op::GStore) {
+      masked_store(global_mem(in.aux), arg(in, 0), at(kActive));
+      return;
+    }
+    Xmm d = alloc(pos);
+    a_.movaps(d, global_mem(in.aux));
+    define(in, d);
   }
 
   // The callee runs for this block's lanes: arguments to the call slots, live registers saved,

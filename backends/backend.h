@@ -9,7 +9,7 @@
 
 #include "ir/ir.h"
 
-namespace fscript::backend {
+namespace fscript::backends {
 
 // Limits that keep an untrusted script from hanging or exhausting the host (language spec).
 struct Budgets {
@@ -66,4 +66,4 @@ std::string missing_backend_message(const std::string& name);
 // Returns false with a message when this binary has no llvm backend or no cache directory.
 bool enable_llvm_disk_cache(std::string& message);
 
-}  // namespace fscript::backend
+}  // namespace fscript::backends

@@ -13,7 +13,7 @@
 #include "ir/passes/passes.h"
 #include "runtime/support/big_stack.h"
 
-namespace fscript::backend {
+namespace fscript::backends {
 
 namespace {
 constexpr uintptr_t kStackMargin = 256 * 1024;
@@ -125,4 +125,4 @@ bool inputs_in_range(const float* const* inputs, size_t num_inputs, size_t n, do
   return ok;
 }
 
-}  // namespace fscript::backend
+}  // namespace fscript::backends

@@ -12,7 +12,7 @@
 #include "backends/backend.h"
 #include "backends/lane_arrays.h"
 
-namespace fscript::backend {
+namespace fscript::backends {
 
 // A module as the JIT backends compile it: calls of non-recursive functions inlined (masked lanes
 // have no call stack of their own; an unoptimised module still has such calls), the kernel found,
@@ -108,4 +108,4 @@ bool eval_one(const Kernel& kernel, size_t num_inputs, size_t num_outputs, const
   return kernel.eval_batch(in.data, out.data, 1, err);
 }
 
-}  // namespace fscript::backend
+}  // namespace fscript::backends

@@ -7,7 +7,7 @@
 #include "backends/runtime_errors.h"
 #include "runtime/math/math.h"
 
-namespace fscript::backend {
+namespace fscript::backends {
 namespace {
 bool on(const uint32_t* mask, uint32_t lane) { return mask[lane] != 0; }
 }  // namespace
@@ -142,4 +142,4 @@ uint32_t fs_lanes_leave(LaneArrays* s, uint32_t first, uint32_t count, const int
 
 }  // extern "C"
 
-}  // namespace fscript::backend
+}  // namespace fscript::backends

@@ -9,7 +9,7 @@
 
 #include "backends/backend.h"
 
-namespace fscript::backend {
+namespace fscript::backends {
 
 struct LaneArrays {
   uint32_t lanes = 4;
@@ -51,4 +51,4 @@ uint32_t fs_lanes_enter(LaneArrays* s, uint32_t first, uint32_t count, int64_t* 
 uint32_t fs_lanes_leave(LaneArrays* s, uint32_t first, uint32_t count, const int64_t* save);
 }
 
-}  // namespace fscript::backend
+}  // namespace fscript::backends

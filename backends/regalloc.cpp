@@ -5,7 +5,7 @@
 
 #include "ir/analysis.h"
 
-namespace fscript::backend {
+namespace fscript::backends {
 
 LinearOrder compute_intervals(const ir::Function& fn) {
   LinearOrder lo;
@@ -80,4 +80,4 @@ LinearOrder compute_intervals(const ir::Function& fn) {
   return lo;
 }
 
-}  // namespace fscript::backend
+}  // namespace fscript::backends

@@ -6,7 +6,7 @@
 
 #include "ir/ir.h"
 
-namespace fscript::backend {
+namespace fscript::backends {
 
 struct Interval {
   uint32_t start = 0;  // position of the definition
@@ -32,6 +32,6 @@ LinearOrder compute_intervals(const ir::Function& fn);
 template <typename Skip>
 std::vector<uint32_t> linear_scan(const ir::Function& fn, const LinearOrder& lo, Skip skip, uint32_t& num_regs);
 
-}  // namespace fscript::backend
+}  // namespace fscript::backends
 
 #include "backends/regalloc_impl.h"

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <queue>
 
-namespace fscript::backend {
+namespace fscript::backends {
 
 template <typename Skip>
 std::vector<uint32_t> linear_scan(const ir::Function& fn, const LinearOrder& lo, Skip skip, uint32_t& num_regs) {
@@ -38,4 +38,4 @@ std::vector<uint32_t> linear_scan(const ir::Function& fn, const LinearOrder& lo,
   return reg;
 }
 
-}  // namespace fscript::backend
+}  // namespace fscript::backends

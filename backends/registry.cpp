@@ -6,7 +6,7 @@
 #include "backends/llvm/llvm_backend.h"
 #endif
 
-namespace fscript::backend {
+namespace fscript::backends {
 
 // The first is the default: the VM, which needs no compile time and with AVX-512 beats the SSE
 // backend on most kernels (docs/performance.md).
@@ -46,4 +46,4 @@ bool enable_llvm_disk_cache(std::string& message) {
   return false;
 }
 
-}  // namespace fscript::backend
+}  // namespace fscript::backends

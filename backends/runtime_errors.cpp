@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-namespace fscript::backend::errors {
+namespace fscript::backends::errors {
 
 namespace {
 std::string number(float v) {  // as the user would write it back: the shortest round trip
@@ -39,4 +39,4 @@ std::string array_index(const std::string& array, float index, int64_t length) {
 
 std::string array_unset(const std::string& array) { return "array '" + array + "' is used before it is created"; }
 
-}  // namespace fscript::backend::errors
+}  // namespace fscript::backends::errors

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-namespace fscript::backend::errors {
+namespace fscript::backends::errors {
 
 std::string loop_budget(uint64_t max_loop_iterations);
 std::string call_depth(uint32_t max_call_depth);
@@ -15,4 +15,4 @@ std::string array_size(const std::string& array, float size, uint64_t max_array_
 std::string array_index(const std::string& array, float index, int64_t length);
 std::string array_unset(const std::string& array);
 
-}  // namespace fscript::backend::errors
+}  // namespace fscript::backends::errors

@@ -6,7 +6,7 @@
 
 namespace fscript::llvmjit {
 
-std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, const backend::Budgets& budgets,
+std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, const backends::Budgets& budgets,
                                         bool bounded, Lowered& lowered, double& compile_ms, std::string& error) {
   compile_ms = 0;
   // The cache key: everything the code depends on.
@@ -18,7 +18,7 @@ std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, con
   return llvmjit::compile(std::move(lowered), key, compile_ms, error);
 }
 
-std::unique_ptr<backend::Kernel> LlvmBackend::compile(const ir::Module& m, const backend::Budgets& budgets,
+std::unique_ptr<backends::Kernel> LlvmBackend::compile(const ir::Module& m, const backends::Budgets& budgets,
                                                       std::string& error) const {
   Lowered lowered;
   std::shared_ptr<Program> code = compile_module(m, width_, budgets, true, lowered, last_ms_, error);
@@ -29,12 +29,12 @@ std::unique_ptr<backend::Kernel> LlvmBackend::compile(const ir::Module& m, const
 }
 
 LlvmKernel::LlvmKernel(std::shared_ptr<Program> code, uint32_t width, size_t inputs, size_t outputs,
-                       const backend::Budgets& budgets, std::vector<std::string> array_names, double param_bound,
+                       const backends::Budgets& budgets, std::vector<std::string> array_names, double param_bound,
                        std::unique_ptr<ir::Module> module)
     : code_(std::move(code)), width_(width), inputs_(inputs), outputs_(outputs), budgets_(budgets),
       arrays_(std::move(array_names)), param_bound_(param_bound), module_(std::move(module)) {}
 
-KernelFn LlvmKernel::general(backend::RuntimeError& err) const {
+KernelFn LlvmKernel::general(backends::RuntimeError& err) const {
   std::call_once(general_once_, [this] {
     Lowered lowered;
     double ms = 0;
@@ -47,24 +47,24 @@ KernelFn LlvmKernel::general(backend::RuntimeError& err) const {
 }
 
 bool LlvmKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n,
-                            backend::RuntimeError& err) const {
+                            backends::RuntimeError& err) const {
   KernelFn f = code_->entry();
-  if (param_bound_ > 0 && !backend::inputs_in_range(inputs, inputs_, n, param_bound_) && !(f = general(err)))
+  if (param_bound_ > 0 && !backends::inputs_in_range(inputs, inputs_, n, param_bound_) && !(f = general(err)))
     return false;
   // Per call: batches may run on several threads at once. Only kernels with arrays need it.
-  backend::LaneArrays arrays;
+  backends::LaneArrays arrays;
   if (!arrays_.empty()) arrays.init(width_, budgets_.max_array_elements, arrays_);
-  return backend::run_padded(width_, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
-    uint64_t code = backend::call_generated([&] { return f(in, out, 0, count, &arrays, backend::stack_limit()); });
-    return backend::jit_status(code, arrays, budgets_, err);
+  return backends::run_padded(width_, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
+    uint64_t code = backends::call_generated([&] { return f(in, out, 0, count, &arrays, backends::stack_limit()); });
+    return backends::jit_status(code, arrays, budgets_, err);
   });
 }
 
-bool LlvmKernel::eval(const float* inputs, float* outputs, backend::RuntimeError& err) const {
-  return backend::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
+bool LlvmKernel::eval(const float* inputs, float* outputs, backends::RuntimeError& err) const {
+  return backends::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
 }
 
-std::string kernel_text(const ir::Module& m, const backend::Budgets& budgets, bool assembly, std::string& error) {
+std::string kernel_text(const ir::Module& m, const backends::Budgets& budgets, bool assembly, std::string& error) {
   Lowered lowered;
   if (!lower_to_llvm(m, host_width(), budgets, true, lowered, error)) return "";
   std::string head = "; " + std::to_string(host_width()) + " lanes" +

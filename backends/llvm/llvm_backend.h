@@ -13,22 +13,22 @@
 
 namespace fscript::llvmjit {
 
-class LlvmKernel : public backend::Kernel {
+class LlvmKernel : public backends::Kernel {
  public:
   LlvmKernel(std::shared_ptr<Program> code, uint32_t width, size_t inputs, size_t outputs,
-             const backend::Budgets& budgets, std::vector<std::string> array_names, double param_bound,
+             const backends::Budgets& budgets, std::vector<std::string> array_names, double param_bound,
              std::unique_ptr<ir::Module> module);
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
-  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const override;
-  bool eval(const float* inputs, float* outputs, backend::RuntimeError& err) const override;
+  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const override;
+  bool eval(const float* inputs, float* outputs, backends::RuntimeError& err) const override;
 
  private:
-  KernelFn general(backend::RuntimeError& err) const;
+  KernelFn general(backends::RuntimeError& err) const;
   std::shared_ptr<Program> code_;
   uint32_t width_;
   size_t inputs_, outputs_;
-  backend::Budgets budgets_;
+  backends::Budgets budgets_;
   std::vector<std::string> arrays_;
   double param_bound_;
   std::unique_ptr<ir::Module> module_;  // for the general code, when param_bound_ > 0
@@ -37,11 +37,11 @@ class LlvmKernel : public backend::Kernel {
   mutable std::string general_error_;
 };
 
-class LlvmBackend : public backend::Backend {
+class LlvmBackend : public backends::Backend {
  public:
   explicit LlvmBackend(uint32_t width = 0) : width_(width ? width : host_width()) {}
   std::string name() const override { return "llvm"; }
-  std::unique_ptr<backend::Kernel> compile(const ir::Module& m, const backend::Budgets& b, std::string& error) const override;
+  std::unique_ptr<backends::Kernel> compile(const ir::Module& m, const backends::Budgets& b, std::string& error) const override;
   // The time the last compile() took in LLVM (0: the code came from the cache).
   double last_compile_ms() const { return last_ms_; }
 
@@ -51,11 +51,11 @@ class LlvmBackend : public backend::Backend {
 };
 
 // Compiles the module's kernel at `width` lanes; `bounded` as in lower_to_llvm().
-std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, const backend::Budgets& budgets,
+std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, const backends::Budgets& budgets,
                                         bool bounded, Lowered& lowered, double& compile_ms, std::string& error);
 
 // The module's kernel as optimised LLVM IR (`fscript emit-ir --llvm`) or as the host's assembly
 // (`fscript emit-asm --backend llvm`), at the host's width; empty with a message on failure.
-std::string kernel_text(const ir::Module& m, const backend::Budgets& budgets, bool assembly, std::string& error);
+std::string kernel_text(const ir::Module& m, const backends::Budgets& budgets, bool assembly, std::string& error);
 
 }  // namespace fscript::llvmjit

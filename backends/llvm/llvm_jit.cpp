@@ -50,7 +50,7 @@ const RuntimeSymbol kRuntimeSymbols[] = {
 #undef FS_RT_Lane
 #undef FS_RT_Batch
 #undef FS_RT_Trig
-#define FS_LANES(f) {#f, reinterpret_cast<const void*>(&backend::f)}
+#define FS_LANES(f) {#f, reinterpret_cast<const void*>(&backends::f)}
     FS_LANES(fs_lanes_reset), FS_LANES(fs_lanes_anew), FS_LANES(fs_lanes_aload), FS_LANES(fs_lanes_astore),
     FS_LANES(fs_lanes_alen), FS_LANES(fs_lanes_enter), FS_LANES(fs_lanes_leave),
 };

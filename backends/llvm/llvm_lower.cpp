@@ -30,7 +30,7 @@ struct Shared {
   llvm::Module& m;
   const ir::Module& module;
   uint32_t width;
-  backend::Budgets budgets;
+  backends::Budgets budgets;
   llvm::Type *f32, *i32, *i64, *ptr;
   llvm::VectorType *vf, *vi, *vb;  // <W x float>, <W x i32>, <W x i1>
   llvm::StructType* ctx;
@@ -153,7 +153,7 @@ class LlvmFunctionLowering {
     llvm::Value* limit = b_.CreateLoad(s_.i64, b_.CreateStructGEP(s_.ctx, ctx_, kStackLimit));
     llvm::Value* frame = b_.CreatePtrToInt(
         b_.CreateIntrinsic(llvm::Intrinsic::frameaddress, {s_.ptr}, {b_.getInt32(0)}), s_.i64);
-    trap_if(b_.CreateICmpULT(frame, limit), 4, backend::first_line(fn_));
+    trap_if(b_.CreateICmpULT(frame, limit), 4, backends::first_line(fn_));
     b_.CreateStore(f_->getArg(2), pending_[0]);
     for (size_t b = 1; b < pending_.size(); ++b) b_.CreateStore(zero_mask(), pending_[b]);
     for (auto* o : out_) b_.CreateStore(splat(0), o);
@@ -530,10 +530,10 @@ Lowered::Lowered() = default;
 Lowered::~Lowered() = default;
 Lowered::Lowered(Lowered&&) noexcept = default;
 
-bool lower_to_llvm(const ir::Module& module, uint32_t width, const backend::Budgets& budgets, bool bounded, Lowered& out,
+bool lower_to_llvm(const ir::Module& module, uint32_t width, const backends::Budgets& budgets, bool bounded, Lowered& out,
            std::string& error) {
-  backend::JitProgram jp;
-  if (!backend::prepare_program(module, jp, error)) return false;
+  backends::JitProgram jp;
+  if (!backends::prepare_program(module, jp, error)) return false;
   const ir::Module& m = *jp.module;
   int kernel = jp.kernel;
   out.context = std::make_unique<llvm::LLVMContext>();

@@ -43,7 +43,7 @@ struct Lowered {
 // With `bounded`, the code may assume every input finite with |x| <= out.param_bound (the bound
 // ir::best_param_bound picks; 0 when none removes a NaN test) and drops the NaN tests the value
 // ranges prove useless.
-bool lower_to_llvm(const ir::Module& m, uint32_t width, const backend::Budgets& budgets, bool bounded, Lowered& out,
+bool lower_to_llvm(const ir::Module& m, uint32_t width, const backends::Budgets& budgets, bool bounded, Lowered& out,
            std::string& error);
 
 }  // namespace fscript::llvmjit

@@ -332,24 +332,24 @@ class LaneCode {
       case ir::Op::ANew:
         a_.lea(Gp::rdx, at(kScratch));
         a_.lea(Gp::rcx, at(kActive));
-        fn = reinterpret_cast<const void*>(&backend::fs_lanes_anew);
+        fn = reinterpret_cast<const void*>(&backends::fs_lanes_anew);
         break;
       case ir::Op::ALoad:
         a_.lea(Gp::rdx, at(kScratch));
         a_.lea(Gp::rcx, at(kScratch + 48));
         a_.lea(Gp::r8, at(kActive));
-        fn = reinterpret_cast<const void*>(&backend::fs_lanes_aload);
+        fn = reinterpret_cast<const void*>(&backends::fs_lanes_aload);
         break;
       case ir::Op::AStore:
         a_.lea(Gp::rdx, at(kScratch));
         a_.lea(Gp::rcx, at(kScratch + 16));
         a_.lea(Gp::r8, at(kActive));
-        fn = reinterpret_cast<const void*>(&backend::fs_lanes_astore);
+        fn = reinterpret_cast<const void*>(&backends::fs_lanes_astore);
         break;
       default:  // ALen
         a_.lea(Gp::rdx, at(kScratch + 48));
         a_.lea(Gp::rcx, at(kActive));
-        fn = reinterpret_cast<const void*>(&backend::fs_lanes_alen);
+        fn = reinterpret_cast<const void*>(&backends::fs_lanes_alen);
         break;
     }
     a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(fn));

@@ -5,7 +5,7 @@
 
 namespace fscript::sse {
 
-std::unique_ptr<backend::Kernel> SseBackend::compile(const ir::Module& m, const backend::Budgets& budgets,
+std::unique_ptr<backends::Kernel> SseBackend::compile(const ir::Module& m, const backends::Budgets& budgets,
                                                      std::string& error) const {
   if (!__builtin_cpu_supports("sse4.1")) {  // roundps, blendvps
     error = "the sse backend needs a CPU with SSE4.1";
@@ -24,7 +24,7 @@ std::unique_ptr<backend::Kernel> SseBackend::compile(const ir::Module& m, const 
                                      bound, bound > 0 ? m.clone() : nullptr);
 }
 
-KernelFn SseKernel::general(backend::RuntimeError& err) const {
+KernelFn SseKernel::general(backends::RuntimeError& err) const {
   std::call_once(general_once_, [this] {
     std::string error;
     std::vector<uint8_t> code = generate(*module_, budgets_, error);
@@ -36,34 +36,34 @@ KernelFn SseKernel::general(backend::RuntimeError& err) const {
 }
 
 bool SseKernel::in_range(const float* const* inputs, size_t n) const {
-  return backend::inputs_in_range(inputs, inputs_, n, param_bound_);
+  return backends::inputs_in_range(inputs, inputs_, n, param_bound_);
 }
 
-backend::LaneArrays SseKernel::fresh_arrays() const {
-  backend::LaneArrays s;
+backends::LaneArrays SseKernel::fresh_arrays() const {
+  backends::LaneArrays s;
   s.init(4, budgets_.max_array_elements, arrays_);
   return s;
 }
 
-bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const {
+bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const {
   KernelFn f = entry(*code_);
   if (param_bound_ > 0 && !in_range(inputs, n) && !(f = general(err))) return false;
   return run(f, inputs, outputs, n, err);
 }
 
 bool SseKernel::run(KernelFn f, const float* const* inputs, float* const* outputs, size_t n,
-                    backend::RuntimeError& err) const {
+                    backends::RuntimeError& err) const {
   // Per call: batches may run on several threads at once. Only kernels with arrays need it.
-  backend::LaneArrays arrays;
+  backends::LaneArrays arrays;
   if (!arrays_.empty()) arrays = fresh_arrays();
-  return backend::run_padded(4, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
-    uint64_t code = backend::call_generated([&] { return f(in, out, 0, count, &arrays, backend::stack_limit()); });
-    return backend::jit_status(code, arrays, budgets_, err);
+  return backends::run_padded(4, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
+    uint64_t code = backends::call_generated([&] { return f(in, out, 0, count, &arrays, backends::stack_limit()); });
+    return backends::jit_status(code, arrays, budgets_, err);
   });
 }
 
-bool SseKernel::eval(const float* inputs, float* outputs, backend::RuntimeError& err) const {
-  return backend::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
+bool SseKernel::eval(const float* inputs, float* outputs, backends::RuntimeError& err) const {
+  return backends::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
 }
 
 }  // namespace fscript::sse

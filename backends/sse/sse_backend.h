@@ -17,32 +17,32 @@ namespace fscript::sse {
 // (its message in `arrays`), 3 = the call depth budget, 4 = recursion deeper than the thread's
 // stack allows (a called function's frame would go below `stack_limit`).
 using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end,
-                              backend::LaneArrays* arrays, uintptr_t stack_limit);
+                              backends::LaneArrays* arrays, uintptr_t stack_limit);
 
 // A kernel whose code assumes bounded inputs (param_bound > 0: every input finite with |x| <=
 // param_bound, which lets it drop NaN handling the value ranges prove useless) runs batches with
 // an input outside that range through the general code, compiled on first need from `module`.
-class SseKernel : public backend::Kernel {
+class SseKernel : public backends::Kernel {
  public:
-  SseKernel(std::unique_ptr<CodeMemory> code, size_t inputs, size_t outputs, const backend::Budgets& budgets,
+  SseKernel(std::unique_ptr<CodeMemory> code, size_t inputs, size_t outputs, const backends::Budgets& budgets,
             std::vector<std::string> array_names, double param_bound, std::unique_ptr<ir::Module> module)
       : code_(std::move(code)), inputs_(inputs), outputs_(outputs), budgets_(budgets), arrays_(std::move(array_names)),
         param_bound_(param_bound), module_(std::move(module)) {}
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
-  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const override;
-  bool eval(const float* inputs, float* outputs, backend::RuntimeError& err) const override;
+  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const override;
+  bool eval(const float* inputs, float* outputs, backends::RuntimeError& err) const override;
   const CodeMemory& code() const { return *code_; }
 
  private:
   static KernelFn entry(const CodeMemory& c) { return reinterpret_cast<KernelFn>(const_cast<uint8_t*>(c.start())); }
   bool in_range(const float* const* inputs, size_t n) const;
-  KernelFn general(backend::RuntimeError& err) const;
-  bool run(KernelFn f, const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const;
-  backend::LaneArrays fresh_arrays() const;
+  KernelFn general(backends::RuntimeError& err) const;
+  bool run(KernelFn f, const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const;
+  backends::LaneArrays fresh_arrays() const;
   std::unique_ptr<CodeMemory> code_;
   size_t inputs_, outputs_;
-  backend::Budgets budgets_;
+  backends::Budgets budgets_;
   std::vector<std::string> arrays_;  // names by slot
   double param_bound_;
   std::unique_ptr<ir::Module> module_;
@@ -51,16 +51,16 @@ class SseKernel : public backend::Kernel {
   mutable std::string general_error_;
 };
 
-class SseBackend : public backend::Backend {
+class SseBackend : public backends::Backend {
  public:
   std::string name() const override { return "sse"; }
-  std::unique_ptr<backend::Kernel> compile(const ir::Module& m, const backend::Budgets& b, std::string& error) const override;
+  std::unique_ptr<backends::Kernel> compile(const ir::Module& m, const backends::Budgets& b, std::string& error) const override;
 };
 
 // The machine code of the module's kernel; empty with a message when the kernel uses what this
 // stage does not compile. `listing`, when given, receives the code as assembly text (emit-asm).
 // With `param_bound`, the code may assume bounded inputs and says the bound it chose (0: none).
-std::vector<uint8_t> generate(const ir::Module& m, const backend::Budgets& budgets, std::string& error,
+std::vector<uint8_t> generate(const ir::Module& m, const backends::Budgets& budgets, std::string& error,
                               std::string* listing = nullptr, std::vector<std::string>* array_names = nullptr,
                               double* param_bound = nullptr);
 

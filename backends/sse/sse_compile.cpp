@@ -48,7 +48,7 @@ struct Program {
 // lanes recurse together, each only as deep as its own path, as the VM's lane-by-lane calls do.
 class Codegen : public detail::LaneCode {
  public:
-  Codegen(const ir::Function& fn, Assembler& a, const backend::Budgets& budgets, uint32_t local_arrays,
+  Codegen(const ir::Function& fn, Assembler& a, const backends::Budgets& budgets, uint32_t local_arrays,
           const Program& program, int index, bool callee)
       : LaneCode(fn, a, static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, kCarryAt)),
                  local_arrays, callee),
@@ -203,7 +203,7 @@ class Codegen : public detail::LaneCode {
     a_.mov(Gp::r15, Mem::at(Gp::rbp, kCtxArrays));
     a_.mov(Gp::rax, Mem::at(Gp::rbp, kCtxStackLimit));
     a_.cmp(Gp::rsp, Gp::rax);
-    a_.jcc(Cond::B, trap(4, backend::first_line(fn_)));
+    a_.jcc(Cond::B, trap(4, backends::first_line(fn_)));
     a_.movups(Xmm::x0, Mem::at(Gp::rdx));
     a_.movaps(pending(0), Xmm::x0);
   }
@@ -232,7 +232,7 @@ class Codegen : public detail::LaneCode {
     if (callee_) return start_call();
     if (arrays_) {
       a_.mov(Gp::rdi, Gp::r15);
-      a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(&backend::fs_lanes_reset));
+      a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(&backends::fs_lanes_reset));
       a_.call(Gp::rax);
     }
     a_.pcmpeqd(Xmm::x0, Xmm::x0);
@@ -250,7 +250,7 @@ class Codegen : public detail::LaneCode {
     a_.xorps(Xmm::x1, Xmm::x1);
     for (size_t b = 1; b < order_.size(); ++b) a_.movaps(pending(static_cast<int>(b)), Xmm::x1);
     a_.movaps(at(out_slot_), Xmm::x1);
-    if (!fn_.arrays.empty()) local_arrays(reinterpret_cast<const void*>(&backend::fs_lanes_enter));
+    if (!fn_.arrays.empty()) local_arrays(reinterpret_cast<const void*>(&backends::fs_lanes_enter));
   }
   void local_arrays(const void* helper) {
     a_.mov(Gp::rdi, Gp::r15);
@@ -271,7 +271,7 @@ class Codegen : public detail::LaneCode {
     if (callee_) {
       a_.movaps(Xmm::x0, at(out_slot_));
       a_.movaps(Mem::at(Gp::r12), Xmm::x0);
-      if (!fn_.arrays.empty()) local_arrays(reinterpret_cast<const void*>(&backend::fs_lanes_leave));
+      if (!fn_.arrays.empty()) local_arrays(reinterpret_cast<const void*>(&backends::fs_lanes_leave));
       return;
     }
     for (uint32_t k = 0; k < fn_.num_results; ++k) {
@@ -591,7 +591,7 @@ class Codegen : public detail::LaneCode {
     if (callee_) a_.mov(Gp::rdi, Mem::at(Gp::rbp, kCtxCounters));
     else a_.lea(Gp::rdi, at(kCounters));
     a_.mov_imm(Gp::rsi, loop_budget_);
-    a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(&backend::fs_ticks_carry));
+    a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(&backends::fs_ticks_carry));
     a_.call(Gp::rax);
     for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(static_cast<Xmm>(r), at(save_slot_ + 16 * r));
     a_.test(Gp::rax, Gp::rax);
@@ -618,10 +618,10 @@ double choose_bound(const ir::Function& fn, Codegen& gen) {
 
 }  // namespace
 
-std::vector<uint8_t> generate(const ir::Module& module, const backend::Budgets& budgets, std::string& error,
+std::vector<uint8_t> generate(const ir::Module& module, const backends::Budgets& budgets, std::string& error,
                               std::string* listing, std::vector<std::string>* array_names, double* param_bound) {
-  backend::JitProgram jp;
-  if (!backend::prepare_program(module, jp, error)) return {};
+  backends::JitProgram jp;
+  if (!backends::prepare_program(module, jp, error)) return {};
   const ir::Module& m = *jp.module;
   int kernel = jp.kernel;
   Assembler a;

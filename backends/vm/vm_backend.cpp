@@ -7,8 +7,8 @@
 namespace fscript::vm {
 
 namespace {
-bool run_isa(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,
-             float* const* outputs, size_t n, backend::RuntimeError& err, bool& out_of_stack) {
+bool run_isa(const VmProgram& p, const backends::Budgets& budgets, const float* const* inputs,
+             float* const* outputs, size_t n, backends::RuntimeError& err, bool& out_of_stack) {
   switch (math::active_isa()) {
     case math::Isa::Base: return isa_base::run_batch(p, budgets, inputs, outputs, n, err, out_of_stack);
     case math::Isa::Avx2: return isa_avx2::run_batch(p, budgets, inputs, outputs, n, err, out_of_stack);
@@ -18,8 +18,8 @@ bool run_isa(const VmProgram& p, const backend::Budgets& budgets, const float* c
 }
 }  // namespace
 
-bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,
-               float* const* outputs, size_t n, backend::RuntimeError& err) {
+bool run_batch(const VmProgram& p, const backends::Budgets& budgets, const float* const* inputs,
+               float* const* outputs, size_t n, backends::RuntimeError& err) {
   bool out_of_stack = false;
   bool ok = run_isa(p, budgets, inputs, outputs, n, err, out_of_stack);
   if (!out_of_stack) return ok;
@@ -30,7 +30,7 @@ bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float*
   return ok;
 }
 
-std::unique_ptr<backend::Kernel> VmBackend::compile(const ir::Module& m, const backend::Budgets& b,
+std::unique_ptr<backends::Kernel> VmBackend::compile(const ir::Module& m, const backends::Budgets& b,
                                                     std::string& error) const {
   VmProgram p;
   if (!compile_program(m, p, error)) return nullptr;
@@ -38,11 +38,11 @@ std::unique_ptr<backend::Kernel> VmBackend::compile(const ir::Module& m, const b
 }
 
 bool VmKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n,
-                          backend::RuntimeError& err) const {
+                          backends::RuntimeError& err) const {
   return run_batch(prog_, budgets_, inputs, outputs, n, err);
 }
 
-bool VmKernel::eval(const float* inputs, float* outputs, backend::RuntimeError& err) const {
+bool VmKernel::eval(const float* inputs, float* outputs, backends::RuntimeError& err) const {
   std::vector<const float*> in(num_inputs());
   std::vector<float*> out(num_outputs());
   for (size_t k = 0; k < in.size(); ++k) in[k] = inputs + k;

@@ -5,24 +5,24 @@
 
 namespace fscript::vm {
 
-class VmKernel : public backend::Kernel {
+class VmKernel : public backends::Kernel {
  public:
-  VmKernel(VmProgram p, const backend::Budgets& b) : prog_(std::move(p)), budgets_(b) {}
+  VmKernel(VmProgram p, const backends::Budgets& b) : prog_(std::move(p)), budgets_(b) {}
   size_t num_inputs() const override { return prog_.functions[prog_.kernel].num_params; }
   size_t num_outputs() const override { return prog_.functions[prog_.kernel].num_results; }
-  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backend::RuntimeError& err) const override;
-  bool eval(const float* inputs, float* outputs, backend::RuntimeError& err) const override;
+  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const override;
+  bool eval(const float* inputs, float* outputs, backends::RuntimeError& err) const override;
   const VmProgram& program() const { return prog_; }
 
  private:
   VmProgram prog_;
-  backend::Budgets budgets_;
+  backends::Budgets budgets_;
 };
 
-class VmBackend : public backend::Backend {
+class VmBackend : public backends::Backend {
  public:
   std::string name() const override { return "vm"; }
-  std::unique_ptr<backend::Kernel> compile(const ir::Module& m, const backend::Budgets& b, std::string& error) const override;
+  std::unique_ptr<backends::Kernel> compile(const ir::Module& m, const backends::Budgets& b, std::string& error) const override;
 };
 
 }  // namespace fscript::vm

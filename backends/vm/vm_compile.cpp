@@ -32,8 +32,8 @@ class FunctionCompiler {
     out_.recursive = fn_.recursive;
     out_.num_arrays = static_cast<uint32_t>(fn_.arrays.size());
     out_.array_names = fn_.arrays;
-    lo_ = backend::compute_intervals(fn_);
-    reg_ = backend::linear_scan(fn_, lo_, [&](const Inst* i) { return i->op == Op::Const; }, out_.num_regs);
+    lo_ = backends::compute_intervals(fn_);
+    reg_ = backends::linear_scan(fn_, lo_, [&](const Inst* i) { return i->op == Op::Const; }, out_.num_regs);
     out_.param_regs.assign(fn_.num_params, kNoReg);
     for (size_t k = 0; k < lo_.blocks.size(); ++k) block_index_[lo_.blocks[k]] = static_cast<uint32_t>(k);
     for (ir::Block* b : lo_.blocks) emit_block(b);
@@ -120,7 +120,7 @@ class FunctionCompiler {
 
   const ir::Function& fn_;
   VmFunction& out_;
-  backend::LinearOrder lo_;
+  backends::LinearOrder lo_;
   std::vector<uint32_t> reg_;
   std::unordered_map<const Inst*, uint32_t> const_regs_;
   std::unordered_map<const ir::Block*, uint32_t> block_index_;

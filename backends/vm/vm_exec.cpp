@@ -22,10 +22,10 @@
 namespace fscript::vm::FS_ISA {
 namespace {
 
-using backend::Budgets;
-using backend::RuntimeError;
+using backends::Budgets;
+using backends::RuntimeError;
 using ir::Op;
-namespace errors = backend::errors;
+namespace errors = backends::errors;
 using Mask = uint32_t;  // all ones: the lane is present
 
 // Per-lane budgets used so far in one evaluation (arrays live in the chunk's LaneArrays).
@@ -214,10 +214,10 @@ class Executor {
   const VmProgram& p_;
   const Budgets& budgets_;
   std::vector<uint32_t> slot_base_;  // per function: its first array slot
-  backend::LaneArrays& arrays_;      // the thread's, so storage is reused from batch to batch
+  backends::LaneArrays& arrays_;      // the thread's, so storage is reused from batch to batch
 
-  static backend::LaneArrays& thread_arrays() {
-    thread_local backend::LaneArrays arrays;
+  static backends::LaneArrays& thread_arrays() {
+    thread_local backends::LaneArrays arrays;
     return arrays;
   }
 };
@@ -436,7 +436,7 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
     err = {errors::call_depth(budgets_.max_call_depth), v.line};
     return false;
   }
-  if (callee.recursive && reinterpret_cast<uintptr_t>(__builtin_frame_address(0)) < backend::stack_limit()) {
+  if (callee.recursive && reinterpret_cast<uintptr_t>(__builtin_frame_address(0)) < backends::stack_limit()) {
     out_of_stack_ = true;
     err = {errors::recursion_stack(budgets_.max_call_depth), v.line};
     return false;

@@ -13,14 +13,14 @@ namespace fscript::vm {
 // recursion that nears the end of this thread's stack stops the batch with `out_of_stack` set
 // (the caller runs it again on a stack sized for the budget).
 #define FS_VM_RUN_BATCH                                                                                    \
-  bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,         \
-                 float* const* outputs, size_t n, backend::RuntimeError& err, bool& out_of_stack)
+  bool run_batch(const VmProgram& p, const backends::Budgets& budgets, const float* const* inputs,         \
+                 float* const* outputs, size_t n, backends::RuntimeError& err, bool& out_of_stack)
 FS_FOR_EACH_ISA_DECLARE(FS_VM_RUN_BATCH)
 #undef FS_VM_RUN_BATCH
 
 // The variant of the active ISA; a recursion deeper than the caller's stack allows runs again on a
 // stack sized for the budget, so the call budget, not `ulimit -s`, decides how deep it goes.
-bool run_batch(const VmProgram& p, const backend::Budgets& budgets, const float* const* inputs,
-               float* const* outputs, size_t n, backend::RuntimeError& err);
+bool run_batch(const VmProgram& p, const backends::Budgets& budgets, const float* const* inputs,
+               float* const* outputs, size_t n, backends::RuntimeError& err);
 
 }  // namespace fscript::vm

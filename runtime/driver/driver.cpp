@@ -35,11 +35,11 @@ std::unique_ptr<ir::Module> build_module(const frontend::Script& s, const fronte
   return m;
 }
 
-Outcome compile_kernel(const ir::Module& m, const std::string& name, const backend::Budgets& budgets,
-                       std::unique_ptr<backend::Kernel>& out) {
-  std::string n = name.empty() ? backend::available_backends().front() : name;
-  auto be = backend::make_backend(n);
-  if (!be) return {Stage::NoBackend, backend::missing_backend_message(n)};
+Outcome compile_kernel(const ir::Module& m, const std::string& name, const backends::Budgets& budgets,
+                       std::unique_ptr<backends::Kernel>& out) {
+  std::string n = name.empty() ? backends::available_backends().front() : name;
+  auto be = backends::make_backend(n);
+  if (!be) return {Stage::NoBackend, backends::missing_backend_message(n)};
   Outcome o;
   out = be->compile(m, budgets, o.error);
   if (!out) o.stage = Stage::Backend;

@@ -23,7 +23,7 @@ struct BuildOptions {
 // (--llvm-disk-cache) are not here: they are chosen once per process, before any compile.
 struct CompileOptions {
   std::string backend;  // "" = the fastest backend this binary has
-  backend::Budgets budgets;
+  backends::Budgets budgets;
   BuildOptions build;
   bool want_kernel = true;                 // false: stop at the optimised module (emit-ir)
   std::vector<std::string> extra_globals;  // names a script may use undeclared (an operation's f, g)
@@ -40,7 +40,7 @@ struct Compiled {
   frontend::Script script;
   frontend::KernelSpec spec;
   std::unique_ptr<ir::Module> module;
-  std::unique_ptr<backend::Kernel> kernel;
+  std::unique_ptr<backends::Kernel> kernel;
 };
 
 // Where a compilation stopped. Callers word the failure for their users; `error` says why.
@@ -69,7 +69,7 @@ std::unique_ptr<ir::Module> build_module(const frontend::Script& s, const fronte
                                          frontend::DiagnosticSink& diag, const BuildOptions& opts, std::string& error);
 
 // The end of the chain: the kernel of `m` on backend `name` ("" = the fastest built).
-Outcome compile_kernel(const ir::Module& m, const std::string& name, const backend::Budgets& budgets,
-                       std::unique_ptr<backend::Kernel>& out);
+Outcome compile_kernel(const ir::Module& m, const std::string& name, const backends::Budgets& budgets,
+                       std::unique_ptr<backends::Kernel>& out);
 
 }  // namespace fscript::driver

@@ -35,18 +35,18 @@ class Field {
   virtual ~Field() = default;
   // out[i] = f(x[i], y[i], z[i]) for i < n; false on a runtime error.
   virtual bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
-                    backend::RuntimeError& err) const = 0;
+                    backends::RuntimeError& err) const = 0;
 };
 
 // An FRep kernel (inputs x, y, z, t; the first output) at time t.
 class KernelField : public Field {
  public:
-  KernelField(const backend::Kernel& k, float t) : k_(k), t_(t) {}
+  KernelField(const backends::Kernel& k, float t) : k_(k), t_(t) {}
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
-            backend::RuntimeError& err) const override;
+            backends::RuntimeError& err) const override;
 
  private:
-  const backend::Kernel& k_;
+  const backends::Kernel& k_;
   float t_;
 };
 

@@ -122,7 +122,7 @@ Mesh expand(const CompactMesh& c) {
   return m;
 }
 
-bool FrameCache::make(size_t i, backend::RuntimeError& err) {
+bool FrameCache::make(size_t i, backends::RuntimeError& err) {
   Mesh m;
   if (!make_(i, m, err)) return false;
   CompactMesh c = compress(m);
@@ -131,7 +131,7 @@ bool FrameCache::make(size_t i, backend::RuntimeError& err) {
   return true;
 }
 
-bool FrameCache::get(size_t i, Mesh& out, backend::RuntimeError& err) {
+bool FrameCache::get(size_t i, Mesh& out, backends::RuntimeError& err) {
   if (i >= frames_) {
     err.message = "frame " + std::to_string(i) + " is outside the animation's " + std::to_string(frames_) + " frames";
     return false;
@@ -148,12 +148,12 @@ bool FrameCache::get(size_t i, Mesh& out, backend::RuntimeError& err) {
   return true;
 }
 
-bool FrameCache::fill(int threads, backend::RuntimeError& err) {
+bool FrameCache::fill(int threads, backends::RuntimeError& err) {
   std::vector<size_t> missing;
   for (size_t i = 0; i < frames_; ++i)
     if (!has(i)) missing.push_back(i);
   int n = std::max(1, std::min<int>(threads, static_cast<int>(missing.size())));
-  return support::run_parts(n, [&](int w, backend::RuntimeError& e) {  // frames w, w + n, ...
+  return support::run_parts(n, [&](int w, backends::RuntimeError& e) {  // frames w, w + n, ...
     for (size_t k = static_cast<size_t>(w); k < missing.size(); k += static_cast<size_t>(n))
       if (!make(missing[k], e)) return false;
     return true;

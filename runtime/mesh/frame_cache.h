@@ -37,14 +37,14 @@ Mesh expand(const CompactMesh& c);
 // Frames 0 .. n-1 of one animation, made on demand by `make(i, mesh, err)`.
 class FrameCache {
  public:
-  using Maker = std::function<bool(size_t frame, Mesh& out, backend::RuntimeError& err)>;
+  using Maker = std::function<bool(size_t frame, Mesh& out, backends::RuntimeError& err)>;
   FrameCache(size_t frames, Maker make) : frames_(frames), make_(std::move(make)), slots_(frames) {}
 
   // The mesh of frame i: made and cached when missing; when it was cached, the next missing frame
   // is made as well, so repeated playback fills the cache progressively.
-  bool get(size_t i, Mesh& out, backend::RuntimeError& err);
+  bool get(size_t i, Mesh& out, backends::RuntimeError& err);
   // Makes every missing frame, `threads` frames at a time.
-  bool fill(int threads, backend::RuntimeError& err);
+  bool fill(int threads, backends::RuntimeError& err);
 
   // A cached frame, expanded; false when frame i is not cached (nothing is made).
   bool peek(size_t i, Mesh& out) const;
@@ -57,7 +57,7 @@ class FrameCache {
   bool all_same() const;     // every frame cached and identical to the first (nothing moves)
 
  private:
-  bool make(size_t i, backend::RuntimeError& err);
+  bool make(size_t i, backends::RuntimeError& err);
 
   size_t frames_;
   Maker make_;

@@ -97,7 +97,7 @@ struct Grid {
 };
 
 bool evaluate(const Field& f, const float* xs, const float* ys, const float* zs, size_t n, float* out,
-              backend::RuntimeError& err) {
+              backends::RuntimeError& err) {
   EvalTimer timer;
   for (size_t b = 0; b < n; b += kBatch)
     if (!f.eval(xs + b, ys + b, zs + b, std::min(kBatch, n - b), out + b, err)) return false;
@@ -124,7 +124,7 @@ class Slab {
  public:
   Slab(const Grid& g, const Field& f, int k0, int k1) : g_(g), f_(f), k0_(k0), k1_(k1) {}
 
-  bool run(backend::RuntimeError& err) {
+  bool run(backends::RuntimeError& err) {
     size_t plane = g_.plane_size();
     cache_lo_.assign(plane * 7, kNone);
     cache_hi_.assign(plane * 7, kNone);
@@ -180,7 +180,7 @@ class Slab {
   }
 
   // Fills the inside of `plane` with f on layer k; the padding ring stays at -1 (outside).
-  bool sample(int k, std::vector<float>& plane, backend::RuntimeError& err) {
+  bool sample(int k, std::vector<float>& plane, backends::RuntimeError& err) {
     if (k < 0 || k >= g_.nz) {
       std::fill(plane.begin(), plane.end(), -1.0f);
       return true;
@@ -274,10 +274,10 @@ class Slab {
 
 // Runs fn(begin, end) over [0, n) split into `threads` contiguous parts; false if any part fails.
 template <class Fn>
-bool split(size_t n, int threads, Fn fn, backend::RuntimeError& err) {
+bool split(size_t n, int threads, Fn fn, backends::RuntimeError& err) {
   int t = std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(1, n / 4096))));
   size_t parts = static_cast<size_t>(t);
-  return support::run_parts(t, [&](int k, backend::RuntimeError& e) {
+  return support::run_parts(t, [&](int k, backends::RuntimeError& e) {
     return fn(n * static_cast<size_t>(k) / parts, n * static_cast<size_t>(k + 1) / parts, e);
   }, err);
 }
@@ -285,9 +285,9 @@ bool split(size_t n, int threads, Fn fn, backend::RuntimeError& err) {
 // Regula falsi on the real function along each interior edge, in blocks of vertices so the
 // scratch arrays stay in cache; then every vertex gets its position.
 bool refine(const Grid& g, const Field& f, std::vector<Edge>& edges, Mesh& m, int steps, int threads,
-            backend::RuntimeError& err) {
+            backends::RuntimeError& err) {
   m.positions.resize(edges.size());
-  return split(edges.size(), threads, [&](size_t b, size_t e, backend::RuntimeError& er) {
+  return split(edges.size(), threads, [&](size_t b, size_t e, backends::RuntimeError& er) {
     std::vector<uint32_t> todo;
     std::vector<float> lo, hi, flo, fhi, xs, ys, zs, out;
     for (size_t b0 = b; b0 < e; b0 += kBatch) {
@@ -324,10 +324,10 @@ bool refine(const Grid& g, const Field& f, std::vector<Edge>& edges, Mesh& m, in
 
 // Normals: minus the gradient (central differences, a tenth of a cell); caps face outward.
 bool normals(const Grid& g, const Field& f, const std::vector<Edge>& edges, Mesh& m, int threads,
-             backend::RuntimeError& err) {
+             backends::RuntimeError& err) {
   m.normals.resize(m.positions.size());
   constexpr size_t kBlock = kBatch / 6;
-  return split(m.positions.size(), threads, [&](size_t b, size_t e, backend::RuntimeError& er) {
+  return split(m.positions.size(), threads, [&](size_t b, size_t e, backends::RuntimeError& er) {
     std::vector<float> xs(6 * kBlock), ys(6 * kBlock), zs(6 * kBlock), out(6 * kBlock);
     for (size_t b0 = b; b0 < e; b0 += kBlock) {
       size_t n = std::min(kBlock, e - b0), p = 0;
@@ -356,7 +356,7 @@ bool normals(const Grid& g, const Field& f, const std::vector<Edge>& edges, Mesh
 }
 
 // Concatenates the slabs in order, resolving each slab's placeholders against the one below.
-bool merge(std::vector<Slab>& slabs, Mesh& m, std::vector<Edge>& edges, backend::RuntimeError& err) {
+bool merge(std::vector<Slab>& slabs, Mesh& m, std::vector<Edge>& edges, backends::RuntimeError& err) {
   if (slabs.size() == 1) {  // nothing to resolve
     edges = std::move(slabs[0].edges);
     m.triangles = std::move(slabs[0].triangles);
@@ -397,7 +397,7 @@ bool merge(std::vector<Slab>& slabs, Mesh& m, std::vector<Edge>& edges, backend:
 
 }  // namespace
 
-bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backend::RuntimeError& err) {
+bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backends::RuntimeError& err) {
   out = Mesh{};
   if (!job.field) {
     err.message = "the implicit polygonizer needs a field";
@@ -417,7 +417,7 @@ bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backend::RuntimeErro
   int parts = std::max(1, std::min(job.threads, layers / 8));
   std::vector<Slab> slabs;
   for (int s = 0; s < parts; ++s) slabs.emplace_back(g, *job.field, -1 + layers * s / parts, -1 + layers * (s + 1) / parts);
-  if (!support::run_parts(parts, [&](int s, backend::RuntimeError& e) { return slabs[static_cast<size_t>(s)].run(e); }, err))
+  if (!support::run_parts(parts, [&](int s, backends::RuntimeError& e) { return slabs[static_cast<size_t>(s)].run(e); }, err))
     return false;
   std::vector<Edge> edges;
   if (!merge(slabs, out, edges, err)) return false;
@@ -432,7 +432,7 @@ std::atomic<uint64_t>& evaluation_ns() {
 }
 
 bool KernelField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
-                       backend::RuntimeError& err) const {
+                       backends::RuntimeError& err) const {
   // Reused per thread: the polygonizer calls this for every plane and block.
   thread_local std::vector<float> ts, extra;
   ts.assign(n, t_);

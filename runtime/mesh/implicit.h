@@ -23,6 +23,6 @@ struct ImplicitJob {
 };
 
 // Polygonizes; returns false with a runtime error from the kernel (budget, bounds).
-bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backend::RuntimeError& err);
+bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backends::RuntimeError& err);
 
 }  // namespace fscript::mesh

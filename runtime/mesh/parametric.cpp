@@ -11,7 +11,7 @@ namespace fscript::mesh {
 namespace {
 
 bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>& uvw, std::vector<Vec3>& xyz,
-              backend::RuntimeError& err) {
+              backends::RuntimeError& err) {
   size_t n = uvw.size();
   std::vector<float> u(n), v(n), w(n), x(n), y(n), z(n);
   for (size_t i = 0; i < n; ++i) u[i] = uvw[i][0], v[i] = uvw[i][1], w[i] = uvw[i][2];
@@ -25,7 +25,7 @@ bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>&
 // dP/du x dP/dv by central differences at each vertex's (u, v), a hundredth of an interval apart;
 // kept where the cross product is clearly non-zero and agrees in side with the faces' normal
 // (face_normals_to_vertices ran first), so poles and creases keep the face average.
-bool derivative_normals(const ParametricJob& job, Mesh& m, backend::RuntimeError& err) {
+bool derivative_normals(const ParametricJob& job, Mesh& m, backends::RuntimeError& err) {
   size_t n = m.positions.size();
   double hu = 0.01 * (job.domain[1] - job.domain[0]) / std::max(1, job.intervals[0]);
   double hv = 0.01 * (job.domain[3] - job.domain[2]) / std::max(1, job.intervals[1]);
@@ -91,14 +91,14 @@ void patch(const ParametricJob& job, int a, int b, int c, double fixed, bool fli
 }  // namespace
 
 bool KernelParametric::eval(const float* u, const float* v, const float* w, size_t n, float* x, float* y, float* z,
-                            backend::RuntimeError& err) const {
+                            backends::RuntimeError& err) const {
   std::vector<float> t(n, t_);
   const float* in[4] = {u, v, w, t.data()};
   float* out[3] = {x, y, z};
   return k_.eval_batch(in, out, n, err);
 }
 
-bool polygonize_parametric(const ParametricJob& job, Mesh& out, backend::RuntimeError& err) {
+bool polygonize_parametric(const ParametricJob& job, Mesh& out, backends::RuntimeError& err) {
   out = Mesh{};
   if (!job.field) {
     err.message = "the parametric polygonizer needs a map (u, v, w) -> (x, y, z)";

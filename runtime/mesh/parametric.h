@@ -19,18 +19,18 @@ class ParametricField {
  public:
   virtual ~ParametricField() = default;
   virtual bool eval(const float* u, const float* v, const float* w, size_t n, float* x, float* y, float* z,
-                    backend::RuntimeError& err) const = 0;
+                    backends::RuntimeError& err) const = 0;
 };
 
 // A parametric kernel: inputs (u, v, w, t), outputs (x, y, z).
 class KernelParametric : public ParametricField {
  public:
-  KernelParametric(const backend::Kernel& k, float t) : k_(k), t_(t) {}
+  KernelParametric(const backends::Kernel& k, float t) : k_(k), t_(t) {}
   bool eval(const float* u, const float* v, const float* w, size_t n, float* x, float* y, float* z,
-            backend::RuntimeError& err) const override;
+            backends::RuntimeError& err) const override;
 
  private:
-  const backend::Kernel& k_;
+  const backends::Kernel& k_;
   float t_;
 };
 
@@ -41,7 +41,7 @@ struct ParametricJob {
   std::array<int, 3> intervals{50, 50, 50};
 };
 
-bool polygonize_parametric(const ParametricJob& job, Mesh& out, backend::RuntimeError& err);
+bool polygonize_parametric(const ParametricJob& job, Mesh& out, backends::RuntimeError& err);
 
 // Merges vertices closer than `tolerance` (relative to the mesh size) and drops degenerate
 // triangles: welds seams and poles. Normals are recomputed from the faces.

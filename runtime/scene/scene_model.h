@@ -36,7 +36,7 @@ TimeSensorFields time_fields(const vrml::Node& n);
 // One compiled FScript field of a node.
 struct CompiledField {
   std::string field;
-  std::unique_ptr<backend::Kernel> kernel;
+  std::unique_ptr<backends::Kernel> kernel;
   bool rgb = false;  // colour: the script sets r, g, b (else its value goes through the pattern)
   double span0 = 0, span1 = 1;  // the node's timeSpan
   double t = 0;                 // the node's t at the evaluated time

@@ -12,7 +12,7 @@
 namespace fscript::scene {
 
 bool ShapeField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
-                      backend::RuntimeError& err) const {
+                      backends::RuntimeError& err) const {
   mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(s_.geometry.t));
   if (!geometry.eval(x, y, z, n, out, err)) return false;
   if (!s_.texture) return true;
@@ -31,7 +31,7 @@ namespace {
 // The components of one affine field: compiled FScript (evaluated at t, the point kernel's value),
 // numbers, or the default.
 bool affine_values(const Group& g, const char* field, size_t count, const double* fallback, double* out,
-                   backend::RuntimeError& err) {
+                   backends::RuntimeError& err) {
   for (const auto& [name, parts] : g.affine) {
     if (name != field) continue;
     for (size_t k = 0; k < count; ++k) {
@@ -61,7 +61,7 @@ void apply(const Mat4& m, float& x, float& y, float& z) {
 
 }  // namespace
 
-bool group_matrix(const Group& g, Mat4& out, backend::RuntimeError& err) {
+bool group_matrix(const Group& g, Mat4& out, backends::RuntimeError& err) {
   static const double zero[3] = {0, 0, 0}, one[3] = {1, 1, 1}, no_turn[4] = {0, 0, 1, 0};
   double t[3], r[4], s[3], sr[4], c[3];
   if (!affine_values(g, "translation", 3, zero, t, err) || !affine_values(g, "rotation", 4, no_turn, r, err) ||
@@ -89,7 +89,7 @@ bool invert_affine(const Mat4& m, Mat4& out) {
 }
 
 GroupField::GroupField(const SceneModel& m, int group) : m_(m), g_(m.groups[group]) {
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   if (!group_matrix(g_, matrix_, err)) invalid_ = "the FTransform's affine fields: " + err.message;
   else if (!invert_affine(matrix_, inverse_)) invalid_ = "the FTransform's scale is zero: it has no volume";
   moved_ = matrix_ != identity();
@@ -147,7 +147,7 @@ std::array<int, 3> GroupField::cells() const {
 const Shape* GroupField::first_shape() const { return shapes_.empty() ? nullptr : shapes_.front(); }
 
 bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
-                      backend::RuntimeError& err) const {
+                      backends::RuntimeError& err) const {
   std::vector<float> lx, ly, lz;
   if (moved_) {  // the children live in the FTransform's own frame
     lx.assign(x, x + n), ly.assign(y, y + n), lz.assign(z, z + n);
@@ -199,7 +199,7 @@ bool parametric_group(const SceneModel& m, int group) {
 }
 
 GroupParametric::GroupParametric(const SceneModel& m, int group) : g_(m.groups[group]) {
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   if (!group_matrix(g_, matrix_, err)) invalid_ = "the FTransform's affine fields: " + err.message;
   for (auto [is_group, index] : g_.children) {
     if (is_group) {
@@ -244,7 +244,7 @@ std::array<int, 3> GroupParametric::intervals() const {
 }
 
 bool GroupParametric::eval(const float* u, const float* v, const float* w, size_t n, float* x, float* y, float* z,
-                           backend::RuntimeError& err) const {
+                           backends::RuntimeError& err) const {
   // vals[k][c]: coordinate c of child k.
   std::vector<std::array<std::vector<float>, 3>> vals(kids_.size());
   for (size_t k = 0; k < kids_.size(); ++k) {

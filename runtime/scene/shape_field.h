@@ -14,7 +14,7 @@ namespace fscript::scene {
 
 // The FTransform's affine fields as a matrix (VRML97 Transform order): each field is FScript
 // components of t, numbers (a file that declares them SFVec3f / SFRotation), or the default.
-bool group_matrix(const Group& g, Mat4& out, backend::RuntimeError& err);
+bool group_matrix(const Group& g, Mat4& out, backends::RuntimeError& err);
 // Inverse of an affine matrix; false when it is singular (a zero scale).
 bool invert_affine(const Mat4& m, Mat4& out);
 
@@ -22,7 +22,7 @@ class ShapeField : public mesh::Field {
  public:
   explicit ShapeField(const Shape& s) : s_(s) {}
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
-            backend::RuntimeError& err) const override;
+            backends::RuntimeError& err) const override;
 
  private:
   const Shape& s_;
@@ -32,7 +32,7 @@ class GroupField : public mesh::Field {
  public:
   GroupField(const SceneModel& m, int group);
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
-            backend::RuntimeError& err) const override;
+            backends::RuntimeError& err) const override;
   // False (with a message) when a child cannot be part of an implicit field (a parametric shape).
   bool valid(std::string& why) const;
   std::array<double, 6> box() const;     // the union of the children's boxes
@@ -56,7 +56,7 @@ class GroupParametric : public mesh::ParametricField {
  public:
   GroupParametric(const SceneModel& m, int group);
   bool eval(const float* u, const float* v, const float* w, size_t n, float* x, float* y, float* z,
-            backend::RuntimeError& err) const override;
+            backends::RuntimeError& err) const override;
   bool valid(std::string& why) const;
   const Shape* first_shape() const { return shapes_.empty() ? nullptr : shapes_.front(); }
   ShapeKind kind() const;                // the children's highest dimension

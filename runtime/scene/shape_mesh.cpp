@@ -35,7 +35,7 @@ mesh::Vec3 pattern_colour(const vrml::Node* material, float value) {
 
 namespace {
 
-bool colour_vertices(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err) {
+bool colour_vertices(const Shape& s, mesh::Mesh& m, backends::RuntimeError& err) {
   if (!s.colour || m.positions.empty()) return true;
   size_t n = m.positions.size();
   std::vector<std::vector<float>> in(7, std::vector<float>(n));
@@ -73,7 +73,7 @@ bool colour_vertices(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err) 
 // FMaterial's other strings, evaluated once per frame at the centre of the shape's domain (the
 // VRML97 Material holds one value per shape): scalars take the script's value, colours its r, g, b
 // (or the value as a grey level). No FMaterial: no material (the viewer's default).
-bool evaluate_material(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err) {
+bool evaluate_material(const Shape& s, mesh::Mesh& m, backends::RuntimeError& err) {
   if (!s.material_node) return true;
   mesh::Material mat;
   for (const auto& f : s.material) {
@@ -98,7 +98,7 @@ bool evaluate_material(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err
 
 // A 3D texture on a parametric shape: each point moves by d(x, y, z, u, v, w, t) along its unit
 // normal; the normals are then taken from the moved faces.
-bool displace(const Shape& s, mesh::Mesh& m, backend::RuntimeError& err) {
+bool displace(const Shape& s, mesh::Mesh& m, backends::RuntimeError& err) {
   size_t n = m.positions.size();
   if (!s.texture || n == 0 || m.normals.size() != n) return true;
   std::vector<std::vector<float>> in(7, std::vector<float>(n));
@@ -146,7 +146,7 @@ void transform_mesh(const Mat4& t, mesh::Mesh& m) {
     for (auto& tri : m.triangles) std::swap(tri[1], tri[2]);
 }
 
-bool mesh_shape(const Shape& s, mesh::Mesh& out, backend::RuntimeError& err, bool world, int threads) {
+bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bool world, int threads) {
   if (!s.geometry.kernel) {
     err.message = "the shape has no compiled geometry";
     return false;
@@ -179,7 +179,7 @@ namespace {
 
 // An FTransform over parametric children: a union is every child's mesh together (moved by the
 // FTransform's matrix); an analytical operation is one parametric map (GroupParametric).
-bool mesh_parametric_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err, int threads) {
+bool mesh_parametric_group(const SceneModel& m, int group, mesh::Mesh& out, backends::RuntimeError& err, int threads) {
   const Group& g = m.groups[group];
   std::string op = g.operation.empty() ? "union" : g.operation;
   if (!g.op_kernel && op == "union" && g.children.size() > 1) {
@@ -222,7 +222,7 @@ const Shape* first_shape_below(const SceneModel& m, int group) {
 
 }  // namespace
 
-bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backend::RuntimeError& err, bool world,
+bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::RuntimeError& err, bool world,
                 int threads) {
   out = mesh::Mesh{};
   if (parametric_group(m, group)) {

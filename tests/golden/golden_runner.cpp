@@ -61,7 +61,7 @@ struct Case {
   std::vector<Expect> diags;
   std::vector<RunLine> runs;
   std::vector<IrBlock> irs;
-  backend::Budgets budgets;
+  backends::Budgets budgets;
 };
 
 bool parse_float(std::string t, float& v) {
@@ -244,15 +244,15 @@ void bless_file(Case& c) {
 std::map<std::string, int> g_ran, g_batched;
 
 // The result of one point on `k` (false with the message on a runtime error).
-bool eval_point(const backend::Kernel& k, std::vector<float> in, std::vector<float>& out, backend::RuntimeError& err) {
+bool eval_point(const backends::Kernel& k, std::vector<float> in, std::vector<float>& out, backends::RuntimeError& err) {
   in.resize(k.num_inputs(), 0.0f);
   out.assign(k.num_outputs(), 0.0f);
   return k.eval(in.data(), out.data(), err);
 }
 
-void check_point(const Case& c, const backend::Kernel& k, const RunLine& r) {
+void check_point(const Case& c, const backends::Kernel& k, const RunLine& r) {
   std::vector<float> out;
-  backend::RuntimeError rerr;
+  backends::RuntimeError rerr;
   bool ok = eval_point(k, r.args, out, rerr);
   if (!r.error.empty()) {
     INFO("message: " << rerr.message);
@@ -273,7 +273,7 @@ void check_point(const Case& c, const backend::Kernel& k, const RunLine& r) {
 // branches, each run at several lane positions (no multiple of 4, 8 or 16 apart). Every lane must
 // give what that point gives alone: the run's expectation, or for an extra point its one-point
 // result on the same kernel. Extra points that stop with a runtime error alone are left out.
-void check_batch(const Case& c, const backend::Kernel& k, const std::vector<const RunLine*>& runs) {
+void check_batch(const Case& c, const backends::Kernel& k, const std::vector<const RunLine*>& runs) {
   struct Lane {
     std::vector<float> in, want;
     const RunLine* run;  // nullptr: an extra point
@@ -286,7 +286,7 @@ void check_batch(const Case& c, const backend::Kernel& k, const std::vector<cons
   for (int e = 0; e < 5; ++e) {
     std::vector<float> in(k.num_inputs()), out;
     for (size_t a = 0; a < in.size(); ++a) in[a] = extra[(static_cast<size_t>(e) * 3 + a * 5) % 8];
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     if (eval_point(k, in, out, err)) pool.push_back({in, out, nullptr});
   }
   size_t n = pool.size() * 3 + 5;
@@ -300,7 +300,7 @@ void check_batch(const Case& c, const backend::Kernel& k, const std::vector<cons
   std::vector<float*> out;
   for (auto& col : cols) in.push_back(col.data());
   for (auto& col : outs) out.push_back(col.data());
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   INFO("batch of " << n << " lanes: " << err.message);
   REQUIRE(k.eval_batch(in.data(), out.data(), n, err));
   for (size_t i = 0; i < n; ++i) {
@@ -328,8 +328,8 @@ void check_runs(const Case& c, const frontend::Script& s, const std::string& fn,
     auto m = driver::build_module(s, spec, quiet, bo, err);
     INFO(err);
     REQUIRE(m);
-    for (const auto& name : backend::available_backends()) {
-      std::unique_ptr<backend::Kernel> kernel;
+    for (const auto& name : backends::available_backends()) {
+      std::unique_ptr<backends::Kernel> kernel;
       driver::Outcome o = driver::compile_kernel(*m, name, c.budgets, kernel);
       INFO("backend " << name << (optimize ? " (optimised)" : " (unoptimised)") << ": " << o.error);
       REQUIRE(o.ok());
@@ -413,5 +413,5 @@ TEST_CASE("golden cases: every backend of the build ran them all") {
     CHECK(g_ran[name] == g_ran["vm"]);
     CHECK(g_batched[name] == g_batched["vm"]);
   }
-  CHECK(backend::available_backends().size() == built.size());
+  CHECK(backends::available_backends().size() == built.size());
 }

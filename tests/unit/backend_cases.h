@@ -65,8 +65,8 @@ inline const std::vector<const char*> kInputDependentErrors = {
     "function FRep(x, y, z, t) { return f(20 / x); }"};
 
 // The budgets those programs run under (small, so their errors come quickly).
-inline backend::Budgets input_dependent_budgets() {
-  backend::Budgets b;
+inline backends::Budgets input_dependent_budgets() {
+  backends::Budgets b;
   b.max_loop_iterations = 100;
   b.max_call_depth = 50;
   return b;
@@ -74,14 +74,14 @@ inline backend::Budgets input_dependent_budgets() {
 
 // "" when `jit` gives the VM's results for x = 1, 2, ... n (y = z = t = 0) at every batch length
 // n up to `max_n`, else what differed.
-inline std::string partial_group_mismatch(const backend::Kernel& vm, const backend::Kernel& jit, size_t max_n) {
+inline std::string partial_group_mismatch(const backends::Kernel& vm, const backends::Kernel& jit, size_t max_n) {
   for (size_t n = 1; n <= max_n; ++n) {
     std::vector<float> x(n), zero(n, 0.0f), a(n), b(n);
     for (size_t i = 0; i < n; ++i) x[i] = 1.0f + static_cast<float>(i);
     const float* in[4] = {x.data(), zero.data(), zero.data(), zero.data()};
     float* oa[1] = {a.data()};
     float* ob[1] = {b.data()};
-    backend::RuntimeError ea, eb;
+    backends::RuntimeError ea, eb;
     if (!vm.eval_batch(in, oa, n, ea)) return "the VM failed: " + ea.message;
     if (!jit.eval_batch(in, ob, n, eb)) return "n = " + std::to_string(n) + ": " + eb.message;
     for (size_t i = 0; i < n; ++i)
@@ -94,9 +94,9 @@ inline std::string partial_group_mismatch(const backend::Kernel& vm, const backe
 // argument's recursion to 99,000 on a thread of 1 MiB (the guard stops the generated code, which
 // runs again on a stack sized for the budget), of 64 MiB and of 1 GiB, as under any `ulimit -s`;
 // else what went wrong.
-inline std::string deep_recursion_mismatch(const backend::Kernel& k) {
+inline std::string deep_recursion_mismatch(const backends::Kernel& k) {
   for (size_t stack : {size_t{1} << 20, size_t{64} << 20, size_t{1} << 30}) {
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     bool ok = false;
     float r = 0;
     on_thread_with_stack(stack, [&] {

@@ -1,4 +1,4 @@
-// Every backend the build has, by construction: the list comes from backend::available_backends()
+// Every backend the build has, by construction: the list comes from backends::available_backends()
 // (the llvm backend at each vector width), so a new backend is tested here the day it is
 // registered. Every pure operation of the op table on special values against the reference
 // evaluator, and the shared program bodies against the VM, bit for bit.
@@ -22,30 +22,30 @@ namespace {
 
 struct Variant {
   std::string name;  // "vm", "sse", "llvm/8"...
-  std::function<std::unique_ptr<backend::Kernel>(const ir::Module&, const backend::Budgets&, std::string&)> compile;
+  std::function<std::unique_ptr<backends::Kernel>(const ir::Module&, const backends::Budgets&, std::string&)> compile;
 };
 
 // One entry per backend this binary has; a backend with its own shapes (llvm's widths) has one each.
 std::vector<Variant> variants() {
   std::vector<Variant> out;
-  for (const std::string& name : backend::available_backends()) {
+  for (const std::string& name : backends::available_backends()) {
     if (name == "llvm") {
 #ifdef FS_HAVE_LLVM
       for (uint32_t w : {4u, 8u, 16u})
-        out.push_back({"llvm/" + std::to_string(w), [w](const ir::Module& m, const backend::Budgets& b, std::string& e) {
+        out.push_back({"llvm/" + std::to_string(w), [w](const ir::Module& m, const backends::Budgets& b, std::string& e) {
                          return llvmjit::LlvmBackend(w).compile(m, b, e);
                        }});
 #endif
       continue;
     }
-    out.push_back({name, [name](const ir::Module& m, const backend::Budgets& b, std::string& e) {
-                     return backend::make_backend(name)->compile(m, b, e);
+    out.push_back({name, [name](const ir::Module& m, const backends::Budgets& b, std::string& e) {
+                     return backends::make_backend(name)->compile(m, b, e);
                    }});
   }
   return out;
 }
 
-std::unique_ptr<backend::Kernel> compile_on(const Variant& v, const ir::Module& m, const backend::Budgets& b = {}) {
+std::unique_ptr<backends::Kernel> compile_on(const Variant& v, const ir::Module& m, const backends::Budgets& b = {}) {
   std::string error;
   auto k = v.compile(m, b, error);
   INFO(v.name << ": " << error);
@@ -64,13 +64,13 @@ std::vector<std::vector<float>> combinations(const std::vector<float>& vals, int
   return cols;
 }
 
-std::vector<float> run(const backend::Kernel& k, const std::vector<std::vector<float>>& cols) {
+std::vector<float> run(const backends::Kernel& k, const std::vector<std::vector<float>>& cols) {
   size_t n = cols[0].size();
   std::vector<const float*> in;
   for (const auto& c : cols) in.push_back(c.data());
   std::vector<float> out(n);
   float* outs[] = {out.data()};
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   INFO(err.message);
   REQUIRE(k.eval_batch(in.data(), outs, n, err));
   return out;
@@ -104,7 +104,7 @@ void agree_with_vm(const std::string& body, const std::string& prelude = "") {
 TEST_CASE("backends: the list covers every backend this binary has") {
   std::vector<std::string> names;
   for (const Variant& v : variants()) names.push_back(v.name.substr(0, v.name.find('/')));
-  for (const std::string& b : backend::available_backends())
+  for (const std::string& b : backends::available_backends())
     CHECK(std::find(names.begin(), names.end(), b) != names.end());
 #ifdef FS_HAVE_LLVM
   CHECK(std::find(names.begin(), names.end(), "llvm") != names.end());
@@ -172,7 +172,7 @@ TEST_CASE("backends: recursive functions run under the caller's lanes, with the 
 }
 
 TEST_CASE("backends: a partial last group runs only the points given (errors that depend on the inputs)") {
-  backend::Budgets budgets = test::input_dependent_budgets();
+  backends::Budgets budgets = test::input_dependent_budgets();
   for (const char* text : test::kInputDependentErrors) {
     INFO(text);
     auto vm = test::build(text, "", true, budgets, "vm");
@@ -191,7 +191,7 @@ TEST_CASE("backends: many kernels compiled and freed") {
       REQUIRE(b->ok);
       auto k = compile_on(v, *b->module);
       float in[4] = {1, 0, 0, 0}, out = 0;
-      backend::RuntimeError err;
+      backends::RuntimeError err;
       REQUIRE(k->eval(in, &out, err));
       CHECK(out == static_cast<float>(i));
     }
@@ -211,14 +211,14 @@ TEST_CASE("backends: every batch length, the one-point call, and several outputs
       const float* in[4] = {u.data(), vv.data(), w.data(), t.data()};
       float* oa[3] = {a[0].data(), a[1].data(), a[2].data()};
       float* ob[3] = {b[0].data(), b[1].data(), b[2].data()};
-      backend::RuntimeError err;
+      backends::RuntimeError err;
       REQUIRE(vm->kernel->eval_batch(in, oa, n, err));
       REQUIRE(k->eval_batch(in, ob, n, err));
       INFO(v.name << " n = " << n);
       CHECK(a == b);  // including the untouched element after the batch
     }
     float in[4] = {0.5f, 0.25f, 2.0f, 0}, o1[3], o2[3];
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     REQUIRE(vm->kernel->eval(in, o1, err));
     REQUIRE(k->eval(in, o2, err));
     for (int j = 0; j < 3; ++j) CHECK(same(o1[j], o2[j]));
@@ -231,17 +231,17 @@ TEST_CASE("backends: globals start as NaN in every evaluation and follow the lan
 }
 
 // The first error of a batch, on `k`, as "message @ line" ("" when the batch ran).
-static std::string batch_error(const backend::Kernel& k, std::vector<float> xs) {
+static std::string batch_error(const backends::Kernel& k, std::vector<float> xs) {
   std::vector<float> zero(xs.size(), 0), out(xs.size());
   const float* in[4] = {xs.data(), zero.data(), zero.data(), zero.data()};
   float* outs[1] = {out.data()};
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   if (k.eval_batch(in, outs, xs.size(), err)) return "";
   return err.message + " @ " + std::to_string(err.line);
 }
 
 TEST_CASE("backends: the loop and array budgets stop a lane with the VM's message and line") {
-  backend::Budgets small;
+  backends::Budgets small;
   small.max_loop_iterations = 1000;
   small.max_array_elements = 10;
   const char* loop = "function FRep(x, y, z, t) {\n  var s = 0;\n  while (s < x) s = s + 1;\n  return s;\n}";
@@ -270,14 +270,14 @@ TEST_CASE("backends: the loop and array budgets stop a lane with the VM's messag
 TEST_CASE("backends: the call depth budget, not the caller's stack, decides how deep recursion goes") {
   std::string text = "function down(n) { if (n <= 0) return 0; return 1 + down(n - 1); }\n"
                      "function FRep(x, y, z, t) { return down(x); }";
-  backend::Budgets budgets;
+  backends::Budgets budgets;
   budgets.max_call_depth = 50;
   auto vm = test::build(text, "", true, budgets);
   REQUIRE(vm->ok);
   std::string over = batch_error(*vm->kernel, {51});
   CHECK(over.find("call depth budget exceeded") == 0);
-  backend::Budgets ceiling, capped;
-  ceiling.max_call_depth = backend::kCallDepthCeiling;
+  backends::Budgets ceiling, capped;
+  ceiling.max_call_depth = backends::kCallDepthCeiling;
   capped.max_call_depth = 1000;
   for (const Variant& v : variants()) {
     INFO(v.name);

@@ -55,14 +55,14 @@ TEST_CASE("corpus: every script compiles and runs") {
       REQUIRE(m);
       // On every backend this build has, each giving the VM's bits (NaN for NaN) at each point.
       std::vector<float> reference;
-      for (const std::string& name : backend::available_backends()) {
+      for (const std::string& name : backends::available_backends()) {
         INFO("backend " << name);
-        auto kernel = backend::make_backend(name)->compile(*m, {}, err);
+        auto kernel = backends::make_backend(name)->compile(*m, {}, err);
         REQUIRE(kernel);
         std::vector<float> results;
         for (float p : {0.0f, 0.25f, 0.5f, 1.0f}) {
           std::vector<float> in(kernel->num_inputs(), p), out(kernel->num_outputs());
-          backend::RuntimeError rerr;
+          backends::RuntimeError rerr;
           bool ok = kernel->eval(in.data(), out.data(), rerr);
           INFO("at " << p << ": " << rerr.message);
           CHECK(ok);

@@ -22,7 +22,7 @@ struct GrowingSphere {
   explicit GrowingSphere(size_t n) : frames(n) {}
 
   mesh::FrameCache::Maker maker() {
-    return [this](size_t i, mesh::Mesh& out, backend::RuntimeError& err) {
+    return [this](size_t i, mesh::Mesh& out, backends::RuntimeError& err) {
       {
         std::lock_guard<std::mutex> lock(mutex);
         made.push_back(static_cast<int>(i));
@@ -47,7 +47,7 @@ TEST_CASE("frames: a compact mesh expands to the same mesh within the quantisati
   GrowingSphere s(1);
   REQUIRE(s.b->ok);
   mesh::Mesh m;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(s.maker()(0, m, err));
   m.polylines = {{0, 1, 2}, {5, 3}};
   m.material = mesh::Material{};
@@ -84,7 +84,7 @@ TEST_CASE("frames: the cache fills progressively, the paper's way") {
   REQUIRE(s.b->ok);
   mesh::FrameCache cache(4, s.maker());
   mesh::Mesh m;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(cache.get(2, m, err));  // a miss: made and cached, nothing else
   CHECK(s.made == std::vector<int>{2});
   CHECK(cache.cached() == 1);
@@ -110,7 +110,7 @@ TEST_CASE("frames: filling with threads gives the same frames as one at a time")
   GrowingSphere a(5), b(5);
   REQUIRE(a.b->ok);
   mesh::FrameCache one(5, a.maker()), two(5, b.maker());
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(one.fill(1, err));
   REQUIRE(two.fill(2, err));
   CHECK(one.cached() == 5);
@@ -126,14 +126,14 @@ TEST_CASE("frames: filling with threads gives the same frames as one at a time")
 }
 
 TEST_CASE("frames: a failing frame reports its error and caches nothing") {
-  mesh::FrameCache cache(3, [](size_t i, mesh::Mesh&, backend::RuntimeError& err) {
+  mesh::FrameCache cache(3, [](size_t i, mesh::Mesh&, backends::RuntimeError& err) {
     if (i == 1) {
       err.message = "loop budget exceeded";
       return false;
     }
     return true;
   });
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   CHECK(!cache.fill(2, err));
   CHECK(err.message == "loop budget exceeded");
   CHECK(!cache.has(1));

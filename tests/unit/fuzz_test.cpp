@@ -58,7 +58,7 @@ bool agree(float a, float b) {
 }
 
 void compile_and_run(const std::string& text, Tally& tally) {
-  backend::Budgets small;
+  backends::Budgets small;
   small.max_loop_iterations = 2000;
   small.max_call_depth = 30;
   small.max_array_elements = 1000;
@@ -77,7 +77,7 @@ void compile_and_run(const std::string& text, Tally& tally) {
     std::vector<float>& out = results[optimize];
     for (float v : {0.5f, -1.25f, 3.0f}) {
       std::vector<float> in(b->kernel->num_inputs(), v), o(b->kernel->num_outputs());
-      backend::RuntimeError err;
+      backends::RuntimeError err;
       if (!b->kernel->eval(in.data(), o.data(), err)) {
         REQUIRE(!err.message.empty());
         o.assign(o.size(), -777.0f);  // a runtime error, as a value the comparison sees

@@ -16,13 +16,13 @@ struct Built {
   frontend::DiagnosticSink diag;
   frontend::Script script;
   std::unique_ptr<ir::Module> module;
-  std::unique_ptr<backend::Kernel> kernel;
+  std::unique_ptr<backends::Kernel> kernel;
   bool ok = false;
 };
 
 // Compiles `text` for `entry` ("" = the script's entry point) on backend `be`.
 inline std::unique_ptr<Built> build(const std::string& text, const std::string& entry = "", bool optimize = true,
-                                    const backend::Budgets& budgets = {}, const std::string& be = "vm") {
+                                    const backends::Budgets& budgets = {}, const std::string& be = "vm") {
   auto b = std::make_unique<Built>();
   driver::CompileOptions o;
   o.backend = be;
@@ -41,7 +41,7 @@ inline std::unique_ptr<Built> build(const std::string& text, const std::string& 
 inline float eval1(const Built& b, std::vector<float> in) {
   in.resize(b.kernel->num_inputs(), 0.0f);
   std::vector<float> out(b.kernel->num_outputs());
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   if (!b.kernel->eval(in.data(), out.data(), err)) return -12345.0f;
   return out[0];
 }

@@ -24,7 +24,7 @@ namespace {
 
 const uint32_t kWidths[] = {4, 8, 16};
 
-std::unique_ptr<backend::Kernel> llvm_kernel(const ir::Module& m, uint32_t width, const backend::Budgets& budgets = {}) {
+std::unique_ptr<backends::Kernel> llvm_kernel(const ir::Module& m, uint32_t width, const backends::Budgets& budgets = {}) {
   std::string error;
   auto k = llvmjit::LlvmBackend(width).compile(m, budgets, error);
   INFO(error);
@@ -44,7 +44,7 @@ TEST_CASE("llvm: bounded-input code, and the general code for batches outside th
   std::vector<float> x = {0.5f, 1e30f, 2.0f, kInf, kNan, 70000.0f, -3.0f}, zero(x.size()), out(x.size());
   const float* in[4] = {x.data(), zero.data(), zero.data(), zero.data()};
   float* o[1] = {out.data()};
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(k->eval_batch(in, o, x.size(), err));
   CHECK(out[0] == 1.0f);
   CHECK(std::isnan(out[1]));
@@ -58,7 +58,7 @@ TEST_CASE("llvm: kernels compiled and freed, and the cache of compiled code") {
     auto vm = test::build("function FRep(x, y, z, t) { return x * " + std::to_string(i) + " + sin(y); }");
     auto k = llvm_kernel(*vm->module, 8);
     float in[4] = {1, 0, 0, 0}, r = -1;
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     REQUIRE(k->eval(in, &r, err));
     CHECK(r == static_cast<float>(i));
   }
@@ -70,7 +70,7 @@ TEST_CASE("llvm: kernels compiled and freed, and the cache of compiled code") {
   CHECK(after.compiles == before.compiles + 1);
   CHECK(after.hits == before.hits + 1);
   float in[4] = {2, 1, 0, 0}, r1 = 0, r2 = 0;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(k1->eval(in, &r1, err));
   REQUIRE(k2->eval(in, &r2, err));
   CHECK(r1 == 248.0f);
@@ -92,7 +92,7 @@ TEST_CASE("llvm: the on-disk cache of machine code serves the next compile of th
   CHECK(after.compiles == before.compiles + 2);
   CHECK(after.disk_hits == before.disk_hits + 1);
   float in[4] = {0.5f, 3, 0, 0}, r1 = 0, r2 = 0, r0 = 0;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(vm->kernel->eval(in, &r0, err));
   REQUIRE(k1->eval(in, &r1, err));
   REQUIRE(k2->eval(in, &r2, err));

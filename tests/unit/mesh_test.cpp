@@ -17,7 +17,7 @@ static mesh::Mesh polygonize(const std::string& src, std::array<double, 6> box, 
   job.box = box;
   job.cells = {n, n, n};
   mesh::Mesh m;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(mesh::polygonize_implicit(job, m, err));
   return m;
 }
@@ -96,7 +96,7 @@ static mesh::Mesh sample(const std::string& src, mesh::ParametricKind kind, std:
   job.domain = dom;
   job.intervals = {n, n, n};
   mesh::Mesh m;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(mesh::polygonize_parametric(job, m, err));
   return m;
 }
@@ -187,7 +187,7 @@ TEST_CASE("mesh: the same mesh, vertex for vertex, for 1, 2 and 5 threads") {
     job.cells = {48, 48, 48};
     job.threads = threads;
     mesh::Mesh m;
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     REQUIRE(mesh::polygonize_implicit(job, m, err));
     auto topo = mesh::topology(m);
     CHECK(topo.watertight);
@@ -282,7 +282,7 @@ TEST_CASE("mesh: a crossing starts at the linear estimate along its edge, exact 
   job.cells = {10, 10, 10};
   job.refine_steps = 0;
   mesh::Mesh m;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(mesh::polygonize_implicit(job, m, err));
   size_t on_plane = 0;
   for (const auto& p : m.positions) {

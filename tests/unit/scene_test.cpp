@@ -45,7 +45,7 @@ TEST_CASE("scene: a hollow ball by subtraction, and a union of two balls") {
   REQUIRE(l->model.groups.size() == 2);
   for (int g = 0; g < 2; ++g) {
     mesh::Mesh m;
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     REQUIRE(scene::mesh_group(l->model, g, m, err));
     auto topo = mesh::topology(m);
     CHECK(topo.watertight);
@@ -63,7 +63,7 @@ TEST_CASE("scene: an analytical operation morphs between its children with t") {
         FShape { geometry FGeometry { definition "0.7^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [32] } } ] })W", o);
     REQUIRE(l->ok);
     mesh::Mesh m;
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     REQUIRE(scene::mesh_group(l->model, 0, m, err));
     return mean_radius(m);
   };
@@ -83,7 +83,7 @@ TEST_CASE("scene: a displacement texture adds to the function; a Transform moves
   INFO(frontend::render_all(l->diag));
   REQUIRE(l->ok);
   mesh::Mesh m;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(scene::mesh_shape(l->model.shapes[0], m, err));
   CHECK(mean_radius(m, 2.0) == Approx(0.7).epsilon(0.01));  // 0.5 + 0.2, centred at x = 2
 }
@@ -95,7 +95,7 @@ TEST_CASE("scene: parametric kinds and domains from resolution and parameters") 
   CHECK(l->model.shapes[0].kind == scene::ShapeKind::Curve);
   CHECK(l->model.shapes[1].kind == scene::ShapeKind::Surface);
   mesh::Mesh curve, surface;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(scene::mesh_shape(l->model.shapes[0], curve, err));
   REQUIRE(scene::mesh_shape(l->model.shapes[1], surface, err));
   CHECK(curve.polylines[0].size() == 21);
@@ -111,7 +111,7 @@ mesh::Mesh group_mesh(const std::string& body, double fraction = 0) {
   INFO(frontend::render_all(l->diag));
   REQUIRE(l->ok);
   mesh::Mesh m;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   INFO(err.message);
   REQUIRE(scene::mesh_group(l->model, 0, m, err));
   return m;
@@ -159,7 +159,7 @@ TEST_CASE("scene: a union of parametric children is both surfaces; other set ope
       FShape { geometry FGeometry { definition "0.5-x*x-y*y-z*z" } } ] })W");
   REQUIRE(l->ok);
   mesh::Mesh bad;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   CHECK(!scene::mesh_group(l->model, 0, bad, err));
   CHECK(err.message.find("'intersection' over parametric children") != std::string::npos);
   CHECK(!scene::mesh_group(l->model, 1, bad, err));
@@ -201,7 +201,7 @@ TEST_CASE("scene: an FTransform's affine fields move, turn and scale its result,
       FShape { geometry FGeometry { definition "0.3^2-x^2-y^2-z^2" } } ] })W");
   REQUIRE(l->ok);
   mesh::Mesh flat;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   CHECK(!scene::mesh_group(l->model, 0, flat, err));
   CHECK(err.message.find("scale is zero") != std::string::npos);
 }
@@ -213,7 +213,7 @@ TEST_CASE("scene: a displacement texture on a parametric surface moves points al
         definition "x=0.5*cos(2*pi*u)*sin(pi*v); y=0.5*sin(2*pi*u)*sin(pi*v); z=0.5*cos(pi*v);" } })W");
   REQUIRE(l->ok);
   mesh::Mesh m;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(scene::mesh_shape(l->model.shapes[0], m, err));
   // dP/du x dP/dv points inward on this map, so +0.1 along the normal shrinks the sphere.
   CHECK(mean_radius(m) == Approx(0.4).epsilon(0.01));
@@ -232,7 +232,7 @@ TEST_CASE("scene: FMaterial strings set the material; none leaves the viewer's d
   INFO(frontend::render_all(l->diag));
   REQUIRE(l->ok);
   mesh::Mesh a, b;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(scene::mesh_shape(l->model.shapes[0], a, err));
   REQUIRE(scene::mesh_shape(l->model.shapes[1], b, err));
   REQUIRE(a.material);
@@ -297,7 +297,7 @@ TEST_CASE("scene: a looping shape at several clock values follows its TimeSensor
       geometry FGeometry { definition "(0.3+0.4*t)^2-x*x-y*y-z*z" bboxSize 2 2 2 resolution [32] } })W", o);
     REQUIRE(l->ok);
     mesh::Mesh m;
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     REQUIRE(scene::mesh_shape(l->model.shapes[0], m, err));
     return mean_radius(m);
   };

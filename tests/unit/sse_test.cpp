@@ -38,7 +38,7 @@ void agree(const std::string& body, const std::string& prelude = "") {
   const float* in[4] = {x.data(), y.data(), z.data(), t.data()};
   float* out1[1] = {o1.data()};
   float* out2[1] = {o2.data()};
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(vm->kernel->eval_batch(in, out1, n, err));
   REQUIRE(sse->kernel->eval_batch(in, out2, n, err));
   int bad = 0;
@@ -78,7 +78,7 @@ TEST_CASE("sse: a function of 100,000 operations compiles and agrees with the VM
   CHECK(ops >= 100000);
   for (float x : {0.5f, -3.0f, 1e6f}) {
     float in[4] = {x, 0.25f, 0.1f, 0}, a, b;
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     REQUIRE(vm->kernel->eval(in, &a, err));
     REQUIRE(sse->eval(in, &b, err));
     CHECK(same(a, b));
@@ -101,7 +101,7 @@ TEST_CASE("sse: code that assumes bounded inputs, and the general code for batch
     const float* in[4] = {x.data(), y.data(), z.data(), t.data()};
     float* out1[1] = {o1.data()};
     float* out2[1] = {o2.data()};
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     REQUIRE(vm->kernel->eval_batch(in, out1, x.size(), err));
     REQUIRE(sse->kernel->eval_batch(in, out2, x.size(), err));
     for (size_t i = 0; i < x.size(); ++i) {
@@ -116,7 +116,7 @@ TEST_CASE("sse: code that assumes bounded inputs, and the general code for batch
   CHECK(std::isnan(o[3]));
   CHECK(o[0] == 1.5f);
   float one[4] = {1e30f, 1, 0, 0}, r = 0;
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(sse->kernel->eval(one, &r, err));  // one point, out of range
   CHECK(std::isnan(r));
   // Kernels where a bound would remove nothing carry no assumption.
@@ -134,13 +134,13 @@ TEST_CASE("sse: loop budgets beyond int32 keep exact 64-bit counts (fs_ticks_car
   const int64_t kT = INT32_MAX - 1;
   uint64_t budget = 5'000'000'000ull;
   for (int i = 0; i < 4; ++i) s.c[i] = static_cast<int32_t>(kT + 1);  // every lane just passed the threshold
-  CHECK(backend::fs_ticks_carry(s.c, budget) == 0);
+  CHECK(backends::fs_ticks_carry(s.c, budget) == 0);
   for (int i = 0; i < 4; ++i) CHECK(s.t[i] + s.c[i] == kT + 1);  // nothing lost
   // The next trigger (counter > kT) comes when the lane passes min(budget, ticks + kT).
   int64_t until_next = kT + 1 - s.c[0];
   CHECK(until_next == kT + 1);
   s.c[0] += static_cast<int32_t>(until_next - 1);  // the lane at ticks = 2 * kT + 1
-  CHECK(backend::fs_ticks_carry(s.c, budget) == 0);
+  CHECK(backends::fs_ticks_carry(s.c, budget) == 0);
   int64_t ticks = s.t[0] + s.c[0];
   CHECK(ticks == 2 * kT + 1);
   // Now less than kT remains: the counter restarts so it passes kT exactly past the budget.
@@ -149,9 +149,9 @@ TEST_CASE("sse: loop budgets beyond int32 keep exact 64-bit counts (fs_ticks_car
   s.c[0] += static_cast<int32_t>(remaining);  // exactly at the budget: still fine
   CHECK(s.t[0] + s.c[0] == static_cast<int64_t>(budget));
   s.c[0] += 1;  // one past: over
-  CHECK(backend::fs_ticks_carry(s.c, budget) == 1);
+  CHECK(backends::fs_ticks_carry(s.c, budget) == 1);
   // A kernel with such a budget still runs and counts ordinary loops.
-  backend::Budgets big;
+  backends::Budgets big;
   big.max_loop_iterations = budget;
   auto b = test::build("function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < x; i++) s += i; return s; }", "",
                        true, big, "sse");

@@ -31,7 +31,7 @@ TEST_CASE("vm: a batch gives the same results as one point at a time, with diver
   }
   const float* in[] = {xs.data(), ys.data(), zs.data(), ts.data()};
   float* outs[] = {out.data()};
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   REQUIRE(b->kernel->eval_batch(in, outs, n, err));
   int mismatches = 0;
   for (size_t i = 0; i < n; ++i) mismatches += !same(out[i], test::eval1(*b, {xs[i], ys[i], zs[i], 0}));
@@ -39,13 +39,13 @@ TEST_CASE("vm: a batch gives the same results as one point at a time, with diver
 }
 
 TEST_CASE("vm: budgets stop runaway scripts and name the line") {
-  backend::Budgets small;
+  backends::Budgets small;
   small.max_loop_iterations = 1000;
   small.max_call_depth = 20;
   auto loop = test::build("function f(x) {\n  while (x == x) {\n    x = x + 1;\n  }\n  return x;\n}", "f", true, small);
   REQUIRE(loop->ok);
   std::vector<float> in = {1}, out(1);
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   CHECK(!loop->kernel->eval(in.data(), out.data(), err));
   CHECK(err.line == 2);
   CHECK(err.message.find("loop iteration budget") != std::string::npos);
@@ -60,7 +60,7 @@ TEST_CASE("vm: an out-of-range index names the line and never touches other memo
   auto b = test::build("function f(i) {\n  var a = [1, 2, 3];\n  return a[i];\n}", "f");
   REQUIRE(b->ok);
   std::vector<float> in = {1e9f}, out(1);
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   CHECK(!b->kernel->eval(in.data(), out.data(), err));
   CHECK(err.line == 3);
   CHECK(err.message.find("out of range") != std::string::npos);

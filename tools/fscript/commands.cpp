@@ -65,7 +65,7 @@ int cmd_run(const Options& o, const std::string& file, const std::string& entry,
     std::cerr << "error: " << error << "\n";
     return kExitUsage;
   }
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   if (!c.kernel->eval(in.data(), out.data(), err)) {
     print_runtime_error(c.script.file->path(), err);
     return kExitInput;
@@ -113,7 +113,7 @@ int cmd_eval(const Options& o, const std::string& file, const std::string& entry
   std::vector<std::vector<float>> outs(c.kernel->num_outputs(), std::vector<float>(n));
   std::vector<float*> out;
   for (auto& v : outs) out.push_back(v.data());
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   if (!c.kernel->eval_batch(in.data(), out.data(), n, err)) {
     print_runtime_error(c.script.file->path(), err);
     return kExitInput;
@@ -186,8 +186,8 @@ int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, con
   return kExitOk;
 }
 
-std::string backend_listing(const std::string& name, const ir::Module& m, const backend::Kernel* kernel,
-                            const backend::Budgets& budgets, std::string& error) {
+std::string backend_listing(const std::string& name, const ir::Module& m, const backends::Kernel* kernel,
+                            const backends::Budgets& budgets, std::string& error) {
   if (auto* vk = dynamic_cast<const vm::VmKernel*>(kernel)) return vm::disassemble(vk->program());
   if (name == "sse") {
     std::string text;
@@ -206,9 +206,9 @@ std::string backend_listing(const std::string& name, const ir::Module& m, const 
 }
 
 int cmd_emit_asm(const Options& o, const std::string& file, const std::string& entry) {
-  std::string name = o.backend.empty() ? backend::available_backends().front() : o.backend;
-  if (!backend::make_backend(name)) {  // a usage error before any compile
-    std::cerr << "error: " << backend::missing_backend_message(name) << "\n";
+  std::string name = o.backend.empty() ? backends::available_backends().front() : o.backend;
+  if (!backends::make_backend(name)) {  // a usage error before any compile
+    std::cerr << "error: " << backends::missing_backend_message(name) << "\n";
     return kExitUsage;
   }
   Compiled c;

@@ -68,7 +68,7 @@ bool parse_number(const std::string& text, float& out) {
   return end && *end == '\0';
 }
 
-void print_runtime_error(const std::string& path, const backend::RuntimeError& err) {
+void print_runtime_error(const std::string& path, const backends::RuntimeError& err) {
   std::cerr << path;
   if (err.line) std::cerr << ":" << err.line;
   std::cerr << ": error: " << err.message << "\n";

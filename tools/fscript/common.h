@@ -27,8 +27,8 @@ void print_diagnostics(const frontend::DiagnosticSink& sink);
 
 // The generated code of backend `name` as text: VM bytecode, or the JIT's assembly; "" with a
 // message when there is none (emit-asm, the REPL's :asm).
-std::string backend_listing(const std::string& name, const ir::Module& m, const backend::Kernel* kernel,
-                            const backend::Budgets& budgets, std::string& error);
+std::string backend_listing(const std::string& name, const ir::Module& m, const backends::Kernel* kernel,
+                            const backends::Budgets& budgets, std::string& error);
 
 // Reads `path` and runs the compile driver for `entry` ("" = the script's entry point; "FRep"
 // style names match without case), printing what went wrong. Returns an exit status (0 = ready).
@@ -43,6 +43,6 @@ bool is_scene_path(const std::string& p);
 bool parse_number(const std::string& text, float& out);
 
 // Prints a runtime error as "FILE:LINE: error: message".
-void print_runtime_error(const std::string& path, const backend::RuntimeError& err);
+void print_runtime_error(const std::string& path, const backends::RuntimeError& err);
 
 }  // namespace fscript::cli

@@ -27,7 +27,7 @@ void add_budget_flags(CLI::App& app, Args& a) {
                  "loop iterations allowed per evaluation (default 10000000)")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 62));
   app.add_option("--max-call-depth", a.max_depth, "nested calls allowed (default 1000)")
-      ->check(CLI::Range(1u, backend::kCallDepthCeiling));
+      ->check(CLI::Range(1u, backends::kCallDepthCeiling));
   app.add_option("--max-array-elements", a.opts.budgets.max_array_elements,
                  "array elements allowed per evaluation (default 1000000)")
       ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 32));
@@ -46,7 +46,7 @@ CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args&
 
 int dispatch(CLI::App& app, Args& a) {
   a.opts.budgets.max_call_depth = a.max_depth;
-  if (std::string message; a.disk_cache && !backend::enable_llvm_disk_cache(message)) {
+  if (std::string message; a.disk_cache && !backends::enable_llvm_disk_cache(message)) {
     std::cerr << "error: " << message << "\n";
     return 2;
   }

@@ -24,10 +24,10 @@ constexpr size_t kBatch = 4096;  // points per eval_batch call in bench and rend
 // free (every point's value is its own, so the schedule changes no result); the first error stops
 // every thread.
 template <class Work>
-bool parallel_slices(size_t n, unsigned threads, Work work, backend::RuntimeError& err) {
+bool parallel_slices(size_t n, unsigned threads, Work work, backends::RuntimeError& err) {
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
-  return support::run_parts(static_cast<int>(threads), [&](int, backend::RuntimeError& e) {
+  return support::run_parts(static_cast<int>(threads), [&](int, backends::RuntimeError& e) {
     while (!failed) {
       size_t b = next.fetch_add(kBatch);
       if (b >= n) return true;
@@ -59,11 +59,11 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
   size_t ops = 0;
   for (const auto& f : c.module->functions)
     for (const auto& blk : f->blocks) ops += blk->insts.size();
-  std::string name = o.backend.empty() ? backend::available_backends().front() : o.backend;
+  std::string name = o.backend.empty() ? backends::available_backends().front() : o.backend;
   auto best_compile = [&] {
     double ms = 1e30;
     for (int k = 0; k < 3; ++k) {
-      std::unique_ptr<backend::Kernel> again;
+      std::unique_ptr<backends::Kernel> again;
       auto t = Clock::now();
       driver::compile_kernel(*c.module, name, o.budgets, again);
       ms = std::min(ms, std::chrono::duration<double, std::milli>(Clock::now() - t).count());
@@ -87,9 +87,9 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
   size_t n_in = c.kernel->num_inputs(), n_out = c.kernel->num_outputs();
   auto cols = grid_inputs(points, n_in);
   std::vector<std::vector<float>> outs(n_out, std::vector<float>(points));
-  backend::RuntimeError err;
+  backends::RuntimeError err;
   auto t0 = Clock::now();
-  bool ok = parallel_slices(points, std::max(1u, threads), [&](size_t b, size_t e, backend::RuntimeError& er) {
+  bool ok = parallel_slices(points, std::max(1u, threads), [&](size_t b, size_t e, backends::RuntimeError& er) {
     if (one_point) {
       std::vector<float> in(n_in), out(n_out);
       for (size_t i = b; i < e; ++i) {
@@ -170,8 +170,8 @@ int cmd_render2d(const Options& o, const std::string& file, const std::string& e
   auto t0 = Clock::now();
   std::vector<uint8_t> px(n);
   std::atomic<size_t> white{0};
-  backend::RuntimeError err;
-  bool ok = parallel_slices(n, std::max(1u, threads), [&](size_t b, size_t e, backend::RuntimeError& er) {
+  backends::RuntimeError err;
+  bool ok = parallel_slices(n, std::max(1u, threads), [&](size_t b, size_t e, backends::RuntimeError& er) {
     std::vector<std::vector<float>> cols(n_in, std::vector<float>(e - b, 0.0f));
     for (size_t i = b; i < e; ++i) {
       size_t col = i % w, row = i / w;

@@ -248,10 +248,10 @@ void Session::evaluate(const std::string& raw, std::string& out) {
     }
     c = std::move(s);
   }
-  const backend::Kernel& k = *c.kernel;
+  const backends::Kernel& k = *c.kernel;
   out += run_interruptible([&k] {
     float value = 0;
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     if (!k.eval(nullptr, &value, err)) return "error: " + err.message + "\n";
     return format_number(value) + "\n";
   });
@@ -264,7 +264,7 @@ int run_repl(const Options& o) {
   else if (const char* home = std::getenv("HOME")) history = std::string(home) + "/.fscript_history";
   using_history();
   if (!history.empty()) read_history(history.c_str());
-  std::cout << "fscript " << "(backend " << (o.backend.empty() ? backend::available_backends().front() : o.backend)
+  std::cout << "fscript " << "(backend " << (o.backend.empty() ? backends::available_backends().front() : o.backend)
             << "): definitions stay, expressions print their value; :help for commands, Ctrl-D to leave\n";
   signal(SIGINT, SIG_IGN);  // at the prompt; an evaluation in progress takes Ctrl-C
   std::string buffer;

@@ -15,7 +15,7 @@ namespace fscript::cli {
 class Session {
  public:
   explicit Session(const Options& o) : opts_(o) {
-    if (opts_.backend.empty()) opts_.backend = backend::available_backends().front();
+    if (opts_.backend.empty()) opts_.backend = backends::available_backends().front();
   }
 
   // One complete input (brackets balanced): a definition, a command or an expression. Output and

@@ -112,9 +112,9 @@ bool Session::command(const std::string& input, std::string& out) {
   if (cmd == ":help") out += kHelp;
   else if (cmd == ":reset") defs_.clear(), scene_.clear(), out += "every definition forgotten\n";
   else if (cmd == ":backend") {
-    if (!arg.empty() && !backend::make_backend(arg)) out += "error: " + backend::missing_backend_message(arg) + "\n";
+    if (!arg.empty() && !backends::make_backend(arg)) out += "error: " + backends::missing_backend_message(arg) + "\n";
     else if (!arg.empty()) opts_.backend = arg;
-    if (arg.empty() || backend::make_backend(arg)) out += "backend " + opts_.backend + "\n";
+    if (arg.empty() || backends::make_backend(arg)) out += "backend " + opts_.backend + "\n";
   } else if (cmd == ":ir") cmd_ir(arg, out);
   else if (cmd == ":asm") cmd_asm(arg, out);
   else if (cmd == ":time") cmd_time(arg, out);
@@ -158,14 +158,14 @@ void Session::cmd_time(const std::string& arg, std::string& out) {
     return;
   }
   if (!compile("__repl__", {}, "return (\n" + arg + "\n);", arg, c, out)) return;
-  const backend::Kernel& k = *c.kernel;
+  const backends::Kernel& k = *c.kernel;
   std::string name = opts_.backend;
   out += run_interruptible([&k, name] {
     using Clock = std::chrono::steady_clock;
     const size_t n = 4096;
     std::vector<float> result(n);
     float* outs[1] = {result.data()};
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     size_t done = 0;
     auto start = Clock::now();
     double secs = 0;
@@ -201,7 +201,7 @@ void Session::cmd_plot(const std::string& raw, std::string& out) {
   Compiled c;
   std::vector<std::string> params = two_d ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x"};
   if (!compile("__plot__", params, "return (\n" + expr + "\n);", expr, c, out)) return;
-  const backend::Kernel& k = *c.kernel;
+  const backends::Kernel& k = *c.kernel;
   out += run_interruptible([&k, two_d, a, b] {
     int w = two_d ? 64 : 72, h = two_d ? 32 : 1;
     std::vector<float> xs, ys, v(static_cast<size_t>(w * h));
@@ -212,7 +212,7 @@ void Session::cmd_plot(const std::string& raw, std::string& out) {
       }
     const float* in[2] = {xs.data(), ys.data()};
     float* outs[1] = {v.data()};
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     if (!k.eval_batch(in, outs, v.size(), err)) return "error: " + err.message + "\n";
     return two_d ? picture(v, w, h, a, b) : chart(v, a, b);
   });
@@ -278,7 +278,7 @@ bool Session::call_scene_script(const std::string& input, std::string& out) {
     Compiled c;
     if (!compile("__repl__", {}, "return (\n" + a + "\n);", a, c, out)) return true;
     float v = 0;
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     if (!c.kernel->eval(nullptr, &v, err)) {
       out += "error: " + err.message + "\n";
       return true;
@@ -291,10 +291,10 @@ bool Session::call_scene_script(const std::string& input, std::string& out) {
                                       opts_, diag, c);
   if (!report_compile(r, frontend::render_all(diag), out)) return true;
   args.resize(c.kernel->num_inputs(), 0.0f);
-  const backend::Kernel& k = *c.kernel;
+  const backends::Kernel& k = *c.kernel;
   out += run_interruptible([&k, &args] {
     std::vector<float> results(k.num_outputs());
-    backend::RuntimeError err;
+    backends::RuntimeError err;
     if (!k.eval(args.data(), results.data(), err)) return "error: " + err.message + "\n";
     std::string line;
     for (size_t i = 0; i < results.size(); ++i) line += (i ? " " : "") + format_number(results[i]);

@@ -27,7 +27,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
   Meshed out;
   for (const auto& s : model.shapes) {
     mesh::Mesh m;
-    fscript::backend::RuntimeError err;
+    fscript::backends::RuntimeError err;
     bool mine = s.group < 0 && !skip.count(s.fshape);
     if (mine && !fscript::scene::mesh_shape(s, m, err, world, threads)) {
       report(o, scene, s.fshape, err.message + (err.line ? " (script line " + std::to_string(err.line) + ")" : ""));
@@ -39,7 +39,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
   for (size_t g = 0; g < model.groups.size(); ++g) {
     if (model.groups[g].parent >= 0 || skip.count(model.groups[g].node)) continue;
     mesh::Mesh m;
-    fscript::backend::RuntimeError err;
+    fscript::backends::RuntimeError err;
     if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, world, threads)) {
       report(o, scene, model.groups[g].node, "FTransform: " + err.message);
       out.failed = true;

@@ -139,12 +139,12 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     const auto& ms = models[t.frames];
     int parallel = std::min(o.threads, t.frames), per = std::max(1, o.threads / parallel);
     caches.push_back(std::make_unique<mesh::FrameCache>(
-        t.frames, [&ms, t, per, world](size_t i, mesh::Mesh& out, fscript::backend::RuntimeError& err) {
+        t.frames, [&ms, t, per, world](size_t i, mesh::Mesh& out, fscript::backends::RuntimeError& err) {
           return t.group ? fscript::scene::mesh_group(ms[i], t.index, out, err, world, per)
                          : fscript::scene::mesh_shape(ms[i].shapes[t.index], out, err, world, per);
         }));
     mesh::FrameCache& cache = *caches.back();
-    fscript::backend::RuntimeError err;
+    fscript::backends::RuntimeError err;
     if (!cache.fill(parallel, err)) {
       report(o, l.scene, t.node, err.message + (err.line ? " (script line " + std::to_string(err.line) + ")" : ""));
       if (!o.keep_going) return 1;

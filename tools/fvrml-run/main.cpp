@@ -141,7 +141,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
 int run(int argc, char** argv) {
   CLI::App app{"fvrml-run: FVRML scenes (VRML97 with function-defined shapes)"};
   Options o;
-  o.model.compile.backend = fscript::backend::available_backends().front();
+  o.model.compile.backend = fscript::backends::available_backends().front();
   o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   app.add_option("SCENE", o.path, "the .wrl scene (plain or gzip)")->required();
   app.add_option("--backend", o.model.compile.backend, "evaluation backend: vm, sse or llvm (default: vm)");
@@ -170,12 +170,12 @@ int run(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   if (o.fraction >= 0) o.model.fraction = o.fraction;
-  if (std::string message; disk_cache && !fscript::backend::enable_llvm_disk_cache(message)) {
+  if (std::string message; disk_cache && !fscript::backends::enable_llvm_disk_cache(message)) {
     std::cerr << "error: " << message << "\n";
     return 2;
   }
-  if (!fscript::backend::make_backend(o.model.compile.backend)) {
-    std::cerr << "error: " << fscript::backend::missing_backend_message(o.model.compile.backend) << "\n";
+  if (!fscript::backends::make_backend(o.model.compile.backend)) {
+    std::cerr << "error: " << fscript::backends::missing_backend_message(o.model.compile.backend) << "\n";
     return 2;
   }
   if (o.format.empty() && !o.output.empty()) o.format = o.output.substr(o.output.find_last_of('.') + 1);

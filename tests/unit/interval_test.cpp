@@ -1,0 +1,307 @@
+// Interval arithmetic is sound: for random boxes, every point result (the scalar definition and
+// every backend's batch code, rounding included) lies in the interval the rules give. Per op of the
+// table, for the shared benchmarks and examples, and for thousands of random programs.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+#include "ir/eval.h"
+#include "ir/interval_eval.h"
+#include "ir/text.h"
+#include "runtime/support/files.h"
+#include "tests/unit/backend_cases.h"
+#include "tests/unit/helpers.h"
+#include "tests/support/skip.h"
+
+using namespace fscript;
+using math::Interval;
+
+namespace {
+
+const float kInf = test::kInf;
+// Ends of boxes: specials, small and large magnitudes, and the extrema of the periodic functions.
+const std::vector<float> kEnds = {-kInf, -1e30f, -1e6f, -100.0f, -7.25f, -3.14159274f, -2.0f, -1.5707964f, -1.0f,
+                                  -0.5f, -1e-30f, 0.0f, 1e-30f, 0.25f, 0.5f, 1.0f, 1.5707964f, 2.0f, 3.14159274f,
+                                  4.7123890f, 6.2831855f, 10.0f, 88.0f, 1e6f, 1e30f, kInf};
+
+struct Box {
+  Interval iv;
+  std::vector<float> points;  // the ends, points inside, and NaN when the box allows it
+};
+
+Box random_box(std::mt19937& rng) {
+  std::uniform_int_distribution<size_t> pick(0, kEnds.size() - 1);
+  float a = kEnds[pick(rng)], b = kEnds[pick(rng)];
+  if (rng() % 3 == 0) b = a;                                                      // a point
+  if (rng() % 4 == 0 && std::isfinite(a)) b = a + static_cast<float>(rng() % 1000) * 1e-3f;  // a narrow box
+  Box box;
+  box.iv = {std::min(a, b), std::max(a, b), rng() % 5 == 0};
+  box.points = {box.iv.lo, box.iv.hi};
+  std::uniform_real_distribution<double> t(0, 1);
+  double lo = std::clamp<double>(box.iv.lo, -3e38, 3e38), hi = std::clamp<double>(box.iv.hi, -3e38, 3e38);
+  for (int k = 0; k < 6 && lo < hi; ++k) box.points.push_back(static_cast<float>(lo + (hi - lo) * t(rng)));
+  for (float e : kEnds)  // every listed value the box holds: the extrema of sin, the zeros
+    if (box.iv.lo <= e && e <= box.iv.hi) box.points.push_back(e);
+  if (box.iv.lo <= 0 && 0 <= box.iv.hi) box.points.push_back(-0.0f);
+  if (box.iv.nan) box.points.push_back(test::kNan);
+  return box;
+}
+
+// The IR of a kernel applying `op` to its parameters.
+std::unique_ptr<ir::Module> op_kernel(ir::Op op, int arity) {
+  std::string text = "fn @kernel(" + std::to_string(arity) + ") -> 1 kernel {\nb0:\n", args;
+  for (int a = 0; a < arity; ++a) {
+    text += "  v" + std::to_string(a) + " = param " + std::to_string(a) + "\n";
+    args += (a ? ", v" : " v") + std::to_string(a);
+  }
+  text += "  v9 = " + std::string(ir::mnemonic(op)) + args + "\n  ret v9\n}\n";
+  std::string err;
+  return ir::read(text, err);
+}
+
+std::vector<std::unique_ptr<backends::Kernel>> every_backend(const ir::Module& m) {
+  std::vector<std::unique_ptr<backends::Kernel>> out;
+  for (const auto& name : backends::available_backends()) {
+    std::string err;
+    out.push_back(backends::make_backend(name)->compile(m, {}, err));
+    INFO(name << ": " << err);
+    REQUIRE(out.back());
+  }
+  return out;
+}
+
+// Points x boxes: every combination of each box's points for `arity` inputs (capped), as columns,
+// with the index of the case each point belongs to.
+struct Batch {
+  std::vector<std::vector<float>> cols;
+  std::vector<size_t> owner;
+};
+
+void add_case(Batch& b, const std::vector<Box>& boxes, size_t index, std::mt19937& rng, int samples) {
+  for (int s = 0; s < samples; ++s) {
+    for (size_t a = 0; a < boxes.size(); ++a) {
+      const auto& p = boxes[a].points;
+      b.cols[a].push_back(p[s < static_cast<int>(p.size()) ? static_cast<size_t>(s) : rng() % p.size()]);
+    }
+    b.owner.push_back(index);
+  }
+}
+
+std::vector<std::vector<float>> run_all(const std::vector<std::unique_ptr<backends::Kernel>>& kernels, Batch& b,
+                                        size_t outputs) {
+  std::vector<std::vector<float>> results;
+  size_t n = b.owner.size();
+  std::vector<const float*> in;
+  for (auto& c : b.cols) in.push_back(c.data());
+  for (const auto& k : kernels) {
+    std::vector<std::vector<float>> out(outputs, std::vector<float>(n));
+    std::vector<float*> outs;
+    for (auto& o : out) outs.push_back(o.data());
+    backends::RuntimeError err;
+    REQUIRE(k->eval_batch(in.data(), outs.data(), n, err));
+    for (auto& o : out) results.push_back(std::move(o));
+  }
+  return results;
+}
+
+}  // namespace
+
+TEST_CASE("intervals: every value op of the table holds every point result, on every backend") {
+  std::mt19937 rng(20261202);
+  int ops = 0;
+  for (int k = 0; k < ir::kNumOps; ++k) {
+    ir::Op op = static_cast<ir::Op>(k);
+    if (!ir::has_flag(op, ir::Pure) || op == ir::Op::Const || op == ir::Op::Param || op == ir::Op::Phi) continue;
+    ++ops;
+    int arity = ir::op_info(op).arity;
+    auto m = op_kernel(op, arity);
+    REQUIRE(m);
+    auto kernels = every_backend(*m);
+    std::vector<std::vector<Box>> cases(3000);
+    std::vector<Interval> want(cases.size());
+    Batch batch{std::vector<std::vector<float>>(static_cast<size_t>(arity)), {}};
+    for (size_t c = 0; c < cases.size(); ++c) {
+      std::vector<Interval> in;
+      for (int a = 0; a < arity; ++a) cases[c].push_back(random_box(rng)), in.push_back(cases[c].back().iv);
+      ir::IntervalEval ev;
+      REQUIRE(ir::eval_intervals(*m->functions[0], in, ev));
+      want[c] = ev.outputs[0];
+      add_case(batch, cases[c], c, rng, 12);
+    }
+    auto results = run_all(kernels, batch, 1);
+    int bad = 0;
+    for (size_t i = 0; i < batch.owner.size(); ++i) {
+      float args[3] = {0, 0, 0}, scalar;
+      for (int a = 0; a < arity; ++a) args[a] = batch.cols[static_cast<size_t>(a)][i];
+      REQUIRE(ir::eval_pure(op, args, scalar));
+      const Interval& w = want[batch.owner[i]];
+      for (size_t r = 0; r <= results.size(); ++r) {
+        float got = r == results.size() ? scalar : results[r][i];
+        if (w.contains(got) || bad++ > 5) continue;
+        const auto& bx = cases[batch.owner[i]];
+        FAIL_CHECK(ir::mnemonic(op) << (r == results.size() ? " (scalar)" : " (backend " + std::to_string(r) + ")")
+                                    << " at (" << args[0] << ", " << args[1] << ", " << args[2] << ") = " << got
+                                    << " outside [" << w.lo << ", " << w.hi << "]" << (w.nan ? " or NaN" : "")
+                                    << "; boxes [" << bx[0].iv.lo << ", " << bx[0].iv.hi << "]"
+                                    << (bx.size() > 1 ? " [" + std::to_string(bx[1].iv.lo) + ", " + std::to_string(bx[1].iv.hi) + "]" : ""));
+      }
+    }
+  }
+  CHECK(ops >= 40);
+}
+
+TEST_CASE("intervals: decided comparisons, selects and min/max choices hold at every point") {
+  using ir::Choice;
+  auto m = op_kernel(ir::Op::Min, 2);
+  const uint32_t v = m->functions[0]->entry()->insts[2]->id;  // the fmin
+  ir::IntervalEval ev;
+  REQUIRE(ir::eval_intervals(*m->functions[0], {{0, 1, false}, {2, 3, false}}, ev));
+  CHECK(ev.choices[v] == Choice::Left);
+  REQUIRE(ir::eval_intervals(*m->functions[0], {{0, 1, false}, {2, 3, true}}, ev));
+  CHECK(ev.choices[v] == Choice::Both);  // b may be NaN: min would be NaN, not a
+  REQUIRE(ir::eval_intervals(*m->functions[0], {{4, 5, true}, {2, 3, false}}, ev));
+  CHECK(ev.choices[v] == Choice::Both);  // a may be NaN
+  REQUIRE(ir::eval_intervals(*m->functions[0], {{4, 5, false}, {2, 3, false}}, ev));
+  CHECK(ev.choices[v] == Choice::Right);
+  REQUIRE(ir::eval_intervals(*m->functions[0], {{0, 2, false}, {2, 3, false}}, ev));
+  CHECK(ev.choices[v] == Choice::Both);  // touching: left to the dense code
+  CHECK(math::truth_of({0, 0, true}) == math::Truth::Never);
+  CHECK(math::truth_of({1e-30f, 5, false}) == math::Truth::Always);
+  CHECK(math::truth_of({-1, 1, false}) == math::Truth::Either);
+  CHECK(math::iv::lt({0, 1, false}, {1, 2, false}).lo == 0);  // 1 < 1 is false
+  CHECK(math::iv::lt({0, 1, false}, {2, 3, false}).lo == 1);
+  CHECK(math::iv::lt({0, 1, true}, {2, 3, false}).lo == 0);  // NaN < 2 is false
+}
+
+TEST_CASE("intervals: benchmarks and examples bound every point of random boxes, on every backend") {
+  std::mt19937 rng(7);
+  std::vector<std::string> files = {"bench/snail.fs", "bench/star.fs", "examples/blobs.fs"};
+  std::string shared = std::getenv("FS_SHARED_DIR") ? std::getenv("FS_SHARED_DIR") : "";
+  std::string probe;
+  if (shared.empty() || !support::read_file(shared + "/bench/gyroid.fs", probe, probe))
+    test::skip(test::SkipKind::Missing, "the shared folder's benchmarks (FS_SHARED_DIR) are not there; the bundled ones ran");
+  else
+    for (const char* f : {"/bench/gyroid.fs", "/bench/csg8.fs", "/data/prospero.fs"}) files.push_back(shared + f);
+  int evaluable = 0;
+  for (const auto& f : files) {
+    std::string text, err;
+    std::string path = f[0] == '/' ? f : std::string(FS_SOURCE_DIR) + "/" + f;
+    REQUIRE(support::read_file(path, text, err));
+    auto b = test::build(text);
+    INFO(f << "\n" << test::messages(b->diag));
+    REQUIRE(b->ok);
+    const ir::Function& fn = *b->module->functions[static_cast<size_t>(b->module->find_function("kernel"))];
+    if (!ir::interval_evaluable(fn)) continue;
+    ++evaluable;
+    auto kernels = every_backend(*b->module);
+    size_t inputs = fn.num_params, outputs = fn.num_results;
+    Batch batch{std::vector<std::vector<float>>(inputs), {}};
+    std::vector<std::vector<Interval>> want;
+    int tight = 0, small = 0;  // boxes of half-size <= 2^-8, and those whose outputs are narrower than 0.5
+    for (size_t c = 0; c < 200; ++c) {
+      std::vector<Box> boxes;
+      std::vector<Interval> in;
+      for (size_t a = 0; a < inputs; ++a) {  // boxes of every size around points of [-2, 2]
+        float centre = static_cast<float>(static_cast<int>(rng() % 4001) - 2000) / 1000.0f;
+        float half = std::ldexp(1.0f, -static_cast<int>(c % 12));
+        Box bx;
+        bx.iv = {centre - half, centre + half, false};
+        bx.points = {bx.iv.lo, bx.iv.hi, centre};
+        for (int k = 0; k < 5; ++k) bx.points.push_back(bx.iv.lo + 2 * half * static_cast<float>(rng() % 1000) / 1000.0f);
+        boxes.push_back(bx);
+        in.push_back(bx.iv);
+      }
+      ir::IntervalEval ev;
+      REQUIRE(ir::eval_intervals(fn, in, ev));
+      want.push_back(ev.outputs);
+      add_case(batch, boxes, c, rng, 8);
+      if (c % 12 >= 8) {
+        ++small;
+        bool narrow = true;
+        for (const Interval& o : ev.outputs) narrow &= !o.nan && o.hi - o.lo < 0.5f;
+        tight += narrow;
+      }
+    }
+    // Not vacuous: on small boxes the bounds are close (the rules are tight, not just sound).
+    INFO(f << ": " << tight << " of " << small << " small boxes bounded within 0.5");
+    CHECK(tight == small);
+    auto results = run_all(kernels, batch, outputs);
+    int bad = 0;
+    for (size_t i = 0; i < batch.owner.size(); ++i)
+      for (size_t r = 0; r < results.size(); ++r) {
+        const Interval& w = want[batch.owner[i]][r % outputs];
+        if (!w.contains(results[r][i]) && bad++ < 5)
+          FAIL_CHECK(f << ": output " << r % outputs << " = " << results[r][i] << " outside [" << w.lo << ", " << w.hi << "]");
+      }
+  }
+  CHECK(evaluable >= 3);
+}
+
+namespace {
+
+// A random expression over x, y, z with every kind of operation the language has.
+std::string random_expr(std::mt19937& rng, int depth) {
+  static const char* leaves[] = {"x", "y", "z", "0.5", "2", "-3", "0", "1e3"};
+  static const char* unary[] = {"sqrt", "abs", "sin", "cos", "tan", "exp", "log", "log10", "floor", "ceil", "round",
+                                "sign", "asin", "acos", "atan", "sinh", "cosh", "tanh", "-"};
+  static const char* binary[] = {"+", "-", "*", "/", "%", "<", "<=", ">", ">=", "==", "!=", "&&", "||"};
+  static const char* calls2[] = {"min", "max", "pow", "atan2", "hypot"};
+  if (depth == 0 || rng() % 5 == 0) return leaves[rng() % 8];
+  std::string a = random_expr(rng, depth - 1), b = random_expr(rng, depth - 1);
+  switch (rng() % 6) {
+    case 0: return std::string(unary[rng() % 19]) + "(" + a + ")";
+    case 1: case 2: return "(" + a + " " + binary[rng() % 13] + " " + b + ")";
+    case 3: return std::string(calls2[rng() % 5]) + "(" + a + ", " + b + ")";
+    case 4: return "(" + a + " < " + b + " ? " + random_expr(rng, depth - 1) + " : " + b + ")";
+    default: return rng() % 2 ? "clamp(" + a + ", -1, " + b + ")" : "noise(" + a + ", " + b + ", z)";
+  }
+}
+
+}  // namespace
+
+TEST_CASE("intervals: thousands of random programs bound every point of random boxes") {
+  std::mt19937 rng(42);
+  int programs = 0, evaluable = 0, checked = 0;
+  for (int p = 0; p < 1500; ++p) {
+    std::string expr = random_expr(rng, 4);
+    auto b = test::build("function FRep(x, y, z, t) { return " + expr + "; }");
+    if (!b->ok) continue;  // e.g. a constant division the analysis refuses
+    ++programs;
+    const ir::Function& fn = *b->module->functions[static_cast<size_t>(b->module->find_function("kernel"))];
+    if (!ir::interval_evaluable(fn)) continue;
+    ++evaluable;
+    // The VM and the sse backend for every program; llvm (slow to compile) for every tenth.
+    std::vector<std::unique_ptr<backends::Kernel>> kernels;
+    for (const std::string name : {"vm", "sse", "llvm"}) {
+      if (name == "llvm" && (p % 10 != 0 || !backends::make_backend("llvm"))) continue;
+      std::string err;
+      kernels.push_back(backends::make_backend(name)->compile(*b->module, {}, err));
+      REQUIRE(kernels.back());
+    }
+    Batch batch{std::vector<std::vector<float>>(fn.num_params), {}};
+    std::vector<Interval> want;
+    for (size_t c = 0; c < 4; ++c) {
+      std::vector<Box> boxes;
+      std::vector<Interval> in;
+      for (size_t a = 0; a < fn.num_params; ++a) boxes.push_back(random_box(rng)), in.push_back(boxes.back().iv);
+      ir::IntervalEval ev;
+      REQUIRE(ir::eval_intervals(fn, in, ev));
+      want.push_back(ev.outputs[0]);
+      add_case(batch, boxes, c, rng, 10);
+    }
+    auto results = run_all(kernels, batch, 1);
+    for (size_t i = 0; i < batch.owner.size(); ++i)
+      for (size_t r = 0; r < results.size(); ++r) {
+        ++checked;
+        const Interval& w = want[batch.owner[i]];
+        if (w.contains(results[r][i])) continue;
+        FAIL_CHECK("return " << expr << ";\n at (" << batch.cols[0][i] << ", " << batch.cols[1][i] << ", "
+                             << batch.cols[2][i] << ") = " << results[r][i] << " outside [" << w.lo << ", " << w.hi
+                             << "]" << (w.nan ? " or NaN" : ""));
+        break;
+      }
+  }
+  INFO(programs << " programs, " << evaluable << " straight-line, " << checked << " point results");
+  CHECK(evaluable > 1000);
+  CHECK(checked > 100000);
+}

@@ -7,6 +7,7 @@
 
 #include "ir/eval.h"
 #include "ir/interval_eval.h"
+#include "ir/tape.h"
 #include "ir/text.h"
 #include "runtime/support/files.h"
 #include "tests/unit/backend_cases.h"
@@ -304,4 +305,96 @@ TEST_CASE("intervals: thousands of random programs bound every point of random b
   INFO(programs << " programs, " << evaluable << " straight-line, " << checked << " point results");
   CHECK(evaluable > 1000);
   CHECK(checked > 100000);
+}
+
+namespace {
+
+// The kernel function of a module built by test::build.
+const ir::Function& kernel_of(const ir::Module& m) {
+  return *m.functions[static_cast<size_t>(m.find_function("kernel"))];
+}
+
+// "" when `simple` gives `full`'s bits at every point of `boxes` (on `backend`), else the first difference.
+std::string same_bits(const ir::Module& full, const ir::Module& simple, const std::vector<Box>& boxes,
+                      const std::string& backend, std::mt19937& rng) {
+  std::string err;
+  auto a = backends::make_backend(backend)->compile(full, {}, err);
+  auto b = backends::make_backend(backend)->compile(simple, {}, err);
+  if (!a || !b) return "compile: " + err;
+  Batch batch{std::vector<std::vector<float>>(boxes.size()), {}};
+  add_case(batch, boxes, 0, rng, 24);
+  std::vector<std::unique_ptr<backends::Kernel>> ks;
+  ks.push_back(std::move(a));
+  ks.push_back(std::move(b));
+  size_t outs = kernel_of(full).num_results;
+  auto r = run_all(ks, batch, outs);
+  for (size_t o = 0; o < outs; ++o)
+    for (size_t i = 0; i < batch.owner.size(); ++i)
+      if (!test::same(r[o][i], r[outs + o][i]))
+        return "output " + std::to_string(o) + " at point " + std::to_string(i) + ": " + std::to_string(r[o][i]) +
+               " vs " + std::to_string(r[outs + o][i]);
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("tape simplification: the same bits inside the region, recursively, and shorter tapes") {
+  std::mt19937 rng(99);
+  std::vector<std::string> texts = {
+      "function FRep(x, y, z, t) { return min(x * x + y * y - 1, max(abs(x) - 0.5, abs(y) - 0.5)); }",
+      "function FRep(x, y, z, t) { return x < 0 ? sin(y) : cos(y) + max(z, x); }"};
+  for (int p = 0; p < 400; ++p) texts.push_back("function FRep(x, y, z, t) { return " + random_expr(rng, 5) + "; }");
+  std::string shared = std::getenv("FS_SHARED_DIR") ? std::getenv("FS_SHARED_DIR") : "", prospero;
+  bool have_prospero = !shared.empty() && support::read_file(shared + "/data/prospero.fs", prospero, prospero);
+  if (have_prospero) texts.push_back(prospero);
+  int collapsed = 0, checked = 0;
+  for (const auto& text : texts) {
+    auto b = test::build(text);
+    if (!b->ok || !ir::interval_evaluable(kernel_of(*b->module))) continue;
+    const ir::Function& fn = kernel_of(*b->module);
+    for (int c = 0; c < 3; ++c) {
+      std::vector<Box> boxes;
+      std::vector<Interval> in;
+      for (size_t a = 0; a < fn.num_params; ++a) {  // a small box, so choices get decided
+        float centre = static_cast<float>(static_cast<int>(rng() % 2001) - 1000) / 1000.0f, half = 1.0f / 64;
+        Box bx;
+        bx.iv = {centre - half, centre + half, false};
+        bx.points = {bx.iv.lo, bx.iv.hi, centre};
+        for (int k = 0; k < 6; ++k) bx.points.push_back(bx.iv.lo + 2 * half * static_cast<float>(rng() % 1000) / 1000.0f);
+        boxes.push_back(bx);
+        in.push_back(bx.iv);
+      }
+      ir::IntervalEval ev;
+      REQUIRE(ir::eval_intervals(fn, in, ev));
+      ir::SimplifiedTape t = ir::simplify_tape(fn, ev);
+      REQUIRE(t.ops <= ir::tape_length(fn));
+      collapsed += t.choices_collapsed > 0;
+      INFO(text.substr(0, 300));
+      for (const char* be : {"vm", "sse"}) CHECK(same_bits(*b->module, *t.module, boxes, be, rng) == "");
+      // A quarter of the region simplifies the simplified tape again, still with the same bits.
+      for (auto& bx : boxes) {
+        bx.iv.hi = bx.iv.lo + (bx.iv.hi - bx.iv.lo) / 4;
+        bx.points = {bx.iv.lo, bx.iv.hi, (bx.iv.lo + bx.iv.hi) / 2};
+      }
+      std::vector<Interval> quarter;
+      for (const auto& bx : boxes) quarter.push_back(bx.iv);
+      REQUIRE(ir::eval_intervals(kernel_of(*t.module), quarter, ev));
+      ir::SimplifiedTape t2 = ir::simplify_tape(kernel_of(*t.module), ev);
+      REQUIRE(t2.ops <= t.ops);
+      CHECK(same_bits(*b->module, *t2.module, boxes, "vm", rng) == "");
+      ++checked;
+    }
+    if (&text == &texts.back() && have_prospero) {  // prospero: a small region keeps a small part
+      std::vector<Interval> region(fn.num_params, Interval{0, 0, false});
+      region[0] = {0.5f, 0.52f, false};
+      region[1] = {0.5f, 0.52f, false};
+      ir::IntervalEval ev;
+      REQUIRE(ir::eval_intervals(fn, region, ev));
+      ir::SimplifiedTape t = ir::simplify_tape(fn, ev);
+      INFO("prospero: " << t.ops << " of " << ir::tape_length(fn) << " operations in a 0.02 square");
+      CHECK(t.ops * 10 < ir::tape_length(fn));
+    }
+  }
+  CHECK(checked > 300);
+  CHECK(collapsed > 100);
 }

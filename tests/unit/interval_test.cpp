@@ -8,6 +8,7 @@
 #include "ir/eval.h"
 #include "ir/interval_eval.h"
 #include "ir/tape.h"
+#include "runtime/render/quadtree.h"
 #include "ir/text.h"
 #include "runtime/support/files.h"
 #include "tests/unit/backend_cases.h"
@@ -397,4 +398,37 @@ TEST_CASE("tape simplification: the same bits inside the region, recursively, an
   }
   CHECK(checked > 300);
   CHECK(collapsed > 100);
+}
+
+TEST_CASE("quadtree rendering: the same pixels as the dense path, for random programs, sizes and threads") {
+  std::mt19937 rng(5);
+  std::vector<std::string> texts = {"function FRep(x, y, z, t) { return 0.8 - sqrt(x * x + y * y); }",
+                                    "function FRep(x, y, z, t) { return min(0.5 - abs(x), 0.3 - abs(y)); }",
+                                    "function FRep(x, y, z, t) { return sin(10 * x) * cos(10 * y) - 0.2; }"};
+  for (int p = 0; p < 120; ++p) texts.push_back("function FRep(x, y, z, t) { return " + random_expr(rng, 4) + "; }");
+  int pruned = 0;
+  size_t saved = 0;
+  for (size_t k = 0; k < texts.size(); ++k) {
+    const char* be = k % 3 == 2 ? "sse" : "vm";
+    auto b = test::build(texts[k], "", true, {}, be);
+    if (!b->ok) continue;
+    render::PlaneGrid g{static_cast<uint32_t>(97 + rng() % 300), static_cast<uint32_t>(61 + rng() % 300), -1.3f, 1.1f,
+                        -0.9f, 1.4f};
+    render::InsideOptions o;
+    o.backend = be;
+    o.threads = 1 + static_cast<unsigned>(k % 3);
+    std::vector<uint8_t> a, d;
+    render::QuadtreeStats sa, sd;
+    backends::RuntimeError err;
+    REQUIRE(render::render_inside(*b->module, *b->kernel, g, o, a, sa, err));
+    o.prune = false;
+    REQUIRE(render::render_inside(*b->module, *b->kernel, g, o, d, sd, err));
+    INFO(texts[k] << " at " << g.w << "x" << g.h << " on " << be);
+    CHECK(a == d);
+    CHECK_FALSE(sd.pruned);
+    pruned += sa.pruned;
+    saved += size_t(g.w) * g.h - sa.points;
+  }
+  CHECK(pruned > 100);
+  CHECK(saved > 0);
 }

@@ -18,7 +18,7 @@ struct Args {
   std::vector<std::string> files, values;
   size_t points = 1'000'000;
   unsigned threads = 1;
-  bool opt = false, one_point = false, llvm = false, disk_cache = false;
+  bool opt = false, one_point = false, llvm = false, disk_cache = false, no_prune = false, stats = false;
   uint32_t max_depth = 1000;
 };
 
@@ -61,7 +61,7 @@ int dispatch(CLI::App& app, Args& a) {
   if (app.got_subcommand("fmt")) return cmd_fmt(a.file);
   if (app.got_subcommand("bench")) return cmd_bench(a.opts, a.file, a.entry, a.points, a.threads, a.one_point);
   if (app.got_subcommand("render2d"))
-    return cmd_render2d(a.opts, a.file, a.entry, a.size, a.bounds, a.out, a.threads);
+    return cmd_render2d(a.opts, a.file, a.entry, a.size, a.bounds, a.out, a.threads, !a.no_prune, a.stats);
   // No subcommand: the REPL on a terminal; otherwise the program on standard input runs once.
   if (isatty(STDIN_FILENO)) return run_repl(a.opts);
   return cmd_run(a.opts, "-", a.entry, {});
@@ -105,6 +105,8 @@ int real_main(int argc, char** argv) {
   r2d->add_option("--bounds", a.bounds, "X0,X1,Y0,Y1")->required();
   r2d->add_option("-o,--output", a.out, "output PNG");
   r2d->add_option("--threads,-j", a.threads, "threads (default 1)")->check(CLI::Range(1u, 1024u));
+  r2d->add_flag("--no-prune", a.no_prune, "evaluate every pixel (no interval pruning; the same picture, slower)");
+  r2d->add_flag("--stats", a.stats, "print how the quadtree went: regions per level, tape lengths, points evaluated");
 
   try {
     app.parse(argc, argv);

@@ -11,6 +11,7 @@
 #include "backends/llvm/llvm_jit.h"
 #endif
 #include "runtime/render/png.h"
+#include "runtime/render/quadtree.h"
 #include "runtime/support/parallel.h"
 #include "tools/fscript/commands.h"
 
@@ -147,8 +148,24 @@ bool parse_bounds(const std::string& s, float (&v)[4]) {
 
 }  // namespace
 
+// --stats of render2d: per level, how the regions went and how long their tapes were.
+void print_quadtree_stats(const render::QuadtreeStats& st, size_t pixels) {
+  if (!st.pruned) {
+    std::printf("pruning: off (dense: every pixel evaluated)\n");
+    return;
+  }
+  std::printf("pruning: on, full tape %zu operations\n", st.full_tape_ops);
+  for (const auto& l : st.levels)
+    std::printf("level %ux%u: %zu empty, %zu full, %zu ambiguous, mean simplified tape %.1f operations\n", l.size,
+                l.size, l.empty, l.full, l.ambiguous,
+                l.ambiguous ? static_cast<double>(l.tape_ops) / static_cast<double>(l.ambiguous) : 0.0);
+  std::printf("points evaluated: %zu of %zu (%.2f%% of the dense path); simplified kernels compiled: %zu\n", st.points,
+              pixels, 100.0 * static_cast<double>(st.points) / static_cast<double>(std::max<size_t>(pixels, 1)),
+              st.kernels);
+}
+
 int cmd_render2d(const Options& o, const std::string& file, const std::string& entry, const std::string& size,
-                 const std::string& bounds, const std::string& out_path, unsigned threads) {
+                 const std::string& bounds, const std::string& out_path, unsigned threads, bool prune, bool stats) {
   uint32_t w, h;
   float bd[4];
   if (!parse_size(size, w, h)) {
@@ -166,44 +183,30 @@ int cmd_render2d(const Options& o, const std::string& file, const std::string& e
     std::cerr << "error: render2d needs an entry with at least two inputs (x, y)\n";
     return kExitInput;
   }
-  size_t n = size_t(w) * h;
-  auto t0 = Clock::now();
-  std::vector<uint8_t> px(n);
-  std::atomic<size_t> white{0};
+  render::PlaneGrid g{w, h, bd[0], bd[1], bd[2], bd[3]};
+  render::InsideOptions ro;
+  ro.backend = o.backend.empty() ? backends::available_backends().front() : o.backend;
+  ro.budgets = o.budgets;
+  ro.threads = std::max(1u, threads);
+  ro.prune = prune;
+  std::vector<uint8_t> px;
+  render::QuadtreeStats st;
   backends::RuntimeError err;
-  bool ok = parallel_slices(n, std::max(1u, threads), [&](size_t b, size_t e, backends::RuntimeError& er) {
-    std::vector<std::vector<float>> cols(n_in, std::vector<float>(e - b, 0.0f));
-    for (size_t i = b; i < e; ++i) {
-      size_t col = i % w, row = i / w;
-      cols[0][i - b] = w > 1 ? bd[0] + static_cast<float>(col) * (bd[1] - bd[0]) / static_cast<float>(w - 1) : bd[0];
-      cols[1][i - b] = h > 1 ? bd[3] - static_cast<float>(row) * (bd[3] - bd[2]) / static_cast<float>(h - 1) : bd[3];
-    }
-    std::vector<const float*> in(n_in);
-    for (size_t k = 0; k < n_in; ++k) in[k] = cols[k].data();
-    std::vector<std::vector<float>> outs(c.kernel->num_outputs(), std::vector<float>(e - b));
-    std::vector<float*> out;
-    for (auto& v : outs) out.push_back(v.data());
-    if (!c.kernel->eval_batch(in.data(), out.data(), e - b, er)) return false;
-    size_t count = 0;
-    for (size_t i = b; i < e; ++i) {
-      bool inside = outs[0][i - b] >= 0.0f;
-      px[i] = inside ? 255 : 0;
-      count += inside;
-    }
-    white += count;
-    return true;
-  }, err);
+  auto t0 = Clock::now();
+  bool ok = render::render_inside(*c.module, *c.kernel, g, ro, px, st, err);
   double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   if (!ok) {
     print_runtime_error(c.script.file->path(), err);
     return kExitInput;
   }
+  size_t white = static_cast<size_t>(std::count(px.begin(), px.end(), uint8_t{255}));
   std::string error;
   if (!out_path.empty() && !render::write_png(out_path, w, h, 1, px, error)) {
     std::cerr << "error: " << error << "\n";
     return kExitInput;
   }
-  std::printf("%zu white pixels\n%.3f ms\n", white.load(), ms);
+  std::printf("%zu white pixels\n%.3f ms\n", white, ms);
+  if (stats) print_quadtree_stats(st, size_t(w) * h);
   return kExitOk;
 }
 

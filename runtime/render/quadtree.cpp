@@ -1,0 +1,201 @@
+// The quadtree renderer: interval evaluation per region, tape simplification per level, dense
+// batches for the open 8x8 tiles. Regions are fixed shares, so the picture is the same bits for
+// any thread count.
+#include "runtime/render/quadtree.h"
+
+#include <algorithm>
+#include <memory>
+
+#include "ir/interval_eval.h"
+#include "ir/tape.h"
+#include "runtime/support/parallel.h"
+
+namespace fscript::render {
+
+float PlaneGrid::x(uint32_t col) const {
+  return w > 1 ? x0 + static_cast<float>(col) * (x1 - x0) / static_cast<float>(w - 1) : x0;
+}
+
+float PlaneGrid::y(uint32_t row) const {
+  return h > 1 ? y1 - static_cast<float>(row) * (y1 - y0) / static_cast<float>(h - 1) : y1;
+}
+
+namespace {
+
+constexpr uint32_t kSizes[] = {256, 64, 8};  // region sides per level; the last is evaluated densely
+constexpr size_t kLevels = sizeof(kSizes) / sizeof(kSizes[0]);
+
+struct Rect {
+  uint32_t c0, r0, c1, r1;  // columns [c0, c1), rows [r0, r1)
+};
+
+const ir::Function& kernel_function(const ir::Module& m) {
+  for (const auto& f : m.functions)
+    if (f->kernel) return *f;
+  return *m.functions.front();
+}
+
+// A tape and, once a dense batch needs it, its compiled kernel.
+struct Tape {
+  const ir::Module* module = nullptr;
+  std::unique_ptr<ir::Module> owned;
+  const backends::Kernel* kernel = nullptr;
+  std::unique_ptr<backends::Kernel> owned_kernel;
+  size_t ops = 0;
+};
+
+class Renderer {
+ public:
+  Renderer(const backends::Kernel& dense, const PlaneGrid& g, const InsideOptions& o, std::vector<uint8_t>& px)
+      : dense_(dense), g_(g), o_(o), px_(px) {
+    for (uint32_t s : kSizes) stats_.levels.push_back({s, 0, 0, 0, 0});
+  }
+
+  // Rendered region r at `level` on `tape`; false on a runtime error. `open` collects the tiles of
+  // the last level that the intervals leave open (the caller evaluates them in one batch).
+  bool region(Tape& tape, Rect r, size_t level, std::vector<Rect>& open) {
+    QuadtreeLevel& st = stats_.levels[level];
+    std::vector<math::Interval> in(dense_.num_inputs(), math::Interval{0, 0, false});
+    in[0] = math::iv::hull(math::Interval::point(g_.x(r.c0)), math::Interval::point(g_.x(r.c1 - 1)));
+    in[1] = math::iv::hull(math::Interval::point(g_.y(r.r0)), math::Interval::point(g_.y(r.r1 - 1)));
+    ir::IntervalEval ev;
+    ir::eval_intervals(kernel_function(*tape.module), in, ev);
+    const math::Interval& f = ev.outputs[0];
+    if (!f.nan && f.lo >= 0) return ++st.full, fill(r, 255), true;
+    if (f.empty() || f.hi < 0) return ++st.empty, fill(r, 0), true;  // NaN is outside too
+    ++st.ambiguous;
+    if (level + 1 == kLevels) return open.push_back(r), true;
+    Tape child = simplified(tape, ev);
+    st.tape_ops += child.ops;
+    std::vector<Rect> pending;
+    uint32_t s = kSizes[level + 1];
+    for (uint32_t row = r.r0; row < r.r1; row += s)
+      for (uint32_t col = r.c0; col < r.c1; col += s)
+        if (!region(child, {col, row, std::min(col + s, r.c1), std::min(row + s, r.r1)}, level + 1, pending)) return false;
+    return pending.empty() || dense(child, pending);
+  }
+
+  // Every pixel of the rects, in one batch on the tape's kernel.
+  bool dense(Tape& tape, const std::vector<Rect>& rects) {
+    if (!tape.kernel && !compile(tape)) return false;
+    size_t n = 0;
+    for (const Rect& r : rects) n += size_t(r.c1 - r.c0) * (r.r1 - r.r0);
+    std::vector<std::vector<float>> cols(dense_.num_inputs(), std::vector<float>(n, 0.0f));
+    std::vector<size_t> where(n);
+    size_t i = 0;
+    for (const Rect& r : rects)
+      for (uint32_t row = r.r0; row < r.r1; ++row)
+        for (uint32_t col = r.c0; col < r.c1; ++col, ++i) {
+          cols[0][i] = g_.x(col);
+          cols[1][i] = g_.y(row);
+          where[i] = size_t(row) * g_.w + col;
+        }
+    std::vector<const float*> in;
+    for (auto& c : cols) in.push_back(c.data());
+    std::vector<std::vector<float>> outs(dense_.num_outputs(), std::vector<float>(n));
+    std::vector<float*> out;
+    for (auto& v : outs) out.push_back(v.data());
+    if (!tape.kernel->eval_batch(in.data(), out.data(), n, err_)) return false;
+    for (size_t k = 0; k < n; ++k) px_[where[k]] = outs[0][k] >= 0.0f ? 255 : 0;
+    stats_.points += n;
+    return true;
+  }
+
+  QuadtreeStats stats_;
+  backends::RuntimeError err_;
+
+ private:
+  void fill(Rect r, uint8_t v) {
+    for (uint32_t row = r.r0; row < r.r1; ++row)
+      std::fill_n(px_.begin() + static_cast<long>(size_t(row) * g_.w + r.c0), r.c1 - r.c0, v);
+  }
+
+  // The parent's tape specialised to the region, or the parent's itself when that saves little.
+  Tape simplified(Tape& parent, const ir::IntervalEval& ev) {
+    Tape t;
+    ir::SimplifiedTape s = ir::simplify_tape(kernel_function(*parent.module), ev);
+    if (s.ops * 10 > parent.ops * 9) {  // under 10% shorter: not worth a compile
+      t.module = parent.module;
+      t.kernel = parent.kernel;
+      t.ops = parent.ops;
+      return t;
+    }
+    t.owned = std::move(s.module);
+    t.module = t.owned.get();
+    t.ops = s.ops;
+    return t;
+  }
+
+  bool compile(Tape& tape) {
+    if (o_.backend == "llvm") {  // its compile costs more than a region saves: the dense kernel
+      tape.kernel = &dense_;
+      return true;
+    }
+    std::string error;
+    tape.owned_kernel = backends::make_backend(o_.backend)->compile(*tape.module, o_.budgets, error);
+    if (!tape.owned_kernel) return err_ = {error, 0}, false;
+    tape.kernel = tape.owned_kernel.get();
+    ++stats_.kernels;
+    return true;
+  }
+
+  const backends::Kernel& dense_;
+  const PlaneGrid& g_;
+  const InsideOptions& o_;
+  std::vector<uint8_t>& px_;
+};
+
+void merge(QuadtreeStats& into, const QuadtreeStats& part) {
+  for (size_t l = 0; l < into.levels.size(); ++l) {
+    into.levels[l].empty += part.levels[l].empty;
+    into.levels[l].full += part.levels[l].full;
+    into.levels[l].ambiguous += part.levels[l].ambiguous;
+    into.levels[l].tape_ops += part.levels[l].tape_ops;
+  }
+  into.points += part.points;
+  into.kernels += part.kernels;
+}
+
+}  // namespace
+
+bool render_inside(const ir::Module& m, const backends::Kernel& dense, const PlaneGrid& g, const InsideOptions& o,
+                   std::vector<uint8_t>& px, QuadtreeStats& stats, backends::RuntimeError& err) {
+  px.assign(size_t(g.w) * g.h, 0);
+  const ir::Function& fn = kernel_function(m);
+  stats = {};
+  stats.full_tape_ops = ir::tape_length(fn);
+  bool prune = o.prune && dense.num_inputs() >= 2 && dense.num_outputs() >= 1 && ir::interval_evaluable(fn);
+  std::vector<Rect> tiles;  // the top level's regions, shared out to the threads by index
+  uint32_t s = prune ? kSizes[0] : 64;
+  for (uint32_t row = 0; row < g.h; row += s)
+    for (uint32_t col = 0; col < g.w; col += s) tiles.push_back({col, row, std::min(col + s, g.w), std::min(row + s, g.h)});
+  int parts = static_cast<int>(std::max(1u, std::min<unsigned>(o.threads, static_cast<unsigned>(tiles.size()))));
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  for (int p = 0; p < parts; ++p) renderers.push_back(std::make_unique<Renderer>(dense, g, o, px));
+  bool ok = support::run_parts(parts, [&](int p) {
+    Renderer& r = *renderers[static_cast<size_t>(p)];
+    Tape full;
+    full.module = &m;
+    full.ops = stats.full_tape_ops;
+    if (!prune) full.kernel = &dense;
+    for (size_t t = static_cast<size_t>(p); t < tiles.size(); t += static_cast<size_t>(parts)) {
+      std::vector<Rect> open;
+      bool done = prune ? r.region(full, tiles[t], 0, open) && (open.empty() || r.dense(full, open))
+                        : r.dense(full, {tiles[t]});
+      if (!done) return false;
+    }
+    return true;
+  });
+  stats.pruned = prune;
+  for (uint32_t sz : kSizes) stats.levels.push_back({sz, 0, 0, 0, 0});
+  for (const auto& r : renderers) merge(stats, r->stats_);
+  if (!prune) stats.levels.clear();
+  for (const auto& r : renderers)  // the first part's error, whatever the schedule
+    if (!r->err_.message.empty()) {
+      err = r->err_;
+      break;
+    }
+  return ok;
+}
+
+}  // namespace fscript::render

@@ -1,6 +1,7 @@
 #pragma once
 // Value ranges: an interval and a may-be-NaN bit for every value of a function, given that every
-// parameter is finite with |p| <= bound. Backends use it to drop NaN handling that cannot matter.
+// parameter is finite with |p| <= bound, by the op table's interval rules (ir/interval_eval).
+// Backends use it to drop NaN handling that cannot matter.
 #include <vector>
 
 #include "ir/ir.h"

@@ -185,8 +185,10 @@ Interval abs(Interval a) {
 
 Interval sqrt(Interval a) {
   if (a.empty() || a.hi < 0) return Interval::nan_only();
-  return make(std::sqrt(std::max(0.0, static_cast<double>(a.lo))), std::sqrt(static_cast<double>(a.hi)),
-              a.nan || a.lo < 0, kRoundedUlps);
+  Interval r = make(std::sqrt(std::max(0.0, static_cast<double>(a.lo))), std::sqrt(static_cast<double>(a.hi)),
+                    a.nan || a.lo < 0, kRoundedUlps);
+  r.lo = std::max(r.lo, 0.0f);  // IEEE sqrt is never below zero (-0 counts as 0)
+  return r;
 }
 
 Interval floor(Interval a) { return a.empty() ? a : Interval{math::floor(a.lo), math::floor(a.hi), a.nan}; }
@@ -250,14 +252,19 @@ Interval atan2(Interval y, Interval x) {
 Interval hypot(Interval x, Interval y) {  // Math.hypot: +inf when either is infinite, even beside NaN
   if (x.empty() || y.empty()) return {0, kInfF, true};
   double mx = most_magnitude(x), my = most_magnitude(y);
-  return make(std::max(least_magnitude(x), least_magnitude(y)), std::sqrt(mx * mx + my * my), x.nan || y.nan, kMathUlps);
+  Interval r = make(std::max(least_magnitude(x), least_magnitude(y)), std::sqrt(mx * mx + my * my), x.nan || y.nan,
+                    kMathUlps);
+  r.lo = std::max(r.lo, 0.0f);  // computed in double and rounded once: never below zero
+  return r;
 }
 
 Interval sinh(Interval a) { return a.empty() ? a : increasing(a, [](double x) { return std::sinh(x); }, a.nan); }
 
 Interval cosh(Interval a) {
   if (a.empty()) return a;
-  return make(std::cosh(least_magnitude(a)), std::cosh(most_magnitude(a)), a.nan, kMathUlps);
+  Interval r = make(std::cosh(least_magnitude(a)), std::cosh(most_magnitude(a)), a.nan, kMathUlps);
+  r.lo = std::max(r.lo, 1.0f);  // computed in double and rounded once: never below one
+  return r;
 }
 
 Interval tanh(Interval a) { return a.empty() ? a : increasing(a, [](double x) { return std::tanh(x); }, a.nan); }

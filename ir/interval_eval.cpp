@@ -62,6 +62,11 @@ Interval interval_of(const Inst& in, const std::vector<Interval>& v) {
 
 bool eval_intervals(const Function& fn, const std::vector<Interval>& inputs, IntervalEval& out) {
   if (!interval_evaluable(fn)) return false;
+  eval_intervals_straight(fn, inputs, out);
+  return true;
+}
+
+void eval_intervals_straight(const Function& fn, const std::vector<Interval>& inputs, IntervalEval& out) {
   out.values.assign(fn.next_value, Interval::everything());
   out.choices.assign(fn.next_value, Choice::Both);
   out.outputs.clear();
@@ -75,7 +80,6 @@ bool eval_intervals(const Function& fn, const std::vector<Interval>& inputs, Int
                              : interval_of(*in, out.values);
     out.choices[in->id] = choice_of(*in, out.values);
   }
-  return true;
 }
 
 }  // namespace fscript::ir

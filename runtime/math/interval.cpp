@@ -4,7 +4,9 @@
 #include "runtime/math/interval.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "runtime/math/math.h"
 
@@ -18,20 +20,31 @@ constexpr int kExactUlps = 0;   // + - * in double are exact or round monotonica
 constexpr int kRoundedUlps = 1; // / and sqrt: rounded in double, then to float
 constexpr int kMathUlps = 4;    // every other built-in: the language's bound
 
+// The next float toward -inf (toward +inf for next_up), by its bits: this runs for every bound of
+// every interval operation, and libm's nextafter is a call. -inf and +inf stay where they are.
+float next_down(float f) {
+  if (f == -kInfF || f != f) return f;
+  if (f == 0) return -std::numeric_limits<float>::denorm_min();
+  uint32_t b = std::bit_cast<uint32_t>(f);
+  return std::bit_cast<float>(f > 0 ? b - 1 : b + 1);
+}
+
+float next_up(float f) { return -next_down(-f); }
+
 // The largest float <= x, `ulps` further down (NaN: -inf).
 float down(double x, int ulps) {
   if (x != x) return -kInfF;
   float f = static_cast<float>(x);
-  if (static_cast<double>(f) > x) f = std::nextafter(f, -kInfF);
-  for (int k = 0; k < ulps; ++k) f = std::nextafter(f, -kInfF);
+  if (static_cast<double>(f) > x) f = next_down(f);
+  for (int k = 0; k < ulps; ++k) f = next_down(f);
   return f;
 }
 
 float up(double x, int ulps) {
   if (x != x) return kInfF;
   float f = static_cast<float>(x);
-  if (static_cast<double>(f) < x) f = std::nextafter(f, kInfF);
-  for (int k = 0; k < ulps; ++k) f = std::nextafter(f, kInfF);
+  if (static_cast<double>(f) < x) f = next_up(f);
+  for (int k = 0; k < ulps; ++k) f = next_up(f);
   return f;
 }
 

@@ -58,8 +58,8 @@ class Renderer {
     std::vector<math::Interval> in(dense_.num_inputs(), math::Interval{0, 0, false});
     in[0] = math::iv::hull(math::Interval::point(g_.x(r.c0)), math::Interval::point(g_.x(r.c1 - 1)));
     in[1] = math::iv::hull(math::Interval::point(g_.y(r.r0)), math::Interval::point(g_.y(r.r1 - 1)));
-    ir::IntervalEval ev;
-    ir::eval_intervals(kernel_function(*tape.module), in, ev);
+    ir::IntervalEval& ev = scratch_[level];  // per level: a parent's evaluation outlives its children's
+    ir::eval_intervals_straight(kernel_function(*tape.module), in, ev);
     const math::Interval& f = ev.outputs[0];
     if (!f.nan && f.lo >= 0) return ++st.full, fill(r, 255), true;
     if (f.empty() || f.hi < 0) return ++st.empty, fill(r, 0), true;  // NaN is outside too
@@ -139,6 +139,7 @@ class Renderer {
     return true;
   }
 
+  ir::IntervalEval scratch_[kLevels];
   const backends::Kernel& dense_;
   const PlaneGrid& g_;
   const InsideOptions& o_;

@@ -155,10 +155,13 @@ void print_quadtree_stats(const render::QuadtreeStats& st, size_t pixels) {
     return;
   }
   std::printf("pruning: on, full tape %zu operations\n", st.full_tape_ops);
-  for (const auto& l : st.levels)
-    std::printf("level %ux%u: %zu empty, %zu full, %zu ambiguous, mean simplified tape %.1f operations\n", l.size,
-                l.size, l.empty, l.full, l.ambiguous,
-                l.ambiguous ? static_cast<double>(l.tape_ops) / static_cast<double>(l.ambiguous) : 0.0);
+  for (size_t k = 0; k < st.levels.size(); ++k) {
+    const auto& l = st.levels[k];
+    std::printf("level %ux%u: %zu empty, %zu full, %zu ambiguous", l.size, l.size, l.empty, l.full, l.ambiguous);
+    if (k + 1 == st.levels.size()) std::printf(" (evaluated point by point)\n");
+    else std::printf(", mean simplified tape %.1f operations\n",
+                     l.ambiguous ? static_cast<double>(l.tape_ops) / static_cast<double>(l.ambiguous) : 0.0);
+  }
   std::printf("points evaluated: %zu of %zu (%.2f%% of the dense path); simplified kernels compiled: %zu\n", st.points,
               pixels, 100.0 * static_cast<double>(st.points) / static_cast<double>(std::max<size_t>(pixels, 1)),
               st.kernels);

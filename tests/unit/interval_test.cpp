@@ -49,6 +49,23 @@ Box random_box(std::mt19937& rng) {
   return box;
 }
 
+// One box per input, each of half-size `half` around a point of [-span, span] (thousandths), with
+// its ends, centre and a few points inside; their intervals go to `in`.
+std::vector<Box> boxes_around(std::mt19937& rng, size_t inputs, float half, int span, std::vector<Interval>& in) {
+  std::vector<Box> boxes;
+  in.clear();
+  for (size_t a = 0; a < inputs; ++a) {
+    float centre = static_cast<float>(static_cast<int>(rng() % static_cast<unsigned>(2 * span + 1)) - span) / 1000.0f;
+    Box bx;
+    bx.iv = {centre - half, centre + half, false};
+    bx.points = {bx.iv.lo, bx.iv.hi, centre};
+    for (int k = 0; k < 6; ++k) bx.points.push_back(bx.iv.lo + 2 * half * static_cast<float>(rng() % 1000) / 1000.0f);
+    boxes.push_back(bx);
+    in.push_back(bx.iv);
+  }
+  return boxes;
+}
+
 // The IR of a kernel applying `op` to its parameters.
 std::unique_ptr<ir::Module> op_kernel(ir::Op op, int arity) {
   std::string text = "fn @kernel(" + std::to_string(arity) + ") -> 1 kernel {\nb0:\n", args;
@@ -201,18 +218,8 @@ TEST_CASE("intervals: benchmarks and examples bound every point of random boxes,
     std::vector<std::vector<Interval>> want;
     int tight = 0, small = 0;  // boxes of half-size <= 2^-8, and those whose outputs are narrower than 0.5
     for (size_t c = 0; c < 200; ++c) {
-      std::vector<Box> boxes;
-      std::vector<Interval> in;
-      for (size_t a = 0; a < inputs; ++a) {  // boxes of every size around points of [-2, 2]
-        float centre = static_cast<float>(static_cast<int>(rng() % 4001) - 2000) / 1000.0f;
-        float half = std::ldexp(1.0f, -static_cast<int>(c % 12));
-        Box bx;
-        bx.iv = {centre - half, centre + half, false};
-        bx.points = {bx.iv.lo, bx.iv.hi, centre};
-        for (int k = 0; k < 5; ++k) bx.points.push_back(bx.iv.lo + 2 * half * static_cast<float>(rng() % 1000) / 1000.0f);
-        boxes.push_back(bx);
-        in.push_back(bx.iv);
-      }
+      std::vector<Interval> in;  // boxes of every size around points of [-2, 2]
+      std::vector<Box> boxes = boxes_around(rng, inputs, std::ldexp(1.0f, -static_cast<int>(c % 12)), 2000, in);
       ir::IntervalEval ev;
       REQUIRE(ir::eval_intervals(fn, in, ev));
       want.push_back(ev.outputs);
@@ -354,17 +361,8 @@ TEST_CASE("tape simplification: the same bits inside the region, recursively, an
     if (!b->ok || !ir::interval_evaluable(kernel_of(*b->module))) continue;
     const ir::Function& fn = kernel_of(*b->module);
     for (int c = 0; c < 3; ++c) {
-      std::vector<Box> boxes;
-      std::vector<Interval> in;
-      for (size_t a = 0; a < fn.num_params; ++a) {  // a small box, so choices get decided
-        float centre = static_cast<float>(static_cast<int>(rng() % 2001) - 1000) / 1000.0f, half = 1.0f / 64;
-        Box bx;
-        bx.iv = {centre - half, centre + half, false};
-        bx.points = {bx.iv.lo, bx.iv.hi, centre};
-        for (int k = 0; k < 6; ++k) bx.points.push_back(bx.iv.lo + 2 * half * static_cast<float>(rng() % 1000) / 1000.0f);
-        boxes.push_back(bx);
-        in.push_back(bx.iv);
-      }
+      std::vector<Interval> in;  // a small box, so choices get decided
+      std::vector<Box> boxes = boxes_around(rng, fn.num_params, 1.0f / 64, 1000, in);
       ir::IntervalEval ev;
       REQUIRE(ir::eval_intervals(fn, in, ev));
       ir::SimplifiedTape t = ir::simplify_tape(fn, ev);

@@ -6,19 +6,19 @@ namespace {
 
 using math::Interval;
 
-Choice choice_of(const Inst& in, const std::vector<Interval>& v) {
-  auto arg = [&](size_t i) { return v[in.args[i]->id]; };
-  if (in.op == Op::Select) {
-    math::Truth t = math::truth_of(arg(0));
+// Which operand a min / max (a, b) or select (a = condition, b, c) takes over the whole region.
+Choice choice(Op op, const Interval& a, const Interval& b, const Interval& c) {
+  (void)c;
+  if (op == Op::Select) {
+    math::Truth t = math::truth_of(a);
     return t == math::Truth::Always ? Choice::Left : t == math::Truth::Never ? Choice::Right : Choice::Both;
   }
-  if (in.op != Op::Min && in.op != Op::Max) return Choice::Both;
+  if (op != Op::Min && op != Op::Max) return Choice::Both;
   // The other side must never be NaN (min/max give NaN if either is), and the sides must not
   // touch, so the side taken is the result bit for bit (no question of the sign of a zero).
-  Interval a = arg(0), b = arg(1);
   if (a.empty() || b.empty()) return Choice::Both;
   bool a_below = a.hi < b.lo, b_below = b.hi < a.lo;
-  bool min = in.op == Op::Min;
+  bool min = op == Op::Min;
   if ((min ? a_below : b_below) && !b.nan) return Choice::Left;
   if ((min ? b_below : a_below) && !a.nan) return Choice::Right;
   return Choice::Both;
@@ -36,28 +36,70 @@ bool interval_evaluable(const Function& fn) {
   return t && t->op == Op::Ret;
 }
 
-Interval interval_of(const Inst& in, const std::vector<Interval>& v) {
-  auto arg = [&](size_t i) { return v[in.args[i]->id]; };
-  if (in.op == Op::Mul && in.args[0] == in.args[1]) return math::iv::square(arg(0));
-  switch (in.op) {
+namespace {
+
+// The rule of `op` on its operands' intervals (`square`: a Mul of a value by itself).
+Interval apply(Op op, bool square, float imm, const Interval& a, const Interval& b, const Interval& c) {
+  (void)c;
+  if (square) return math::iv::square(a);
+  switch (op) {
 #define FS_IV_1(N, FN) \
-  case Op::N: return math::iv::FN(arg(0));
+  case Op::N: return math::iv::FN(a);
 #define FS_IV_2(N, FN) \
-  case Op::N: return math::iv::FN(arg(0), arg(1));
+  case Op::N: return math::iv::FN(a, b);
 #define FS_IV_3(N, FN) \
-  case Op::N: return math::iv::FN(arg(0), arg(1), arg(2));
+  case Op::N: return math::iv::FN(a, b, c);
 #define FS_MATH(N, FN, A, HOW) FS_IV_##A(N, FN)
 #include "ir/math_ops.def"
 #undef FS_IV_1
 #undef FS_IV_2
 #undef FS_IV_3
-    case Op::Const: return Interval::point(in.imm);
+    case Op::Const: return Interval::point(imm);
     // Parameters come from the region; memory, calls and control flow are not bounded here.
     case Op::Param: case Op::Phi: case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad:
     case Op::AStore: case Op::ALen: case Op::Call: case Op::Tick: case Op::Jump: case Op::Branch: case Op::Ret:
       return Interval::everything();
   }
   return Interval::everything();
+}
+
+const Interval kNone = Interval::everything();
+
+}  // namespace
+
+Interval interval_of(const Inst& in, const std::vector<Interval>& v) {
+  auto arg = [&](size_t i) -> const Interval& { return i < in.args.size() ? v[in.args[i]->id] : kNone; };
+  return apply(in.op, in.op == Op::Mul && in.args[0] == in.args[1], in.imm, arg(0), arg(1), arg(2));
+}
+
+IntervalTape::IntervalTape(const Function& fn) : values_(fn.next_value) {
+  for (const Inst* in : fn.entry()->insts) {
+    if (in->op == Op::Ret) {
+      for (const Inst* a : in->args) outputs_.push_back(a->id);
+      break;
+    }
+    Step s{in->op, in->op == Op::Mul && in->args[0] == in->args[1], in->id, 0, 0, 0, in->imm};
+    uint32_t* slot[] = {&s.a, &s.b, &s.c};
+    for (size_t k = 0; k < in->args.size() && k < 3; ++k) *slot[k] = in->args[k]->id;
+    if (in->op == Op::Param) s.a = static_cast<uint32_t>(in->aux);
+    steps_.push_back(s);
+  }
+}
+
+void IntervalTape::eval(const std::vector<Interval>& inputs, IntervalEval& out) const {
+  out.values.resize(values_);
+  out.choices.assign(values_, Choice::Both);
+  Interval* v = out.values.data();
+  for (const Step& s : steps_) {
+    if (s.op == Op::Param) {
+      v[s.dst] = s.a < inputs.size() ? inputs[s.a] : kNone;
+      continue;
+    }
+    v[s.dst] = apply(s.op, s.square, s.imm, v[s.a], v[s.b], v[s.c]);
+    if (s.op == Op::Min || s.op == Op::Max || s.op == Op::Select) out.choices[s.dst] = choice(s.op, v[s.a], v[s.b], v[s.c]);
+  }
+  out.outputs.clear();
+  for (uint32_t o : outputs_) out.outputs.push_back(v[o]);
 }
 
 bool eval_intervals(const Function& fn, const std::vector<Interval>& inputs, IntervalEval& out) {
@@ -78,7 +120,11 @@ void eval_intervals_straight(const Function& fn, const std::vector<Interval>& in
     out.values[in->id] = in->op == Op::Param && static_cast<size_t>(in->aux) < inputs.size()
                              ? inputs[static_cast<size_t>(in->aux)]
                              : interval_of(*in, out.values);
-    out.choices[in->id] = choice_of(*in, out.values);
+    if (in->op == Op::Min || in->op == Op::Max || in->op == Op::Select) {
+      const auto& v = out.values;
+      out.choices[in->id] = choice(in->op, v[in->args[0]->id], v[in->args[1]->id],
+                                   in->args.size() > 2 ? v[in->args[2]->id] : Interval::everything());
+    }
   }
 }
 

@@ -33,4 +33,24 @@ bool eval_intervals(const Function& fn, const std::vector<math::Interval>& input
 // before): no check per call. `out` keeps its storage from call to call.
 void eval_intervals_straight(const Function& fn, const std::vector<math::Interval>& inputs, IntervalEval& out);
 
+// A straight-line kernel flattened for evaluation over many regions (a quadtree's tiles): one
+// step per value op with operand slots (the value ids), so nothing is chased through pointers.
+// Gives what eval_intervals gives.
+class IntervalTape {
+ public:
+  explicit IntervalTape(const Function& fn);  // fn must be interval_evaluable
+  void eval(const std::vector<math::Interval>& inputs, IntervalEval& out) const;
+
+ private:
+  struct Step {
+    Op op;
+    bool square;  // a Mul of one value by itself
+    uint32_t dst, a, b, c;
+    float imm;  // Const; Param: the parameter's index
+  };
+  std::vector<Step> steps_;
+  std::vector<uint32_t> outputs_;
+  uint32_t values_ = 0;
+};
+
 }  // namespace fscript::ir

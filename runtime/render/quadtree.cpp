@@ -39,6 +39,7 @@ const ir::Function& kernel_function(const ir::Module& m) {
 struct Tape {
   const ir::Module* module = nullptr;
   std::unique_ptr<ir::Module> owned;
+  std::shared_ptr<const ir::IntervalTape> intervals;  // the module's kernel, flattened
   const backends::Kernel* kernel = nullptr;
   std::unique_ptr<backends::Kernel> owned_kernel;
   size_t ops = 0;
@@ -59,7 +60,7 @@ class Renderer {
     in[0] = math::iv::hull(math::Interval::point(g_.x(r.c0)), math::Interval::point(g_.x(r.c1 - 1)));
     in[1] = math::iv::hull(math::Interval::point(g_.y(r.r0)), math::Interval::point(g_.y(r.r1 - 1)));
     ir::IntervalEval& ev = scratch_[level];  // per level: a parent's evaluation outlives its children's
-    ir::eval_intervals_straight(kernel_function(*tape.module), in, ev);
+    tape.intervals->eval(in, ev);
     const math::Interval& f = ev.outputs[0];
     if (!f.nan && f.lo >= 0) return ++st.full, fill(r, 255), true;
     if (f.empty() || f.hi < 0) return ++st.empty, fill(r, 0), true;  // NaN is outside too
@@ -116,12 +117,14 @@ class Renderer {
     ir::SimplifiedTape s = ir::simplify_tape(kernel_function(*parent.module), ev);
     if (s.ops * 10 > parent.ops * 9) {  // under 10% shorter: not worth a compile
       t.module = parent.module;
+      t.intervals = parent.intervals;
       t.kernel = parent.kernel;
       t.ops = parent.ops;
       return t;
     }
     t.owned = std::move(s.module);
     t.module = t.owned.get();
+    t.intervals = std::make_shared<const ir::IntervalTape>(kernel_function(*t.module));
     t.ops = s.ops;
     return t;
   }
@@ -177,6 +180,7 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
     Renderer& r = *renderers[static_cast<size_t>(p)];
     Tape full;
     full.module = &m;
+    if (prune) full.intervals = std::make_shared<const ir::IntervalTape>(fn);
     full.ops = stats.full_tape_ops;
     if (!prune) full.kernel = &dense;
     for (size_t t = static_cast<size_t>(p); t < tiles.size(); t += static_cast<size_t>(parts)) {

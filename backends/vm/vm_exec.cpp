@@ -54,6 +54,9 @@ struct Frame {
 // below always run all kChunkLanes lanes (lanes past the chunk's end compute garbage that is never
 // read): a fixed trip count and known alignment give clean vector code with no peeling.
 constexpr uint32_t K = kChunkLanes;
+// Loop iterations a chunk's lanes may make together before the chunk runs again point by point
+// (a lane-by-lane iteration costs about 7 times a packed one, so only loops this long pay it).
+constexpr uint64_t kLaneByLaneAfter = uint64_t{1} << 16;
 static_assert(K % 16 == 0, "whole AVX-512 vectors per register");
 
 inline float* reg(float* R, uint32_t r) { return static_cast<float*>(__builtin_assume_aligned(R + size_t(r) * K, 64)); }
@@ -193,6 +196,8 @@ class Executor {
 
   bool run_chunk(const float* const* in, float* const* out, size_t base, uint32_t L, RuntimeError& err);
   bool out_of_stack() const { return out_of_stack_; }
+  // The chunk stopped because a loop ran long (kLaneByLaneAfter iterations of its lanes together).
+  bool long_loop() const { return long_loop_; }
 
  private:
   bool run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, size_t base, float* result, RuntimeError& err);
@@ -203,6 +208,8 @@ class Executor {
   bool array_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err);
   void edge_moves(Frame& fr, const Edge& e, const Mask* m);
   bool out_of_stack_ = false;
+  bool long_loop_ = false;
+  uint64_t chunk_ticks_ = 0;  // loop iterations the chunk's lanes made together (batch frames only)
   static void init_frame(Frame& fr) {
     const VmFunction& f = *fr.f;
     for (auto [r, v] : f.consts) std::fill_n(fr.regs + size_t(r) * fr.stride, fr.stride, v);
@@ -223,6 +230,8 @@ class Executor {
 };
 
 bool Executor::run_chunk(const float* const* in, float* const* out, size_t base, uint32_t L, RuntimeError& err) {
+  chunk_ticks_ = 0;
+  long_loop_ = false;
   thread_local std::vector<LaneEnv> envs;
   thread_local std::vector<LaneEnv*> env_ptrs;
   thread_local std::vector<float> gmem;
@@ -355,6 +364,7 @@ bool Executor::exec(Frame& fr, const VInst& v, const Mask* m, bool full, Runtime
 #include "ir/math_ops.def"
     case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
     case Op::Call: case Op::Tick:
+      if (v.op == Op::Tick && ++chunk_ticks_ > kLaneByLaneAfter) return long_loop_ = true, false;
       for (uint32_t i = 0; i < L; ++i)
         if (m[i] && !lane_op(fr, v, i, err)) return false;
       return true;
@@ -469,10 +479,13 @@ bool run_batch(const VmProgram& p, const Budgets& budgets, const float* const* i
   Executor ex(p, budgets);
   for (size_t base = 0; base < n; base += kChunkLanes) {
     uint32_t L = static_cast<uint32_t>(std::min<size_t>(kChunkLanes, n - base));
-    if (!ex.run_chunk(inputs, outputs, base, L, err)) {
-      out_of_stack = ex.out_of_stack();
-      return false;
-    }
+    if (ex.run_chunk(inputs, outputs, base, L, err)) continue;
+    // A loop that runs long costs every lane of the chunk each iteration, and a runaway one would
+    // take kChunkLanes times its budget to fail: run the chunk again one point at a time (the
+    // evaluation is a function of the inputs), so a runaway point stops after its own budget.
+    if (!ex.long_loop()) return out_of_stack = ex.out_of_stack(), false;
+    for (uint32_t i = 0; i < L; ++i)
+      if (!ex.run_chunk(inputs, outputs, base + i, 1, err)) return out_of_stack = ex.out_of_stack(), false;
   }
   return true;
 }

@@ -68,6 +68,19 @@ for b in $BACKENDS; do
   check "loop one over the budget on $b" 1 'loop.fs:1: error: loop iteration budget exceeded: more than 50 iterations' \
     -- "$F" run "$T/loop.fs" 51 --max-loop-iterations 50 --backend "$b"
 done
+# A runaway loop stops the whole job at its first point's budget (the VM used to take its 512-lane
+# chunk times the budget: 41 s for render2d, 79 s for fvrml-run); `timeout` only stops a hang.
+printf 'function FRep(x, y, z, t) {\n  while (1) {}\n  return 1;\n}\n' > "$T/runaway.fs"
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "function FRep(x, y, z, t) { while (1) {} return 1; }" } }\n' > "$T/runaway.wrl"
+for b in $BACKENDS; do
+  check "a runaway loop fails fast in render2d on $b" 1 'runaway.fs:2: error: loop iteration budget exceeded' \
+    -- timeout 20 "$F" render2d "$T/runaway.fs" --size 64 --bounds -1,1,-1,1 --backend "$b" -o "$T/runaway.png"
+  check "a runaway loop fails fast in fvrml-run on $b" 1 'runaway.wrl:2: error: loop iteration budget exceeded' \
+    -- timeout 20 "$R" "$T/runaway.wrl" --backend "$b" -o "$T/runaway.ply"
+done
+# A long but finite loop (2^17 iterations a point, past the point where the VM goes lane by lane).
+printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 131072; i++) s = s + 1; return s - 131072 + x; }\n' > "$T/long.fs"
+check "a long loop finishes with every point on the VM" 0 '^2048 white pixels' -- "$F" render2d "$T/long.fs" --size 64 --bounds -1,1,-1,1 --backend vm
 check "call depth above the ceiling" 2 'max-call-depth: Value 100001 not in range 1 to 100000' -- "$F" run "$T/down.fs" 1 --max-call-depth 100001
 check "fvrml-run call depth above the ceiling" 2 'max-call-depth' -- "$R" "$P/figure1-morphing.wrl" --stats --max-call-depth 100001
 

@@ -73,3 +73,27 @@ TEST_CASE("vm: many small kernels compiled and freed") {
     CHECK(test::eval1(*b, {1, 2}) == static_cast<float>(i + 2));
   }
 }
+
+TEST_CASE("vm: a chunk whose loop runs long runs again point by point, with the same results") {
+  // Lanes loop 0 to 100,000 times: past 65,536 iterations together the chunk goes lane by lane.
+  auto b = test::build("function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < x; i++) s = s + y; return s; }");
+  REQUIRE(b->ok);
+  size_t n = 600;  // two chunks, the second partial
+  std::vector<float> xs(n), ys(n), zero(n, 0), out(n);
+  for (size_t i = 0; i < n; ++i) xs[i] = static_cast<float>((i * 7919) % 100001), ys[i] = 0.5f + static_cast<float>(i % 3);
+  const float* in[4] = {xs.data(), ys.data(), zero.data(), zero.data()};
+  float* outs[1] = {out.data()};
+  backends::RuntimeError err;
+  REQUIRE(b->kernel->eval_batch(in, outs, n, err));
+  int mismatches = 0;
+  for (size_t i = 0; i < n; i += 37) mismatches += !same(out[i], test::eval1(*b, {xs[i], ys[i], 0, 0}));
+  CHECK(mismatches == 0);
+  // A runaway lane among them stops the batch with the budget's error.
+  backends::Budgets small;
+  small.max_loop_iterations = 200000;
+  auto capped = test::build("function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < x; i++) s = s + y; return s; }", "",
+                            true, small);
+  xs[300] = 1e9f;
+  CHECK_FALSE(capped->kernel->eval_batch(in, outs, n, err));
+  CHECK(err.message == "loop iteration budget exceeded: more than 200000 iterations in one evaluation");
+}

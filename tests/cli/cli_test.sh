@@ -156,6 +156,24 @@ printf 'function f(x){var a=x*2;if(a>1){return a}else{return -a^2}}\n' > "$T/ugl
 cmp -s "$T/pretty.fs" "$T/pretty2.fs" || { echo "FAIL fmt-idempotent"; fails=$((fails + 1)); }
 check fmt-layout 0 '^  if \(a > 1\) \{$' -- "$F" fmt "$T/ugly.fs"
 check fmt-error 1 'expected an expression' -- "$F" fmt "$T/bad.fs"
+# fmt --check says whether a file is formatted; -i rewrites it (and never a file that does not parse).
+cp "$T/ugly.fs" "$T/inplace.fs"
+check fmt-check-ugly 1 'inplace.fs: not formatted \(fscript fmt -i' -- "$F" fmt --check "$T/inplace.fs"
+check fmt-in-place 0 '' -- "$F" fmt -i "$T/inplace.fs"
+cmp -s "$T/inplace.fs" "$T/pretty.fs" || fail "fmt-in-place: the file is not what fmt prints"
+check fmt-check-pretty 0 '' -- "$F" fmt --check "$T/inplace.fs"
+cp "$T/bad.fs" "$T/bad-copy.fs"
+check fmt-in-place-error 1 'expected an expression' -- "$F" fmt -i "$T/bad-copy.fs"
+cmp -s "$T/bad.fs" "$T/bad-copy.fs" || fail "fmt-in-place-error: a file with errors was rewritten"
+check fmt-in-place-stdin 2 'standard input has none' -- "$F" fmt -i - < "$T/ugly.fs"
+# Every tool says its version; fscript repl starts the REPL; --help mentions it and fscript < FILE.
+LSP="$(dirname "$F")/../../lsp/fscript-lsp"
+for tool in "$F" "$R" "$D" "$LSP"; do
+  [ -x "$tool" ] && check "version $(basename "$tool")" 0 "^$(basename "$tool") [0-9]+\.[0-9]+\.[0-9]+ \(FVRML toolchain\)$" -- "$tool" --version
+done
+check lsp-unknown-argument 2 "unknown argument '--port'" -- "$LSP" --port 4
+check repl-subcommand 0 '^3$' -- sh -c "printf '1+2\n:quit\n' | \"$F\" repl"
+check help-mentions-repl 0 'fscript repl.*fscript < FILE' -- sh -c "\"$F\" --help | tr '\n' ' '"
 
 # Hostile input: deep nesting, a 1 MB expression, an unterminated comment.
 python3 -c "print('function f(x) { return ' + '('*100000 + 'x' + ')'*100000 + '; }')" > "$T/deep.fs"

@@ -12,7 +12,8 @@ int cmd_eval(const Options& o, const std::string& file, const std::string& entry
 int cmd_check(const std::vector<std::string>& files);
 int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes, bool llvm);
 int cmd_emit_asm(const Options& o, const std::string& file, const std::string& entry);
-int cmd_fmt(const std::string& file);
+// Prints the canonical formatting; -i rewrites the file (only if it changes), --check only says.
+int cmd_fmt(const std::string& file, bool in_place, bool check_only);
 int cmd_bench(const Options& o, const std::string& file, const std::string& entry, size_t points, unsigned threads,
               bool one_point);
 int cmd_render2d(const Options& o, const std::string& file, const std::string& entry, const std::string& size,

@@ -8,6 +8,7 @@
 #include "runtime/support/big_stack.h"
 #include "tools/fscript/commands.h"
 #include "tools/fscript/repl.h"
+#include "runtime/support/version.h"
 
 namespace fscript::cli {
 namespace {
@@ -19,6 +20,7 @@ struct Args {
   size_t points = 1'000'000;
   unsigned threads = 1;
   bool opt = false, one_point = false, llvm = false, disk_cache = false, no_prune = false, stats = false;
+  bool in_place = false, check_only = false;
   uint32_t max_depth = 1000;
 };
 
@@ -58,7 +60,8 @@ int dispatch(CLI::App& app, Args& a) {
   if (app.got_subcommand("check")) return cmd_check(a.files);
   if (app.got_subcommand("emit-ir")) return cmd_emit_ir(a.file, a.entry, a.opt, a.passes, a.llvm);
   if (app.got_subcommand("emit-asm")) return cmd_emit_asm(a.opts, a.file, a.entry);
-  if (app.got_subcommand("fmt")) return cmd_fmt(a.file);
+  if (app.got_subcommand("fmt")) return cmd_fmt(a.file, a.in_place, a.check_only);
+  if (app.got_subcommand("repl")) return run_repl(a.opts);
   if (app.got_subcommand("bench")) return cmd_bench(a.opts, a.file, a.entry, a.points, a.threads, a.one_point);
   if (app.got_subcommand("render2d"))
     return cmd_render2d(a.opts, a.file, a.entry, a.size, a.bounds, a.out, a.threads, !a.no_prune, a.stats);
@@ -69,6 +72,7 @@ int dispatch(CLI::App& app, Args& a) {
 
 int real_main(int argc, char** argv) {
   CLI::App app{"fscript: compiler, runner and tools for FScript, the function-script language of FVRML"};
+  app.set_version_flag("--version", fscript::support::version_line("fscript"));
   app.require_subcommand(0, 1);
   Args a;
   add_budget_flags(app, a);
@@ -94,6 +98,12 @@ int real_main(int argc, char** argv) {
 
   CLI::App* fmt = app.add_subcommand("fmt", "print the canonical formatting of a script");
   fmt->add_option("FILE", a.file, "the .fs script")->required();
+  fmt->add_flag("-i,--in-place", a.in_place, "rewrite FILE in place instead of printing");
+  fmt->add_flag("--check", a.check_only, "print nothing; exit 1 (naming FILE) if it is not formatted");
+
+  app.add_subcommand("repl", "the interactive session (also what fscript alone starts on a terminal)");
+  app.footer("With no command: on a terminal, the REPL (fscript repl); otherwise the program on standard\n"
+             "input runs once (fscript < FILE). Exit status: 0 success, 1 an error in the input, 2 usage.");
 
   CLI::App* bench = add_compiling(app, "bench", "time the batch path over many points", a);
   bench->add_option("--points,-n", a.points, "number of points (default 1000000)")->check(CLI::Range(size_t{1}, size_t{1} << 32));

@@ -5,6 +5,7 @@
 
 #include "runtime/mesh/distance.h"
 #include "runtime/mesh/mesh_read.h"
+#include "runtime/support/version.h"
 
 namespace {
 
@@ -18,6 +19,7 @@ nlohmann::json describe(const fscript::mesh::Mesh& m) {
 
 int main(int argc, char** argv) {
   CLI::App app{"fvrml-meshdiff: Hausdorff and Chamfer distances and topology of two meshes (PLY, OBJ, STL)"};
+  app.set_version_flag("--version", fscript::support::version_line("fvrml-meshdiff"));
   std::string a_path, b_path;
   app.add_option("A", a_path, "the first mesh (distances relative to its bounding-box diagonal)")->required();
   app.add_option("B", b_path, "the second mesh")->required();

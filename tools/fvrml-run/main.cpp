@@ -27,6 +27,7 @@
 #include "runtime/scene/vrml_export.h"
 #include "tools/fvrml-run/run.h"
 #include "runtime/support/files.h"
+#include "runtime/support/version.h"
 
 namespace fvrml_run {
 namespace {
@@ -140,6 +141,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
 
 int run(int argc, char** argv) {
   CLI::App app{"fvrml-run: FVRML scenes (VRML97 with function-defined shapes)"};
+  app.set_version_flag("--version", fscript::support::version_line("fvrml-run"));
   Options o;
   o.model.compile.backend = fscript::backends::available_backends().front();
   o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

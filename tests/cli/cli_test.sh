@@ -147,6 +147,12 @@ print(c)")
 got=$("$F" render2d "$T/sphere.fs" --entry FRep --size 101 --bounds -1.5,1.5,-1.5,1.5 | head -1 | cut -d' ' -f1)
 [ "$got" = "$want" ] || { echo "FAIL render2d-count: got $got want $want"; fails=$((fails + 1)); }
 head -c 8 "$T/disc.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' || { echo "FAIL render2d-png: not a PNG"; fails=$((fails + 1)); }
+# Without -o the picture goes to the current folder, named after the script; every write says so.
+rm -f "$T/sphere.png"
+FABS="$(cd "$(dirname "$F")" && pwd)/$(basename "$F")"
+check render2d-default-output 0 'wrote sphere.png: 101x101, [0-9]+ white pixels' -- sh -c "cd '$T' && '$FABS' render2d sphere.fs --size 101 --bounds -1.5,1.5,-1.5,1.5"
+[ -s "$T/sphere.png" ] || fail "render2d-default-output: no sphere.png next to where it ran"
+check render2d-summary 0 "wrote $T/disc2.png: 101x101" -- "$F" render2d "$T/sphere.fs" --size 101 --bounds -1.5,1.5,-1.5,1.5 -o "$T/disc2.png"
 check render2d-unwritable 1 'cannot write' -- "$F" render2d "$T/sphere.fs" --size 4 --bounds -1,1,-1,1 -o "$T/no/such/dir/x.png"
 
 # fmt: canonical output, idempotent
@@ -234,6 +240,9 @@ WRL
   printf '#VRML V2.0 utf8\nFTransform { translation "1 2" }\n' > "$T/ft2.wrl"
   check fvrml-run-affine-count 1 'ft2.wrl:2:27: error: .translation. of FTransform needs 3 components, found 2' -- "$R" "$T/ft2.wrl" --stats
   printf '#VRML V2.0 utf8\nTransform { translation 1 0 0 children FShape { geometry FGeometry { definition "0.5^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [16] } } }\n' > "$T/ball.wrl"
+  check fvrml-run-summary 0 "^wrote $T/ball-summary.ply: [0-9,]+ triangles, 1 shape, [0-9.]+ s$" -- "$R" "$T/ball.wrl" -o "$T/ball-summary.ply"
+  check fvrml-run-summary-png 0 "^wrote $T/ball-summary.png: [0-9,]+ triangles, 1 shape" -- "$R" "$T/ball.wrl" -o "$T/ball-summary.png"
+  check fvrml-run-no-summary-with-stats 0 '^\{' -- sh -c "'$R' '$T/ball.wrl' -o '$T/ball-stats.ply' --stats 2>&1 >/dev/null | head -1"
   for fmt in ply obj stl; do
     check "fvrml-run-$fmt" 0 '"triangles":[1-9]' -- "$R" "$T/ball.wrl" -o "$T/ball.$fmt" --stats
   done

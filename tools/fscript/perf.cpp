@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -203,12 +204,20 @@ int cmd_render2d(const Options& o, const std::string& file, const std::string& e
     return kExitInput;
   }
   size_t white = static_cast<size_t>(std::count(px.begin(), px.end(), uint8_t{255}));
+  // Without -o the picture goes to the current folder, named after the script (stdin: render2d.png).
+  std::string path = out_path;
+  if (path.empty()) {
+    std::string stem = file == "-" ? "render2d" : std::filesystem::path(file).stem().string();
+    path = (stem.empty() ? std::string("render2d") : stem) + ".png";
+  }
   std::string error;
-  if (!out_path.empty() && !render::write_png(out_path, w, h, 1, px, error)) {
+  if (!render::write_png(path, w, h, 1, px, error)) {
     std::cerr << "error: " << error << "\n";
     return kExitInput;
   }
   std::printf("%zu white pixels\n%.3f ms\n", white, ms);
+  std::fflush(stdout);
+  std::cerr << "wrote " << path << ": " << w << "x" << h << ", " << white << " white pixels\n";
   if (stats) print_quadtree_stats(st, size_t(w) * h);
   return kExitOk;
 }

@@ -91,6 +91,34 @@ bool check_against(const std::string& ref, const mesh::Mesh& all) {
   return true;
 }
 
+// 590776 -> "590,776".
+std::string thousands(uint64_t n) {
+  std::string s = std::to_string(n);
+  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3) s.insert(static_cast<size_t>(i), ",");
+  return s;
+}
+
+// The line a successful write ends with: "wrote f6.ply: 590,776 triangles, 1 shape, 0.41 s".
+std::string written_summary(const Options& o, const nlohmann::json& st, double ms) {
+  // Triangles: of every shape (one frame), of every cached animation frame, or of the frame files.
+  uint64_t triangles = 0;
+  for (const char* part : {"shapes", "ftransforms", "animations", "frames"})
+    if (st.contains(part) && st[part].is_array())
+      for (const auto& s : st[part])
+        if (s.contains("triangles") && s["triangles"].is_number()) triangles += s["triangles"].get<uint64_t>();
+  std::string what;
+  if (st.contains("frames") && st["frames"].is_array()) what = std::to_string(st["frames"].size()) + " frame files, ";
+  if (st.contains("animations") && !st["animations"].empty()) what = "animated, ";
+  what += thousands(triangles) + " triangles";
+  if (st.contains("shapes")) {
+    size_t shapes = st["shapes"].size();
+    what += ", " + std::to_string(shapes) + (shapes == 1 ? " shape" : " shapes");
+  }
+  char secs[32];
+  std::snprintf(secs, sizeof secs, ", %.2f s", ms / 1000.0);
+  return "wrote " + o.output + ": " + what + secs;
+}
+
 // One frame: VRML97 to a file or standard output, a mesh file, or a picture.
 int single(const Options& o, Loaded& l, nlohmann::json& st) {
   auto t1 = Clock::now();
@@ -207,6 +235,7 @@ int run(int argc, char** argv) {
   }
   int rc = o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
   if (o.stats && rc == 0) std::cerr << st.dump() << "\n";
+  if (!o.stats && rc == 0 && !o.output.empty() && o.output != "-") std::cerr << written_summary(o, st, ms_since(t0)) << "\n";
   return rc;
 }
 

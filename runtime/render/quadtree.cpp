@@ -1,5 +1,5 @@
 // The quadtree renderer: interval evaluation per region, tape simplification per level, dense
-// batches for the open 8x8 tiles. Regions are fixed shares, so the picture is the same bits for
+// batches for the open 32x32 tiles. Regions are fixed shares, so the picture is the same bits for
 // any thread count.
 #include "runtime/render/quadtree.h"
 
@@ -22,7 +22,10 @@ float PlaneGrid::y(uint32_t row) const {
 
 namespace {
 
-constexpr uint32_t kSizes[] = {256, 64, 8};  // region sides per level; the last is evaluated densely
+// Region sides per level; the open regions of the last are evaluated densely. Chosen by measurement
+// (docs/performance.md): with 8 or 16 at the bottom, interval evaluation of the many small tiles
+// costs more than the points it saves.
+constexpr uint32_t kSizes[] = {256, 64, 32};
 constexpr size_t kLevels = sizeof(kSizes) / sizeof(kSizes[0]);
 
 struct Rect {
@@ -129,13 +132,12 @@ class Renderer {
     return t;
   }
 
+  // Simplified tapes run on the VM whatever the dense kernel's backend: its compile (0.1 ms per
+  // 1,000 operations) pays for a region, the sse emitter's (about 2 ms) and llvm's do not
+  // (docs/performance.md), and every backend gives the same bits.
   bool compile(Tape& tape) {
-    if (o_.backend == "llvm") {  // its compile costs more than a region saves: the dense kernel
-      tape.kernel = &dense_;
-      return true;
-    }
     std::string error;
-    tape.owned_kernel = backends::make_backend(o_.backend)->compile(*tape.module, o_.budgets, error);
+    tape.owned_kernel = backends::make_backend("vm")->compile(*tape.module, o_.budgets, error);
     if (!tape.owned_kernel) return err_ = {error, 0}, false;
     tape.kernel = tape.owned_kernel.get();
     ++stats_.kernels;

@@ -1,7 +1,7 @@
 #pragma once
 // Pictures of f(x, y, 0, 0) >= 0 by quadtree: a region whose interval is all inside or all outside
-// is filled whole; the others split (256, 64, then 8 pixels) on a tape simplified for them, and
-// only the 8x8 tiles the intervals leave open are evaluated point by point, in one batch per 64x64
+// is filled whole; the others split (256, 64, then 32 pixels) on a tape simplified for them, and
+// only the 32x32 tiles the intervals leave open are evaluated point by point, in one batch per 64x64
 // tile. Every pixel is the one the dense path gives.
 #include <cstdint>
 #include <string>
@@ -36,7 +36,6 @@ struct QuadtreeStats {
 };
 
 struct InsideOptions {
-  std::string backend = "vm";  // compiles the simplified kernels; llvm keeps the dense one
   backends::Budgets budgets;
   unsigned threads = 1;
   bool prune = true;

@@ -258,7 +258,7 @@ if [ -f "$SHARED/data/prospero.fs" ]; then
   same_picture prospero "$SHARED/data/prospero.fs" --size 1024 --bounds -1,1,-1,1
   check prospero-1024-pruned 0 '^132033 white pixels' -- "$F" render2d "$SHARED/data/prospero.fs" --size 1024 --bounds -1,1,-1,1
   check render2d-stats 0 'points evaluated: [0-9]+ of 1048576' -- "$F" render2d "$SHARED/data/prospero.fs" --size 1024 --bounds -1,1,-1,1 --stats
-  check render2d-stats-levels 0 'level 8x8: [0-9]+ empty, [0-9]+ full, [0-9]+ ambiguous' -- "$F" render2d "$SHARED/data/prospero.fs" --size 1024 --bounds -1,1,-1,1 --stats
+  check render2d-stats-levels 0 'level 32x32: [0-9]+ empty, [0-9]+ full, [0-9]+ ambiguous' -- "$F" render2d "$SHARED/data/prospero.fs" --size 1024 --bounds -1,1,-1,1 --stats
   check render2d-no-prune-stats 0 'pruning: off' -- "$F" render2d "$SHARED/data/prospero.fs" --size 64 --bounds -1,1,-1,1 --stats --no-prune
 else
   skip_missing "render2d pruning on prospero" "the shared folder's data/prospero.fs"

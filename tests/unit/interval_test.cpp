@@ -418,7 +418,6 @@ TEST_CASE("quadtree rendering: the same pixels as the dense path, for random pro
     render::PlaneGrid g{static_cast<uint32_t>(97 + rng() % 300), static_cast<uint32_t>(61 + rng() % 300), -1.3f, 1.1f,
                         -0.9f, 1.4f};
     render::InsideOptions o;
-    o.backend = be;
     o.threads = 1 + static_cast<unsigned>(k % 3);
     std::vector<uint8_t> a, d;
     render::QuadtreeStats sa, sd;

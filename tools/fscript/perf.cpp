@@ -189,7 +189,6 @@ int cmd_render2d(const Options& o, const std::string& file, const std::string& e
   }
   render::PlaneGrid g{w, h, bd[0], bd[1], bd[2], bd[3]};
   render::InsideOptions ro;
-  ro.backend = o.backend.empty() ? backends::available_backends().front() : o.backend;
   ro.budgets = o.budgets;
   ro.threads = std::max(1u, threads);
   ro.prune = prune;

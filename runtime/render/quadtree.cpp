@@ -1,9 +1,10 @@
 // The quadtree renderer: interval evaluation per region, tape simplification per level, dense
-// batches for the open 32x32 tiles. Regions are fixed shares, so the picture is the same bits for
-// any thread count.
+// batches for the open 32x32 tiles. Every region writes only its own pixels, so the picture is the
+// same bits for any thread count and schedule.
 #include "runtime/render/quadtree.h"
 
 #include <algorithm>
+#include <atomic>
 #include <memory>
 
 #include "ir/interval_eval.h"
@@ -178,6 +179,8 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   int parts = static_cast<int>(std::max(1u, std::min<unsigned>(o.threads, static_cast<unsigned>(tiles.size()))));
   std::vector<std::unique_ptr<Renderer>> renderers;
   for (int p = 0; p < parts; ++p) renderers.push_back(std::make_unique<Renderer>(dense, g, o, px));
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
   bool ok = support::run_parts(parts, [&](int p) {
     Renderer& r = *renderers[static_cast<size_t>(p)];
     Tape full;
@@ -185,11 +188,13 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
     if (prune) full.intervals = std::make_shared<const ir::IntervalTape>(fn);
     full.ops = stats.full_tape_ops;
     if (!prune) full.kernel = &dense;
-    for (size_t t = static_cast<size_t>(p); t < tiles.size(); t += static_cast<size_t>(parts)) {
+    // Tiles go to whichever thread is free: each writes only its own pixels, so the picture does
+    // not depend on the schedule, and the regions' work is far from even.
+    for (size_t t; !failed && (t = next.fetch_add(1)) < tiles.size();) {
       std::vector<Rect> open;
       bool done = prune ? r.region(full, tiles[t], 0, open) && (open.empty() || r.dense(full, open))
                         : r.dense(full, {tiles[t]});
-      if (!done) return false;
+      if (!done) return failed = true, false;
     }
     return true;
   });

@@ -177,6 +177,18 @@ LSP="$(dirname "$F")/../../lsp/fscript-lsp"
 for tool in "$F" "$R" "$D" "$LSP"; do
   [ -x "$tool" ] && check "version $(basename "$tool")" 0 "^$(basename "$tool") [0-9]+\.[0-9]+\.[0-9]+ \(FVRML toolchain\)$" -- "$tool" --version
 done
+# Help reads like a person wrote it: ranges in words, no parser hints.
+for tool in "$F" "$R"; do
+  [ -x "$tool" ] || continue
+  "$tool" --help > "$T/help.txt" 2>&1
+  n=$((n + 1))
+  ! grep -qE 'UINT|FLOAT|4611686018427387904|:POSITIVE' "$T/help.txt" || fail "help-words $(basename "$tool"): $(grep -E 'UINT|FLOAT|POSITIVE' "$T/help.txt" | head -2)"
+done
+check help-range-words 0 'nested calls allowed, 1 to 100,000 \(default 1,000\)' -- "$F" --help
+# A scene given to a script command says which tool to use, with no VRML parse errors.
+check wrong-kind-render2d 1 'figure1-morphing.wrl: error: this is a VRML scene; .*fvrml-run' -- "$F" render2d "$SRC/examples/paper/figure1-morphing.wrl" --size 8 --bounds -1,1,-1,1
+check wrong-kind-run 1 'this is a VRML scene' -- "$F" run "$SRC/examples/paper/figure1-morphing.wrl"
+check wrong-kind-emit-ir 1 'this is a VRML scene' -- "$F" emit-ir "$SRC/examples/paper/figure1-morphing.wrl"
 check lsp-unknown-argument 2 "unknown argument '--port'" -- "$LSP" --port 4
 check repl-subcommand 0 '^3$' -- sh -c "printf '1+2\n:quit\n' | \"$F\" repl"
 check help-mentions-repl 0 'fscript repl.*fscript < FILE' -- sh -c "\"$F\" --help | tr '\n' ' '"
@@ -307,7 +319,7 @@ PY
   else
     skip_missing gltf-validator "the Khronos glTF validator is not installed in ${GLTF_VALIDATOR_DIR:-?} (./dev.sh test installs it with npm)"
   fi
-  check fvrml-run-format 2 "output format 'gltf' is not built yet" -- "$R" "$T/ball.wrl" -o "$T/ball.gltf"
+  check fvrml-run-format 2 "unsupported output format 'gltf': fvrml-run writes wrl, glb, ply, obj, stl and png" -- "$R" "$T/ball.wrl" -o "$T/ball.gltf"
   check fvrml-run-unwritable 1 'cannot write' -- "$R" "$T/ball.wrl" -o "$T/no/dir/x.ply"
   [ ! -e "$T/no/dir/x.ply" ] || { echo "FAIL half-written"; fails=$((fails + 1)); }
   check fvrml-run-listing1 0 '"triangles":[1-9]' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l1.ply" --stats

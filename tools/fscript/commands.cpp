@@ -149,7 +149,7 @@ int cmd_check(const std::vector<std::string>& files) {
 int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes, bool llvm) {
   Compiled c;
   std::string text;
-  if (!read_source(file, text)) return kExitInput;
+  if (refuse_scene(file) || !read_source(file, text)) return kExitInput;
   frontend::DiagnosticSink diag;
   // No entry point is fine here: the listing shows the functions with an empty kernel.
   driver::EntryChoice chosen = driver::named_entry(entry);

@@ -24,8 +24,16 @@ bool read_source(const std::string& path, std::string& text) {
 
 void print_diagnostics(const frontend::DiagnosticSink& sink) { std::cerr << frontend::render_all(sink); }
 
+bool refuse_scene(const std::string& path) {
+  if (!is_scene_path(path)) return false;  // not a script: no parse errors about VRML syntax
+  std::cerr << path << ": error: this is a VRML scene; fscript's commands take .fs scripts (fvrml-run " << path
+            << " runs a scene, fscript check " << path << " checks its scripts)\n";
+  return true;
+}
+
 int compile_file(const std::string& path, const std::string& entry, const Options& opts, Compiled& out,
                  bool want_kernel) {
+  if (refuse_scene(path)) return kExitInput;
   std::string text;
   if (!read_source(path, text)) return kExitInput;
   frontend::DiagnosticSink diag;

@@ -39,6 +39,8 @@ int compile_file(const std::string& path, const std::string& entry, const Option
 std::string format_number(float v);
 // A .wrl scene (also .wrl.gz, .wrz) rather than a .fs script.
 bool is_scene_path(const std::string& p);
+// For commands that take a script: true (with the message printed) when `path` is a scene instead.
+bool refuse_scene(const std::string& path);
 // Accepts decimal, hex float, nan, inf, -inf, -0. Returns false on anything else.
 bool parse_number(const std::string& text, float& out);
 

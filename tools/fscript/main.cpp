@@ -25,14 +25,19 @@ struct Args {
 };
 
 void add_budget_flags(CLI::App& app, Args& a) {
+  // Ranges are said in words in the help; CLI11's own hint ("UINT:UINT in [1 - 4611686018427387904]")
+  // is for parsers, not people. The range is still checked, with CLI11's message.
   app.add_option("--max-loop-iterations", a.opts.budgets.max_loop_iterations,
-                 "loop iterations allowed per evaluation (default 10000000)")
-      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 62));
-  app.add_option("--max-call-depth", a.max_depth, "nested calls allowed (default 1000)")
-      ->check(CLI::Range(1u, backends::kCallDepthCeiling));
+                 "loop iterations allowed per evaluation, at least 1 (default 10,000,000)")
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 62).description(""))
+      ->type_name("N");
+  app.add_option("--max-call-depth", a.max_depth, "nested calls allowed, 1 to 100,000 (default 1,000)")
+      ->check(CLI::Range(1u, backends::kCallDepthCeiling).description(""))
+      ->type_name("N");
   app.add_option("--max-array-elements", a.opts.budgets.max_array_elements,
-                 "array elements allowed per evaluation (default 1000000)")
-      ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 32));
+                 "array elements allowed per evaluation, up to 2^32 (default 1,000,000)")
+      ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 32).description(""))
+      ->type_name("N");
 }
 
 CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args& a) {
@@ -106,15 +111,21 @@ int real_main(int argc, char** argv) {
              "input runs once (fscript < FILE). Exit status: 0 success, 1 an error in the input, 2 usage.");
 
   CLI::App* bench = add_compiling(app, "bench", "time the batch path over many points", a);
-  bench->add_option("--points,-n", a.points, "number of points (default 1000000)")->check(CLI::Range(size_t{1}, size_t{1} << 32));
-  bench->add_option("--threads,-j", a.threads, "threads (default 1)")->check(CLI::Range(1u, 1024u));
+  bench->add_option("--points,-n", a.points, "number of points, at least 1 (default 1,000,000)")
+      ->check(CLI::Range(size_t{1}, size_t{1} << 32).description(""))
+      ->type_name("N");
+  bench->add_option("--threads,-j", a.threads, "threads, 1 to 1,024 (default 1)")
+      ->check(CLI::Range(1u, 1024u).description(""))
+      ->type_name("N");
   bench->add_flag("--one-point", a.one_point, "call the kernel one point at a time instead of in batches");
 
   CLI::App* r2d = add_compiling(app, "render2d", "picture of f(x, y, 0, 0) >= 0 as a PNG", a);
   r2d->add_option("--size,-s", a.size, "W or WxH pixels")->required();
   r2d->add_option("--bounds", a.bounds, "X0,X1,Y0,Y1")->required();
   r2d->add_option("-o,--output", a.out, "output PNG");
-  r2d->add_option("--threads,-j", a.threads, "threads (default 1)")->check(CLI::Range(1u, 1024u));
+  r2d->add_option("--threads,-j", a.threads, "threads, 1 to 1,024 (default 1)")
+      ->check(CLI::Range(1u, 1024u).description(""))
+      ->type_name("N");
   r2d->add_flag("--no-prune", a.no_prune, "evaluate every pixel (no interval pruning; the same picture, slower)");
   r2d->add_flag("--stats", a.stats, "print how the quadtree went: regions per level, tape lengths, points evaluated");
 

@@ -178,22 +178,31 @@ int run(int argc, char** argv) {
   bool disk_cache = false;
   app.add_flag("--llvm-disk-cache", disk_cache,
                "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
-  app.add_option("--time", o.model.now, "the scene clock in seconds after load (default 0)");
-  app.add_option("--fraction", o.fraction, "drive every node as if set_fraction F had been received")
-      ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--frames", o.frames, "sample N fractions i/N of the cycle: numbered mesh files, or a PNG contact sheet")
-      ->check(CLI::Range(1, 1000));
-  app.add_option("--resolution-scale", o.model.resolution_scale, "multiply every node's resolution")
-      ->check(CLI::PositiveNumber);
+  app.add_option("--time", o.model.now, "the scene clock in seconds after load (default 0)")->type_name("SECONDS");
+  app.add_option("--fraction", o.fraction, "drive every node as if set_fraction F (0 to 1) had been received")
+      ->check(CLI::Range(0.0, 1.0).description(""))
+      ->type_name("F");
+  app.add_option("--frames", o.frames,
+                 "sample N (1 to 1,000) fractions i/N of the cycle: numbered mesh files, or a PNG contact sheet")
+      ->check(CLI::Range(1, 1000).description(""))
+      ->type_name("N");
+  app.add_option("--resolution-scale", o.model.resolution_scale, "multiply every node's resolution by K > 0")
+      ->check(CLI::PositiveNumber.description(""))
+      ->type_name("K");
   app.add_flag("--stats", o.stats, "print one JSON object describing the resolved scene on standard error");
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
   app.add_option("--format", o.format, "wrl|glb|ply|obj|stl|png (default: from the output's extension; wrl)");
   app.add_flag("--keep-going", o.keep_going, "write what succeeded when a shape fails");
   app.add_option("--check", o.check, "compare the mesh with the reference mesh REF (ply, obj, stl): distances as JSON");
-  app.add_option("--width", o.width, "picture width in pixels (png)")->check(CLI::Range(16u, 8192u));
-  app.add_option("--height", o.height, "picture height in pixels (png)")->check(CLI::Range(16u, 8192u));
-  app.add_option("--threads", o.threads, "worker threads (default: all cores); the output is the same for any count")
-      ->check(CLI::Range(1, 256));
+  app.add_option("--width", o.width, "picture width in pixels, 16 to 8,192 (png)")
+      ->check(CLI::Range(16u, 8192u).description(""))
+      ->type_name("W");
+  app.add_option("--height", o.height, "picture height in pixels, 16 to 8,192 (png)")
+      ->check(CLI::Range(16u, 8192u).description(""))
+      ->type_name("H");
+  app.add_option("--threads", o.threads, "worker threads, 1 to 256 (default: all cores); the output is the same for any count")
+      ->check(CLI::Range(1, 256).description(""))
+      ->type_name("N");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -212,7 +221,7 @@ int run(int argc, char** argv) {
   if (o.format.empty()) o.format = "wrl";
   static const std::set<std::string> kFormats = {"wrl", "glb", "ply", "obj", "stl", "png"};
   if (!kFormats.count(o.format)) {
-    std::cerr << "error: output format '" << o.format << "' is not built yet (this build writes wrl, glb, ply, obj, stl and png)\n";
+    std::cerr << "error: unsupported output format '" << o.format << "': fvrml-run writes wrl, glb, ply, obj, stl and png\n";
     return 2;
   }
   bool animation = o.format == "wrl" || o.format == "glb";

@@ -144,6 +144,13 @@ with tempfile.TemporaryDirectory() as tmp:
     expect("bad backend", reply(fd, ":backend gpu"), r"^error: unknown backend 'gpu'")
     expect("backend kept after a bad one", reply(fd, ":backend"), r"^backend sse\n$")
     expect("time", type_line(fd, ":time sq(1.25) + 1"), r"evaluations/s")
+    expect("time of a constant says so", type_line(fd, ":time sq(1.25) + 1"), r"folded to a constant")
+    # An expensive expression is timed in about one evaluation's time (17 ms on the VM), not 4,096
+    # of them (70 s): the reply comes well within read_until's 20 s.
+    type_line(fd, "function fib(n) { return n < 2 ? n : fib(n - 1) + fib(n - 2); }")
+    expect("backend vm", reply(fd, ":backend vm"), r"^backend vm\n$")
+    expect("time of an expensive call", type_line(fd, ":time fib(22)"), r"evaluations/s")
+    expect("backend sse again", reply(fd, ":backend sse"), r"^backend sse\n$")
     plot = reply(fd, ":plot sin(x * 3) from -3 to 3")
     check_chart("plot 1d", plot, lambda x: math.sin(x * 3), -3, 3)
     expect("plot 1d axis", plot, r"\n +x from -3 to 3\n$")

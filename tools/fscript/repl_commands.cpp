@@ -151,6 +151,20 @@ void Session::cmd_asm(const std::string& arg, std::string& out) {
   out += text.empty() ? "error: " + error + "\n" : text;
 }
 
+// Whether the kernel only returns constants (the optimiser computed the expression).
+static bool folded_to_constant(const ir::Module& m) {
+  for (const auto& f : m.functions) {
+    if (!f->kernel) continue;
+    if (f->blocks.size() != 1) return false;
+    const ir::Inst* ret = f->entry()->terminator();
+    if (!ret || ret->op != ir::Op::Ret) return false;
+    for (const ir::Inst* a : ret->args)
+      if (a->op != ir::Op::Const) return false;
+    return true;
+  }
+  return false;
+}
+
 void Session::cmd_time(const std::string& arg, std::string& out) {
   Compiled c;
   if (arg.empty()) {
@@ -158,20 +172,25 @@ void Session::cmd_time(const std::string& arg, std::string& out) {
     return;
   }
   if (!compile("__repl__", {}, "return (\n" + arg + "\n);", arg, c, out)) return;
+  if (folded_to_constant(*c.module))
+    out += "note: the expression was folded to a constant when compiled: this times returning that constant, "
+           "not computing it\n";
   const backends::Kernel& k = *c.kernel;
   std::string name = opts_.backend;
   out += run_interruptible([&k, name] {
     using Clock = std::chrono::steady_clock;
-    const size_t n = 4096;
-    std::vector<float> result(n);
+    // Batches of 1, 2, 4... points until 0.3 s have passed: an expensive expression is timed in
+    // about the time of one evaluation, a cheap one over many.
+    std::vector<float> result(4096);
     float* outs[1] = {result.data()};
     backends::RuntimeError err;
-    size_t done = 0;
+    size_t done = 0, n = 1;
     auto start = Clock::now();
     double secs = 0;
     while (secs < 0.3) {
       if (!k.eval_batch(nullptr, outs, n, err)) return "error: " + err.message + "\n";
       done += n;
+      n = std::min<size_t>(n * 2, result.size());
       secs = std::chrono::duration<double>(Clock::now() - start).count();
     }
     char line[128];

@@ -348,6 +348,10 @@ class Builder {
     }
     if (implicit) {
       s.kind = ShapeKind::Implicit;
+      if (const vrml::FieldSlot* unused = geo.slot("parameters"); unused && unused->is_ref.empty())
+        diag_.warning(*scene_.file, unused->span,
+                      "'parameters' is not used by an implicit shape (its box is bboxCenter and bboxSize); it "
+                      "bounds u, v, w of a parametric one");
       for (int k = 0; k < 3; ++k) {
         double c = field_number(geo, "bboxCenter", k), size = field_number(geo, "bboxSize", k, 10);
         s.domain[2 * k] = c - size / 2;

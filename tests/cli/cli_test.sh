@@ -254,6 +254,13 @@ WRL
   printf '#VRML V2.0 utf8\nTransform { translation 1 0 0 children FShape { geometry FGeometry { definition "0.5^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [16] } } }\n' > "$T/ball.wrl"
   printf '#VRML V2.0 utf8\nFShape { geometry FGeometry {\n  definition "0.5-x*x-y*y-z*z"\n  parameters [0 1 0 1]\n} }\n' > "$T/unused.wrl"
   check fvrml-run-unused-field 0 "unused.wrl:4:3: warning: 'parameters' is not used by an implicit shape" -- "$R" "$T/unused.wrl" -o "$T/unused.ply"
+  # On a terminal without -o: a picture in the current folder, said so; -o - is VRML97 on stdout.
+  RABS="$(cd "$(dirname "$R")" && pwd)/$(basename "$R")" SRCABS="$(cd "$SRC" && pwd)"
+  rm -f "$T/ball.png"
+  check fvrml-run-tty-default 0 'no -o given: writing ball.png .*wrote ball.png: [0-9,]+ triangles' -- \
+    sh -c "cd '$T' && python3 '$SRCABS/tests/cli/tty_run.py' '$RABS' ball.wrl | tr '\n' ' '"
+  [ -s "$T/ball.png" ] || fail "fvrml-run-tty-default: no ball.png"
+  check fvrml-run-stdout 0 '^#VRML V2.0 utf8' -- "$R" "$T/ball.wrl" -o -
   check fvrml-run-summary 0 "^wrote $T/ball-summary.ply: [0-9,]+ triangles, 1 shape, [0-9.]+ s$" -- "$R" "$T/ball.wrl" -o "$T/ball-summary.ply"
   check fvrml-run-summary-png 0 "^wrote $T/ball-summary.png: [0-9,]+ triangles, 1 shape" -- "$R" "$T/ball.wrl" -o "$T/ball-summary.png"
   check fvrml-run-no-summary-with-stats 0 '^\{' -- sh -c "'$R' '$T/ball.wrl' -o '$T/ball-stats.ply' --stats 2>&1 >/dev/null | head -1"

@@ -1,10 +1,14 @@
 // fvrml-run: reads an FVRML scene, runs the time model, meshes every FVRML shape and writes VRML97,
 // glTF, PLY, OBJ, STL or a PNG picture; animated shapes become frames (VRML97 Switch, glTF
 // animation, numbered mesh files or a contact sheet); `--stats` reports the resolved scene as JSON.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -217,6 +221,20 @@ int run(int argc, char** argv) {
     std::cerr << "error: " << fscript::backends::missing_backend_message(o.model.compile.backend) << "\n";
     return 2;
   }
+  // On a terminal, no -o would mean thousands of coordinates on the screen: a picture instead, in
+  // the current folder, named after the scene (a pipe still gets VRML97 on standard output).
+  if (o.output.empty() && o.format.empty() && !o.stats && o.check.empty() && o.frames == 0 && isatty(STDOUT_FILENO)) {
+    std::string name = std::filesystem::path(o.path).filename().string();
+    for (const char* ext : {".wrl.gz", ".wrz", ".wrl", ".WRL"})
+      if (name.size() > std::strlen(ext) && name.compare(name.size() - std::strlen(ext), std::string::npos, ext) == 0) {
+        name.erase(name.size() - std::strlen(ext));
+        break;
+      }
+    o.output = name + ".png";
+    std::cerr << "no -o given: writing " << o.output << " (-o OUT.wrl|glb|ply|obj|stl|png chooses; -o - "
+              << "writes VRML97 to standard output)\n";
+  }
+  if (o.format.empty() && o.output == "-") o.format = "wrl";
   if (o.format.empty() && !o.output.empty()) o.format = o.output.substr(o.output.find_last_of('.') + 1);
   if (o.format.empty()) o.format = "wrl";
   static const std::set<std::string> kFormats = {"wrl", "glb", "ply", "obj", "stl", "png"};

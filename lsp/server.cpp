@@ -58,9 +58,20 @@ std::vector<json> Server::handle(const json& message) {
       out.push_back(response(id, result));
     }
   } catch (const json::exception& e) {  // a field missing or of the wrong type
-    if (is_request) out.push_back(error_response(message["id"], kInvalidParams, std::string("bad params: ") + e.what()));
+    if (is_request) out.push_back(error_response(message["id"], kInvalidParams, params_error(method, e)));
   }
   return out;
+}
+
+// The editor shows this: what was wrong with the params, in words, without the JSON library's
+// "[json.exception.type_error.302]" prefix.
+std::string Server::params_error(const std::string& method, const json::exception& e) {
+  std::string what = e.what();
+  if (size_t close = what.find("] "); what.rfind("[json.exception", 0) == 0 && close != std::string::npos)
+    what = what.substr(close + 2);
+  if (what.rfind("key '", 0) == 0 && what.find("' not found") != std::string::npos)
+    what = "the field " + what.substr(4, what.find("' not found") - 3) + " is missing";
+  return "invalid params for " + (method.empty() ? std::string("the request") : method) + ": " + what;
 }
 
 json Server::initialize_result() const {

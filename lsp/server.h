@@ -7,14 +7,12 @@
 #include <nlohmann/json.hpp>
 
 #include "lsp/documents.h"
+#include "lsp/features/features.h"
 
 namespace fscript::lsp {
 
 using json = nlohmann::json;
 
-// JSON-RPC and LSP error codes.
-constexpr int kParseError = -32700, kInvalidRequest = -32600, kMethodNotFound = -32601, kInvalidParams = -32602,
-              kInternalError = -32603, kServerNotInitialized = -32002, kRequestCancelled = -32800;
 
 class Server {
  public:
@@ -28,6 +26,7 @@ class Server {
   json request(const std::string& method, const json& params, std::vector<json>& out);
   void notification(const std::string& method, const json& params, std::vector<json>& out);
   json initialize_result() const;
+  static std::string params_error(const std::string& method, const json::exception& e);
   void publish(const Document& d, std::vector<json>& out);
   json in_embedded_script(const Document& scene, const std::string& method, const json& params);
 

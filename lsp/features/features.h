@@ -7,6 +7,11 @@
 
 namespace fscript::lsp {
 
+// JSON-RPC and LSP error codes.
+constexpr int kParseError = -32700, kInvalidRequest = -32600, kMethodNotFound = -32601, kInvalidParams = -32602,
+              kInternalError = -32603, kServerNotInitialized = -32002, kRequestCancelled = -32800,
+              kRequestFailed = -32803;  // LSP 3.17: a valid request the server declines; the message says why
+
 using json = nlohmann::json;
 
 json diagnostics(const Document& d);  // the params of textDocument/publishDiagnostics

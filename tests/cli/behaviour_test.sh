@@ -78,6 +78,11 @@ for b in $BACKENDS; do
   check "a runaway loop fails fast in fvrml-run on $b" 1 'runaway.wrl:2: error: loop iteration budget exceeded' \
     -- timeout 20 "$R" "$T/runaway.wrl" --backend "$b" -o "$T/runaway.ply"
 done
+# A runtime error in a .wrl names one place: the script's own line in the .wrl, and shows it.
+printf '#VRML V2.0 utf8\n# a comment\nFShape {\n  geometry FGeometry {\n    definition "function FRep(x, y, z, t) {\n      var s = 0;\n      while (1) { s = s + 1; }\n      return s;\n    }"\n  }\n}\n' > "$T/loop7.wrl"
+check "a runtime error points at its line in the .wrl" 1 'loop7.wrl:7: error: loop iteration budget exceeded: more than 1000 iterations in one evaluation$' \
+  -- "$R" "$T/loop7.wrl" -o "$T/loop7.ply" --max-loop-iterations 1000
+check "and shows that line" 1 '^      while \(1\) \{ s = s \+ 1; \}$' -- "$R" "$T/loop7.wrl" -o "$T/loop7.ply"
 # A long but finite loop (2^17 iterations a point, past the point where the VM goes lane by lane).
 printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 131072; i++) s = s + 1; return s - 131072 + x; }\n' > "$T/long.fs"
 check "a long loop finishes with every point on the VM" 0 '^2048 white pixels' -- "$F" render2d "$T/long.fs" --size 64 --bounds -1,1,-1,1 --backend vm

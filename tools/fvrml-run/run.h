@@ -52,7 +52,9 @@ struct Meshed {
 };
 
 // Prints a shape's failure at its line: an error, or a warning under --keep-going.
-void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, const std::string& what);
+// "PATH:LINE: error: WHAT" and the line; LINE is `line` (a runtime error's line in the .wrl) or
+// the node's. A warning with --keep-going.
+void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, const std::string& what, uint32_t line = 0);
 
 // Meshes every shape outside an FTransform and every top-level FTransform except those in `skip`;
 // `world` applies the enclosing Transforms (mesh files and pictures) or not (the VRML97 output keeps

@@ -104,28 +104,8 @@ void IntervalTape::eval(const std::vector<Interval>& inputs, IntervalEval& out) 
 
 bool eval_intervals(const Function& fn, const std::vector<Interval>& inputs, IntervalEval& out) {
   if (!interval_evaluable(fn)) return false;
-  eval_intervals_straight(fn, inputs, out);
+  IntervalTape(fn).eval(inputs, out);
   return true;
-}
-
-void eval_intervals_straight(const Function& fn, const std::vector<Interval>& inputs, IntervalEval& out) {
-  out.values.assign(fn.next_value, Interval::everything());
-  out.choices.assign(fn.next_value, Choice::Both);
-  out.outputs.clear();
-  for (const Inst* in : fn.entry()->insts) {
-    if (in->op == Op::Ret) {
-      for (const Inst* a : in->args) out.outputs.push_back(out.values[a->id]);
-      break;
-    }
-    out.values[in->id] = in->op == Op::Param && static_cast<size_t>(in->aux) < inputs.size()
-                             ? inputs[static_cast<size_t>(in->aux)]
-                             : interval_of(*in, out.values);
-    if (in->op == Op::Min || in->op == Op::Max || in->op == Op::Select) {
-      const auto& v = out.values;
-      out.choices[in->id] = choice(in->op, v[in->args[0]->id], v[in->args[1]->id],
-                                   in->args.size() > 2 ? v[in->args[2]->id] : Interval::everything());
-    }
-  }
 }
 
 }  // namespace fscript::ir

@@ -29,13 +29,10 @@ math::Interval interval_of(const Inst& in, const std::vector<math::Interval>& v)
 // Bounds every value of `fn` for parameters in `inputs` (one per parameter). False, with nothing
 // written, when `fn` is not interval_evaluable.
 bool eval_intervals(const Function& fn, const std::vector<math::Interval>& inputs, IntervalEval& out);
-// The same for a function known to be interval_evaluable (a simplified tape, or one checked
-// before): no check per call. `out` keeps its storage from call to call.
-void eval_intervals_straight(const Function& fn, const std::vector<math::Interval>& inputs, IntervalEval& out);
 
 // A straight-line kernel flattened for evaluation over many regions (a quadtree's tiles): one
 // step per value op with operand slots (the value ids), so nothing is chased through pointers.
-// Gives what eval_intervals gives.
+// eval_intervals is one IntervalTape evaluated once.
 class IntervalTape {
  public:
   explicit IntervalTape(const Function& fn);  // fn must be interval_evaluable

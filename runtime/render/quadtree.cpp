@@ -39,13 +39,18 @@ const ir::Function& kernel_function(const ir::Module& m) {
   return *m.functions.front();
 }
 
-// A tape and, once a dense batch needs it, its compiled kernel.
+// A module's kernel once a dense batch needs it; shared by every region that keeps the module.
+struct Compiled {
+  const backends::Kernel* kernel = nullptr;
+  std::unique_ptr<backends::Kernel> owned;
+};
+
+// A tape: its module, flattened for intervals, and compiled when needed.
 struct Tape {
   const ir::Module* module = nullptr;
   std::unique_ptr<ir::Module> owned;
-  std::shared_ptr<const ir::IntervalTape> intervals;  // the module's kernel, flattened
-  const backends::Kernel* kernel = nullptr;
-  std::unique_ptr<backends::Kernel> owned_kernel;
+  std::shared_ptr<const ir::IntervalTape> intervals;
+  std::shared_ptr<Compiled> compiled = std::make_shared<Compiled>();
   size_t ops = 0;
 };
 
@@ -82,7 +87,7 @@ class Renderer {
 
   // Every pixel of the rects, in one batch on the tape's kernel.
   bool dense(Tape& tape, const std::vector<Rect>& rects) {
-    if (!tape.kernel && !compile(tape)) return false;
+    if (!tape.compiled->kernel && !compile(tape)) return false;
     size_t n = 0;
     for (const Rect& r : rects) n += size_t(r.c1 - r.c0) * (r.r1 - r.r0);
     std::vector<std::vector<float>> cols(dense_.num_inputs(), std::vector<float>(n, 0.0f));
@@ -100,7 +105,7 @@ class Renderer {
     std::vector<std::vector<float>> outs(dense_.num_outputs(), std::vector<float>(n));
     std::vector<float*> out;
     for (auto& v : outs) out.push_back(v.data());
-    if (!tape.kernel->eval_batch(in.data(), out.data(), n, err_)) return false;
+    if (!tape.compiled->kernel->eval_batch(in.data(), out.data(), n, err_)) return false;
     for (size_t k = 0; k < n; ++k) px_[where[k]] = outs[0][k] >= 0.0f ? 255 : 0;
     stats_.points += n;
     return true;
@@ -122,7 +127,7 @@ class Renderer {
     if (s.ops * 10 > parent.ops * 9) {  // under 10% shorter: not worth a compile
       t.module = parent.module;
       t.intervals = parent.intervals;
-      t.kernel = parent.kernel;
+      t.compiled = parent.compiled;  // compiled at most once, by whichever region needs it first
       t.ops = parent.ops;
       return t;
     }
@@ -138,9 +143,10 @@ class Renderer {
   // (docs/performance.md), and every backend gives the same bits.
   bool compile(Tape& tape) {
     std::string error;
-    tape.owned_kernel = backends::make_backend("vm")->compile(*tape.module, o_.budgets, error);
-    if (!tape.owned_kernel) return err_ = {error, 0}, false;
-    tape.kernel = tape.owned_kernel.get();
+    Compiled& c = *tape.compiled;
+    c.owned = backends::make_backend("vm")->compile(*tape.module, o_.budgets, error);
+    if (!c.owned) return err_ = {error, 0}, false;
+    c.kernel = c.owned.get();
     ++stats_.kernels;
     return true;
   }
@@ -187,7 +193,7 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
     full.module = &m;
     if (prune) full.intervals = std::make_shared<const ir::IntervalTape>(fn);
     full.ops = stats.full_tape_ops;
-    if (!prune) full.kernel = &dense;
+    full.compiled->kernel = &dense;  // the full tape is what `dense` was compiled from
     // Tiles go to whichever thread is free: each writes only its own pixels, so the picture does
     // not depend on the schedule, and the regions' work is far from even.
     for (size_t t; !failed && (t = next.fetch_add(1)) < tiles.size();) {

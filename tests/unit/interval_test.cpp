@@ -293,13 +293,8 @@ TEST_CASE("intervals: thousands of random programs bound every point of random b
       std::vector<Box> boxes;
       std::vector<Interval> in;
       for (size_t a = 0; a < fn.num_params; ++a) boxes.push_back(random_box(rng)), in.push_back(boxes.back().iv);
-      ir::IntervalEval ev, flat;
+      ir::IntervalEval ev;
       REQUIRE(ir::eval_intervals(fn, in, ev));
-      ir::IntervalTape(fn).eval(in, flat);  // the flattened tape gives the same bounds and choices
-      CHECK(flat.choices == ev.choices);
-      for (size_t o = 0; o < ev.outputs.size(); ++o)
-        CHECK((flat.outputs[o].lo == ev.outputs[o].lo && flat.outputs[o].hi == ev.outputs[o].hi &&
-               flat.outputs[o].nan == ev.outputs[o].nan));
       want.push_back(ev.outputs[0]);
       add_case(batch, boxes, c, rng, 10);
     }

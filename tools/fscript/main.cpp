@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "runtime/support/big_stack.h"
+#include "tools/budget_flags.h"
 #include "tools/fscript/commands.h"
 #include "tools/fscript/repl.h"
 #include "runtime/support/version.h"
@@ -24,21 +25,7 @@ struct Args {
   uint32_t max_depth = 1000;
 };
 
-void add_budget_flags(CLI::App& app, Args& a) {
-  // Ranges are said in words in the help; CLI11's own hint ("UINT:UINT in [1 - 4611686018427387904]")
-  // is for parsers, not people. The range is still checked, with CLI11's message.
-  app.add_option("--max-loop-iterations", a.opts.budgets.max_loop_iterations,
-                 "loop iterations allowed per evaluation, at least 1 (default 10,000,000)")
-      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 62).description(""))
-      ->type_name("N");
-  app.add_option("--max-call-depth", a.max_depth, "nested calls allowed, 1 to 100,000 (default 1,000)")
-      ->check(CLI::Range(1u, backends::kCallDepthCeiling).description(""))
-      ->type_name("N");
-  app.add_option("--max-array-elements", a.opts.budgets.max_array_elements,
-                 "array elements allowed per evaluation, up to 2^32 (default 1,000,000)")
-      ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 32).description(""))
-      ->type_name("N");
-}
+void add_budget_flags(CLI::App& app, Args& a) { tools::add_budget_flags(app, a.opts.budgets, a.max_depth); }
 
 CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args& a) {
   CLI::App* c = app.add_subcommand(name, help);

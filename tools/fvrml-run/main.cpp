@@ -32,6 +32,7 @@
 #include "tools/fvrml-run/run.h"
 #include "runtime/support/files.h"
 #include "runtime/support/version.h"
+#include "tools/budget_flags.h"
 
 namespace fvrml_run {
 namespace {
@@ -184,17 +185,7 @@ int run(int argc, char** argv) {
                "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
   // The budgets of every script of the scene, as fscript's (README, "Common options").
   fscript::backends::Budgets& budgets = o.model.compile.budgets;
-  app.add_option("--max-loop-iterations", budgets.max_loop_iterations,
-                 "loop iterations allowed per evaluation, at least 1 (default 10,000,000)")
-      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 62).description(""))
-      ->type_name("N");
-  app.add_option("--max-call-depth", budgets.max_call_depth, "nested calls allowed, 1 to 100,000 (default 1,000)")
-      ->check(CLI::Range(1u, fscript::backends::kCallDepthCeiling).description(""))
-      ->type_name("N");
-  app.add_option("--max-array-elements", budgets.max_array_elements,
-                 "array elements allowed per evaluation, up to 2^32 (default 1,000,000)")
-      ->check(CLI::Range(uint64_t{0}, uint64_t{1} << 32).description(""))
-      ->type_name("N");
+  fscript::tools::add_budget_flags(app, budgets, budgets.max_call_depth);
   app.add_option("--time", o.model.now, "the scene clock in seconds after load (default 0)")->type_name("SECONDS");
   app.add_option("--fraction", o.fraction, "drive every node as if set_fraction F (0 to 1) had been received")
       ->check(CLI::Range(0.0, 1.0).description(""))

@@ -96,6 +96,12 @@ void Function::renumber() {
   next_block = bid;
 }
 
+const Function& Module::kernel_function() const {
+  for (const auto& f : functions)
+    if (f->kernel) return *f;
+  return *functions.front();
+}
+
 int Module::find_function(const std::string& name) const {
   for (size_t i = 0; i < functions.size(); ++i)
     if (functions[i]->name == name) return static_cast<int>(i);

@@ -93,6 +93,7 @@ struct Module {
   std::vector<std::unique_ptr<Function>> functions;
 
   int find_function(const std::string& name) const;
+  const Function& kernel_function() const;  // the entry (the first function if none is marked)
   int global_slot(const std::string& name);  // find or add
   std::unique_ptr<Module> clone() const;
 };

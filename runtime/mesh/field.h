@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "backends/backend.h"
+#include "ir/interval_eval.h"
+#include "runtime/math/interval.h"
 
 namespace fscript::mesh {
 
@@ -30,24 +32,42 @@ class EvalTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
+// The points x in [lo[0], hi[0]], y in [lo[1], hi[1]], z in [lo[2], hi[2]].
+struct Box3 {
+  float lo[3], hi[3];
+};
+
 class Field {
  public:
   virtual ~Field() = default;
   // out[i] = f(x[i], y[i], z[i]) for i < n; false on a runtime error.
   virtual bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
                     backends::RuntimeError& err) const = 0;
+  // Holds eval's result, rounding included, at every point of the box (NaN flagged). A field that
+  // cannot bound itself says "anything", and the polygonizer then samples the region point by point.
+  virtual math::Interval bound(const Box3&) const { return math::Interval::everything(); }
+  // Whether bound() can ever say more than "anything" (else the polygonizer does not ask).
+  virtual bool can_bound() const { return false; }
 };
 
-// An FRep kernel (inputs x, y, z, t; the first output) at time t.
+// The result of `tape` (a kernel of x, y, z, t and perhaps more inputs, given in `extra`) over a box.
+math::Interval kernel_bound(const ir::IntervalTape& tape, const Box3& b, const std::vector<math::Interval>& extra);
+
+// An FRep kernel (inputs x, y, z, t; the first output) at time t; `intervals`, when the kernel has
+// them (ir::interval_evaluable), bounds it.
 class KernelField : public Field {
  public:
-  KernelField(const backends::Kernel& k, float t) : k_(k), t_(t) {}
+  KernelField(const backends::Kernel& k, float t, const ir::IntervalTape* intervals = nullptr)
+      : k_(k), t_(t), intervals_(intervals) {}
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
             backends::RuntimeError& err) const override;
+  math::Interval bound(const Box3& b) const override;
+  bool can_bound() const override { return intervals_ != nullptr; }
 
  private:
   const backends::Kernel& k_;
   float t_;
+  const ir::IntervalTape* intervals_;
 };
 
 }  // namespace fscript::mesh

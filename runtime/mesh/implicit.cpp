@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
+#include "runtime/mesh/octree.h"
 #include "runtime/support/parallel.h"
 
 namespace fscript::mesh {
@@ -122,7 +124,8 @@ inline Vec3 position(const Grid& g, const Edge& e, float t) {
 // when k0 > -1) are placeholders into `boundary`.
 class Slab {
  public:
-  Slab(const Grid& g, const Field& f, int k0, int k1) : g_(g), f_(f), k0_(k0), k1_(k1) {}
+  Slab(const Grid& g, const Field& f, const BrickMap* bricks, int k0, int k1)
+      : g_(g), f_(f), bricks_(bricks), k0_(k0), k1_(k1) {}
 
   bool run(backends::RuntimeError& err) {
     size_t plane = g_.plane_size();
@@ -130,13 +133,17 @@ class Slab {
     cache_hi_.assign(plane * 7, kNone);
     values_lo_.assign(plane, -1.0f);
     values_hi_.assign(plane, -1.0f);
+    exact_lo_.assign(plane, 1);
+    exact_hi_.assign(plane, 1);
     plane_coordinates();
     std::vector<uint8_t> quad_lo(plane, 0), quad_hi(plane, 0);
-    if (!sample(k0_, values_lo_, err) || !sample(k0_ + 1, values_hi_, err)) return false;
+    if (!sample(k0_, values_lo_, exact_lo_, inexact_lo_, err) || !sample(k0_ + 1, values_hi_, exact_hi_, inexact_hi_, err))
+      return false;
     quads(values_lo_, quad_lo);
     quads(values_hi_, quad_hi);
     for (int k = k0_; k < k1_; ++k) {
       z_ = k;
+      if ((inexact_lo_ || inexact_hi_) && !settle(quad_lo, quad_hi, err)) return false;
       for (int j = -1; j < g_.ny; ++j) {
         size_t base = g_.in_plane(-1, j);
         for (int i = -1; i < g_.nx; ++i, ++base) {
@@ -154,9 +161,11 @@ class Slab {
       for (size_t d : dirty_hi_) cache_hi_[d] = kNone;
       dirty_hi_.clear();
       std::swap(values_lo_, values_hi_);
+      std::swap(exact_lo_, exact_hi_);
+      std::swap(inexact_lo_, inexact_hi_);
       std::swap(quad_lo, quad_hi);
       if (k + 1 < k1_) {
-        if (!sample(k + 2, values_hi_, err)) return false;
+        if (!sample(k + 2, values_hi_, exact_hi_, inexact_hi_, err)) return false;
         quads(values_hi_, quad_hi);
       }
     }
@@ -167,6 +176,8 @@ class Slab {
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<size_t> boundary;                  // placeholder n names cache slot boundary[n] of plane k0
   const std::vector<uint32_t>& top_cache() const { return cache_lo_; }  // plane k1's slots, after run()
+  size_t evaluated = 0;  // grid samples evaluated
+  bool unsound = false;  // a decided point's value had the other sign than its brick's bound
 
  private:
   // The x and y of every sample of a plane, row by row; only z changes from plane to plane.
@@ -179,17 +190,100 @@ class Slab {
         xs_[p] = static_cast<float>(g_.coord(0, i)), ys_[p] = static_cast<float>(g_.coord(1, j));
   }
 
-  // Fills the inside of `plane` with f on layer k; the padding ring stays at -1 (outside).
-  bool sample(int k, std::vector<float>& plane, backends::RuntimeError& err) {
+  // Fills the inside of `plane` with f on layer k; the padding ring stays at -1 (outside). Points of
+  // decided bricks get +1 or -1 and exact[p] = 0 (`inexact` counts them): settle() evaluates those a
+  // surface cube touches.
+  bool sample(int k, std::vector<float>& plane, std::vector<uint8_t>& exact, size_t& inexact,
+              backends::RuntimeError& err) {
+    inexact = 0;
+    std::fill(exact.begin(), exact.end(), uint8_t{1});
     if (k < 0 || k >= g_.nz) {
       std::fill(plane.begin(), plane.end(), -1.0f);
       return true;
     }
-    std::fill(zs_.begin(), zs_.end(), static_cast<float>(g_.coord(2, k)));
-    if (!evaluate(f_, xs_.data(), ys_.data(), zs_.data(), xs_.size(), f_out_.data(), err)) return false;
-    for (int j = 0; j < g_.ny; ++j)
-      std::copy_n(f_out_.data() + static_cast<size_t>(j) * g_.nx, g_.nx, plane.data() + g_.in_plane(0, j));
+    float z = static_cast<float>(g_.coord(2, k));
+    if (!bricks_ || bricks_->layer_open(k / BrickMap::kBrick)) {
+      std::fill(zs_.begin(), zs_.end(), z);
+      if (!evaluate(f_, xs_.data(), ys_.data(), zs_.data(), xs_.size(), f_out_.data(), err)) return false;
+      evaluated += xs_.size();
+      for (int j = 0; j < g_.ny; ++j)
+        std::copy_n(f_out_.data() + static_cast<size_t>(j) * g_.nx, g_.nx, plane.data() + g_.in_plane(0, j));
+      return true;
+    }
+    todo_.clear();
+    constexpr int B = BrickMap::kBrick;
+    for (int bj = 0; bj * B < g_.ny; ++bj)
+      for (int bi = 0; bi * B < g_.nx; ++bi) {
+        BrickClass c = bricks_->at(bi, bj, k / B);
+        int i1 = std::min(g_.nx, bi * B + B), j1 = std::min(g_.ny, bj * B + B);
+        size_t w = static_cast<size_t>(i1 - bi * B);
+        for (int j = bj * B; j < j1; ++j) {
+          size_t p = g_.in_plane(bi * B, j);
+          if (c == BrickClass::Open) {
+            for (size_t q = 0; q < w; ++q) todo_.push_back(static_cast<uint32_t>(p + q));
+            continue;
+          }
+          std::fill_n(plane.data() + p, w, c == BrickClass::Inside ? 1.0f : -1.0f);
+          std::fill_n(exact.data() + p, w, uint8_t{0});
+          inexact += w;
+        }
+      }
+    return evaluate_points(plane, z, err);
+  }
+
+  // plane[p] = f at the points todo_ lists (padded plane indices) on the plane at height z.
+  bool evaluate_points(std::vector<float>& plane, float z, backends::RuntimeError& err) {
+    size_t n = todo_.size(), row = static_cast<size_t>(g_.nx + 2);
+    gx_.resize(n), gy_.resize(n), gz_.assign(n, z), gout_.resize(n);
+    for (size_t q = 0; q < n; ++q) {
+      size_t i = todo_[q] % row - 1, j = todo_[q] / row - 1;
+      gx_[q] = xs_[i], gy_[q] = ys_[j * static_cast<size_t>(g_.nx)];
+    }
+    if (!evaluate(f_, gx_.data(), gy_.data(), gz_.data(), n, gout_.data(), err)) return false;
+    for (size_t q = 0; q < n; ++q) plane[todo_[q]] = gout_[q];
+    evaluated += n;
     return true;
+  }
+
+  // Every corner of every cube of the current layer with a sign change gets its real value: the
+  // march reads values only there. The bound decided the sign, so only the value changes; a sign
+  // that changes is a bug in a bound, and the job re-runs dense.
+  bool settle(const std::vector<uint8_t>& quad_lo, const std::vector<uint8_t>& quad_hi, backends::RuntimeError& err) {
+    const size_t row = static_cast<size_t>(g_.nx + 2);
+    std::vector<uint32_t> pending[2];
+    std::vector<uint8_t>* exact[2] = {&exact_lo_, &exact_hi_};
+    for (int j = -1; j < g_.ny; ++j) {
+      size_t base = g_.in_plane(-1, j);
+      for (int i = -1; i < g_.nx; ++i, ++base) {
+        if (i + 8 <= g_.nx && uniform8(quad_lo.data() + base, quad_hi.data() + base)) {
+          i += 7, base += 7;
+          continue;
+        }
+        unsigned mask = quad_lo[base] | quad_hi[base] << 4;
+        if (mask == 0 || mask == 0xFF) continue;
+        for (int c = 0; c < 8; ++c) {
+          size_t p = base + (c & 1) + ((c >> 1) & 1) * row;
+          uint8_t& e = (*exact[c >> 2])[p];
+          if (e == 0) e = 2, pending[c >> 2].push_back(static_cast<uint32_t>(p));
+        }
+      }
+    }
+    std::vector<float>* values[2] = {&values_lo_, &values_hi_};
+    size_t* inexact[2] = {&inexact_lo_, &inexact_hi_};
+    for (int h = 0; h < 2; ++h) {
+      if (pending[h].empty()) continue;
+      std::vector<float> marks;
+      for (uint32_t p : pending[h]) marks.push_back((*values[h])[p]);
+      todo_ = pending[h];
+      if (!evaluate_points(*values[h], static_cast<float>(g_.coord(2, z_ + h)), err)) return false;
+      for (size_t q = 0; q < todo_.size(); ++q) {
+        if (((*values[h])[todo_[q]] > 0) != (marks[q] > 0)) unsound = true;
+        (*exact[h])[todo_[q]] = 1;
+      }
+      *inexact[h] -= todo_.size();
+    }
+    if (unsound) err.message = "internal error: an interval bound disagreed with the function";
+    return !unsound;
   }
 
   // quad[p]: bits for p, p+x, p+y, p+x+y inside (NaN and 0 are outside). Two flat passes over
@@ -265,11 +359,14 @@ class Slab {
 
   const Grid& g_;
   const Field& f_;
+  const BrickMap* bricks_;  // null: every point is sampled
   int k0_, k1_, z_ = 0;
   std::vector<uint32_t> cache_lo_, cache_hi_;
   std::vector<size_t> dirty_lo_, dirty_hi_;
-  std::vector<float> values_lo_, values_hi_, xs_, ys_, zs_, f_out_;
-  std::vector<uint8_t> inside_;
+  std::vector<float> values_lo_, values_hi_, xs_, ys_, zs_, f_out_, gx_, gy_, gz_, gout_;
+  std::vector<uint8_t> inside_, exact_lo_, exact_hi_;
+  size_t inexact_lo_ = 0, inexact_hi_ = 0;
+  std::vector<uint32_t> todo_;
 };
 
 // Runs fn(begin, end) over [0, n) split into `threads` contiguous parts; false if any part fails.
@@ -395,6 +492,24 @@ bool merge(std::vector<Slab>& slabs, Mesh& m, std::vector<Edge>& edges, backends
   return true;
 }
 
+// Samples and marches the grid in z-slabs, then merges them. A slab whose decided points were
+// contradicted by the function sets st.fallbacks (the caller runs again without bricks).
+bool march(const Grid& g, const Field& f, const BrickMap* bricks, int threads, Mesh& out, std::vector<Edge>& edges,
+           PruneStats& st, backends::RuntimeError& err) {
+  // Cube layers -1 .. nz-1, in contiguous slabs of at least 8 layers.
+  int layers = g.nz + 1;
+  int parts = std::max(1, std::min(threads, layers / 8));
+  std::vector<Slab> slabs;
+  for (int s = 0; s < parts; ++s) slabs.emplace_back(g, f, bricks, -1 + layers * s / parts, -1 + layers * (s + 1) / parts);
+  bool ok = support::run_parts(parts, [&](int s, backends::RuntimeError& e) { return slabs[static_cast<size_t>(s)].run(e); }, err);
+  st.evaluated = 0;
+  for (const Slab& s : slabs) st.evaluated += s.evaluated, st.fallbacks += s.unsound;
+  if (!ok) return false;
+  out = Mesh{};
+  edges.clear();
+  return merge(slabs, out, edges, err);
+}
+
 }  // namespace
 
 bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backends::RuntimeError& err) {
@@ -412,23 +527,42 @@ bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backends::RuntimeErr
     g.lo[a] = job.box[2 * a];
     g.h[a] = (job.box[2 * a + 1] - job.box[2 * a]) / n[a];
   }
-  // Cube layers -1 .. nz-1, in contiguous slabs of at least 8 layers.
-  int layers = g.nz + 1;
-  int parts = std::max(1, std::min(job.threads, layers / 8));
-  std::vector<Slab> slabs;
-  for (int s = 0; s < parts; ++s) slabs.emplace_back(g, *job.field, -1 + layers * s / parts, -1 + layers * (s + 1) / parts);
-  if (!support::run_parts(parts, [&](int s, backends::RuntimeError& e) { return slabs[static_cast<size_t>(s)].run(e); }, err))
-    return false;
+  std::unique_ptr<BrickMap> bricks;
+  if (job.prune && job.field->can_bound()) {
+    std::array<std::vector<float>, 3> axis;
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < n[a]; ++i) axis[a].push_back(static_cast<float>(g.coord(a, i)));
+    bricks = std::make_unique<BrickMap>(*job.field, axis, job.threads);
+  }
+  PruneStats st = bricks ? bricks->stats() : PruneStats{};
+  st.points = static_cast<size_t>(g.nx) * g.ny * g.nz;
   std::vector<Edge> edges;
-  if (!merge(slabs, out, edges, err)) return false;
-  slabs.clear();
-  return refine(g, *job.field, edges, out, job.refine_steps, job.threads, err) &&
+  bool ok = march(g, *job.field, bricks.get(), job.threads, out, edges, st, err);
+  if (!ok && st.fallbacks) ok = march(g, *job.field, nullptr, job.threads, out, edges, st, err);
+  add_prune_totals(st);
+  if (job.stats) *job.stats = st;
+  return ok && refine(g, *job.field, edges, out, job.refine_steps, job.threads, err) &&
          normals(g, *job.field, edges, out, job.threads, err);
 }
 
 std::atomic<uint64_t>& evaluation_ns() {
   static std::atomic<uint64_t> total{0};
   return total;
+}
+
+math::Interval kernel_bound(const ir::IntervalTape& tape, const Box3& b, const std::vector<math::Interval>& extra) {
+  thread_local std::vector<math::Interval> in;
+  thread_local ir::IntervalEval ev;
+  in.clear();
+  for (int a = 0; a < 3; ++a) in.push_back({b.lo[a], b.hi[a], false});
+  in.insert(in.end(), extra.begin(), extra.end());
+  tape.eval(in, ev);
+  return ev.outputs.empty() ? math::Interval::everything() : ev.outputs[0];
+}
+
+math::Interval KernelField::bound(const Box3& b) const {
+  if (!intervals_) return math::Interval::everything();
+  return kernel_bound(*intervals_, b, {math::Interval::point(t_)});
 }
 
 bool KernelField::eval(const float* x, const float* y, const float* z, size_t n, float* out,

@@ -5,12 +5,13 @@
 // closed surface gives a watertight 2-manifold mesh. The padding is "outside", so a solid cut by
 // the box is closed by caps lying exactly on the box faces. Vertices are refined onto the surface
 // by regula falsi on the real function; normals come from its gradient. All evaluation goes through
-// Kernel batches.
+// Kernel batches; the octree of interval bounds (octree.h) spares the samples far from the surface.
 #include <array>
 
 #include "backends/backend.h"
 #include "runtime/mesh/field.h"
 #include "runtime/mesh/mesh.h"
+#include "runtime/mesh/octree.h"
 
 namespace fscript::mesh {
 
@@ -20,6 +21,8 @@ struct ImplicitJob {
   std::array<int, 3> cells{50, 50, 50};     // samples per axis inside the box
   int refine_steps = 3;
   int threads = 1;  // z-slabs marched in parallel; the output is the same bytes for any count
+  bool prune = true;  // skip the bricks the field's bounds decide (same mesh); false: sample all
+  PruneStats* stats = nullptr;  // filled when given (and added to prune_totals() in any case)
 };
 
 // Polygonizes; returns false with a runtime error from the kernel (budget, bounds).

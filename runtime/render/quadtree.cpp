@@ -33,12 +33,6 @@ struct Rect {
   uint32_t c0, r0, c1, r1;  // columns [c0, c1), rows [r0, r1)
 };
 
-const ir::Function& kernel_function(const ir::Module& m) {
-  for (const auto& f : m.functions)
-    if (f->kernel) return *f;
-  return *m.functions.front();
-}
-
 // A module's kernel once a dense batch needs it; shared by every region that keeps the module.
 struct Compiled {
   const backends::Kernel* kernel = nullptr;
@@ -123,7 +117,7 @@ class Renderer {
   // The parent's tape specialised to the region, or the parent's itself when that saves little.
   Tape simplified(Tape& parent, const ir::IntervalEval& ev) {
     Tape t;
-    ir::SimplifiedTape s = ir::simplify_tape(kernel_function(*parent.module), ev);
+    ir::SimplifiedTape s = ir::simplify_tape(parent.module->kernel_function(), ev);
     if (s.ops * 10 > parent.ops * 9) {  // under 10% shorter: not worth a compile
       t.module = parent.module;
       t.intervals = parent.intervals;
@@ -133,7 +127,7 @@ class Renderer {
     }
     t.owned = std::move(s.module);
     t.module = t.owned.get();
-    t.intervals = std::make_shared<const ir::IntervalTape>(kernel_function(*t.module));
+    t.intervals = std::make_shared<const ir::IntervalTape>(t.module->kernel_function());
     t.ops = s.ops;
     return t;
   }
@@ -174,7 +168,7 @@ void merge(QuadtreeStats& into, const QuadtreeStats& part) {
 bool render_inside(const ir::Module& m, const backends::Kernel& dense, const PlaneGrid& g, const InsideOptions& o,
                    std::vector<uint8_t>& px, QuadtreeStats& stats, backends::RuntimeError& err) {
   px.assign(size_t(g.w) * g.h, 0);
-  const ir::Function& fn = kernel_function(m);
+  const ir::Function& fn = m.kernel_function();
   stats = {};
   stats.full_tape_ops = ir::tape_length(fn);
   bool prune = o.prune && dense.num_inputs() >= 2 && dense.num_outputs() >= 1 && ir::interval_evaluable(fn);

@@ -147,9 +147,16 @@ class Builder {
       diag_.error(*c.script.file, {0, 1}, what + r.error);
       return false;
     }
-    out.kernel = std::move(c.kernel);
+    keep(c, out);
     out.field = field;
     return true;
+  }
+
+  // The kernel, and its interval tape for the polygonizer's octree.
+  static void keep(driver::Compiled& c, CompiledField& out) {
+    out.kernel = std::move(c.kernel);
+    if (c.module && ir::interval_evaluable(c.module->kernel_function()))
+      out.intervals = std::make_shared<const ir::IntervalTape>(c.module->kernel_function());
   }
 
   driver::CompileOptions options(const std::vector<std::string>& extra = {}) const {
@@ -199,7 +206,7 @@ class Builder {
       diag_.error(*c.script.file, {0, 1}, r.stage == driver::Stage::Entry ? r.error : "cannot compile '" + e.field + "': " + r.error);
       return false;
     }
-    out.kernel = std::move(c.kernel);
+    keep(c, out);
     out.field = e.field;
     return true;
   }

@@ -12,6 +12,7 @@
 #include "backends/backend.h"
 #include "frontend/diagnostics.h"
 #include "frontend/vrml/scene_graph.h"
+#include "ir/interval_eval.h"
 #include "runtime/driver/driver.h"
 #include "runtime/scene/time_model.h"
 
@@ -37,6 +38,7 @@ TimeSensorFields time_fields(const vrml::Node& n);
 struct CompiledField {
   std::string field;
   std::unique_ptr<backends::Kernel> kernel;
+  std::shared_ptr<const ir::IntervalTape> intervals;  // bounds on it, when ir::interval_evaluable
   bool rgb = false;  // colour: the script sets r, g, b (else its value goes through the pattern)
   double span0 = 0, span1 = 1;  // the node's timeSpan
   double t = 0;                 // the node's t at the evaluated time

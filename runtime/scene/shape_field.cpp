@@ -26,6 +26,18 @@ bool ShapeField::eval(const float* x, const float* y, const float* z, size_t n, 
   return true;
 }
 
+math::Interval ShapeField::bound(const mesh::Box3& b) const {
+  if (!can_bound()) return math::Interval::everything();
+  math::Interval f = mesh::kernel_bound(*s_.geometry.intervals, b, {math::Interval::point(static_cast<float>(s_.geometry.t))});
+  if (!s_.texture) return f;
+  std::vector<math::Interval> uvw_t;  // the texture sees (x, y, z, u, v, w, t) with u, v, w = x, y, z
+  for (int a = 0; a < 3; ++a) uvw_t.push_back({b.lo[a], b.hi[a], false});
+  uvw_t.push_back(math::Interval::point(static_cast<float>(s_.texture->t)));
+  return math::iv::add(f, mesh::kernel_bound(*s_.texture->intervals, b, uvw_t));
+}
+
+bool ShapeField::can_bound() const { return s_.geometry.intervals && (!s_.texture || s_.texture->intervals); }
+
 namespace {
 
 // The components of one affine field: compiled FScript (evaluated at t, the point kernel's value),
@@ -57,6 +69,49 @@ void apply(const Mat4& m, float& x, float& y, float& z) {
   double p[3] = {x, y, z}, q[3];
   for (int r = 0; r < 3; ++r) q[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
   x = static_cast<float>(q[0]), y = static_cast<float>(q[1]), z = static_cast<float>(q[2]);
+}
+
+// The box holding m p (computed in double, rounded to float) for every p of b: the corners' hull in
+// double, widened far beyond double rounding, then rounded outward to float.
+mesh::Box3 moved_box(const Mat4& m, const mesh::Box3& b) {
+  mesh::Box3 out;
+  for (int r = 0; r < 3; ++r) {
+    double lo = m[12 + r], hi = m[12 + r], size = std::fabs(m[12 + r]);
+    for (int a = 0; a < 3; ++a) {
+      double p = m[4 * a + r] * b.lo[a], q = m[4 * a + r] * b.hi[a];
+      lo += std::min(p, q), hi += std::max(p, q), size += std::max(std::fabs(p), std::fabs(q));
+    }
+    lo -= 1e-9 * size, hi += 1e-9 * size;
+    float flo = static_cast<float>(lo), fhi = static_cast<float>(hi);
+    out.lo[r] = static_cast<double>(flo) > lo ? std::nextafter(flo, -INFINITY) : flo;
+    out.hi[r] = static_cast<double>(fhi) < hi ? std::nextafter(fhi, INFINITY) : fhi;
+  }
+  return out;
+}
+
+// f + g +- sqrt(f^2 + g^2) + a0 / (1 + (f/a1)^2 + (g/a2)^2) as eval computes it (in double, then
+// rounded to float). The first part rises with f and with g (its partial derivatives are
+// 1 +- f / sqrt(f^2 + g^2) >= 0), so its corners bound it exactly, where interval arithmetic
+// would lose the link between f and sqrt(f^2 + g^2) and bound nothing; the bump lies between its
+// values at the largest and the smallest squares. Widened far beyond the double rounding.
+math::Interval blend_bound(math::Interval f, math::Interval g, double sign, double a0, double a1, double a2) {
+  if (f.empty() || g.empty()) return math::Interval::nan_only();
+  double fl = f.lo, fh = f.hi, gl = g.lo, gh = g.hi;
+  if (!std::isfinite(fl) || !std::isfinite(fh) || !std::isfinite(gl) || !std::isfinite(gh) || a1 == 0 || a2 == 0)
+    return math::Interval::everything();
+  auto part = [sign](double x, double y) { return x + y + sign * std::sqrt(x * x + y * y); };
+  auto squares = [](double lo, double hi, double a) {  // the range of (v / a)^2 for v in [lo, hi]
+    double p = (lo / a) * (lo / a), q = (hi / a) * (hi / a);
+    return std::pair<double, double>{lo <= 0 && hi >= 0 ? 0 : std::min(p, q), std::max(p, q)};
+  };
+  auto [f2lo, f2hi] = squares(fl, fh, a1);
+  auto [g2lo, g2hi] = squares(gl, gh, a2);
+  double b1 = a0 / (1 + f2hi + g2hi), b2 = a0 / (1 + f2lo + g2lo);
+  double lo = part(fl, gl) + std::min(b1, b2), hi = part(fh, gh) + std::max(b1, b2);
+  double slack = 1e-9 * (3 * std::max({std::fabs(fl), std::fabs(fh), std::fabs(gl), std::fabs(gh)}) + std::fabs(a0));
+  if (!std::isfinite(lo) || !std::isfinite(hi)) return math::Interval::everything();
+  return {std::nextafter(static_cast<float>(lo - slack), -INFINITY), std::nextafter(static_cast<float>(hi + slack), INFINITY),
+          f.nan || g.nan};
 }
 
 }  // namespace
@@ -186,6 +241,40 @@ bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, 
       }
     }
   return true;
+}
+
+bool GroupField::can_bound() const {
+  if (!invalid_.empty() || (g_.op_kernel && !g_.op_kernel->intervals)) return false;
+  return std::all_of(kids_.begin(), kids_.end(), [](const auto& k) { return k->can_bound(); });
+}
+
+// The same fold as eval, on intervals.
+math::Interval GroupField::bound(const mesh::Box3& box) const {
+  if (!can_bound()) return math::Interval::everything();
+  mesh::Box3 b = moved_ ? moved_box(inverse_, box) : box;
+  std::vector<math::Interval> vals;
+  for (const auto& k : kids_) vals.push_back(k->bound(b));
+  const math::Interval zero = math::Interval::point(0);
+  if (g_.op_kernel) {  // inputs f, g, f1..f16, t
+    std::vector<math::Interval> in = {vals[0], vals.size() > 1 ? vals[1] : zero};
+    for (size_t k = 0; k < static_cast<size_t>(kMaxOperands); ++k) in.push_back(k < vals.size() ? vals[k] : zero);
+    in.push_back(math::Interval::point(static_cast<float>(g_.op_kernel->t)));
+    thread_local ir::IntervalEval ev;
+    g_.op_kernel->intervals->eval(in, ev);
+    return ev.outputs.empty() ? math::Interval::everything() : ev.outputs[0];
+  }
+  const vrml::Value* p = g_.node->get("parameters");
+  double a0 = p && p->nums.size() > 0 ? p->nums[0] : 0, a1 = p && p->nums.size() > 1 ? p->nums[1] : 1,
+         a2 = p && p->nums.size() > 2 ? p->nums[2] : 1;
+  std::string op = g_.operation.empty() ? "union" : g_.operation;
+  math::Interval out = vals[0];
+  for (size_t k = 1; k < vals.size(); ++k) {
+    if (op == "intersection") out = math::iv::min(out, vals[k]);
+    else if (op == "subtraction" || op == "difference") out = math::iv::min(out, math::iv::neg(vals[k]));
+    else if (op == "blend_union" || op == "blend_intersection") out = blend_bound(out, vals[k], op == "blend_union" ? 1 : -1, a0, a1, a2);
+    else out = math::iv::max(out, vals[k]);
+  }
+  return out;
 }
 
 bool parametric_group(const SceneModel& m, int group) {

@@ -23,6 +23,8 @@ class ShapeField : public mesh::Field {
   explicit ShapeField(const Shape& s) : s_(s) {}
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
             backends::RuntimeError& err) const override;
+  math::Interval bound(const mesh::Box3& b) const override;
+  bool can_bound() const override;
 
  private:
   const Shape& s_;
@@ -33,6 +35,8 @@ class GroupField : public mesh::Field {
   GroupField(const SceneModel& m, int group);
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
             backends::RuntimeError& err) const override;
+  math::Interval bound(const mesh::Box3& b) const override;
+  bool can_bound() const override;
   // False (with a message) when a child cannot be part of an implicit field (a parametric shape).
   bool valid(std::string& why) const;
   std::array<double, 6> box() const;     // the union of the children's boxes

@@ -146,7 +146,7 @@ void transform_mesh(const Mat4& t, mesh::Mesh& m) {
     for (auto& tri : m.triangles) std::swap(tri[1], tri[2]);
 }
 
-bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bool world, int threads) {
+bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bool world, int threads, bool prune) {
   if (!s.geometry.kernel) {
     err.message = "the shape has no compiled geometry";
     return false;
@@ -159,6 +159,7 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bo
     job.box = s.domain;
     job.cells = s.resolution;
     job.threads = threads;
+    job.prune = prune;
     ok = mesh::polygonize_implicit(job, out, err);
   } else {
     mesh::KernelParametric map(*s.geometry.kernel, static_cast<float>(s.geometry.t));
@@ -179,7 +180,8 @@ namespace {
 
 // An FTransform over parametric children: a union is every child's mesh together (moved by the
 // FTransform's matrix); an analytical operation is one parametric map (GroupParametric).
-bool mesh_parametric_group(const SceneModel& m, int group, mesh::Mesh& out, backends::RuntimeError& err, int threads) {
+bool mesh_parametric_group(const SceneModel& m, int group, mesh::Mesh& out, backends::RuntimeError& err, int threads,
+                           bool prune) {
   const Group& g = m.groups[group];
   std::string op = g.operation.empty() ? "union" : g.operation;
   if (!g.op_kernel && op == "union" && g.children.size() > 1) {
@@ -187,7 +189,8 @@ bool mesh_parametric_group(const SceneModel& m, int group, mesh::Mesh& out, back
     if (!group_matrix(g, matrix, err)) return false;
     for (auto [is_group, index] : g.children) {
       mesh::Mesh part;
-      if (!(is_group ? mesh_group(m, index, part, err, false, threads) : mesh_shape(m.shapes[index], part, err, false, threads)))
+      if (!(is_group ? mesh_group(m, index, part, err, false, threads, prune)
+                    : mesh_shape(m.shapes[index], part, err, false, threads, prune)))
         return false;
       transform_mesh(matrix, part);
       out.append(part);
@@ -223,10 +226,10 @@ const Shape* first_shape_below(const SceneModel& m, int group) {
 }  // namespace
 
 bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::RuntimeError& err, bool world,
-                int threads) {
+                int threads, bool prune) {
   out = mesh::Mesh{};
   if (parametric_group(m, group)) {
-    if (!mesh_parametric_group(m, group, out, err, threads)) return false;
+    if (!mesh_parametric_group(m, group, out, err, threads, prune)) return false;
     const Shape* first = first_shape_below(m, group);
     if (first && world) transform_mesh(first->transform, out);
     return true;
@@ -242,6 +245,7 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::Runti
   job.box = field.box();
   job.cells = field.cells();
   job.threads = threads;
+  job.prune = prune;
   if (!mesh::polygonize_implicit(job, out, err)) return false;
   const Shape* first = field.first_shape();
   if (first && (!colour_vertices(*first, out, err) || !evaluate_material(*first, out, err))) return false;

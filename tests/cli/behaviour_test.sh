@@ -166,7 +166,10 @@ fi
 
 # ---- Every --stats field ----
 jcheck "--stats fields of a single run" err "
-set(j) == {'compile_ms', 'evaluation_ms', 'ftransforms', 'parse_ms', 'polygonize_ms', 'shapes', 'write_ms'} and
+set(j) == {'compile_ms', 'evaluation_ms', 'ftransforms', 'parse_ms', 'polygonize_ms', 'prune', 'shapes', 'write_ms'} and
+set(j['prune']) == {'evaluated', 'evaluated_fraction', 'fallbacks', 'levels', 'points', 'pruned'} and
+j['prune']['pruned'] and j['prune']['points'] == 512 and j['prune']['fallbacks'] == 0 and
+[l['size'] for l in j['prune']['levels']] == [64, 32, 16, 8] and
 all(j[k] >= 0 for k in ('compile_ms', 'evaluation_ms', 'parse_ms', 'polygonize_ms', 'write_ms')) and
 set(j['shapes'][0]) == {'active', 'domain', 'fraction', 'frames', 'geometry', 'kind', 'line', 'resolution', 'transform', 'triangles', 'vertices'} and
 j['shapes'][0]['kind'] == 'implicit' and j['shapes'][0]['line'] == 2 and j['shapes'][0]['resolution'] == [8, 8, 8] and
@@ -271,5 +274,37 @@ fi
 # A kernel intervals cannot bound (a loop) renders densely, and says so.
 printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 3; i = i + 1) s = s + x; return 0.5 - s * s - y * y; }\n' > "$T/loop2d.fs"
 same_picture loop "$T/loop2d.fs" --size 64 --bounds -1,1,-1,1
+
+# ---- fvrml-run prunes implicit meshing by an octree: the same file bytes as --no-prune ----
+# same_mesh NAME SCENE ARGS...: pruned (1 and 2 threads) and dense outputs byte for byte, every backend.
+same_mesh() {
+  local name="$1" scene="$2"
+  shift 2
+  for be in $BACKENDS; do
+    "$R" "$scene" "$@" --backend "$be" --no-prune -o "$T/dense.ply" > /dev/null 2>&1 || true
+    for th in 1 2; do
+      "$R" "$scene" "$@" --backend "$be" --threads $th -o "$T/pruned.ply" > /dev/null 2>&1 || true
+      n=$((n + 1))
+      [ -s "$T/dense.ply" ] && cmp -s "$T/dense.ply" "$T/pruned.ply" ||
+        fail "fvrml-run-prune $name ($be, --threads $th): the pruned mesh differs from --no-prune"
+    done
+  done
+}
+cat > "$T/csg3d.wrl" <<'WRL'
+#VRML V2.0 utf8
+FTransform { operation "subtraction" translation "0.1, 0, 0" children [
+  FShape { geometry FGeometry { definition "min(0.8^2-x^2-y^2-z^2, 0.6-abs(z))" bboxSize 2 2 2 resolution [61] } }
+  FShape { geometry FGeometry { definition "0.3^2-x^2-y^2" bboxSize 2 2 2 resolution [61] } } ] }
+WRL
+same_mesh csg3d "$T/csg3d.wrl"
+same_mesh gyroid-sphere "$SRC/bench/scenes/gyroid-sphere256.wrl" --resolution-scale 0.25
+same_mesh figure6 "$P/figure6-blends.wrl" --resolution-scale 0.3 --fraction 0.5
+jcheck "fvrml-run --stats: the octree decided regions and spared samples" err "
+j['prune']['pruned'] and 0 < j['prune']['evaluated'] < j['prune']['points'] == 61 ** 3 and
+sum(l['empty'] + l['full'] for l in j['prune']['levels']) > 0
+" -- "$R" "$T/csg3d.wrl" --stats -o "$T/c.ply"
+jcheck "fvrml-run --no-prune --stats: every sample evaluated" err "
+not j['prune']['pruned'] and j['prune']['evaluated'] >= j['prune']['points'] == 61 ** 3
+" -- "$R" "$T/csg3d.wrl" --stats --no-prune -o "$T/c.ply"
 
 finish behaviour

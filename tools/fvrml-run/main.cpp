@@ -24,6 +24,7 @@
 #include "runtime/mesh/field.h"
 #include "runtime/mesh/mesh_io.h"
 #include "runtime/mesh/mesh_read.h"
+#include "runtime/mesh/octree.h"
 #include "runtime/render/png.h"
 #include "runtime/render/raster.h"
 #include "runtime/scene/scene_model.h"
@@ -94,6 +95,16 @@ bool check_against(const std::string& ref, const mesh::Mesh& all) {
                       {"watertight", t.watertight}, {"manifold", t.manifold}, {"euler", t.euler}};
   std::cout << j.dump() << "\n";
   return true;
+}
+
+// The octree's figures over every implicit shape meshed (runtime/mesh/octree.h).
+nlohmann::json prune_json() {
+  const mesh::PruneStats& p = mesh::prune_totals();
+  nlohmann::json levels = nlohmann::json::array();
+  for (const auto& l : p.levels)
+    levels.push_back({{"size", l.size}, {"empty", l.empty}, {"full", l.full}, {"ambiguous", l.ambiguous}});
+  return {{"pruned", p.pruned}, {"levels", levels}, {"points", p.points}, {"evaluated", p.evaluated},
+          {"evaluated_fraction", p.points ? double(p.evaluated) / double(p.points) : 1.0}, {"fallbacks", p.fallbacks}};
 }
 
 // 590776 -> "590,776".
@@ -198,6 +209,10 @@ int run(int argc, char** argv) {
       ->check(CLI::PositiveNumber.description(""))
       ->type_name("K");
   app.add_flag("--stats", o.stats, "print one JSON object describing the resolved scene on standard error");
+  bool no_prune = false;
+  app.add_flag("--no-prune", no_prune,
+               "sample every grid point of implicit shapes (the same meshes; by default interval bounds skip the "
+               "regions far from the surface)");
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
   app.add_option("--format", o.format, "wrl|glb|ply|obj|stl|png (default: from the output's extension; wrl)");
   app.add_flag("--keep-going", o.keep_going, "write what succeeded when a shape fails");
@@ -217,6 +232,7 @@ int run(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   if (o.fraction >= 0) o.model.fraction = o.fraction;
+  o.prune = !no_prune;
   if (std::string message; disk_cache && !fscript::backends::enable_llvm_disk_cache(message)) {
     std::cerr << "error: " << message << "\n";
     return 2;
@@ -265,7 +281,10 @@ int run(int argc, char** argv) {
     return 1;
   }
   int rc = o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
-  if (o.stats && rc == 0) std::cerr << st.dump() << "\n";
+  if (o.stats && rc == 0) {
+    st["prune"] = prune_json();
+    std::cerr << st.dump() << "\n";
+  }
   if (!o.stats && rc == 0 && !o.output.empty() && o.output != "-") std::cerr << written_summary(o, st, ms_since(t0)) << "\n";
   return rc;
 }

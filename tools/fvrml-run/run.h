@@ -34,7 +34,7 @@ struct Options {
   fscript::scene::ModelOptions model;
   double fraction = -1;
   int frames = 0, threads = 1;
-  bool stats = false, keep_going = false;
+  bool stats = false, keep_going = false, prune = true;
   uint32_t width = 800, height = 600;
 };
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Polygonization benchmark: best of N runs of `fvrml-run SCENE -o out.ply --stats` for each scene
-# and thread count; prints polygonize_ms (meshing only), evaluation_ms (time inside function
-# evaluation, summed over threads), write_ms and the triangle count.
+# Polygonization benchmark: best of N runs of `fvrml-run SCENE -o out.ply --stats` for each scene,
+# thread count and mode (pruned by the octree, the default, or --no-prune); prints polygonize_ms
+# (meshing only), evaluation_ms (time inside function evaluation, summed over threads), write_ms,
+# the whole process's wall time, the share of grid points evaluated and the triangle count.
 # usage: bench/polygonize.sh [RUNS] [SCENE.wrl ...]   (default: 5 runs, bench/scenes/*.wrl and Figure 6)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,17 +14,26 @@ SCENES=("$@")
 [ ${#SCENES[@]} -gt 0 ] || SCENES=(bench/scenes/*.wrl examples/paper/figure6-blends.wrl)
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
-printf '%-28s %7s %14s %14s %10s %11s\n' scene threads polygonize_ms evaluation_ms write_ms triangles
+printf '%-26s %7s %9s %13s %13s %8s %8s %9s %10s\n' scene threads mode polygonize_ms evaluation_ms write_ms total_ms evaluated triangles
 for scene in "${SCENES[@]}"; do
   for threads in 1 2; do
-    for _ in $(seq "$RUNS"); do
-      "$RUN" "$scene" -o "$OUT/out.ply" --stats --threads "$threads" --fraction 0.5 2>&1 >/dev/null | tail -1
-    done | python3 -c '
+    for mode in pruned dense; do
+      flag=""
+      [ "$mode" = dense ] && flag=--no-prune
+      for _ in $(seq "$RUNS"); do
+        t0=$(date +%s%N)
+        line=$("$RUN" "$scene" -o "$OUT/out.ply" --stats --threads "$threads" --fraction 0.5 $flag 2>&1 >/dev/null | tail -1)
+        t1=$(date +%s%N)
+        python3 -c 'import json, sys; j = json.loads(sys.argv[1]); j["total_ms"] = int(sys.argv[2]) / 1e6; print(json.dumps(j))' \
+          "$line" "$((t1 - t0))"
+      done | python3 -c '
 import json, sys
 runs = [json.loads(l) for l in sys.stdin if l.startswith("{")]
-best = min(runs, key=lambda j: j["polygonize_ms"])
+best = min(runs, key=lambda j: j["total_ms"])
 tris = sum(s.get("triangles", 0) for s in best["shapes"]) + sum(g.get("triangles", 0) for g in best["ftransforms"])
-print("%-28s %7s %14.1f %14.1f %10.1f %11d" % (sys.argv[1], sys.argv[2], best["polygonize_ms"], best["evaluation_ms"], best.get("write_ms", 0), tris))
-' "$(basename "$scene")" "$threads"
+print("%-26s %7s %9s %13.1f %13.1f %8.1f %8.1f %8.1f%% %10d" % (sys.argv[1], sys.argv[2], sys.argv[3], best["polygonize_ms"],
+      best["evaluation_ms"], best.get("write_ms", 0), best["total_ms"], 100 * best["prune"]["evaluated_fraction"], tris))
+' "$(basename "$scene")" "$threads" "$mode"
+    done
   done
 done

@@ -220,7 +220,7 @@ class Slab {
         for (int j = bj * B; j < j1; ++j) {
           size_t p = g_.in_plane(bi * B, j);
           if (c == BrickClass::Open) {
-            for (size_t q = 0; q < w; ++q) todo_.push_back(static_cast<uint32_t>(p + q));
+            todo_.push_back({static_cast<uint32_t>(p), static_cast<uint32_t>(w)});
             continue;
           }
           std::fill_n(plane.data() + p, w, c == BrickClass::Inside ? 1.0f : -1.0f);
@@ -231,16 +231,21 @@ class Slab {
     return evaluate_points(plane, z, err);
   }
 
-  // plane[p] = f at the points todo_ lists (padded plane indices) on the plane at height z.
+  // plane[p] = f at the runs of points todo_ lists (padded plane indices) on the plane at height z.
   bool evaluate_points(std::vector<float>& plane, float z, backends::RuntimeError& err) {
-    size_t n = todo_.size(), row = static_cast<size_t>(g_.nx + 2);
+    size_t n = 0, row = static_cast<size_t>(g_.nx + 2);
+    for (const Run& r : todo_) n += r.length;
     gx_.resize(n), gy_.resize(n), gz_.assign(n, z), gout_.resize(n);
-    for (size_t q = 0; q < n; ++q) {
-      size_t i = todo_[q] % row - 1, j = todo_[q] / row - 1;
-      gx_[q] = xs_[i], gy_[q] = ys_[j * static_cast<size_t>(g_.nx)];
+    size_t q = 0;
+    for (const Run& r : todo_) {
+      size_t i = r.start % row - 1, j = r.start / row - 1;
+      std::copy_n(xs_.data() + i, r.length, gx_.data() + q);
+      std::fill_n(gy_.data() + q, r.length, ys_[j * static_cast<size_t>(g_.nx)]);
+      q += r.length;
     }
     if (!evaluate(f_, gx_.data(), gy_.data(), gz_.data(), n, gout_.data(), err)) return false;
-    for (size_t q = 0; q < n; ++q) plane[todo_[q]] = gout_[q];
+    q = 0;
+    for (const Run& r : todo_) std::copy_n(gout_.data() + q, r.length, plane.data() + r.start), q += r.length;
     evaluated += n;
     return true;
   }
@@ -273,14 +278,14 @@ class Slab {
     for (int h = 0; h < 2; ++h) {
       if (pending[h].empty()) continue;
       std::vector<float> marks;
-      for (uint32_t p : pending[h]) marks.push_back((*values[h])[p]);
-      todo_ = pending[h];
+      todo_.clear();
+      for (uint32_t p : pending[h]) marks.push_back((*values[h])[p]), todo_.push_back({p, 1});
       if (!evaluate_points(*values[h], static_cast<float>(g_.coord(2, z_ + h)), err)) return false;
-      for (size_t q = 0; q < todo_.size(); ++q) {
-        if (((*values[h])[todo_[q]] > 0) != (marks[q] > 0)) unsound = true;
-        (*exact[h])[todo_[q]] = 1;
+      for (size_t q = 0; q < pending[h].size(); ++q) {
+        if (((*values[h])[pending[h][q]] > 0) != (marks[q] > 0)) unsound = true;
+        (*exact[h])[pending[h][q]] = 1;
       }
-      *inexact[h] -= todo_.size();
+      *inexact[h] -= pending[h].size();
     }
     if (unsound) err.message = "internal error: an interval bound disagreed with the function";
     return !unsound;
@@ -366,7 +371,10 @@ class Slab {
   std::vector<float> values_lo_, values_hi_, xs_, ys_, zs_, f_out_, gx_, gy_, gz_, gout_;
   std::vector<uint8_t> inside_, exact_lo_, exact_hi_;
   size_t inexact_lo_ = 0, inexact_hi_ = 0;
-  std::vector<uint32_t> todo_;
+  struct Run {
+    uint32_t start, length;  // padded plane index of the first point; points along x
+  };
+  std::vector<Run> todo_;
 };
 
 // Runs fn(begin, end) over [0, n) split into `threads` contiguous parts; false if any part fails.

@@ -93,7 +93,8 @@ mesh::Box3 moved_box(const Mat4& m, const mesh::Box3& b) {
 // rounded to float). The first part rises with f and with g (its partial derivatives are
 // 1 +- f / sqrt(f^2 + g^2) >= 0), so its corners bound it exactly, where interval arithmetic
 // would lose the link between f and sqrt(f^2 + g^2) and bound nothing; the bump lies between its
-// values at the largest and the smallest squares. Widened far beyond the double rounding.
+// values at the largest and the smallest squares. Widened far beyond the rounding of eval (f + g is
+// summed in float, the rest in double).
 math::Interval blend_bound(math::Interval f, math::Interval g, double sign, double a0, double a1, double a2) {
   if (f.empty() || g.empty()) return math::Interval::nan_only();
   double fl = f.lo, fh = f.hi, gl = g.lo, gh = g.hi;
@@ -108,7 +109,7 @@ math::Interval blend_bound(math::Interval f, math::Interval g, double sign, doub
   auto [g2lo, g2hi] = squares(gl, gh, a2);
   double b1 = a0 / (1 + f2hi + g2hi), b2 = a0 / (1 + f2lo + g2lo);
   double lo = part(fl, gl) + std::min(b1, b2), hi = part(fh, gh) + std::max(b1, b2);
-  double slack = 1e-9 * (3 * std::max({std::fabs(fl), std::fabs(fh), std::fabs(gl), std::fabs(gh)}) + std::fabs(a0));
+  double slack = 1e-6 * (3 * std::max({std::fabs(fl), std::fabs(fh), std::fabs(gl), std::fabs(gh)}) + std::fabs(a0));
   if (!std::isfinite(lo) || !std::isfinite(hi)) return math::Interval::everything();
   return {std::nextafter(static_cast<float>(lo - slack), -INFINITY), std::nextafter(static_cast<float>(hi + slack), INFINITY),
           f.nan || g.nan};
@@ -227,19 +228,24 @@ bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, 
   double a0 = p && p->nums.size() > 0 ? p->nums[0] : 0, a1 = p && p->nums.size() > 1 ? p->nums[1] : 1,
          a2 = p && p->nums.size() > 2 ? p->nums[2] : 1;
   std::copy(vals[0].begin(), vals[0].end(), out);
-  for (size_t k = 1; k < kids_.size(); ++k)
-    for (size_t i = 0; i < n; ++i) {
-      float f = out[i], g = vals[k][i];
-      if (op == "intersection") out[i] = math::min(f, g);
-      else if (op == "subtraction" || op == "difference") out[i] = math::min(f, -g);
-      else if (op == "blend_union" || op == "blend_intersection") {
-        double sign = op == "blend_union" ? 1 : -1;
-        double fa = f / a1, ga = g / a2;
-        out[i] = static_cast<float>(f + g + sign * std::sqrt(double(f) * f + double(g) * g) + a0 / (1 + fa * fa + ga * ga));
-      } else {
-        out[i] = math::max(f, g);  // union (and any unknown name, reported when the model was built)
+  bool blend = op == "blend_union" || op == "blend_intersection";
+  double sign = op == "blend_union" ? 1 : -1;
+  for (size_t k = 1; k < kids_.size(); ++k) {
+    const float* g = vals[k].data();
+    if (op == "intersection") {
+      for (size_t i = 0; i < n; ++i) out[i] = math::min(out[i], g[i]);
+    } else if (op == "subtraction" || op == "difference") {
+      for (size_t i = 0; i < n; ++i) out[i] = math::min(out[i], -g[i]);
+    } else if (blend) {
+      for (size_t i = 0; i < n; ++i) {
+        float f = out[i], h = g[i];  // f + h is a float sum, the rest double
+        double fa = f / a1, ga = h / a2;
+        out[i] = static_cast<float>(f + h + sign * std::sqrt(double(f) * f + double(h) * h) + a0 / (1 + fa * fa + ga * ga));
       }
+    } else {
+      for (size_t i = 0; i < n; ++i) out[i] = math::max(out[i], g[i]);  // union (and any unknown name, reported)
     }
+  }
   return true;
 }
 

@@ -6,7 +6,11 @@
 #include <filesystem>
 #include <random>
 
+#include "frontend/fscript/embedded.h"
+#include "frontend/vrml/scene_scripts.h"
 #include "frontend/vrml/vrml_parser.h"
+#include "ir/interval_eval.h"
+#include "runtime/driver/driver.h"
 #include "runtime/mesh/implicit.h"
 #include "runtime/scene/scene_model.h"
 #include "runtime/scene/shape_field.h"
@@ -236,4 +240,76 @@ TEST_CASE("prune: a bound that a point contradicts makes the job run dense, with
   job.prune = false;
   REQUIRE(mesh::polygonize_implicit(job, dense, err));
   CHECK(same_bits(pruned, dense));
+}
+
+namespace {
+struct Boundable {
+  size_t total = 0, bounded = 0;
+  std::vector<std::string> not_bounded;
+};
+
+// Whether the optimised kernel of a script is straight-line (the intervals bound it: full pruning).
+void count_script(std::unique_ptr<frontend::SourceFile> file, const std::string& where, Boundable& b) {
+  frontend::DiagnosticSink diag;
+  frontend::Script script;
+  if (!frontend::load_script(std::move(file), diag, script)) return;
+  frontend::KernelSpec spec;
+  std::string err;
+  if (!frontend::default_spec(script.sema, spec, err)) return;
+  auto m = driver::build_module(script, spec, diag, {}, err);
+  if (!m) return;
+  ++b.total;
+  if (ir::interval_evaluable(m->kernel_function())) ++b.bounded;
+  else b.not_bounded.push_back(where);
+}
+
+Boundable count_fs(const std::vector<std::string>& dirs) {
+  Boundable b;
+  for (const auto& dir : dirs) {
+    if (!fsys::exists(dir)) continue;
+    for (const auto& e : fsys::directory_iterator(dir)) {
+      if (e.path().extension() != ".fs") continue;
+      std::string text, err;
+      REQUIRE(support::read_file(e.path().string(), text, err));
+      count_script(std::make_unique<frontend::SourceFile>(e.path().string(), text), e.path().string(), b);
+    }
+  }
+  return b;
+}
+}  // namespace
+
+// docs/architecture.md quotes these counts: which functions pruning can bound in full.
+TEST_CASE("prune: the functions of the benchmarks, examples and corpus that intervals bound") {
+  if (!fsys::exists(FS_CORPUS_DIR)) {
+    test::skip(test::SkipKind::Missing, "the shared corpus folder is absent: " FS_CORPUS_DIR);
+    return;
+  }
+  Boundable bench = count_fs({FS_CORPUS_DIR "/../bench", FS_CORPUS_DIR "/../data", FS_SOURCE_DIR "/bench"});
+  Boundable examples = count_fs({FS_SOURCE_DIR "/examples"});
+  Boundable corpus;
+  for (const std::string& dir : {std::string(FS_CORPUS_DIR), std::string(FS_SOURCE_DIR "/examples/paper")})
+    for (const auto& e : fsys::recursive_directory_iterator(dir)) {
+      if (e.path().extension() != ".wrl") continue;
+      std::string text, err;
+      REQUIRE(support::read_file(e.path().string(), text, err));
+      frontend::DiagnosticSink vdiag;
+      vrml::Scene scene;
+      if (!vrml::parse_scene(std::make_unique<frontend::SourceFile>(e.path().string(), text), vdiag, scene)) continue;
+      for (const auto& ss : vrml::scene_scripts(scene)) {
+        if (ss.script.field == "operation") continue;
+        count_script(std::make_unique<frontend::SourceFile>(e.path().string(), ss.script.text, ss.script.line, ss.script.col),
+                     e.path().filename().string() + ":" + std::to_string(ss.script.line) + " " + ss.script.field, corpus);
+      }
+    }
+  auto list = [](const Boundable& b) {
+    std::string s;
+    for (const auto& w : b.not_bounded) s += "\n  " + w;
+    return s;
+  };
+  WARN("bounded by intervals: bench " << bench.bounded << " of " << bench.total << list(bench) << "\nexamples "
+       << examples.bounded << " of " << examples.total << list(examples) << "\ncorpus and paper scripts " << corpus.bounded
+       << " of " << corpus.total << list(corpus));
+  CHECK(bench.total >= 6);
+  CHECK(bench.bounded * 2 >= bench.total);
+  CHECK(corpus.bounded * 10 >= corpus.total * 9);
 }

@@ -4,6 +4,7 @@
 #   ./dev.sh test    install what is missing, build, run every test (ctest)
 #   SANITIZE=1 ./dev.sh test   the same with AddressSanitizer + UndefinedBehaviorSanitizer
 #   ./dev.sh build   build only
+#   ./dev.sh install PREFIX   build, then put the tools in PREFIX/bin (cmake --install; e.g. ~/.local)
 #   ./dev.sh mutation [--only ID,...]   mutation testing (tests/mutation/run.sh; docs/testing.md)
 # With CI set (CI=true ./dev.sh test), a test skipped because something is missing fails instead.
 # FVRML_SHARED=DIR names the shared folder (corpus, paper data) when it is not ../shared.
@@ -91,5 +92,11 @@ case "$cmd" in
     shift
     exec tests/mutation/run.sh "$@"
     ;;
-  *) echo "usage: ./dev.sh demo|test|build|mutation" >&2; exit 2 ;;
+  install)
+    [ $# -ge 2 ] || { echo "usage: ./dev.sh install PREFIX   (e.g. ~/.local: the tools go to PREFIX/bin)" >&2; exit 2; }
+    cmake --install "$BUILD_DIR" --prefix "$2" > /dev/null
+    echo "installed fscript, fvrml-run, fvrml-meshdiff and fscript-lsp in $2/bin"
+    case ":$PATH:" in *":$2/bin:"*) ;; *) echo "note: $2/bin is not on PATH; add it for editors to find fscript-lsp" ;; esac
+    ;;
+  *) echo "usage: ./dev.sh demo|test|build|install PREFIX|mutation" >&2; exit 2 ;;
 esac

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# The install step: `cmake --install BUILD --prefix P` puts the four tools in P/bin, and they work
+# from there with nothing from the source or build tree (run from another folder, on the installed
+# examples).
+# usage: install_test.sh BUILD_DIR
+set -u
+BUILD="$1"
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+fails=0
+fail() { echo "FAIL $*"; fails=$((fails + 1)); }
+cmake --install "$BUILD" --prefix "$T/prefix" > "$T/install.log" 2>&1 || { cat "$T/install.log"; fail "cmake --install"; }
+for tool in fscript fvrml-run fvrml-meshdiff fscript-lsp; do
+  [ -x "$T/prefix/bin/$tool" ] || { fail "$tool is not in PREFIX/bin"; continue; }
+  "$T/prefix/bin/$tool" --version 2>&1 | grep -q "^$tool " || fail "$tool --version from PREFIX/bin"
+done
+[ -f "$T/prefix/share/fvrml/editors/nvim/fscript.lua" ] ||
+  fail "the editor set-ups are not in PREFIX/share/fvrml/editors"
+[ -f "$T/prefix/share/fvrml/docs/quickstart.md" ] || fail "docs/quickstart.md is not in PREFIX/share/fvrml/docs"
+mkdir -p "$T/elsewhere"
+(cd "$T/elsewhere" && "$T/prefix/bin/fvrml-run" "$T/prefix/share/fvrml/examples/paper/figure6-blends.wrl" \
+  --resolution-scale 0.2 --fraction 0.5 -o f6.png > out.txt 2>&1) || { cat "$T/elsewhere/out.txt"; fail "installed fvrml-run on an installed example"; }
+[ -s "$T/elsewhere/f6.png" ] || fail "installed fvrml-run wrote no picture"
+printf 'function FRep(x, y, z, t) { return 0.5 - x * x - y * y; }\n' > "$T/elsewhere/disc.fs"
+(cd "$T/elsewhere" && "$T/prefix/bin/fscript" render2d disc.fs --size 32 --bounds -1,1,-1,1 > r.txt 2>&1) || fail "installed fscript render2d"
+grep -q "wrote disc.png" "$T/elsewhere/r.txt" || { cat "$T/elsewhere/r.txt"; fail "installed fscript render2d summary"; }
+if [ "$fails" -gt 0 ]; then echo "install: $fails failures"; exit 1; fi
+echo "install: ok"

@@ -17,27 +17,20 @@
 #include "runtime/scene/shape_mesh.h"
 #include "runtime/support/files.h"
 #include "tests/support/skip.h"
+#include "tests/unit/scene_helpers.h"
 
 using namespace fscript;
 namespace fsys = std::filesystem;
 
 namespace {
 
-struct Loaded {
-  frontend::DiagnosticSink diag;
-  vrml::Scene scene;
-  scene::SceneModel model;
-  bool ok = false;
-};
+using Loaded = test::LoadedScene;
 
 std::unique_ptr<Loaded> load_text(const std::string& path, const std::string& text, double scale = 1) {
-  auto l = std::make_unique<Loaded>();
   scene::ModelOptions o;
   o.resolution_scale = scale;
   o.fraction = 0.37;  // time-dependent shapes at a t that is not a round number
-  l->ok = vrml::parse_scene(std::make_unique<frontend::SourceFile>(path, text), l->diag, l->scene) &&
-          scene::build_scene_model(l->scene, o, l->diag, l->model);
-  return l;
+  return test::load_scene(path, text, o);
 }
 
 bool same_bits(const mesh::Mesh& a, const mesh::Mesh& b) {

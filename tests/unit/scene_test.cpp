@@ -7,23 +7,15 @@
 #include "runtime/mesh/mesh.h"
 #include "runtime/scene/scene_model.h"
 #include "runtime/scene/shape_mesh.h"
+#include "tests/unit/scene_helpers.h"
 
 using namespace fscript;
 
 namespace {
-struct Loaded {
-  frontend::DiagnosticSink diag;
-  vrml::Scene scene;
-  scene::SceneModel model;
-  bool ok = false;
-};
+using Loaded = test::LoadedScene;
 
 std::unique_ptr<Loaded> load(const std::string& body, scene::ModelOptions opts = {}) {
-  auto l = std::make_unique<Loaded>();
-  std::string text = "#VRML V2.0 utf8\n" + body;
-  l->ok = vrml::parse_scene(std::make_unique<frontend::SourceFile>("s.wrl", text), l->diag, l->scene) &&
-          scene::build_scene_model(l->scene, opts, l->diag, l->model);
-  return l;
+  return test::load_scene("s.wrl", "#VRML V2.0 utf8\n" + body, opts);
 }
 
 double mean_radius(const mesh::Mesh& m, double cx = 0) {

@@ -1,6 +1,8 @@
 // Interval evaluation over one block, and the choice record that tape simplification reads.
 #include "ir/interval_eval.h"
 
+#include <algorithm>
+
 namespace fscript::ir {
 namespace {
 
@@ -39,7 +41,8 @@ bool interval_evaluable(const Function& fn) {
 namespace {
 
 // The rule of `op` on its operands' intervals (`square`: a Mul of a value by itself).
-Interval apply(Op op, bool square, float imm, const Interval& a, const Interval& b, const Interval& c) {
+[[gnu::always_inline]] inline Interval apply(Op op, bool square, float imm, const Interval& a, const Interval& b,
+                                             const Interval& c) {
   (void)c;
   if (square) return math::iv::square(a);
   switch (op) {
@@ -72,18 +75,58 @@ Interval interval_of(const Inst& in, const std::vector<Interval>& v) {
   return apply(in.op, in.op == Op::Mul && in.args[0] == in.args[1], in.imm, arg(0), arg(1), arg(2));
 }
 
-IntervalTape::IntervalTape(const Function& fn) : values_(fn.next_value) {
+IntervalTape::IntervalTape(const Function& fn) : values_(fn.next_value), params_(fn.num_params) {
   for (const Inst* in : fn.entry()->insts) {
     if (in->op == Op::Ret) {
       for (const Inst* a : in->args) outputs_.push_back(a->id);
       break;
     }
-    Step s{in->op, in->op == Op::Mul && in->args[0] == in->args[1], in->id, 0, 0, 0, in->imm};
+    Step s{in->op, in->op == Op::Mul && in->args[0] == in->args[1], static_cast<uint8_t>(std::min<size_t>(in->args.size(), 3)),
+           in->id, 0, 0, 0, in->imm};
     uint32_t* slot[] = {&s.a, &s.b, &s.c};
-    for (size_t k = 0; k < in->args.size() && k < 3; ++k) *slot[k] = in->args[k]->id;
+    for (size_t k = 0; k < s.arity; ++k) *slot[k] = in->args[k]->id;
     if (in->op == Op::Param) s.a = static_cast<uint32_t>(in->aux);
     steps_.push_back(s);
   }
+}
+
+IntervalTape IntervalTape::simplified(const IntervalEval& ev, size_t* collapsed) const {
+  // What each value stands for in the region: itself, or the side a decided choice takes.
+  std::vector<uint32_t> stands(values_);
+  size_t decided = 0;
+  for (const Step& s : steps_) {
+    uint32_t v = s.dst;
+    Choice c = ev.choices[s.dst];
+    if (c != Choice::Both && (s.op == Op::Min || s.op == Op::Max)) v = stands[c == Choice::Left ? s.a : s.b];
+    if (c != Choice::Both && s.op == Op::Select) v = stands[c == Choice::Left ? s.b : s.c];
+    decided += v != s.dst;
+    stands[s.dst] = v;
+  }
+  if (collapsed) *collapsed = decided;
+  // Live: what the outputs reach through the collapsed choices.
+  std::vector<char> live(values_, 0);
+  for (uint32_t o : outputs_) live[stands[o]] = 1;
+  for (auto it = steps_.rbegin(); it != steps_.rend(); ++it) {
+    if (!live[it->dst] || it->op == Op::Param) continue;
+    const uint32_t operands[] = {it->a, it->b, it->c};
+    for (size_t k = 0; k < it->arity; ++k) live[stands[operands[k]]] = 1;
+  }
+  // The copy, in the original order, numbered densely.
+  IntervalTape out;
+  out.params_ = params_;
+  std::vector<uint32_t> renumber(values_, 0);
+  for (const Step& s : steps_) {
+    if (!live[s.dst]) continue;
+    Step c = s;
+    c.dst = renumber[s.dst] = out.values_++;
+    if (s.op != Op::Param) {
+      uint32_t* slot[] = {&c.a, &c.b, &c.c};
+      for (size_t k = 0; k < s.arity; ++k) *slot[k] = renumber[stands[*slot[k]]];
+    }
+    out.steps_.push_back(c);
+  }
+  for (uint32_t o : outputs_) out.outputs_.push_back(renumber[stands[o]]);
+  return out;
 }
 
 void IntervalTape::eval(const std::vector<Interval>& inputs, IntervalEval& out) const {

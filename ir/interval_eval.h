@@ -30,24 +30,40 @@ math::Interval interval_of(const Inst& in, const std::vector<math::Interval>& v)
 // written, when `fn` is not interval_evaluable.
 bool eval_intervals(const Function& fn, const std::vector<math::Interval>& inputs, IntervalEval& out);
 
-// A straight-line kernel flattened for evaluation over many regions (a quadtree's tiles): one
-// step per value op with operand slots (the value ids), so nothing is chased through pointers.
-// eval_intervals is one IntervalTape evaluated once.
+// A straight-line kernel flattened: one step per value op with operand slots (value ids), so
+// nothing is chased through pointers. It is what interval evaluation runs over many regions (a
+// quadtree's tiles, an octree's bricks; eval_intervals is one IntervalTape evaluated once), what
+// simplification shortens, and what the VM compiles directly (vm::compile_tape).
 class IntervalTape {
  public:
+  struct Step {
+    Op op;
+    bool square;    // a Mul of one value by itself
+    uint8_t arity;  // operands used of a, b, c
+    uint32_t dst, a, b, c;
+    float imm;  // Const; Param: the parameter's index is `a`
+  };
+
   explicit IntervalTape(const Function& fn);  // fn must be interval_evaluable
   void eval(const std::vector<math::Interval>& inputs, IntervalEval& out) const;
 
+  // The tape specialised to a region (`ev`: this tape's evaluation over it): every min / max /
+  // select whose side was decided becomes that side, what only the other side needed is dropped,
+  // values are renumbered densely. The same bits as this tape at every point of the region; it
+  // recurses. `collapsed` (when given) counts the choices that were decided.
+  IntervalTape simplified(const IntervalEval& ev, size_t* collapsed = nullptr) const;
+
+  const std::vector<Step>& steps() const { return steps_; }
+  const std::vector<uint32_t>& outputs() const { return outputs_; }
+  uint32_t num_values() const { return values_; }  // value ids are below this
+  uint32_t num_params() const { return params_; }
+  size_t length() const { return steps_.size(); }  // value ops, parameters and constants included
+
  private:
-  struct Step {
-    Op op;
-    bool square;  // a Mul of one value by itself
-    uint32_t dst, a, b, c;
-    float imm;  // Const; Param: the parameter's index
-  };
+  IntervalTape() = default;
   std::vector<Step> steps_;
   std::vector<uint32_t> outputs_;
-  uint32_t values_ = 0;
+  uint32_t values_ = 0, params_ = 0;
 };
 
 }  // namespace fscript::ir

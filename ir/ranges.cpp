@@ -17,7 +17,7 @@ std::vector<Range> value_ranges(const Function& fn, double param_bound) {
     for (const Inst* in : blk->insts) {
       if (!in->defines_value()) continue;
       v[in->id] = in->op == Op::Param ? math::Interval{-bound, bound, false} : interval_of(*in, v);
-      r[in->id] = {v[in->id].lo, v[in->id].hi, v[in->id].nan};
+      r[in->id] = {v[in->id].lo, v[in->id].hi, v[in->id].nan != 0};
     }
   return r;
 }

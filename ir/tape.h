@@ -1,8 +1,7 @@
 #pragma once
-// Tape simplification: a straight-line kernel specialised to one region of its inputs. Every
-// min / max / select whose interval evaluation decided the side becomes that side, and what only
-// the other side needed disappears. The result gives the same bits as the original at every point
-// of the region, so a region's pixels or cells can run the shorter kernel.
+// A flat tape (ir::IntervalTape) back as IR: a one-function kernel module that any backend compiles.
+// Simplified tapes run on the VM straight from the tape (vm::compile_tape); this is how the JITs
+// and the tests run them too.
 #include <memory>
 
 #include "ir/interval_eval.h"
@@ -10,15 +9,7 @@
 
 namespace fscript::ir {
 
-struct SimplifiedTape {
-  std::unique_ptr<Module> module;  // one function, the kernel (num_params and results as `fn`)
-  size_t ops = 0;                  // value operations it keeps (params and constants included)
-  size_t choices_collapsed = 0;
-};
-
-// `fn` must be interval_evaluable and `ev` its evaluation over the region. Recursion works: a
-// sub-region's evaluation of the result simplifies it further.
-SimplifiedTape simplify_tape(const Function& fn, const IntervalEval& ev);
+std::unique_ptr<Module> tape_module(const IntervalTape& t);
 
 // Value operations of a straight-line kernel (its tape length).
 size_t tape_length(const Function& fn);

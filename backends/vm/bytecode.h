@@ -75,6 +75,17 @@ struct VmProgram {
   std::vector<std::string> global_array_names;
 };
 
+// Binary ops whose operands may be immediates (kinds bits 0 and 1).
+inline bool takes_immediates(ir::Op op) {
+  switch (op) {
+    case ir::Op::Add: case ir::Op::Sub: case ir::Op::Mul: case ir::Op::Div: case ir::Op::Mod: case ir::Op::Min:
+    case ir::Op::Max: case ir::Op::Pow: case ir::Op::Atan2: case ir::Op::Eq: case ir::Op::Ne: case ir::Op::Lt:
+    case ir::Op::Le: case ir::Op::Gt: case ir::Op::Ge:
+      return true;
+    default: return false;
+  }
+}
+
 // Compiles every function of the module; the kernel is the function flagged `kernel`.
 bool compile_program(const ir::Module& m, VmProgram& out, std::string& error);
 

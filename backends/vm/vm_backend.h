@@ -2,6 +2,7 @@
 // The VM backend: bytecode interpreter behind the Kernel interface.
 #include "backends/backend.h"
 #include "backends/vm/bytecode.h"
+#include "ir/interval_eval.h"
 
 namespace fscript::vm {
 
@@ -18,6 +19,11 @@ class VmKernel : public backends::Kernel {
   VmProgram prog_;
   backends::Budgets budgets_;
 };
+
+// A flat straight-line tape (a region's simplified kernel) to bytecode, with no IR in between:
+// one block, registers reused after their last use, constants as immediates or registers set once.
+VmProgram tape_program(const ir::IntervalTape& t);
+std::unique_ptr<backends::Kernel> compile_tape(const ir::IntervalTape& t, const backends::Budgets& b);
 
 class VmBackend : public backends::Backend {
  public:

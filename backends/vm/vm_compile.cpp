@@ -12,15 +12,6 @@ namespace {
 using ir::Inst;
 using ir::Op;
 
-bool is_binary_arith(Op op) {
-  switch (op) {
-    case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: case Op::Mod: case Op::Min: case Op::Max:
-    case Op::Pow: case Op::Atan2: case Op::Eq: case Op::Ne: case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge:
-      return true;
-    default: return false;
-  }
-}
-
 class FunctionCompiler {
  public:
   FunctionCompiler(const ir::Function& fn, VmFunction& out) : fn_(fn), out_(out) {}
@@ -108,7 +99,7 @@ class FunctionCompiler {
     uint32_t* slots[3] = {&v.a, &v.b, &v.c};
     for (size_t k = 0; k < i.args.size() && k < 3; ++k) {
       const Inst* a = i.args[k];
-      if (a->op == Op::Const && is_binary_arith(i.op)) {
+      if (a->op == Op::Const && takes_immediates(i.op)) {
         v.kinds |= static_cast<uint8_t>(1u << k);
         (k == 0 ? v.imm_a : v.imm_b) = a->imm;
       } else {

@@ -13,45 +13,19 @@
 namespace fscript::math {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr float kInfF = std::numeric_limits<float>::infinity();
+using detail::down;
+using detail::has_inf;
+using detail::has_zero;
+using detail::kInf;
+using detail::kInfF;
+using detail::make;
+using detail::next_down;
+using detail::next_up;
+using detail::up;
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kExactUlps = 0;   // + - * in double are exact or round monotonically: none needed
 constexpr int kRoundedUlps = 1; // / and sqrt: rounded in double, then to float
 constexpr int kMathUlps = 4;    // every other built-in: the language's bound
 
-// The next float toward -inf (toward +inf for next_up), by its bits: this runs for every bound of
-// every interval operation, and libm's nextafter is a call. -inf and +inf stay where they are.
-float next_down(float f) {
-  if (f == -kInfF || f != f) return f;
-  if (f == 0) return -std::numeric_limits<float>::denorm_min();
-  uint32_t b = std::bit_cast<uint32_t>(f);
-  return std::bit_cast<float>(f > 0 ? b - 1 : b + 1);
-}
-
-float next_up(float f) { return -next_down(-f); }
-
-// The largest float <= x, `ulps` further down (NaN: -inf).
-float down(double x, int ulps) {
-  if (x != x) return -kInfF;
-  float f = static_cast<float>(x);
-  if (static_cast<double>(f) > x) f = next_down(f);
-  for (int k = 0; k < ulps; ++k) f = next_down(f);
-  return f;
-}
-
-float up(double x, int ulps) {
-  if (x != x) return kInfF;
-  float f = static_cast<float>(x);
-  if (static_cast<double>(f) < x) f = next_up(f);
-  for (int k = 0; k < ulps; ++k) f = next_up(f);
-  return f;
-}
-
-Interval make(double lo, double hi, bool nan, int ulps) { return {down(lo, ulps), up(hi, ulps), nan}; }
-
-bool has_zero(const Interval& a) { return a.lo <= 0 && a.hi >= 0; }
-bool has_inf(const Interval& a) { return a.lo == -kInfF || a.hi == kInfF; }
 double least_magnitude(const Interval& a) { return has_zero(a) ? 0.0 : std::min(std::fabs(a.lo), std::fabs(a.hi)); }
 double most_magnitude(const Interval& a) { return std::max(std::fabs(a.lo), std::fabs(a.hi)); }
 
@@ -133,33 +107,6 @@ Truth truth_of(const Interval& a) {
 
 namespace iv {
 
-Interval hull(Interval a, Interval b) { return {std::min(a.lo, b.lo), std::max(a.hi, b.hi), a.nan || b.nan}; }
-
-Interval add(Interval a, Interval b) {
-  if (a.empty() || b.empty()) return Interval::nan_only();
-  bool nan = a.nan || b.nan || (a.hi == kInfF && b.lo == -kInfF) || (a.lo == -kInfF && b.hi == kInfF);
-  double lo = static_cast<double>(a.lo) + b.lo, hi = static_cast<double>(a.hi) + b.hi;
-  return make(lo != lo ? -kInf : lo, hi != hi ? kInf : hi, nan, kExactUlps);
-}
-
-Interval sub(Interval a, Interval b) { return add(a, neg(b)); }  // a - b is a + (-b), bit for bit
-
-Interval mul(Interval a, Interval b) {
-  if (a.empty() || b.empty()) return Interval::nan_only();
-  bool nan = a.nan || b.nan || (has_zero(a) && has_inf(b)) || (has_zero(b) && has_inf(a));
-  double p[] = {static_cast<double>(a.lo) * b.lo, static_cast<double>(a.lo) * b.hi, static_cast<double>(a.hi) * b.lo,
-                static_cast<double>(a.hi) * b.hi};
-  for (double v : p)
-    if (v != v) return {-kInfF, kInfF, true};
-  return make(*std::min_element(p, p + 4), *std::max_element(p, p + 4), nan, kExactUlps);
-}
-
-Interval square(Interval a) {
-  if (a.empty()) return Interval::nan_only();
-  double x = static_cast<double>(a.lo) * a.lo, y = static_cast<double>(a.hi) * a.hi;
-  return make(has_zero(a) ? 0 : std::min(x, y), std::max(x, y), a.nan, kExactUlps);
-}
-
 Interval div(Interval a, Interval b) {
   if (a.empty() || b.empty()) return Interval::nan_only();
   bool inf_inf = has_inf(a) && has_inf(b);
@@ -177,18 +124,6 @@ Interval mod(Interval a, Interval b) {  // fmod: exact, the sign of a, smaller t
   if (!has_zero(b) && most_magnitude(a) < least_magnitude(b)) return {a.lo, a.hi, nan};  // fmod(a, b) = a
   float m = static_cast<float>(most_magnitude(b));
   return {a.lo >= 0 ? 0.0f : std::max(a.lo, -m), a.hi <= 0 ? 0.0f : std::min(a.hi, m), nan};
-}
-
-Interval neg(Interval a) { return {-a.hi, -a.lo, a.nan}; }
-
-Interval min(Interval a, Interval b) {
-  if (a.empty() || b.empty()) return Interval::nan_only();
-  return {std::min(a.lo, b.lo), std::min(a.hi, b.hi), a.nan || b.nan};
-}
-
-Interval max(Interval a, Interval b) {
-  if (a.empty() || b.empty()) return Interval::nan_only();
-  return {std::max(a.lo, b.lo), std::max(a.hi, b.hi), a.nan || b.nan};
 }
 
 Interval abs(Interval a) {

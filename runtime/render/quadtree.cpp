@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "ir/interval_eval.h"
+#include "backends/vm/vm_backend.h"
 #include "ir/tape.h"
 #include "runtime/support/parallel.h"
 
@@ -33,17 +34,15 @@ struct Rect {
   uint32_t c0, r0, c1, r1;  // columns [c0, c1), rows [r0, r1)
 };
 
-// A module's kernel once a dense batch needs it; shared by every region that keeps the module.
+// A tape's kernel once a dense batch needs it; shared by every region that keeps the tape.
 struct Compiled {
   const backends::Kernel* kernel = nullptr;
   std::unique_ptr<backends::Kernel> owned;
 };
 
-// A tape: its module, flattened for intervals, and compiled when needed.
+// A tape: flat, for intervals and simplification, and compiled when needed.
 struct Tape {
-  const ir::Module* module = nullptr;
-  std::unique_ptr<ir::Module> owned;
-  std::shared_ptr<const ir::IntervalTape> intervals;
+  std::shared_ptr<const ir::IntervalTape> flat;
   std::shared_ptr<Compiled> compiled = std::make_shared<Compiled>();
   size_t ops = 0;
 };
@@ -63,7 +62,7 @@ class Renderer {
     in[0] = math::iv::hull(math::Interval::point(g_.x(r.c0)), math::Interval::point(g_.x(r.c1 - 1)));
     in[1] = math::iv::hull(math::Interval::point(g_.y(r.r0)), math::Interval::point(g_.y(r.r1 - 1)));
     ir::IntervalEval& ev = scratch_[level];  // per level: a parent's evaluation outlives its children's
-    tape.intervals->eval(in, ev);
+    tape.flat->eval(in, ev);
     const math::Interval& f = ev.outputs[0];
     if (!f.nan && f.lo >= 0) return ++st.full, fill(r, 255), true;
     if (f.empty() || f.hi < 0) return ++st.empty, fill(r, 0), true;  // NaN is outside too
@@ -116,30 +115,20 @@ class Renderer {
 
   // The parent's tape specialised to the region, or the parent's itself when that saves little.
   Tape simplified(Tape& parent, const ir::IntervalEval& ev) {
+    auto s = std::make_shared<const ir::IntervalTape>(parent.flat->simplified(ev));
+    if (s->length() * 10 > parent.ops * 9) return parent;  // under 10% shorter: share its kernel too
     Tape t;
-    ir::SimplifiedTape s = ir::simplify_tape(parent.module->kernel_function(), ev);
-    if (s.ops * 10 > parent.ops * 9) {  // under 10% shorter: not worth a compile
-      t.module = parent.module;
-      t.intervals = parent.intervals;
-      t.compiled = parent.compiled;  // compiled at most once, by whichever region needs it first
-      t.ops = parent.ops;
-      return t;
-    }
-    t.owned = std::move(s.module);
-    t.module = t.owned.get();
-    t.intervals = std::make_shared<const ir::IntervalTape>(t.module->kernel_function());
-    t.ops = s.ops;
+    t.flat = std::move(s);
+    t.ops = t.flat->length();
     return t;
   }
 
-  // Simplified tapes run on the VM whatever the dense kernel's backend: its compile (0.1 ms per
-  // 1,000 operations) pays for a region, the sse emitter's (about 2 ms) and llvm's do not
+  // Simplified tapes run on the VM whatever the dense kernel's backend, compiled straight from the
+  // flat tape: that compile pays for a region, the sse emitter's and llvm's do not
   // (docs/performance.md), and every backend gives the same bits.
   bool compile(Tape& tape) {
-    std::string error;
     Compiled& c = *tape.compiled;
-    c.owned = backends::make_backend("vm")->compile(*tape.module, o_.budgets, error);
-    if (!c.owned) return err_ = {error, 0}, false;
+    c.owned = vm::compile_tape(*tape.flat, o_.budgets);
     c.kernel = c.owned.get();
     ++stats_.kernels;
     return true;
@@ -184,8 +173,7 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   bool ok = support::run_parts(parts, [&](int p) {
     Renderer& r = *renderers[static_cast<size_t>(p)];
     Tape full;
-    full.module = &m;
-    if (prune) full.intervals = std::make_shared<const ir::IntervalTape>(fn);
+    if (prune) full.flat = std::make_shared<const ir::IntervalTape>(fn);
     full.ops = stats.full_tape_ops;
     full.compiled->kernel = &dense;  // the full tape is what `dense` was compiled from
     // Tiles go to whichever thread is free: each writes only its own pixels, so the picture does

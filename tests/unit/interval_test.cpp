@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 
+#include "backends/vm/vm_backend.h"
 #include "ir/eval.h"
 #include "ir/interval_eval.h"
 #include "ir/tape.h"
@@ -323,18 +324,34 @@ const ir::Function& kernel_of(const ir::Module& m) {
 }
 
 // "" when `simple` gives `full`'s bits at every point of `boxes` (on `backend`), else the first difference.
+std::string same_outputs(std::unique_ptr<backends::Kernel> a, std::unique_ptr<backends::Kernel> b, size_t outs,
+                         const std::vector<Box>& boxes, std::mt19937& rng);
+
 std::string same_bits(const ir::Module& full, const ir::Module& simple, const std::vector<Box>& boxes,
                       const std::string& backend, std::mt19937& rng) {
   std::string err;
   auto a = backends::make_backend(backend)->compile(full, {}, err);
   auto b = backends::make_backend(backend)->compile(simple, {}, err);
   if (!a || !b) return "compile: " + err;
+  return same_outputs(std::move(a), std::move(b), kernel_of(full).num_results, boxes, rng);
+}
+
+// The full kernel on the VM against the tape compiled by the VM without IR (vm::compile_tape).
+std::string same_bits_on_tape(const ir::Module& full, const ir::IntervalTape& tape, const std::vector<Box>& boxes,
+                              std::mt19937& rng) {
+  std::string err;
+  auto a = backends::make_backend("vm")->compile(full, {}, err);
+  if (!a) return "compile: " + err;
+  return same_outputs(std::move(a), vm::compile_tape(tape, {}), kernel_of(full).num_results, boxes, rng);
+}
+
+std::string same_outputs(std::unique_ptr<backends::Kernel> a, std::unique_ptr<backends::Kernel> b, size_t outs,
+                         const std::vector<Box>& boxes, std::mt19937& rng) {
   Batch batch{std::vector<std::vector<float>>(boxes.size()), {}};
   add_case(batch, boxes, 0, rng, 24);
   std::vector<std::unique_ptr<backends::Kernel>> ks;
   ks.push_back(std::move(a));
   ks.push_back(std::move(b));
-  size_t outs = kernel_of(full).num_results;
   auto r = run_all(ks, batch, outs);
   for (size_t o = 0; o < outs; ++o)
     for (size_t i = 0; i < batch.owner.size(); ++i)
@@ -365,11 +382,15 @@ TEST_CASE("tape simplification: the same bits inside the region, recursively, an
       std::vector<Box> boxes = boxes_around(rng, fn.num_params, 1.0f / 64, 1000, in);
       ir::IntervalEval ev;
       REQUIRE(ir::eval_intervals(fn, in, ev));
-      ir::SimplifiedTape t = ir::simplify_tape(fn, ev);
-      REQUIRE(t.ops <= ir::tape_length(fn));
-      collapsed += t.choices_collapsed > 0;
+      ir::IntervalTape full(fn);
+      size_t decided = 0;
+      ir::IntervalTape t = full.simplified(ev, &decided);
+      REQUIRE(t.length() <= ir::tape_length(fn));
+      collapsed += decided > 0;
       INFO(text.substr(0, 300));
-      for (const char* be : {"vm", "sse"}) CHECK(same_bits(*b->module, *t.module, boxes, be, rng) == "");
+      auto module = ir::tape_module(t);
+      for (const char* be : {"vm", "sse"}) CHECK(same_bits(*b->module, *module, boxes, be, rng) == "");
+      CHECK(same_bits_on_tape(*b->module, t, boxes, rng) == "");  // the VM straight from the tape
       // A quarter of the region simplifies the simplified tape again, still with the same bits.
       for (auto& bx : boxes) {
         bx.iv.hi = bx.iv.lo + (bx.iv.hi - bx.iv.lo) / 4;
@@ -377,10 +398,11 @@ TEST_CASE("tape simplification: the same bits inside the region, recursively, an
       }
       std::vector<Interval> quarter;
       for (const auto& bx : boxes) quarter.push_back(bx.iv);
-      REQUIRE(ir::eval_intervals(kernel_of(*t.module), quarter, ev));
-      ir::SimplifiedTape t2 = ir::simplify_tape(kernel_of(*t.module), ev);
-      REQUIRE(t2.ops <= t.ops);
-      CHECK(same_bits(*b->module, *t2.module, boxes, "vm", rng) == "");
+      t.eval(quarter, ev);
+      ir::IntervalTape t2 = t.simplified(ev);
+      REQUIRE(t2.length() <= t.length());
+      CHECK(same_bits(*b->module, *ir::tape_module(t2), boxes, "vm", rng) == "");
+      CHECK(same_bits_on_tape(*b->module, t2, boxes, rng) == "");
       ++checked;
     }
     if (&text == &texts.back() && have_prospero) {  // prospero: a small region keeps a small part
@@ -389,9 +411,9 @@ TEST_CASE("tape simplification: the same bits inside the region, recursively, an
       region[1] = {0.5f, 0.52f, false};
       ir::IntervalEval ev;
       REQUIRE(ir::eval_intervals(fn, region, ev));
-      ir::SimplifiedTape t = ir::simplify_tape(fn, ev);
-      INFO("prospero: " << t.ops << " of " << ir::tape_length(fn) << " operations in a 0.02 square");
-      CHECK(t.ops * 10 < ir::tape_length(fn));
+      ir::IntervalTape t = ir::IntervalTape(fn).simplified(ev);
+      INFO("prospero: " << t.length() << " of " << ir::tape_length(fn) << " operations in a 0.02 square");
+      CHECK(t.length() * 10 < ir::tape_length(fn));
     }
   }
   CHECK(checked > 300);

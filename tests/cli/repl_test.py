@@ -123,6 +123,22 @@ with tempfile.TemporaryDirectory() as tmp:
     expect("multi-line function", type_line(fd, "f(2)"), r"\r\n12\r\n")
     expect("continuation prompt", type_line(fd, "sq(", r"\.\.\. $"), r"\.\.\. $")
     expect("continued expression", type_line(fd, "5)"), r"\r\n25\r\n")
+    # A line ending in an operator continues (the README's "sq(k) +" example), "x++" does not.
+    expect("trailing operator continues", type_line(fd, "sq(2) +", r"\.\.\. $"), r"\.\.\. $")
+    expect("trailing operator completed", type_line(fd, "1"), r"\r\n5\r\n")
+    expect("trailing && continues", type_line(fd, "1 &&", r"\.\.\. $"), r"\.\.\. $")
+    expect("trailing && completed", type_line(fd, "0"), r"\r\n0\r\n")
+    # let and const at the prompt define, as var does.
+    type_line(fd, "let q = 4;")
+    expect("let", type_line(fd, "q * 2"), r"\r\n8\r\n")
+    type_line(fd, "const w = 5;")
+    expect("const", type_line(fd, "w + 1"), r"\r\n6\r\n")
+    # Errors speak only of what was typed: not of the hidden "return (...)" around an expression.
+    two = type_line(fd, "2 3")
+    expect("no wrapper in errors", two, r"<input>:1:3: error: expected an operator or the end of the expression, found '3'")
+    checks += 1
+    if "column 8" in two or "'('" in two:  # the parser's words for the wrapper's bracket
+        failures.append(f"wrapper leak: {two!r}")
     type_line(fd, "var k = 10;")
     expect("global", type_line(fd, "k * 2"), r"\r\n20\r\n")
     type_line(fd, "var k = 3;")

@@ -30,6 +30,27 @@ std::string trim(const std::string& s) {
   return b == std::string::npos ? "" : s.substr(b, e - b + 1);
 }
 
+// How many brackets of `input` are open before line `line`, column `col` (1-based).
+int depth_at(const std::vector<std::string>& lines, uint32_t line, uint32_t col) {
+  int depth = 0;
+  for (uint32_t l = 0; l < lines.size() && l < line; ++l)
+    for (size_t c = 0; c < lines[l].size() && (l + 1 < line || c + 1 < col); ++c) {
+      char ch = lines[l][c];
+      depth += (ch == '(' || ch == '[' || ch == '{') - (ch == ')' || ch == ']' || ch == '}');
+    }
+  return depth;
+}
+
+// The REPL evaluates an expression as "return (EXPR);": a parser message about that '(' would
+// speak of text the user never typed. At the input's own top level it says what was meant.
+void unwrap_message(frontend::Diagnostic& d, const std::vector<std::string>& lines) {
+  static const std::string kWrapper = "expected ')' to match the '(' at column ";
+  if (d.message.rfind(kWrapper, 0) != 0 || depth_at(lines, d.pos.line, d.pos.col) != 0) return;
+  size_t found = d.message.find(", found ");
+  d.message = "expected an operator or the end of the expression" +
+              (found == std::string::npos ? std::string() : d.message.substr(found));
+}
+
 // Diagnostics of a synthesized program, shown against what the user typed: positions inside the
 // input (lines [first, first + count)) become "<input>:line:col"; anything after it (an unclosed
 // construct found at the end) points at the input's end.
@@ -48,6 +69,7 @@ std::string render_mapped(const frontend::DiagnosticSink& diag, uint32_t first, 
       } else {
         d.pos.line -= first - 1;
       }
+      unwrap_message(d, lines);
     } else {
       d.path = "<session>";
     }
@@ -73,7 +95,7 @@ int top_level_statements(const std::string& input) {
 // an assignment is a definition only as a statement of its own.
 bool definition_name(const std::string& input, std::string& name) {
   static const std::regex fn(R"(^\s*function\s+([A-Za-z_$][A-Za-z0-9_$]*))");
-  static const std::regex var(R"(^\s*var\s+([A-Za-z_$][A-Za-z0-9_$]*))");
+  static const std::regex var(R"(^\s*(?:var|let|const)\s+([A-Za-z_$][A-Za-z0-9_$]*))");
   static const std::regex assign(R"(^\s*([A-Za-z_$][A-Za-z0-9_$]*)\s*=[^=])");
   std::smatch m;
   if (std::regex_search(input, m, fn)) {
@@ -93,7 +115,23 @@ void on_sigint(int) { g_interrupted = 1; }
 
 }  // namespace
 
+// Whether `text` ends in an operator that still needs its right operand ("1 +", "a &&", "x ="), so
+// the next line continues it; "x++" and "x--" are complete.
+bool ends_in_operator(const std::string& text) {
+  std::string s = text;
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+  size_t comment = s.rfind("//");  // a line comment at the end hides nothing
+  if (comment != std::string::npos && s.find('\n', comment) == std::string::npos) {
+    s.erase(comment);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+  }
+  if (s.empty()) return false;
+  if (s.size() >= 2 && (s.compare(s.size() - 2, 2, "++") == 0 || s.compare(s.size() - 2, 2, "--") == 0)) return false;
+  return std::string("+-*/%=<>&|^!?:,~").find(s.back()) != std::string::npos;
+}
+
 bool input_complete(const std::string& text) {
+  if (ends_in_operator(text)) return false;
   int depth = 0;
   char quote = 0;
   for (size_t i = 0; i < text.size(); ++i) {

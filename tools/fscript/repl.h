@@ -48,8 +48,8 @@ class Session {
   std::map<std::string, SceneCallable> scene_;  // node name -> its script
 };
 
-// Whether the brackets of `text` are all closed (outside strings and comments): the REPL keeps
-// reading lines until they are.
+// Whether the brackets of `text` are all closed (outside strings and comments) and it does not end
+// in an operator waiting for its operand: the REPL keeps reading lines until then.
 bool input_complete(const std::string& text);
 
 // Runs `work` in a child process and returns what it wrote; Ctrl-C (SIGINT) in the meantime kills

@@ -128,6 +128,16 @@ with tempfile.TemporaryDirectory() as tmp:
     expect("trailing operator completed", type_line(fd, "1"), r"\r\n5\r\n")
     expect("trailing && continues", type_line(fd, "1 &&", r"\.\.\. $"), r"\.\.\. $")
     expect("trailing && completed", type_line(fd, "0"), r"\r\n0\r\n")
+    # Ctrl-C at the prompt drops what is being typed, and a continuation, and keeps the session.
+    os.write(fd, b"1 + 100")
+    read_until(fd, r"100$", timeout=2)
+    os.write(fd, b"\x03")
+    expect("ctrl-c at the prompt", read_until(fd, r"\^C\r\nfs> $", timeout=5), r"\^C\r\nfs> $")
+    expect("the dropped line is gone", type_line(fd, "2 + 2"), r"\r\n4\r\n")
+    type_line(fd, "sq(", r"\.\.\. $")
+    os.write(fd, b"\x03")
+    expect("ctrl-c in a continuation", read_until(fd, r"\^C\r\nfs> $", timeout=5), r"\^C\r\nfs> $")
+    expect("the continuation is gone", type_line(fd, "3 * 3"), r"\r\n9\r\n")
     # let and const at the prompt define, as var does.
     type_line(fd, "let q = 4;")
     expect("let", type_line(fd, "q * 2"), r"\r\n8\r\n")

@@ -4,7 +4,9 @@
 #include "tools/fscript/repl.h"
 
 #include <editline/readline.h>
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/select.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -295,39 +297,130 @@ void Session::evaluate(const std::string& raw, std::string& out) {
   });
 }
 
+namespace {
+
+// libedit's callback interface, with our own getc: Ctrl-C at the prompt (the terminal's SIGINT
+// interrupting the read, or the key itself where the terminal does not turn it into a signal) sets
+// a flag and ends the editor's read; the loop then drops the line and any continuation.
+volatile sig_atomic_t g_prompt_interrupted = 0;
+int g_wake[2] = {-1, -1};  // the handler's byte wakes the loop's select(), whichever thread took the signal
+void on_prompt_sigint(int) {
+  g_prompt_interrupted = 1;
+  if (g_wake[1] >= 0) (void)!write(g_wake[1], "", 1);
+}
+
+int prompt_getc(FILE*) {
+  unsigned char c;
+  for (;;) {
+    ssize_t n = read(STDIN_FILENO, &c, 1);
+    if (n == 1) break;
+    if (n < 0 && errno == EINTR && !g_prompt_interrupted) continue;
+    // Ctrl-C (the terminal's SIGINT interrupted the read): end the editor's line, which the loop
+    // then drops; or the end of input.
+    return n < 0 && errno == EINTR ? '\r' : EOF;
+  }
+  if (c != 0x03) return c;
+  g_prompt_interrupted = 1;  // a terminal without ISIG hands Ctrl-C over as a key
+  return '\r';
+}
+
+struct LineState {
+  bool have = false, eof = false;
+  std::string text;
+};
+LineState g_line;
+
+void on_line(char* line) {
+  if (!line) {
+    g_line.eof = true;
+    return;
+  }
+  g_line.text = line;
+  g_line.have = true;
+  std::free(line);
+}
+
+void prompt_for(const std::string& buffer) {
+  rl_callback_handler_remove();
+  rl_callback_handler_install(buffer.empty() ? "fs> " : "... ", on_line);
+}
+
+}  // namespace
+
 int run_repl(const Options& o) {
   Session session(o);
   std::string history;
   if (const char* h = std::getenv("FSCRIPT_HISTORY")) history = h;
   else if (const char* home = std::getenv("HOME")) history = std::string(home) + "/.fscript_history";
+  rl_catch_signals = 0;  // both before anything initialises the line editor
+  rl_getc_function = prompt_getc;
   using_history();
   if (!history.empty()) read_history(history.c_str());
   std::cout << "fscript " << "(backend " << (o.backend.empty() ? backends::available_backends().front() : o.backend)
-            << "): definitions stay, expressions print their value; :help for commands, Ctrl-D to leave\n";
-  signal(SIGINT, SIG_IGN);  // at the prompt; an evaluation in progress takes Ctrl-C
+            << "): definitions stay, expressions print their value; :help for commands, Ctrl-D to leave\n"
+            << std::flush;
+  // Ctrl-C at the prompt drops the line being typed and any continuation, as node and Python do;
+  // an evaluation in progress takes Ctrl-C itself (run_interruptible).
+  struct sigaction at_prompt {};
+  at_prompt.sa_handler = on_prompt_sigint;  // no SA_RESTART: select() returns on Ctrl-C
+  sigemptyset(&at_prompt.sa_mask);
+  sigaction(SIGINT, &at_prompt, nullptr);
+  if (pipe(g_wake) == 0) {
+    fcntl(g_wake[0], F_SETFL, O_NONBLOCK);
+    fcntl(g_wake[1], F_SETFL, O_NONBLOCK);
+  }
   std::string buffer;
+  prompt_for(buffer);
   for (;;) {
-    char* line = readline(buffer.empty() ? "fs> " : "... ");
-    if (!line) {  // Ctrl-D
+    fd_set in;
+    FD_ZERO(&in);
+    FD_SET(STDIN_FILENO, &in);
+    if (g_wake[0] >= 0) FD_SET(g_wake[0], &in);
+    int ready = select(std::max(STDIN_FILENO, g_wake[0]) + 1, &in, nullptr, nullptr, nullptr);
+    if (ready < 0 && errno != EINTR) break;
+    if (ready > 0 && FD_ISSET(STDIN_FILENO, &in) && !g_prompt_interrupted) rl_callback_read_char();
+    if (g_prompt_interrupted) {
+      char drain[64];
+      while (g_wake[0] >= 0 && read(g_wake[0], drain, sizeof drain) > 0) {
+      }
+      g_prompt_interrupted = 0;
+      rl_replace_line("", 0);
+      g_line.have = false;  // the line Ctrl-C ended
+      std::cout << "^C\n" << std::flush;
+      buffer.clear();
+      prompt_for(buffer);
+      continue;
+    }
+    if (g_line.eof) {  // Ctrl-D
       std::cout << "\n";
       break;
     }
-    buffer += line;
-    buffer += "\n";
-    std::free(line);
-    if (!input_complete(buffer)) continue;
+    if (!g_line.have) continue;
+    g_line.have = false;
+    buffer += g_line.text + "\n";
+    if (!input_complete(buffer)) {
+      prompt_for(buffer);
+      continue;
+    }
     std::string entry = trim(buffer);
     if (!entry.empty()) {
       add_history(entry.c_str());
       if (!history.empty()) write_history(history.c_str());
     }
     std::string out;
+    rl_callback_handler_remove();  // the evaluation may take the terminal for a while
     bool go = session.handle(buffer, out);
     buffer.clear();
     std::cout << out << std::flush;
     if (!go) break;
+    prompt_for(buffer);
   }
+  rl_callback_handler_remove();
   signal(SIGINT, SIG_DFL);
+  for (int& f : g_wake) {
+    if (f >= 0) close(f);
+    f = -1;
+  }
   return kExitOk;
 }
 

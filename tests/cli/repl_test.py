@@ -138,6 +138,11 @@ with tempfile.TemporaryDirectory() as tmp:
     os.write(fd, b"\x03")
     expect("ctrl-c in a continuation", read_until(fd, r"\^C\r\nfs> $", timeout=5), r"\^C\r\nfs> $")
     expect("the continuation is gone", type_line(fd, "3 * 3"), r"\r\n9\r\n")
+    # Tab completes definitions, built-ins and commands.
+    type_line(fd, "function squareit(x) { return x * x; }")
+    expect("tab completes a definition", type_line(fd, "squa\t(3)"), r"\r\n9\r\n")
+    expect("tab completes a built-in", type_line(fd, "hyp\t(3, 4)"), r"\r\n5\r\n")
+    expect("tab completes a command", type_line(fd, ":hel\t"), r":plot EXPR")
     # let and const at the prompt define, as var does.
     type_line(fd, "let q = 4;")
     expect("let", type_line(fd, "q * 2"), r"\r\n8\r\n")

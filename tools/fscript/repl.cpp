@@ -12,6 +12,7 @@
 
 #include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <regex>
 
@@ -340,6 +341,21 @@ void on_line(char* line) {
   std::free(line);
 }
 
+// Tab: the session's names for the word under the cursor (':' starts a command).
+const Session* g_session = nullptr;
+std::vector<std::string> g_matches;
+
+char* next_match(const char* text, int state) {
+  if (state == 0) g_matches = g_session ? g_session->completions(text) : std::vector<std::string>{};
+  size_t k = static_cast<size_t>(state);
+  return k < g_matches.size() ? strdup(g_matches[k].c_str()) : nullptr;
+}
+
+char** complete(const char* text, int, int) {
+  rl_attempted_completion_over = 1;  // names only, never file names
+  return rl_completion_matches(text, next_match);
+}
+
 void prompt_for(const std::string& buffer) {
   rl_callback_handler_remove();
   rl_callback_handler_install(buffer.empty() ? "fs> " : "... ", on_line);
@@ -354,6 +370,9 @@ int run_repl(const Options& o) {
   else if (const char* home = std::getenv("HOME")) history = std::string(home) + "/.fscript_history";
   rl_catch_signals = 0;  // both before anything initialises the line editor
   rl_getc_function = prompt_getc;
+  g_session = &session;
+  rl_attempted_completion_function = complete;
+  rl_completion_append_character = '\0';
   using_history();
   if (!history.empty()) read_history(history.c_str());
   std::cout << "fscript " << "(backend " << (o.backend.empty() ? backends::available_backends().front() : o.backend)
@@ -417,6 +436,7 @@ int run_repl(const Options& o) {
   }
   rl_callback_handler_remove();
   signal(SIGINT, SIG_DFL);
+  g_session = nullptr;
   for (int& f : g_wake) {
     if (f >= 0) close(f);
     f = -1;

@@ -22,6 +22,10 @@ class Session {
   // errors go to `out`; returns false when the session should end (:quit).
   bool handle(const std::string& input, std::string& out);
 
+  // Names that complete `prefix` (Tab): commands after ':', else definitions, scene scripts,
+  // built-ins, keywords and the standard globals; sorted, no repeats.
+  std::vector<std::string> completions(const std::string& prefix) const;
+
   // The text of every accepted definition, then `tail`.
   std::string program(const std::string& tail = "") const;
   // Compiles `body` as the function `name` with `params` against the session; nullptr with the

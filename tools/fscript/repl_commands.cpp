@@ -16,18 +16,35 @@ namespace fscript::cli {
 
 namespace {
 
-const char* kHelp =
-    "Type a definition (function f(x) { ... }, var a = 1;) and it stays; type an expression and\n"
-    "its value prints. Input continues on the next line while brackets are open.\n"
-    "  :help               this text\n"
-    "  :backend vm|sse|llvm  the backend that compiles what follows (no argument: the current one)\n"
-    "  :ir NAME            the optimised IR of function NAME\n"
-    "  :asm NAME           the generated code of NAME on the current backend\n"
-    "  :time EXPR          evaluations per second of EXPR\n"
-    "  :plot EXPR [from A to B]  EXPR of x as a chart, or of x and y as a picture (default -1 to 1)\n"
-    "  :load FILE          a .fs script's definitions, or a .wrl scene's scripts (called by node name)\n"
-    "  :reset              forget every definition\n"
-    "  :quit               leave (also Ctrl-D); Ctrl-C stops a long evaluation\n";
+// The commands, for :help and Tab completion (the dispatch is Session::command).
+struct CommandInfo {
+  const char* name;
+  const char* usage;
+  const char* help;
+};
+constexpr CommandInfo kCommands[] = {
+    {":help", "", "this text"},
+    {":backend", "vm|sse|llvm", "the backend that compiles what follows (no argument: the current one)"},
+    {":ir", "NAME", "the optimised IR of function NAME"},
+    {":asm", "NAME", "the generated code of NAME on the current backend"},
+    {":time", "EXPR", "evaluations per second of EXPR"},
+    {":plot", "EXPR [from A to B]", "EXPR of x as a chart, or of x and y as a picture (default -1 to 1)"},
+    {":load", "FILE", "a .fs script's definitions, or a .wrl scene's scripts (called by node name)"},
+    {":reset", "", "forget every definition"},
+    {":quit", "", "leave (also Ctrl-D); Ctrl-C stops a long evaluation"},
+};
+
+std::string help_text() {
+  std::string s =
+      "Type a definition (function f(x) { ... }, var a = 1;) and it stays; type an expression and\n"
+      "its value prints. Input continues on the next line while brackets are open or a line ends in\n"
+      "an operator. Tab completes names and commands.\n";
+  for (const CommandInfo& c : kCommands) {
+    std::string head = std::string("  ") + c.name + (*c.usage ? std::string(" ") + c.usage : "");
+    s += head + std::string(head.size() < 22 ? 22 - head.size() : 1, ' ') + c.help + "\n";
+  }
+  return s;
+}
 
 std::string trim(const std::string& s) {
   size_t b = s.find_first_not_of(" \t\r\n"), e = s.find_last_not_of(" \t\r\n");
@@ -105,11 +122,32 @@ std::string picture(const std::vector<float>& v, int w, int h, float a, float b)
 
 }  // namespace
 
+std::vector<std::string> Session::completions(const std::string& prefix) const {
+  static const char* kKeywords[] = {"function", "var", "let", "const", "return", "if", "else", "for", "while",
+                                    "break", "continue", "true", "false", "pi"};
+  std::vector<std::string> all;
+  if (!prefix.empty() && prefix[0] == ':') {
+    for (const CommandInfo& c : kCommands) all.push_back(c.name);
+  } else {
+    for (const auto& d : defs_) all.push_back(d.first);
+    for (const auto& [name, callable] : scene_) all.push_back(name);
+    for (int b = 0; b < frontend::kNumBuiltins; ++b) all.push_back(frontend::kBuiltins[b].name);
+    for (const char* k : kKeywords) all.push_back(k);
+    for (const char* g : frontend::kStandardGlobals) all.push_back(g);
+  }
+  std::vector<std::string> out;
+  for (const auto& name : all)
+    if (name.compare(0, prefix.size(), prefix) == 0 && std::find(out.begin(), out.end(), name) == out.end())
+      out.push_back(name);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 bool Session::command(const std::string& input, std::string& out) {
   size_t sp = input.find_first_of(" \t\n");
   std::string cmd = input.substr(0, sp), arg = sp == std::string::npos ? "" : trim(input.substr(sp));
   if (cmd == ":quit" || cmd == ":q") return false;
-  if (cmd == ":help") out += kHelp;
+  if (cmd == ":help") out += help_text();
   else if (cmd == ":reset") defs_.clear(), scene_.clear(), out += "every definition forgotten\n";
   else if (cmd == ":backend") {
     if (!arg.empty() && !backends::make_backend(arg)) out += "error: " + backends::missing_backend_message(arg) + "\n";

@@ -138,6 +138,10 @@ with tempfile.TemporaryDirectory() as tmp:
     os.write(fd, b"\x03")
     expect("ctrl-c in a continuation", read_until(fd, r"\^C\r\nfs> $", timeout=5), r"\^C\r\nfs> $")
     expect("the continuation is gone", type_line(fd, "3 * 3"), r"\r\n9\r\n")
+    # The letter-case warning of `check`, for what was typed at the prompt.
+    expect("letter-case warning", type_line(fd, "Sqrt(16)"),
+           r"<input>:1:1: warning: 'Sqrt' is not defined; using 'sqrt' \(names are case-sensitive\)[\s\S]*\r\n4\r\n")
+    expect("no warning for what is right", type_line(fd, "sqrt(16)"), r"sqrt\(16\)\r\n4\r\n")
     # Tab completes definitions, built-ins and commands.
     type_line(fd, "function squareit(x) { return x * x; }")
     expect("tab completes a definition", type_line(fd, "squa\t(3)"), r"\r\n9\r\n")

@@ -57,11 +57,13 @@ void unwrap_message(frontend::Diagnostic& d, const std::vector<std::string>& lin
 // Diagnostics of a synthesized program, shown against what the user typed: positions inside the
 // input (lines [first, first + count)) become "<input>:line:col"; anything after it (an unclosed
 // construct found at the end) points at the input's end.
-std::string render_mapped(const frontend::DiagnosticSink& diag, uint32_t first, const std::string& input) {
+std::string render_mapped(const frontend::DiagnosticSink& diag, uint32_t first, const std::string& input,
+                          bool input_only = false) {
   std::vector<std::string> lines = frontend::split_lines(input);
   uint32_t count = static_cast<uint32_t>(std::max<size_t>(lines.size(), 1));
   std::string out;
   for (frontend::Diagnostic d : diag.all()) {
+    if (input_only && (d.pos.line < first || d.pos.line >= first + count)) continue;
     if (d.pos.line >= first) {
       d.path = "<input>";
       if (d.pos.line >= first + count) {
@@ -226,6 +228,8 @@ bool Session::compile(const std::string& name, const std::vector<std::string>& p
   frontend::DiagnosticSink diag;
   auto file = std::make_unique<frontend::SourceFile>("<input>", prefix + body + "\n}\n");
   driver::Outcome r = driver::compile(std::move(file), driver::named_entry(name), opts_, diag, c);
+  // Warnings about what was just typed (a letter-case slip, as `check` says it) show with the value.
+  if (r.ok()) out += render_mapped(diag, first, input_text, true);
   return report_compile(r, r.stage == driver::Stage::Source ? render_mapped(diag, first, input_text) : "", out);
 }
 
@@ -288,7 +292,9 @@ void Session::evaluate(const std::string& raw, std::string& out) {
       return;
     }
     c = std::move(s);
+    errors = statement_errors;
   }
+  out += errors;  // the warnings of what compiled
   const backends::Kernel& k = *c.kernel;
   out += run_interruptible([&k] {
     float value = 0;

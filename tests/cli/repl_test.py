@@ -192,11 +192,17 @@ with tempfile.TemporaryDirectory() as tmp:
     expect("plot 2d", type_line(fd, ":plot x * x + y * y - 0.5"), r"\(y up\)")
     scene = os.path.join(SRC, "examples", "paper", "figure3-colour.wrl")
     loaded = type_line(fd, f":load {scene}")
-    expect("load wrl", loaded, r"callable:")
-    names = re.findall(r"callable:((?: \w+)+)", loaded)
+    expect("load wrl", loaded, r"loaded 2 scripts from .*figure3-colour.wrl")
+    names = re.findall(r"inputs \(x, y, z, t or u, v, w, t\):\r\n((?: +\w+)+)", loaded)
+    expect("load wrl names", names[0] if names else "", r"^ +geo shape_diffuseColor$")
     if names:
         name = names[0].split()[0]
         expect("call a scene script", type_line(fd, f"{name}(0, 0, 0, 0)"), r"\r\n-?[0-9.e+-]+( -?[0-9.e+-]+)*\r\n")
+    # A node without a DEF name is named after its FShape and its role.
+    listing = os.path.join(SRC, "examples", "paper", "listing1-operation.wrl")
+    expect("load names every script", type_line(fd, f":load {listing}"),
+           r"shape1_geometry shape1_diffuseColor shape2_geometry shape2_diffuseColor")
+    expect("call shape1_geometry", type_line(fd, "shape1_geometry(0.5, 0.5, 0.5, 0)"), r"\r\n-?[0-9.e+-]+( -?[0-9.e+-]+)*\r\n")
     fs_file = os.path.join(tmp, "defs.fs")
     with open(fs_file, "w") as f:
         f.write("function cube(x) { return x * x * x; }\n")

@@ -29,7 +29,7 @@ constexpr CommandInfo kCommands[] = {
     {":asm", "NAME", "the generated code of NAME on the current backend"},
     {":time", "EXPR", "evaluations per second of EXPR"},
     {":plot", "EXPR [from A to B]", "EXPR of x as a chart, or of x and y as a picture (default -1 to 1)"},
-    {":load", "FILE", "a .fs script's definitions, or a .wrl scene's scripts (called by node name)"},
+    {":load", "FILE", "a .fs script's definitions, or every script of a .wrl scene, listed with a callable name"},
     {":reset", "", "forget every definition"},
     {":quit", "", "leave (also Ctrl-D); Ctrl-C stops a long evaluation"},
 };
@@ -275,6 +275,49 @@ void Session::cmd_plot(const std::string& raw, std::string& out) {
   });
 }
 
+namespace {
+
+std::string lowercase_type(const vrml::Node& n) {
+  std::string t = n.type;
+  if (t.size() > 1 && t[0] == 'F') t.erase(0, 1);  // FGeometry -> geometry
+  for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return t;
+}
+
+// What a script does for its shape: "geometry", "texture", or the material field's own name.
+std::string role_of(const vrml::Node& n, const std::string& field) {
+  if (n.type == "FGeometry") return "geometry";
+  if (n.type == "FTexture3D") return "texture";
+  return field;
+}
+
+// The FGeometry, FMaterial and FTexture3D of every FShape named after it: its DEF name, else
+// shapeN (N counting FShapes from 1 in file order); FTransforms likewise (transformN).
+std::map<const vrml::Node*, std::string> script_owners(const vrml::Scene& scene) {
+  std::map<const vrml::Node*, std::string> owner;
+  int shapes = 0, transforms = 0;
+  auto child = [](const vrml::Node& n, const char* field) -> const vrml::Node* {
+    const vrml::Value* v = n.get(field);
+    return v && !v->nodes.empty() ? v->nodes[0].get() : nullptr;
+  };
+  vrml::for_each_node(scene, [&](const vrml::Node& n) {
+    if (n.type == "FTransform") {
+      ++transforms;
+      owner[&n] = n.def_name.empty() ? "transform" + std::to_string(transforms) : n.def_name;
+    }
+    if (n.type != "FShape") return;
+    std::string name = n.def_name.empty() ? "shape" + std::to_string(++shapes) : (++shapes, n.def_name);
+    if (const vrml::Node* g = child(n, "geometry")) owner[g] = name;
+    if (const vrml::Node* a = child(n, "appearance")) {
+      if (const vrml::Node* m = child(*a, "material")) owner[m] = name;
+      if (const vrml::Node* t = child(*a, "texture3D")) owner[t] = name;
+    }
+  });
+  return owner;
+}
+
+}  // namespace
+
 void Session::cmd_load(const std::string& path, std::string& out) {
   if (path.empty()) {
     out += "error: :load FILE\n";
@@ -308,19 +351,26 @@ void Session::cmd_load(const std::string& path, std::string& out) {
     out += frontend::render_all(diag);
     return;
   }
-  std::map<std::string, int> per_node;
   auto scripts = vrml::scene_scripts(scene);
-  for (const auto& s : scripts)
-    if (!s.node->def_name.empty()) ++per_node[s.node->def_name];
+  std::map<const vrml::Node*, std::string> owner = script_owners(scene);
+  std::map<const vrml::Node*, int> per_node;
+  for (const auto& s : scripts) ++per_node[s.node];
   std::string names;
+  int count = 0;
   for (const auto& s : scripts) {
-    if (s.node->def_name.empty() || frontend::is_affine_field(s.script.field)) continue;
-    std::string name = per_node[s.node->def_name] > 1 ? s.node->def_name + "_" + s.script.field : s.node->def_name;
+    if (frontend::is_affine_field(s.script.field) || s.script.field == "operation") continue;
+    // The node's own DEF name (with the field when it has several scripts), else its owner's
+    // name and the script's role: shape1_geometry, shape1_diffuseColor, ball_texture.
+    std::string name = !s.node->def_name.empty()
+                           ? (per_node[s.node] > 1 ? s.node->def_name + "_" + s.script.field : s.node->def_name)
+                           : owner.count(s.node) ? owner[s.node] + "_" + role_of(*s.node, s.script.field)
+                                                 : lowercase_type(*s.node) + "_" + s.script.field;
     scene_[name] = {s.script.text, path + ":" + std::to_string(s.script.line)};
-    names += " " + name;
+    names += (count++ % 6 == 0 ? "\n  " : " ") + name;
   }
-  out += names.empty() ? "no script of a DEF-named node in " + path + "\n"
-                       : "callable:" + names + " (each with its script's inputs, e.g. x, y, z, t)\n";
+  out += names.empty() ? "no FScript in " + path + "\n"
+                       : "loaded " + std::to_string(count) + (count == 1 ? " script" : " scripts") + " from " + path +
+                             ", each callable with its script's inputs (x, y, z, t or u, v, w, t):" + names + "\n";
 }
 
 // NAME(args) where NAME came from a loaded scene: the script compiled on its own (its entry

@@ -100,6 +100,22 @@ std::string chart(const std::vector<float>& ys, float a, float b) {
   return out.str();
 }
 
+// Whether the sample r, c lies on the zero contour: inside (f >= 0) while its right or lower
+// neighbour is not, or the other way round.
+bool on_contour(const std::vector<float>& v, int w, int h, int r, int c) {
+  auto inside = [&](int rr, int cc) { return v[static_cast<size_t>(rr * w + cc)] >= 0; };
+  bool here = inside(r, c);
+  return (c + 1 < w && inside(r, c + 1) != here) || (r + 1 < h && inside(r + 1, c) != here);
+}
+
+bool has_contour(const std::vector<float>& v, int w, int h) {
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c)
+      if (on_contour(v, w, h, r, c)) return true;
+  return false;
+}
+
+// A heat map of f(x, y) with the zero contour (the shape's outline) drawn over it in 'o'.
 std::string picture(const std::vector<float>& v, int w, int h, float a, float b) {
   static const char* kShades = " .:-=+*#%@";
   float lo = INFINITY, hi = -INFINITY;
@@ -111,12 +127,12 @@ std::string picture(const std::vector<float>& v, int w, int h, float a, float b)
     for (int c = 0; c < w; ++c) {
       float y = v[static_cast<size_t>(r * w + c)];
       int s = std::isfinite(y) && hi > lo ? static_cast<int>((y - lo) / (hi - lo) * 9.0f + 0.5f) : 0;
-      out << kShades[std::clamp(s, 0, 9)];
+      out << (on_contour(v, w, h, r, c) ? 'o' : kShades[std::clamp(s, 0, 9)]);
     }
     out << "\n";
   }
   out << "x, y from " << format_number(a) << " to " << format_number(b) << " (y up); ' ' is " << format_number(lo)
-      << ", '@' is " << format_number(hi) << "\n";
+      << ", '@' is " << format_number(hi) << "; 'o' is the outline, f = 0\n";
   return out.str();
 }
 
@@ -177,9 +193,31 @@ static bool compile_named(const Session& s, const std::string& name, const Optio
   return report_compile(r, frontend::render_all(diag), out);
 }
 
+// The optimised IR of what NAME uses: the globals and global arrays its code touches, and its
+// functions (the session's others, and the standard globals it never reads, are left out).
+static std::string used_ir(const ir::Module& m) {
+  std::vector<char> global(m.globals.size(), 0), array(m.arrays.size(), 0);
+  for (const auto& f : m.functions)
+    for (const auto& b : f->blocks)
+      for (const ir::Inst* i : b->insts) {
+        bool memory = ir::has_flag(i->op, ir::Memory) && i->aux >= 0;
+        if (memory && (i->op == ir::Op::GLoad || i->op == ir::Op::GStore) && size_t(i->aux) < global.size())
+          global[static_cast<size_t>(i->aux)] = 1;
+        else if (memory && i->array_global && size_t(i->aux) < array.size())
+          array[static_cast<size_t>(i->aux)] = 1;
+      }
+  std::string out;
+  for (size_t g = 0; g < global.size(); ++g)
+    if (global[g]) out += "global @" + m.globals[g] + "\n";
+  for (size_t a = 0; a < array.size(); ++a)
+    if (array[a]) out += "garray @" + m.arrays[a] + "\n";
+  for (const auto& f : m.functions) out += ir::print(m, *f);
+  return out;
+}
+
 void Session::cmd_ir(const std::string& arg, std::string& out) {
   Compiled c;
-  if (compile_named(*this, arg, opts_, c, out, false)) out += ir::print(*c.module);
+  if (compile_named(*this, arg, opts_, c, out, false)) out += used_ir(*c.module);
 }
 
 void Session::cmd_asm(const std::string& arg, std::string& out) {
@@ -254,24 +292,37 @@ void Session::cmd_plot(const std::string& raw, std::string& out) {
     out += "error: :plot EXPR\n";
     return;
   }
-  bool two_d = uses_identifier(expr, "y");
+  bool two_d = uses_identifier(expr, "y"), chosen = m.empty();
   Compiled c;
   std::vector<std::string> params = two_d ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x"};
   if (!compile("__plot__", params, "return (\n" + expr + "\n);", expr, c, out)) return;
   const backends::Kernel& k = *c.kernel;
-  out += run_interruptible([&k, two_d, a, b] {
+  out += run_interruptible([&k, two_d, a, b, chosen] {
     int w = two_d ? 64 : 72, h = two_d ? 32 : 1;
-    std::vector<float> xs, ys, v(static_cast<size_t>(w * h));
-    for (int r = 0; r < h; ++r)
-      for (int col = 0; col < w; ++col) {
-        xs.push_back(a + (b - a) * static_cast<float>(col) / static_cast<float>(w - 1));
-        ys.push_back(h > 1 ? b - (b - a) * static_cast<float>(r) / static_cast<float>(h - 1) : 0.0f);
-      }
-    const float* in[2] = {xs.data(), ys.data()};
-    float* outs[1] = {v.data()};
+    std::vector<float> v(static_cast<size_t>(w * h));
+    auto sample = [&](float lo, float hi, backends::RuntimeError& err) {
+      std::vector<float> xs, ys;
+      for (int r = 0; r < h; ++r)
+        for (int col = 0; col < w; ++col) {
+          xs.push_back(lo + (hi - lo) * static_cast<float>(col) / static_cast<float>(w - 1));
+          ys.push_back(h > 1 ? hi - (hi - lo) * static_cast<float>(r) / static_cast<float>(h - 1) : 0.0f);
+        }
+      const float* in[2] = {xs.data(), ys.data()};
+      float* outs[1] = {v.data()};
+      return k.eval_batch(in, outs, v.size(), err);
+    };
     backends::RuntimeError err;
-    if (!k.eval_batch(in, outs, v.size(), err)) return "error: " + err.message + "\n";
-    return two_d ? picture(v, w, h, a, b) : chart(v, a, b);
+    if (!sample(a, b, err)) return "error: " + err.message + "\n";
+    if (!two_d) return chart(v, a, b);
+    if (!chosen || has_contour(v, w, h)) return picture(v, w, h, a, b);
+    // No outline in -1..1: the shape is larger or smaller than that; look wider, then closer.
+    for (float scale : {2.0f, 0.5f, 4.0f, 0.25f, 8.0f, 0.125f, 16.0f, 1 / 16.0f, 64.0f, 1 / 64.0f}) {
+      if (!sample(-scale, scale, err)) return "error: " + err.message + "\n";
+      if (has_contour(v, w, h))
+        return picture(v, w, h, -scale, scale) + "(range chosen to show the outline; :plot EXPR from A to B sets it)\n";
+    }
+    if (!sample(a, b, err)) return "error: " + err.message + "\n";
+    return picture(v, w, h, a, b) + "no outline (f = 0) from -64 to 64 either; :plot EXPR from A to B sets the range\n";
   });
 }
 

@@ -275,6 +275,24 @@ fi
 printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 3; i = i + 1) s = s + x; return 0.5 - s * s - y * y; }\n' > "$T/loop2d.fs"
 same_picture loop "$T/loop2d.fs" --size 64 --bounds -1,1,-1,1
 
+# ---- fvrml-run FILE.fs: an implicit script as one FShape; errors at the script's own lines ----
+printf '// a ball\nfunction FRep(x, y, z, t) {\n  return 0.8 - sqrt(x*x + y*y + z*z);\n}\n' > "$T/ball.fs"
+check "fvrml-run a script" 0 '^wrote [^ ]*ball-fs.obj: [0-9,]+ triangles, 1 shape' -- "$R" "$T/ball.fs" -o "$T/ball-fs.obj"
+jcheck "fvrml-run a script: the ball of radius 0.8, in the default box" out "
+near(j['volume'], 4 / 3 * 3.14159265 * 0.8 ** 3, 0.05) and near(j['bbox'][3], 0.8, 0.01)
+" -- python3 "$SRC/tests/clients/mesh_probe.py" "$T/ball-fs.obj"
+printf '0.7^2 - x^2 - y^2 - z^2\n' > "$T/expr.fs"
+check "fvrml-run an expression script" 0 'triangles, 1 shape' -- "$R" "$T/expr.fs" -o "$T/expr.ply"
+printf 'function FRep(x, y, z, t) {\n  return 0.8 - sqrt(x*x + y*y + z*z) +;\n}\n' > "$T/bad.fs"
+check "fvrml-run a script with a syntax error" 1 'bad.fs:2:39: error: expected an expression' -- "$R" "$T/bad.fs" -o "$T/bad.ply"
+[ -e "$T/bad.ply" ] && fail "fvrml-run a script with a syntax error wrote bad.ply"
+printf 'function FRep(x, y, z, t) {\n  var s = 0;\n  while (1) { s = s + 1; }\n  return s;\n}\n' > "$T/loop.fs"
+check "fvrml-run a script: a runtime error at its line" 1 '^loop.fs:3: error: loop iteration budget|/loop.fs:3: error: loop iteration budget' \
+  -- "$R" "$T/loop.fs" -o "$T/loop.ply" --max-loop-iterations 1000
+printf 'function parametric_x(u,v,w,t){return u;}\nfunction parametric_y(u,v,w,t){return v;}\nfunction parametric_z(u,v,w,t){return 0;}\n' > "$T/flat.fs"
+check "fvrml-run a parametric script says what to do" 1 'takes an implicit script.*FShape of a .wrl' -- "$R" "$T/flat.fs" -o "$T/flat.ply"
+[ -e "$T/flat.ply" ] && fail "fvrml-run a parametric script wrote flat.ply"
+
 # ---- fvrml-run prunes implicit meshing by an octree: the same file bytes as --no-prune ----
 # same_mesh NAME SCENE ARGS...: pruned (1 and 2 threads) and dense outputs byte for byte, every backend.
 same_mesh() {

@@ -69,6 +69,12 @@ mesh::Mesh merged(Meshed& m) {
 
 bool build(Loaded& l, SceneModel& model, const fscript::scene::ModelOptions& mo, bool print) {
   bool ok = fscript::scene::build_scene_model(l.scene, mo, l.diag, model);
+  if (ok && l.from_script && !model.shapes.empty() && model.shapes[0].kind != fscript::scene::ShapeKind::Implicit) {
+    std::cerr << l.scene.file->path() << ": error: fvrml-run FILE.fs takes an implicit script (function FRep, or "
+              << "one expression); a parametric script needs its resolution and parameters in an FShape of a .wrl "
+              << "(docs/scenes.md, \"Shapes\")\n";
+    return false;
+  }
   if (print || !ok) std::cerr << fscript::frontend::render_all(l.diag);
   l.diag.clear();
   return ok;

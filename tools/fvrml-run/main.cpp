@@ -77,6 +77,28 @@ nlohmann::json stats(const vrml::Scene& scene, const SceneModel& m, const Meshed
   return {{"shapes", shapes}, {"ftransforms", groups}};
 }
 
+bool is_script_path(const std::string& path) { return path.size() > 3 && path.compare(path.size() - 3, 3, ".fs") == 0; }
+
+// fvrml-run shape.fs: the script as the definition of one FShape with every other field at its
+// FVRML default. The scene's file is the script itself, the definition starting at its first
+// character, so diagnostics and runtime errors name the .fs file's own lines and columns.
+bool script_scene(const std::string& path, const std::string& text, Loaded& l) {
+  const std::string wrapper = "#VRML V2.0 utf8\nFShape { geometry FGeometry { definition \"0\" } }\n";
+  if (!vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(path, wrapper), l.diag, l.scene)) return false;
+  const vrml::Value* g = l.scene.roots.empty() ? nullptr : l.scene.roots[0]->get("geometry");
+  vrml::Node* geometry = g && !g->nodes.empty() ? g->nodes[0].get() : nullptr;
+  if (geometry)
+    for (vrml::FieldSlot& f : geometry->fields) {
+      if (f.name != "definition" || f.value.strs.empty() || f.value.str_spans.empty()) continue;
+      f.value.strs[0] = text;
+      f.value.str_spans[0] = {0, static_cast<uint32_t>(text.size())};
+      l.scene.file = std::make_unique<fscript::frontend::SourceFile>(path, text);
+      return true;
+    }
+  std::cerr << path << ": error: internal: the FShape wrapper of a script has no definition\n";
+  return false;
+}
+
 // --check REF: distances between the frame's mesh and a reference mesh, as JSON on standard output.
 bool check_against(const std::string& ref, const mesh::Mesh& all) {
   mesh::Mesh reference;
@@ -189,7 +211,8 @@ int run(int argc, char** argv) {
   Options o;
   o.model.compile.backend = fscript::backends::available_backends().front();
   o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  app.add_option("SCENE", o.path, "the .wrl scene (plain or gzip)")->required();
+  app.add_option("SCENE", o.path, "the .wrl scene (plain or gzip), or an .fs script: one FShape with its definition")
+      ->required();
   app.add_option("--backend", o.model.compile.backend, "evaluation backend: vm, sse or llvm (default: vm)");
   bool disk_cache = false;
   app.add_flag("--llvm-disk-cache", disk_cache,
@@ -245,7 +268,7 @@ int run(int argc, char** argv) {
   // the current folder, named after the scene (a pipe still gets VRML97 on standard output).
   if (o.output.empty() && o.format.empty() && !o.stats && o.check.empty() && o.frames == 0 && isatty(STDOUT_FILENO)) {
     std::string name = std::filesystem::path(o.path).filename().string();
-    for (const char* ext : {".wrl.gz", ".wrz", ".wrl", ".WRL"})
+    for (const char* ext : {".wrl.gz", ".wrz", ".wrl", ".WRL", ".fs"})
       if (name.size() > std::strlen(ext) && name.compare(name.size() - std::strlen(ext), std::string::npos, ext) == 0) {
         name.erase(name.size() - std::strlen(ext));
         break;
@@ -269,12 +292,15 @@ int run(int argc, char** argv) {
   }
   auto t0 = Clock::now();
   std::string text, error;
-  if (!vrml::read_scene_text(o.path, text, error)) {
+  bool script = is_script_path(o.path);
+  if (!(script ? fscript::support::read_file(o.path, text, error) : vrml::read_scene_text(o.path, text, error))) {
     std::cerr << o.path << ": error: " << error << "\n";
     return 1;
   }
   Loaded l;
-  bool ok = vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(o.path, text), l.diag, l.scene);
+  l.from_script = script;
+  bool ok = script ? script_scene(o.path, text, l)
+                   : vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(o.path, text), l.diag, l.scene);
   nlohmann::json st = {{"parse_ms", ms_since(t0)}};
   if (!ok) {
     std::cerr << fscript::frontend::render_all(l.diag);

@@ -41,6 +41,7 @@ struct Options {
 struct Loaded {
   fscript::frontend::DiagnosticSink diag;
   vrml::Scene scene;
+  bool from_script = false;  // an .fs file wrapped in one FShape (main.cpp, script_scene)
 };
 
 // The meshes of one frame: per replaced node (FShape or top-level FTransform) and per shape.

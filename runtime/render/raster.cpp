@@ -34,27 +34,48 @@ struct View {
   double cx, cy;
 };
 
+// Where the automatic camera stands: the view direction from azimuth and elevation, then the
+// distance at which the mesh's outline, measured across the view at its middle depth, fills 80%
+// of the smaller side (and its nearest points still fit), looking at the outline's centre.
+void frame_mesh(const mesh::Mesh& m, const RenderOptions& o, double fov, uint32_t w, uint32_t h, View& v) {
+  const double deg = 3.14159265358979323846 / 180;
+  double az = o.azimuth * deg, el = std::clamp(o.elevation, -89.0, 89.0) * deg;
+  v.back = {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
+  v.right = norm(cross({0, 1, 0}, v.back));
+  v.up = cross(v.back, v.right);
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};  // along right, up, back
+  for (const auto& p : m.positions) {
+    V3 q = {p[0], p[1], p[2]};
+    if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2])) continue;
+    double c[3] = {dot(q, v.right), dot(q, v.up), dot(q, v.back)};
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  }
+  if (lo[0] > hi[0])
+    for (int a = 0; a < 3; ++a) lo[a] = -1, hi[a] = 1;
+  double half_r = std::max(1e-6, (hi[0] - lo[0]) / 2), half_u = std::max(1e-6, (hi[1] - lo[1]) / 2);
+  double side = std::min(w, h);
+  double tan_r = std::tan(fov / 2) * w / side, tan_u = std::tan(fov / 2) * h / side;
+  double zoom = o.zoom > 0 ? o.zoom : 1;
+  double fit = 0.8 * zoom, near_fit = 0.95 * zoom;
+  double depth = (hi[2] - lo[2]) / 2;
+  double dist = std::max({half_r / (fit * tan_r), half_u / (fit * tan_u),
+                          depth + std::max(half_r / (near_fit * tan_r), half_u / (near_fit * tan_u))});
+  double mid[3] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2 + dist};
+  for (int k = 0; k < 3; ++k) v.eye[k] = v.right[k] * mid[0] + v.up[k] * mid[1] + v.back[k] * mid[2];
+}
+
 View make_view(const mesh::Mesh& m, const RenderOptions& o, uint32_t w, uint32_t h) {
   View v;
-  double fov = o.camera ? o.camera->field_of_view : 0.6;
-  if (o.camera) {
+  bool fixed = o.camera && !o.view_given;
+  double fov = fixed ? o.camera->field_of_view : 0.6;
+  if (fixed) {
     v.eye = {o.camera->position[0], o.camera->position[1], o.camera->position[2]};
     v.right = rotate(o.camera->orientation, {1, 0, 0});
     v.up = rotate(o.camera->orientation, {0, 1, 0});
     v.back = rotate(o.camera->orientation, {0, 0, 1});
+    if (o.zoom > 0 && o.zoom != 1) fov = 2 * std::atan(std::tan(fov / 2) / o.zoom);
   } else {
-    V3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (const auto& p : m.positions)
-      for (int a = 0; a < 3; ++a)
-        if (std::isfinite(p[a])) lo[a] = std::min(lo[a], double(p[a])), hi[a] = std::max(hi[a], double(p[a]));
-    if (lo[0] > hi[0]) lo = {-1, -1, -1}, hi = {1, 1, 1};
-    V3 c = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
-    double radius = std::max(1e-6, std::sqrt(dot(sub(hi, lo), sub(hi, lo))) / 2);
-    v.back = norm({0.55, 0.45, 1.0});
-    v.right = norm(cross({0, 1, 0}, v.back));
-    v.up = cross(v.back, v.right);
-    double dist = radius / std::sin(fov / 2) * 1.05;
-    v.eye = {c[0] + v.back[0] * dist, c[1] + v.back[1] * dist, c[2] + v.back[2] * dist};
+    frame_mesh(m, o, fov, w, h, v);
   }
   v.focal = 0.5 * std::min(w, h) / std::tan(fov / 2);
   v.cx = w / 2.0, v.cy = h / 2.0;

@@ -293,6 +293,30 @@ printf 'function parametric_x(u,v,w,t){return u;}\nfunction parametric_y(u,v,w,t
 check "fvrml-run a parametric script says what to do" 1 'takes an implicit script.*FShape of a .wrl' -- "$R" "$T/flat.fs" -o "$T/flat.ply"
 [ -e "$T/flat.ply" ] && fail "fvrml-run a parametric script wrote flat.ply"
 
+# ---- Pictures: automatic framing fills about 80%; --view, --zoom and --size set the camera ----
+PNGP="$SRC/tests/clients/png_probe.py"
+"$R" "$T/ball.fs" -o "$T/frame.png" --size 200x150 > /dev/null 2>&1
+jcheck "framing: the ball fills about 80% of the smaller side, centred" out "
+j['width'] == 200 and j['height'] == 150 and 0.7 <= j['bbox_height'] / 150 <= 0.88 and
+abs((j['bbox'][0] + j['bbox'][2]) / 2 - 99.5) <= 3 and abs((j['bbox'][1] + j['bbox'][3]) / 2 - 74.5) <= 3
+" -- python3 "$PNGP" "$T/frame.png" --bbox
+"$R" "$T/ball.fs" -o "$T/zoom.png" --size 200x150 --zoom 1.3 > /dev/null 2>&1
+jcheck "--zoom 1.3 comes closer" out "j['bbox_width'] >= 1.2 * 114" -- python3 "$PNGP" "$T/zoom.png" --bbox
+printf 'min(0.9 - abs(x), min(0.2 - abs(y), 0.2 - abs(z)))\n' > "$T/bar.fs"
+"$R" "$T/bar.fs" -o "$T/bar-front.png" --size 200 --view 0,0 > /dev/null 2>&1
+jcheck "--view 0,0 sees the bar along its length" out "j['bbox_width'] > 3 * j['bbox_height'] and j['bbox_width'] >= 150" \
+  -- python3 "$PNGP" "$T/bar-front.png" --bbox
+"$R" "$T/bar.fs" -o "$T/bar-side.png" --size 200 --view 90,0 > /dev/null 2>&1
+jcheck "--view 90,0 sees the bar end on" out "0.8 <= j['bbox_width'] / j['bbox_height'] <= 1.25" \
+  -- python3 "$PNGP" "$T/bar-side.png" --bbox
+check "--size WxH" 0 "wrote" -- "$R" "$T/ball.fs" -o "$T/size.png" --size 300x100
+jcheck "--size WxH: the picture's size" out "j['width'] == 300 and j['height'] == 100" -- python3 "$PNGP" "$T/size.png" --bbox
+check "--size without a height" 2 "error: --size wants WxH" -- "$R" "$T/ball.fs" -o "$T/x.png" --size 20x
+check "--size too small" 2 "error: --size wants WxH" -- "$R" "$T/ball.fs" -o "$T/x.png" --size 8x8
+check "--view needs two angles" 2 "error: --view wants AZ,EL" -- "$R" "$T/ball.fs" -o "$T/x.png" --view 30
+check "--view elevation in range" 2 "error: --view wants AZ,EL" -- "$R" "$T/ball.fs" -o "$T/x.png" --view 0,90
+check "--zoom out of range" 2 "zoom" -- "$R" "$T/ball.fs" -o "$T/x.png" --zoom 0
+
 # ---- fvrml-run prunes implicit meshing by an octree: the same file bytes as --no-prune ----
 # same_mesh NAME SCENE ARGS...: pruned (1 and 2 threads) and dense outputs byte for byte, every backend.
 same_mesh() {

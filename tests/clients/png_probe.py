@@ -2,7 +2,9 @@
 # Reads a PNG (8-bit RGB or RGBA, any filter; standard library only) and prints, as JSON, the
 # number of pixels whose colour is close to R,G,B and their mean column and row; or, with --tiles,
 # per tile of a grid the pixels that differ from the background.
-# usage: png_probe.py FILE.png R G B [TOLERANCE] | png_probe.py FILE.png --tiles COLUMNS ROWS
+# With --bbox, the box of the pixels that differ from the background (the top-left pixel).
+# usage: png_probe.py FILE.png R G B [TOLERANCE] | png_probe.py FILE.png --tiles COLUMNS ROWS |
+#        png_probe.py FILE.png --bbox
 import json, struct, sys, zlib
 
 def read_png(path):
@@ -71,7 +73,23 @@ def tiles_mode(path, cols, nrows):
     print(json.dumps({'width': w, 'height': h, 'tiles': tiles}))
 
 
-if len(sys.argv) == 5 and sys.argv[2] == '--tiles':
+def bbox_mode(path):
+    w, h, bpp, rows = read_png(path)
+    bg = bytes(rows[0][0:3])
+    xs, ys = [], []
+    for y, line in enumerate(rows):
+        for x in range(w):
+            if bytes(line[x * bpp:x * bpp + 3]) != bg:
+                xs.append(x)
+                ys.append(y)
+    box = [min(xs), min(ys), max(xs), max(ys)] if xs else None
+    print(json.dumps({'width': w, 'height': h, 'bbox': box,
+                      'bbox_width': box[2] - box[0] + 1 if box else 0, 'bbox_height': box[3] - box[1] + 1 if box else 0}))
+
+
+if len(sys.argv) == 3 and sys.argv[2] == '--bbox':
+    bbox_mode(sys.argv[1])
+elif len(sys.argv) == 5 and sys.argv[2] == '--tiles':
     tiles_mode(sys.argv[1], int(sys.argv[3]), int(sys.argv[4]))
 else:
     colour_mode(sys.argv[1], [int(v) for v in sys.argv[2:5]], int(sys.argv[5]) if len(sys.argv) > 5 else 60)

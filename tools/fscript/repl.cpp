@@ -369,8 +369,33 @@ void prompt_for(const std::string& buffer) {
 
 }  // namespace
 
+// Input from a pipe or a file (`printf '1+2\n' | fscript repl`): lines as typed, no editor.
+int run_lines(Session& session) {
+  std::string buffer, line;
+  while (std::getline(std::cin, line)) {
+    buffer += line + "\n";
+    if (!input_complete(buffer)) continue;
+    std::string out;
+    bool go = session.handle(buffer, out);
+    buffer.clear();
+    std::cout << out << std::flush;
+    if (!go) return kExitOk;
+  }
+  if (!trim(buffer).empty()) {  // an unfinished last input still gets its answer (or its error)
+    std::string out;
+    session.handle(buffer, out);
+    std::cout << out << std::flush;
+  }
+  return kExitOk;
+}
+
 int run_repl(const Options& o) {
   Session session(o);
+  if (!isatty(STDIN_FILENO)) {
+    std::cout << "fscript " << "(backend " << (o.backend.empty() ? backends::available_backends().front() : o.backend)
+              << "): reading input that is not a terminal, one entry per line\n";
+    return run_lines(session);
+  }
   std::string history;
   if (const char* h = std::getenv("FSCRIPT_HISTORY")) history = h;
   else if (const char* home = std::getenv("HOME")) history = std::string(home) + "/.fscript_history";

@@ -132,10 +132,11 @@ void lights(const vrml::Node* n, const fscript::scene::Mat4& m, std::vector<fscr
 
 }  // namespace
 
-fscript::render::RenderOptions render_options(const Options&, const vrml::Scene& scene, uint32_t width,
+fscript::render::RenderOptions render_options(const Options& o, const vrml::Scene& scene, uint32_t width,
                                               uint32_t height) {
   fscript::render::RenderOptions ro;
   ro.width = width, ro.height = height;
+  ro.azimuth = o.azimuth, ro.elevation = o.elevation, ro.zoom = o.zoom, ro.view_given = o.view_given;
   for (const auto& n : scene.roots) {
     if (n && n->type == "Viewpoint" && !ro.camera) {  // VRML97 binds the first one
       fscript::render::Camera c;

@@ -77,6 +77,42 @@ nlohmann::json stats(const vrml::Scene& scene, const SceneModel& m, const Meshed
   return {{"shapes", shapes}, {"ftransforms", groups}};
 }
 
+// "640x480" or "512" (a square), each side in [16, 8192].
+bool parse_size(const std::string& s, uint32_t& w, uint32_t& h) {
+  unsigned long a = 0, b = 0;
+  size_t x = s.find('x');
+  try {
+    size_t used = 0;
+    a = std::stoul(s.substr(0, x), &used);
+    if (used != (x == std::string::npos ? s.size() : x)) return false;
+    b = a;
+    if (x != std::string::npos) {
+      b = std::stoul(s.substr(x + 1), &used);
+      if (used != s.size() - x - 1) return false;
+    }
+  } catch (const std::exception&) {
+    return false;
+  }
+  if (a < 16 || b < 16 || a > 8192 || b > 8192) return false;
+  w = static_cast<uint32_t>(a), h = static_cast<uint32_t>(b);
+  return true;
+}
+
+// "AZ,EL" in degrees, the elevation strictly between -90 and 90.
+bool parse_view(const std::string& s, double& az, double& el) {
+  size_t comma = s.find(',');
+  if (comma == std::string::npos) return false;
+  try {
+    size_t u1 = 0, u2 = 0;
+    double a = std::stod(s.substr(0, comma), &u1), e = std::stod(s.substr(comma + 1), &u2);
+    if (u1 != comma || u2 != s.size() - comma - 1 || !std::isfinite(a) || !(e > -90 && e < 90)) return false;
+    az = a, el = e;
+  } catch (const std::exception&) {
+    return false;
+  }
+  return true;
+}
+
 bool is_script_path(const std::string& path) { return path.size() > 3 && path.compare(path.size() - 3, 3, ".fs") == 0; }
 
 // fvrml-run shape.fs: the script as the definition of one FShape with every other field at its
@@ -246,6 +282,17 @@ int run(int argc, char** argv) {
   app.add_option("--height", o.height, "picture height in pixels, 16 to 8,192 (png)")
       ->check(CLI::Range(16u, 8192u).description(""))
       ->type_name("H");
+  std::string size, view;
+  app.add_option("--size", size, "picture size WxH (or W for a square), 16 to 8,192 pixels a side (png)")
+      ->type_name("WxH");
+  app.add_option("--view", view,
+                 "look from azimuth AZ (degrees about the vertical, from the front toward the right) and elevation "
+                 "EL (degrees above the horizon), framing the scene automatically even if it has a Viewpoint "
+                 "(default 30,20) (png)")
+      ->type_name("AZ,EL");
+  app.add_option("--zoom", o.zoom, "come closer (F > 1) or step back (F < 1) from the automatic framing (png)")
+      ->check(CLI::Range(0.01, 100.0).description(""))
+      ->type_name("F");
   app.add_option("--threads", o.threads, "worker threads, 1 to 256 (default: all cores); the output is the same for any count")
       ->check(CLI::Range(1, 256).description(""))
       ->type_name("N");
@@ -255,6 +302,15 @@ int run(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   if (o.fraction >= 0) o.model.fraction = o.fraction;
+  if (!size.empty() && !parse_size(size, o.width, o.height)) {
+    std::cerr << "error: --size wants WxH (or W) with 16 <= W, H <= 8192, got '" << size << "'\n";
+    return 2;
+  }
+  if (!view.empty() && !parse_view(view, o.azimuth, o.elevation)) {
+    std::cerr << "error: --view wants AZ,EL in degrees with -90 < EL < 90, got '" << view << "'\n";
+    return 2;
+  }
+  o.view_given = !view.empty();
   o.prune = !no_prune;
   if (std::string message; disk_cache && !fscript::backends::enable_llvm_disk_cache(message)) {
     std::cerr << "error: " << message << "\n";

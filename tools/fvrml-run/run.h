@@ -36,6 +36,8 @@ struct Options {
   int frames = 0, threads = 1;
   bool stats = false, keep_going = false, prune = true;
   uint32_t width = 800, height = 600;
+  double azimuth = 30, elevation = 20, zoom = 1;  // the picture's automatic camera (raster.h)
+  bool view_given = false;
 };
 
 struct Loaded {

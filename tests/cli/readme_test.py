@@ -7,11 +7,11 @@ usage: readme_test.py SOURCE_DIR BUILD_DIR SHARED_DIR"""
 import os
 import pty
 import re
-import select
 import subprocess
 import sys
 import tempfile
-import time
+
+from ptyread import read_until
 
 SRC, BUILD, SHARED = sys.argv[1], os.path.abspath(sys.argv[2]), os.path.abspath(sys.argv[3])
 readme = open(os.path.join(SRC, "README.md")).read()
@@ -64,21 +64,6 @@ def run_commented_blocks(tmp):
             if r.returncode != 0 or want not in out:
                 failures.append(f"README example `{m.group(1)}` should print '{want}'; exit {r.returncode}:\n{out[-800:]}")
 
-
-def read_until(fd, pattern, timeout=20.0):
-    text, end = "", time.time() + timeout
-    while time.time() < end:
-        ready, _, _ = select.select([fd], [], [], 0.1)
-        if not ready:
-            continue
-        try:
-            chunk = os.read(fd, 65536).decode("utf-8", "replace")
-        except OSError:
-            break
-        text += chunk
-        if re.search(pattern, text):
-            break
-    return text
 
 
 def run_repl_session():

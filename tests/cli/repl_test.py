@@ -6,10 +6,11 @@ import math
 import os
 import pty
 import re
-import select
 import sys
 import tempfile
 import time
+
+from ptyread import read_until
 
 FSCRIPT, SRC = sys.argv[1], sys.argv[2]
 failures = []
@@ -23,25 +24,6 @@ def start(extra_args=(), env_extra=None):
         os.execve(FSCRIPT, [FSCRIPT, *extra_args], env)
     return pid, fd
 
-
-def read_until(fd, pattern, timeout=20.0):
-    """Reads the terminal until `pattern` (a regex) appears in what came since the last call."""
-    text = ""
-    end = time.time() + timeout
-    while time.time() < end:
-        ready, _, _ = select.select([fd], [], [], 0.1)
-        if not ready:
-            continue
-        try:
-            chunk = os.read(fd, 65536).decode("utf-8", "replace")
-        except OSError:
-            break
-        if not chunk:
-            break
-        text += chunk
-        if re.search(pattern, text):
-            return text
-    return text
 
 
 def expect(name, text, pattern):

@@ -339,8 +339,8 @@ FTransform { operation "subtraction" translation "0.1, 0, 0" children [
   FShape { geometry FGeometry { definition "0.3^2-x^2-y^2" bboxSize 2 2 2 resolution [61] } } ] }
 WRL
 same_mesh csg3d "$T/csg3d.wrl"
-same_mesh gyroid-sphere "$SRC/bench/scenes/gyroid-sphere256.wrl" --resolution-scale 0.25
-same_mesh figure6 "$P/figure6-blends.wrl" --resolution-scale 0.3 --fraction 0.5
+same_mesh gyroid-sphere "$SRC/bench/scenes/gyroid-sphere256.wrl" --resolution-scale 0.16
+same_mesh figure6 "$P/figure6-blends.wrl" --resolution-scale 0.2 --fraction 0.5
 jcheck "fvrml-run --stats: the octree decided regions and spared samples" err "
 j['prune']['pruned'] and 0 < j['prune']['evaluated'] < j['prune']['points'] == 61 ** 3 and
 sum(l['empty'] + l['full'] for l in j['prune']['levels']) > 0

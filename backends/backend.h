@@ -21,7 +21,8 @@ constexpr uint32_t kCallDepthCeiling = 100'000;  // the largest depth a user may
 
 struct RuntimeError {
   std::string message;
-  uint32_t line = 0;  // source line of the loop, call or array access (0: unknown)
+  uint32_t line = 0;  // source line and column of the loop, call or array access (0: unknown)
+  uint32_t col = 0;
 };
 
 // The name a user wrote for an array slot: lowering numbers each declaration ("a.0") and inlining

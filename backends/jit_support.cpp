@@ -53,17 +53,18 @@ bool prepare_program(const ir::Module& m, JitProgram& out, std::string& error) {
   return true;
 }
 
-uint32_t first_line(const ir::Function& fn) {
+const ir::Inst* first_located(const ir::Function& fn) {
   for (const ir::Block* blk : ir::reverse_post_order(fn))
     for (const ir::Inst* in : blk->insts)
-      if (in->line) return in->line;
-  return 0;
+      if (in->line) return in;
+  return nullptr;
 }
 
 bool jit_status(uint64_t code, const LaneArrays& arrays, const Budgets& budgets, RuntimeError& err) {
   if (code == 0) return true;
   err.line = static_cast<uint32_t>(code);
-  switch (code >> 32) {
+  err.col = static_cast<uint32_t>(code >> 32) & 0xFFFFFFu;
+  switch (trap_kind(code)) {
     case 1: err.message = errors::loop_budget(budgets.max_loop_iterations); break;
     case 2: err.message = arrays.message; break;
     case 3: err.message = errors::call_depth(budgets.max_call_depth); break;

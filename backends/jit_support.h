@@ -26,12 +26,18 @@ struct JitProgram {
 };
 bool prepare_program(const ir::Module& m, JitProgram& out, std::string& error);
 
-// The first source line in a function (for errors raised at its entry), or 0.
-uint32_t first_line(const ir::Function& fn);
+// The first source position in a function (for errors raised at its entry), or null.
+const ir::Inst* first_located(const ir::Function& fn);
 
-// Generated code returns 0 or (kind << 32) | line: 1 loop budget, 2 array error (message in
-// `arrays`), 3 call depth budget, 4 recursion deeper than the thread's stack allows. Returns
-// whether `code` is 0, else fills `err` with the VM's message for it.
+// Generated code returns 0 or trap_code(kind, line, col): kind 1 loop budget, 2 array error
+// (message in `arrays`), 3 call depth budget, 4 recursion deeper than the thread's stack allows.
+// The column keeps 24 bits (a longer line reports column 0: unknown).
+inline uint64_t trap_code(uint64_t kind, const ir::Inst* at) {
+  uint64_t line = at ? at->line : 0, col = at && at->col < (1u << 24) ? at->col : 0;
+  return kind << 56 | col << 32 | line;
+}
+inline uint64_t trap_kind(uint64_t code) { return code >> 56; }
+// Returns whether `code` is 0, else fills `err` with the VM's message for it.
 bool jit_status(uint64_t code, const LaneArrays& arrays, const Budgets& budgets, RuntimeError& err);
 
 // The lowest address a called function's frame may reach on this thread: the end of its stack
@@ -51,7 +57,7 @@ uint64_t on_budget_stack(uint64_t (*thunk)(void*), void* ctx, uint64_t fallback)
 template <typename Call>
 uint64_t call_generated(const Call& call) {
   uint64_t code = call();
-  if ((code >> 32) != 4) return code;
+  if (trap_kind(code) != 4) return code;
   auto thunk = [](void* c) -> uint64_t { return (*static_cast<const Call*>(c))(); };
   return on_budget_stack(thunk, const_cast<Call*>(&call), code);
 }

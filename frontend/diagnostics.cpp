@@ -3,13 +3,13 @@
 
 namespace fscript::frontend {
 
-void DiagnosticSink::report(const SourceFile& file, Severity sev, Span span, std::string message) {
+Diagnostic located(Severity sev, std::string path, LineCol pos, std::string line_text, std::string message) {
   Diagnostic d;
   d.severity = sev;
-  d.path = file.path();
-  d.pos = file.position(span.begin);
+  d.path = std::move(path);
+  d.pos = pos;
   d.message = std::move(message);
-  d.line_text = file.line_text(span.begin);
+  d.line_text = std::move(line_text);
   for (char& c : d.line_text)  // binary input must not reach the terminal
     if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f) c = '?';
   d.caret_col = d.pos.col;
@@ -20,6 +20,11 @@ void DiagnosticSink::report(const SourceFile& file, Severity sev, Span span, std
     d.line_text = d.line_text.substr(from - 1, 2 * kWindow);
     d.caret_col -= from - 1;
   }
+  return d;
+}
+
+void DiagnosticSink::report(const SourceFile& file, Severity sev, Span span, std::string message) {
+  Diagnostic d = located(sev, file.path(), file.position(span.begin), file.line_text(span.begin), std::move(message));
   LineCol end = file.position(span.end > span.begin ? span.end : span.begin + 1);
   d.length = end.line == d.pos.line && end.col > d.pos.col ? end.col - d.pos.col : 1;
   if (sev == Severity::Error) ++errors_;

@@ -20,6 +20,10 @@ struct Diagnostic {
   uint32_t length = 1;    // caret underline length
 };
 
+// A one-character diagnostic at `pos`, whose line reads `line_text` (made printable, and cut to a
+// window around the caret when very long).
+Diagnostic located(Severity sev, std::string path, LineCol pos, std::string line_text, std::string message);
+
 // Collects diagnostics from every stage; the LSP publishes the same structs.
 class DiagnosticSink {
  public:

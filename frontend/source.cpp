@@ -26,6 +26,12 @@ LineCol SourceFile::position(uint32_t offset) const {
   return {base_line_ + line_index, col};
 }
 
+std::string SourceFile::line_at(uint32_t line) const {
+  if (!outer_lines_.empty()) return line >= 1 && line <= outer_lines_.size() ? outer_lines_[line - 1] : "";
+  if (line < base_line_ || line - base_line_ >= line_starts_.size()) return "";
+  return line_text(line_starts_[line - base_line_]);
+}
+
 std::string SourceFile::line_text(uint32_t offset) const {
   LineCol lc = position(offset);
   if (!outer_lines_.empty()) {

@@ -31,6 +31,8 @@ class SourceFile {
   LineCol position(uint32_t offset) const;
   // Full line of the enclosing file that holds `offset` (the caret line of a diagnostic).
   std::string line_text(uint32_t offset) const;
+  // Line `line` (1-based, in the enclosing file's numbering), or "" when it is not known.
+  std::string line_at(uint32_t line) const;
   // Replaces the line used for carets when the text is a slice (the .wrl's own lines).
   void set_outer_lines(std::vector<std::string> lines) { outer_lines_ = std::move(lines); }
 

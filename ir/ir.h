@@ -49,7 +49,8 @@ struct Inst {
   float imm = 0;              // Const
   int32_t aux = 0;            // Param index, global/array slot, callee index
   bool array_global = false;  // array ops: aux indexes Module::arrays (else Function::arrays)
-  uint32_t line = 0;          // source line, for runtime errors (0: none)
+  uint32_t line = 0;          // source line and column, for runtime errors (0: none)
+  uint32_t col = 0;
   std::vector<Inst*> args;
   std::vector<Block*> targets;  // Jump/Branch successors; Phi: the predecessor of each arg
   Block* block = nullptr;

@@ -1,6 +1,6 @@
 // IR printer. Format (one instruction per line):
 //   global @x            garray @buf          fn @name(nparams) -> nresults [recursive] {
-//   b0:                  v3 = fadd v1, v2     gstore @x, v3     v5 = aload %a, v4 !12
+//   b0:                  v3 = fadd v1, v2     gstore @x, v3     v5 = aload %a, v4 !12:5
 //   v7 = phi [v2, b0], [v6, b1]               v8 = call @f(v3, v4) !9      cbr v8, b1, b2
 #include <cmath>
 #include <cstdio>
@@ -71,7 +71,7 @@ std::string print(const Module& m, const Function& fn) {
       out += "  ";
       if (i->defines_value()) out += val(i) + " = ";
       out += mnemonic(i->op) + operands(m, fn, *i);
-      if (i->line) out += " !" + std::to_string(i->line);
+      if (i->line) out += " !" + std::to_string(i->line) + (i->col ? ":" + std::to_string(i->col) : "");
       out += "\n";
     }
   }

@@ -171,9 +171,19 @@ class Reader {
     }
     p.inst = i;
     operands(fn, c, p);
-    if (c.eat("!")) i->line = static_cast<uint32_t>(std::strtoul(c.word().c_str(), nullptr, 10));
+    if (c.eat("!")) location(c, *i);
     if (!c.done()) fail("unexpected text after instruction");
     return p;
+  }
+
+  // "!LINE" or "!LINE:COL"
+  void location(Cursor& c, Inst& i) {
+    i.line = number(c.word());
+    if (c.eat(":")) i.col = number(c.word());
+  }
+  uint32_t number(const std::string& w) {
+    if (w.empty() || w.find_first_not_of("0123456789") != std::string::npos) fail("bad source position '!" + w + "'");
+    return static_cast<uint32_t>(std::strtoul(w.c_str(), nullptr, 10));
   }
 
   void operands(Function& fn, Cursor& c, PendingInst& p) {

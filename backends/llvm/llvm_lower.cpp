@@ -153,7 +153,7 @@ class LlvmFunctionLowering {
     llvm::Value* limit = b_.CreateLoad(s_.i64, b_.CreateStructGEP(s_.ctx, ctx_, kStackLimit));
     llvm::Value* frame = b_.CreatePtrToInt(
         b_.CreateIntrinsic(llvm::Intrinsic::frameaddress, {s_.ptr}, {b_.getInt32(0)}), s_.i64);
-    trap_if(b_.CreateICmpULT(frame, limit), 4, backends::first_line(fn_));
+    trap_if(b_.CreateICmpULT(frame, limit), 4, backends::first_located(fn_));
     b_.CreateStore(f_->getArg(2), pending_[0]);
     for (size_t b = 1; b < pending_.size(); ++b) b_.CreateStore(zero_mask(), pending_[b]);
     for (auto* o : out_) b_.CreateStore(splat(0), o);
@@ -329,13 +329,13 @@ class LlvmFunctionLowering {
     return phi;
   }
 
-  // A runtime error when any lane meets `bad`: the function returns (kind << 32) | line.
-  void trap_if(llvm::Value* bad, uint64_t kind, uint32_t line) {
+  // A runtime error when any lane meets `bad`: the function returns trap_code(kind, at).
+  void trap_if(llvm::Value* bad, uint64_t kind, const ir::Inst* at) {
     llvm::BasicBlock* trap = llvm::BasicBlock::Create(s_.c, "trap", f_);
     llvm::BasicBlock* ok = llvm::BasicBlock::Create(s_.c, "ok", f_);
     b_.CreateCondBr(bad, trap, ok, llvm::MDBuilder(s_.c).createBranchWeights(1, 1 << 20));
     b_.SetInsertPoint(trap);
-    b_.CreateRet(b_.getInt64((kind << 32) | line));
+    b_.CreateRet(b_.getInt64(backends::trap_code(kind, at)));
     b_.SetInsertPoint(ok);
   }
 
@@ -402,7 +402,7 @@ class LlvmFunctionLowering {
         llvm::Value* n = b_.CreateAdd(b_.CreateLoad(counter_type(), at), b_.CreateZExt(active_, counter_type()));
         b_.CreateStore(n, at);
         llvm::Value* budget = llvm::ConstantInt::get(counter_type(), s_.budgets.max_loop_iterations);
-        return trap_if(b_.CreateOrReduce(b_.CreateICmpUGT(n, budget)), 1, in.line);
+        return trap_if(b_.CreateOrReduce(b_.CreateICmpUGT(n, budget)), 1, &in);
       }
       case Op::Jump: return jump(in);
       case Op::Branch: return branch(in);
@@ -430,7 +430,7 @@ class LlvmFunctionLowering {
     }
     args.push_back(mask_words_);
     llvm::Value* status = call_runtime(name, s_.i32, args);
-    trap_if(b_.CreateICmpNE(status, b_.getInt32(0)), 2, in.line);
+    trap_if(b_.CreateICmpNE(status, b_.getInt32(0)), 2, &in);
     if (in.op == Op::ALoad || in.op == Op::ALen) define(in, b_.CreateAlignedLoad(s_.vf, result, llvm::Align(4)));
   }
 
@@ -440,7 +440,7 @@ class LlvmFunctionLowering {
     llvm::Value* depth_at = b_.CreateStructGEP(s_.ctx, ctx_, kDepth);
     llvm::Value* depth = b_.CreateLoad(s_.i64, depth_at);
     if (counted) {
-      trap_if(b_.CreateICmpUGE(depth, b_.getInt64(s_.budgets.max_call_depth)), 3, in.line);
+      trap_if(b_.CreateICmpUGE(depth, b_.getInt64(s_.budgets.max_call_depth)), 3, &in);
       b_.CreateStore(b_.CreateAdd(depth, b_.getInt64(1)), depth_at);
     }
     llvm::Value* result = b_.CreateConstGEP1_64(s_.f32, scratch(), 3 * s_.width);

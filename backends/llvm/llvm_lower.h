@@ -22,8 +22,8 @@ namespace fscript::llvmjit {
 // functions, fs_lanes_* for arrays); the JIT resolves them from one table (llvm_jit.cpp).
 
 // The generated kernel: points [begin, end) (end - begin a multiple of the width). Returns 0 or
-// (kind << 32) | line: 1 loop budget, 2 array error (message in `arrays`), 3 call depth budget,
-// 4 recursion deeper than the thread's stack allows (below `stack_limit`).
+// backends::trap_code(kind, position): 1 loop budget, 2 array error (message in `arrays`), 3 call
+// depth budget, 4 recursion deeper than the thread's stack allows (below `stack_limit`).
 using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end,
                               void* arrays, uintptr_t stack_limit);
 constexpr const char* kKernelSymbol = "fs_kernel";

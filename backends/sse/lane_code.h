@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "backends/backend.h"
+#include "backends/jit_support.h"
 #include "backends/lane_arrays.h"
 #include "backends/sse/x86.h"
 #include "ir/ir.h"
@@ -173,9 +174,9 @@ class LaneCode {
     a_.test(Gp::rax, Gp::rax);
     a_.jcc(Cond::NE, block_label_[t]);
   }
-  Label trap(uint32_t kind, uint32_t line) {
+  Label trap(uint32_t kind, const ir::Inst* at) {
     Label l = a_.new_label();
-    traps_.push_back({l, (static_cast<uint64_t>(kind) << 32) | line});
+    traps_.push_back({l, backends::trap_code(kind, at)});
     return l;
   }
 
@@ -355,7 +356,7 @@ class LaneCode {
     a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(fn));
     a_.call(Gp::rax);
     a_.test(Gp::rax, Gp::rax);
-    a_.jcc(Cond::NE, trap(2, in.line));
+    a_.jcc(Cond::NE, trap(2, &in));
     if (in.op == ir::Op::ALoad || in.op == ir::Op::ALen) {
       Xmm d = alloc(pos);
       a_.movaps(d, at(kScratch + 48));

@@ -13,9 +13,9 @@
 namespace fscript::sse {
 
 // The generated function: points [begin, end) of the batch, end - begin a multiple of 4. Returns 0,
-// or a runtime error: (kind << 32) | source line, kind 1 = the loop budget, 2 = an array error
-// (its message in `arrays`), 3 = the call depth budget, 4 = recursion deeper than the thread's
-// stack allows (a called function's frame would go below `stack_limit`).
+// or a runtime error: backends::trap_code(kind, source position), kind 1 = the loop budget, 2 = an
+// array error (its message in `arrays`), 3 = the call depth budget, 4 = recursion deeper than the
+// thread's stack allows (a called function's frame would go below `stack_limit`).
 using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end,
                               backends::LaneArrays* arrays, uintptr_t stack_limit);
 

@@ -203,7 +203,7 @@ class Codegen : public detail::LaneCode {
     a_.mov(Gp::r15, Mem::at(Gp::rbp, kCtxArrays));
     a_.mov(Gp::rax, Mem::at(Gp::rbp, kCtxStackLimit));
     a_.cmp(Gp::rsp, Gp::rax);
-    a_.jcc(Cond::B, trap(4, backends::first_line(fn_)));
+    a_.jcc(Cond::B, trap(4, backends::first_located(fn_)));
     a_.movups(Xmm::x0, Mem::at(Gp::rdx));
     a_.movaps(pending(0), Xmm::x0);
   }
@@ -532,11 +532,11 @@ class Codegen : public detail::LaneCode {
     a_.movmskps(Gp::rax, Xmm::x0);
     a_.test(Gp::rax, Gp::rax);
     if (loop_budget_ <= kCarryAt) {
-      a_.jcc(Cond::NE, trap(1, in.line));
+      a_.jcc(Cond::NE, trap(1, &in));
       return;
     }
     // A budget beyond int32: at 2^30 the counts move into 64-bit totals, checked there.
-    carries_.push_back({a_.new_label(), a_.new_label(), trap(1, in.line)});
+    carries_.push_back({a_.new_label(), a_.new_label(), trap(1, &in)});
     a_.jcc(Cond::NE, carries_.back().entry);
     a_.bind(carries_.back().back);
   }
@@ -564,7 +564,7 @@ class Codegen : public detail::LaneCode {
     Mem depth = Mem::at(Gp::rbp, kCtxDepth);
     if (counted) {
       a_.cmp(depth, static_cast<int32_t>(program_.max_call_depth));
-      a_.jcc(Cond::AE, trap(3, in.line));
+      a_.jcc(Cond::AE, trap(3, &in));
       a_.add(depth, 1);
     }
     a_.lea(Gp::rdi, at(call_slot_));

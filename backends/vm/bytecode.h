@@ -30,7 +30,7 @@ struct VInst {
   float imm_a = 0, imm_b = 0;
   int32_t aux = 0;       // global/array slot, callee, or index into VmFunction::lists
   bool array_global = false;
-  uint32_t line = 0;
+  uint32_t line = 0, col = 0;
 };
 
 struct Move {

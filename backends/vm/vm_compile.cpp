@@ -85,6 +85,7 @@ class FunctionCompiler {
     v.aux = i.aux;
     v.array_global = i.array_global;
     v.line = i.line;
+    v.col = i.col;
     if (i.defines_value()) v.dst = reg_[i.id];
     if (i.op == Op::Param) out_.param_regs[i.aux] = v.dst;
     if (i.op == Op::Call) {

@@ -407,7 +407,7 @@ bool Executor::lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err)
     case Op::GStore: fr.gmem[size_t(v.aux) * fr.gstride + i] = reg(v.a); return true;
     case Op::Tick:
       if (++env.ticks > budgets_.max_loop_iterations) {
-        err = {errors::loop_budget(budgets_.max_loop_iterations), v.line};
+        err = {errors::loop_budget(budgets_.max_loop_iterations), v.line, v.col};
         return false;
       }
       return true;
@@ -432,7 +432,7 @@ bool Executor::array_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err
     if (ok && v.op == Op::ALoad) reg(v.dst) = *e;
     if (ok && v.op == Op::AStore) *e = reg(v.b);
   }
-  if (!ok) err = {arrays_.message, v.line};
+  if (!ok) err = {arrays_.message, v.line, v.col};
   return ok;
 }
 
@@ -443,12 +443,12 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
   LaneEnv& env = *fr.env[i];
   const VmFunction& callee = p_.functions[v.c];
   if (callee.recursive && env.depth + 1 > budgets_.max_call_depth) {
-    err = {errors::call_depth(budgets_.max_call_depth), v.line};
+    err = {errors::call_depth(budgets_.max_call_depth), v.line, v.col};
     return false;
   }
   if (callee.recursive && reinterpret_cast<uintptr_t>(__builtin_frame_address(0)) < backends::stack_limit()) {
     out_of_stack_ = true;
-    err = {errors::recursion_stack(budgets_.max_call_depth), v.line};
+    err = {errors::recursion_stack(budgets_.max_call_depth), v.line, v.col};
     return false;
   }
   std::vector<float> regs(std::max<uint32_t>(callee.num_regs, 1));

@@ -119,11 +119,12 @@ class AstLowering {
 
  private:
   // ---- instruction helpers ----
-  Inst* emit(Op op, std::vector<Inst*> args, uint32_t line = 0) {
+  Inst* emit(Op op, std::vector<Inst*> args, LineCol at = {0, 0}) {
     Inst* i = fn_->make(op);
     i->args = std::move(args);
     i->block = cur_;
-    i->line = line;
+    i->line = at.line;
+    i->col = at.col;
     cur_->insts.push_back(i);
     return i;
   }
@@ -132,7 +133,7 @@ class AstLowering {
     c->imm = v;
     return c;
   }
-  uint32_t line_of(Span s) const { return sh_.file.position(s.begin).line; }
+  LineCol loc_of(Span s) const { return sh_.file.position(s.begin); }
   void gstore(int slot, Inst* v) {
     Inst* s = emit(Op::GStore, {v});
     s->aux = slot;
@@ -247,7 +248,7 @@ class AstLowering {
   }
 
   void array_init(int id, Expr* init) {
-    uint32_t line = line_of(init->span);
+    LineCol line = loc_of(init->span);
     if (init->kind == ExprKind::NewArray) {
       Inst* n = emit(Op::ANew, {expr(init->kids[0])}, line);
       array_op(n, id);
@@ -288,7 +289,7 @@ class AstLowering {
   void loop_body(Stmt* s, Block* body, Block* cont, Block* exit) {
     seal(body);
     cur_ = body;
-    emit(Op::Tick, {}, line_of(s->span));
+    emit(Op::Tick, {}, loc_of(s->span));
     loops_.push_back({cont, exit});
     stmt(s->body);
     loops_.pop_back();
@@ -338,7 +339,7 @@ class AstLowering {
     Block* cond = fn_->add_block();
     Block* exit = fn_->add_block();
     cur_ = body;
-    emit(Op::Tick, {}, line_of(s->span));
+    emit(Op::Tick, {}, loc_of(s->span));
     loops_.push_back({cond, exit});
     stmt(s->body);
     loops_.pop_back();
@@ -371,13 +372,13 @@ class AstLowering {
       case ExprKind::Index: {
         Inst* idx = expr(e->kids[0]);
         if (e->sym < 0) return konst(kNaN);
-        Inst* l = emit(Op::ALoad, {idx}, line_of(e->span));
+        Inst* l = emit(Op::ALoad, {idx}, loc_of(e->span));
         array_op(l, e->sym);
         return l;
       }
       case ExprKind::Length: {
         if (e->sym < 0) return konst(kNaN);
-        Inst* l = emit(Op::ALen, {}, line_of(e->span));
+        Inst* l = emit(Op::ALen, {}, loc_of(e->span));
         array_op(l, e->sym);
         return l;
       }
@@ -467,7 +468,7 @@ class AstLowering {
   }
 
   Inst* assign_index(Expr* e, Expr* target) {
-    uint32_t line = line_of(target->span);
+    LineCol line = loc_of(target->span);
     Inst* idx = expr(target->kids[0]);
     Inst* v;
     if (e->op == Tok::Assign) {
@@ -487,7 +488,7 @@ class AstLowering {
     Op op = e->op == Tok::PlusPlus ? Op::Add : Op::Sub;
     if (target->kind == ExprKind::Index) {
       if (target->sym < 0) return konst(kNaN);
-      uint32_t line = line_of(target->span);
+      LineCol line = loc_of(target->span);
       Inst* idx = expr(target->kids[0]);
       Inst* old = emit(Op::ALoad, {idx}, line);
       array_op(old, target->sym);
@@ -514,7 +515,7 @@ class AstLowering {
     if (e->sym < 0) return konst(kNaN);
     int fi = sym(e->sym).slot;
     if (args.size() != sh_.sema.functions[fi].params.size()) return konst(kNaN);
-    Inst* c = emit(Op::Call, args, line_of(e->span));
+    Inst* c = emit(Op::Call, args, loc_of(e->span));
     c->aux = fi;
     return c;
   }

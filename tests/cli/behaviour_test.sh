@@ -57,15 +57,15 @@ printf 'function f(n) { var s = 0; for (var i = 0; i < n; i++) s = s + 1; return
 for b in $BACKENDS; do
   # down(n) makes n + 1 nested calls.
   check "call depth 5 allows down(4) on $b" 0 '^4$' -- "$F" run "$T/down.fs" 4 --max-call-depth 5 --backend "$b"
-  check "call depth 5 refuses down(5) on $b" 1 'down.fs:1: error: call depth budget exceeded: more than 5 nested calls' \
+  check "call depth 5 refuses down(5) on $b" 1 'down.fs:1:53: error: call depth budget exceeded: more than 5 nested calls' \
     -- "$F" run "$T/down.fs" 5 --max-call-depth 5 --backend "$b"
   check "the call depth ceiling, 100,000, reached on $b" 0 '^99999$' -- "$F" run "$T/down.fs" 99999 --max-call-depth 100000 --backend "$b"
   check "default call depth 1,000 on $b" 1 'more than 1000 nested calls' -- "$F" run "$T/down.fs" 1000 --backend "$b"
   check "array of the budget's size on $b" 0 '^1002$' -- "$F" run "$T/arr.fs" 1000 --max-array-elements 1000 --backend "$b"
-  check "array one over the budget on $b" 1 "arr.fs:1: error: array 'a' of 1001 elements: .*budget of 1000 elements" \
+  check "array one over the budget on $b" 1 "arr.fs:1:25: error: array 'a' of 1001 elements: .*budget of 1000 elements" \
     -- "$F" run "$T/arr.fs" 1001 --max-array-elements 1000 --backend "$b"
   check "loop of the budget's length on $b" 0 '^50$' -- "$F" run "$T/loop.fs" 50 --max-loop-iterations 50 --backend "$b"
-  check "loop one over the budget on $b" 1 'loop.fs:1: error: loop iteration budget exceeded: more than 50 iterations' \
+  check "loop one over the budget on $b" 1 'loop.fs:1:28: error: loop iteration budget exceeded: more than 50 iterations' \
     -- "$F" run "$T/loop.fs" 51 --max-loop-iterations 50 --backend "$b"
 done
 # A runaway loop stops the whole job at its first point's budget (the VM used to take its 512-lane
@@ -73,16 +73,18 @@ done
 printf 'function FRep(x, y, z, t) {\n  while (1) {}\n  return 1;\n}\n' > "$T/runaway.fs"
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "function FRep(x, y, z, t) { while (1) {} return 1; }" } }\n' > "$T/runaway.wrl"
 for b in $BACKENDS; do
-  check "a runaway loop fails fast in render2d on $b" 1 'runaway.fs:2: error: loop iteration budget exceeded' \
+  check "a runaway loop fails fast in render2d on $b" 1 'runaway.fs:2:3: error: loop iteration budget exceeded' \
     -- timeout 20 "$F" render2d "$T/runaway.fs" --size 64 --bounds -1,1,-1,1 --backend "$b" -o "$T/runaway.png"
-  check "a runaway loop fails fast in fvrml-run on $b" 1 'runaway.wrl:2: error: loop iteration budget exceeded' \
+  check "a runaway loop fails fast in fvrml-run on $b" 1 'runaway.wrl:2:71: error: loop iteration budget exceeded' \
     -- timeout 20 "$R" "$T/runaway.wrl" --backend "$b" -o "$T/runaway.ply"
 done
-# A runtime error in a .wrl names one place: the script's own line in the .wrl, and shows it.
+# A runtime error in a .wrl names one place: the script's own line and column in the .wrl, and shows
+# the line with a caret, as a compile error does.
 printf '#VRML V2.0 utf8\n# a comment\nFShape {\n  geometry FGeometry {\n    definition "function FRep(x, y, z, t) {\n      var s = 0;\n      while (1) { s = s + 1; }\n      return s;\n    }"\n  }\n}\n' > "$T/loop7.wrl"
-check "a runtime error points at its line in the .wrl" 1 'loop7.wrl:7: error: loop iteration budget exceeded: more than 1000 iterations in one evaluation$' \
+check "a runtime error points at its line in the .wrl" 1 'loop7.wrl:7:7: error: loop iteration budget exceeded: more than 1000 iterations in one evaluation$' \
   -- "$R" "$T/loop7.wrl" -o "$T/loop7.ply" --max-loop-iterations 1000
 check "and shows that line" 1 '^      while \(1\) \{ s = s \+ 1; \}$' -- "$R" "$T/loop7.wrl" -o "$T/loop7.ply"
+check "with a caret under the loop" 1 '^      \^$' -- "$R" "$T/loop7.wrl" -o "$T/loop7.ply" --max-loop-iterations 1000
 # A long but finite loop (2^17 iterations a point, past the point where the VM goes lane by lane).
 printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 131072; i++) s = s + 1; return s - 131072 + x; }\n' > "$T/long.fs"
 check "a long loop finishes with every point on the VM" 0 '^2048 white pixels' -- "$F" render2d "$T/long.fs" --size 64 --bounds -1,1,-1,1 --backend vm
@@ -287,7 +289,7 @@ printf 'function FRep(x, y, z, t) {\n  return 0.8 - sqrt(x*x + y*y + z*z) +;\n}\
 check "fvrml-run a script with a syntax error" 1 'bad.fs:2:39: error: expected an expression' -- "$R" "$T/bad.fs" -o "$T/bad.ply"
 [ -e "$T/bad.ply" ] && fail "fvrml-run a script with a syntax error wrote bad.ply"
 printf 'function FRep(x, y, z, t) {\n  var s = 0;\n  while (1) { s = s + 1; }\n  return s;\n}\n' > "$T/loop.fs"
-check "fvrml-run a script: a runtime error at its line" 1 '^loop.fs:3: error: loop iteration budget|/loop.fs:3: error: loop iteration budget' \
+check "fvrml-run a script: a runtime error at its line" 1 '^loop.fs:3:3: error: loop iteration budget|/loop.fs:3:3: error: loop iteration budget' \
   -- "$R" "$T/loop.fs" -o "$T/loop.ply" --max-loop-iterations 1000
 printf 'function parametric_x(u,v,w,t){return u;}\nfunction parametric_y(u,v,w,t){return v;}\nfunction parametric_z(u,v,w,t){return 0;}\n' > "$T/flat.fs"
 check "fvrml-run a parametric script says what to do" 1 'takes an implicit script.*FShape of a .wrl' -- "$R" "$T/flat.fs" -o "$T/flat.ply"

@@ -60,17 +60,17 @@ check run-missing-file 1 'cannot read' -- "$F" run "$T/none.fs"
 check run-syntax 1 'bad.fs:2:14: error: expected an expression' -- "$F" run "$T/bad.fs" --entry f
 check run-caret 1 '^ +\^' -- "$F" run "$T/bad.fs" --entry f
 check run-two-errors 1 "unknown function 'h'" -- "$F" check "$T/bad.fs"
-check run-loop 1 'loop.fs:2: error: loop iteration budget' -- "$F" run "$T/loop.fs" 0
+check run-loop 1 'loop.fs:2:3: error: loop iteration budget' -- "$F" run "$T/loop.fs" 0
 check run-loop-flag 1 'more than 50 iterations' -- "$F" run "$T/loop.fs" --max-loop-iterations 50 0
-check run-recursion 1 'rec.fs:1: error: call depth budget exceeded' -- "$F" run "$T/rec.fs" 0
+check run-recursion 1 'rec.fs:1:24: error: call depth budget exceeded' -- "$F" run "$T/rec.fs" 0
 printf 'function a(x) { return x; }\nfunction b(x) { return x; }\n' > "$T/two.fs"
 check run-no-entry 1 'no entry point' -- "$F" run "$T/two.fs"
 check run-unknown-entry 1 "no function named 'nope'" -- "$F" run "$T/rec.fs" --entry nope
 check backend-sse 0 '^0$' -- "$F" run "$T/sphere.fs" --backend sse 1 0 0
 check emit-asm-sse 0 'mulps xmm[0-9]+, xmm[0-9]+' -- "$F" emit-asm "$T/sphere.fs" --backend sse
 check emit-asm-sse-pool 0 '\.float 1, 1, 1, 1' -- "$F" emit-asm "$T/sphere.fs" --backend sse
-check backend-sse-loop 1 'loop.fs:2: error: loop iteration budget' -- "$F" run "$T/loop.fs" --backend sse 0
-check run-recursion-sse 1 'rec.fs:1: error: call depth budget exceeded: more than 1000 nested calls' -- "$F" run "$T/rec.fs" --backend sse 1
+check backend-sse-loop 1 'loop.fs:2:3: error: loop iteration budget' -- "$F" run "$T/loop.fs" --backend sse 0
+check run-recursion-sse 1 'rec.fs:1:24: error: call depth budget exceeded: more than 1000 nested calls' -- "$F" run "$T/rec.fs" --backend sse 1
 check run-fact-sse 0 '^3628800$' -- "$F" run "$T/fact.fs" 10 --backend sse
 # The llvm backend, when this build has it (FS_HAVE_LLVM from CMake: off only when asked for).
 LLVM=""
@@ -79,8 +79,8 @@ if [ -n "$LLVM" ]; then
   check backend-llvm 0 '^0$' -- "$F" run "$T/sphere.fs" --backend llvm 1 0 0
   check emit-asm-llvm 0 'v?mulps' -- "$F" emit-asm "$T/sphere.fs" --backend llvm
   check emit-ir-llvm 0 'fmul <(4|8|16) x float>' -- "$F" emit-ir --llvm "$T/sphere.fs"
-  check backend-llvm-loop 1 'loop.fs:2: error: loop iteration budget' -- "$F" run "$T/loop.fs" --backend llvm 0
-  check run-recursion-llvm 1 'rec.fs:1: error: call depth budget exceeded: more than 1000 nested calls' -- "$F" run "$T/rec.fs" --backend llvm 1
+  check backend-llvm-loop 1 'loop.fs:2:3: error: loop iteration budget' -- "$F" run "$T/loop.fs" --backend llvm 0
+  check run-recursion-llvm 1 'rec.fs:1:24: error: call depth budget exceeded: more than 1000 nested calls' -- "$F" run "$T/rec.fs" --backend llvm 1
   check run-fact-llvm 0 '^3628800$' -- "$F" run "$T/fact.fs" 10 --backend llvm
   check llvm-disk-cache 0 '^3628800$' -- env XDG_CACHE_HOME="$T/xdg" "$F" run "$T/fact.fs" 10 --backend llvm --llvm-disk-cache
   ls "$T"/xdg/fscript/llvm/*.o > /dev/null 2>&1 || { echo "FAIL llvm-disk-cache wrote no object file"; fails=$((fails + 1)); }
@@ -333,7 +333,7 @@ PY
   [ ! -e "$T/no/dir/x.ply" ] || { echo "FAIL half-written"; fails=$((fails + 1)); }
   check fvrml-run-listing1 0 '"triangles":[1-9]' -- "$R" "$SRC/examples/paper/listing1-operation.wrl" -o "$T/l1.ply" --stats
   printf '#VRML V2.0 utf8\nFTransform { children [ FShape { geometry FGeometry { definition "x=u; y=v; z=0;" resolution [4 4] } }\n  FShape { geometry FGeometry { definition "0.5-x*x-y*y-z*z" } } ] }\nFShape { geometry FGeometry { definition "0.5-x*x-y*y-z*z" resolution [8] } }\n' > "$T/mixed.wrl"
-  check fvrml-run-ftransform 1 'mixed.wrl:2: error: FTransform: an FTransform cannot mix implicit and parametric children' -- "$R" "$T/mixed.wrl" -o "$T/l.ply"
+  check fvrml-run-ftransform 1 'mixed.wrl:2:1: error: FTransform: an FTransform cannot mix implicit and parametric children' -- "$R" "$T/mixed.wrl" -o "$T/l.ply"
   [ ! -e "$T/l.ply" ] || { echo "FAIL no-output-on-error"; fails=$((fails + 1)); }
   check fvrml-run-keep-going 1 'warning: FTransform: an FTransform cannot mix' -- "$R" "$T/mixed.wrl" -o "$T/l.ply" --keep-going
   check fvrml-run-wrl-stdout 0 'geometry IndexedFaceSet' -- "$R" "$T/ball.wrl"

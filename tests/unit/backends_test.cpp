@@ -230,17 +230,17 @@ TEST_CASE("backends: globals start as NaN in every evaluation and follow the lan
   agree_with_vm("if (x > 0) h = 1; return h;");  // NaN where x <= 0: the global was never set
 }
 
-// The first error of a batch, on `k`, as "message @ line" ("" when the batch ran).
+// The first error of a batch, on `k`, as "message @ line:col" ("" when the batch ran).
 static std::string batch_error(const backends::Kernel& k, std::vector<float> xs) {
   std::vector<float> zero(xs.size(), 0), out(xs.size());
   const float* in[4] = {xs.data(), zero.data(), zero.data(), zero.data()};
   float* outs[1] = {out.data()};
   backends::RuntimeError err;
   if (k.eval_batch(in, outs, xs.size(), err)) return "";
-  return err.message + " @ " + std::to_string(err.line);
+  return err.message + " @ " + std::to_string(err.line) + ":" + std::to_string(err.col);
 }
 
-TEST_CASE("backends: the loop and array budgets stop a lane with the VM's message and line") {
+TEST_CASE("backends: the loop and array budgets stop a lane with the VM's message, line and column") {
   backends::Budgets small;
   small.max_loop_iterations = 1000;
   small.max_array_elements = 10;
@@ -252,8 +252,8 @@ TEST_CASE("backends: the loop and array budgets stop a lane with the VM's messag
        vs = test::build(size, "", true, small), vf = test::build(forever, "", true, small);
   REQUIRE((vl->ok && vi->ok && vs->ok && vf->ok));
   CHECK(batch_error(*vl->kernel, {1, 2, 5000, 3, 4}) ==
-        "loop iteration budget exceeded: more than 1000 iterations in one evaluation @ 3");
-  CHECK(batch_error(*vi->kernel, {0, 1, 2, 7, 1}) == "index 7 is out of range for array 'a' of 3 elements @ 3");
+        "loop iteration budget exceeded: more than 1000 iterations in one evaluation @ 3:3");
+  CHECK(batch_error(*vi->kernel, {0, 1, 2, 7, 1}) == "index 7 is out of range for array 'a' of 3 elements @ 3:10");
   CHECK(batch_error(*vs->kernel, {10, 11}).find("sizes must be whole numbers from 0 to the budget of 10") !=
         std::string::npos);
   for (const Variant& v : variants()) {

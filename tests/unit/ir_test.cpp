@@ -22,7 +22,7 @@ b1:
   v4 = flt v3, v1
   cbr v4, b2, b3
 b2:
-  tick !4
+  tick !4:3
   v5 = const 1
   v6 = fadd v3, v5
   astore %a, v3, v0 !5
@@ -30,7 +30,7 @@ b2:
 b3:
   v7 = aload @tab, v2 !6
   gstore @x, v7
-  v8 = call @f(v0, v1) !7
+  v8 = call @f(v0, v1) !7:12
   ret v3
 }
 )";
@@ -59,6 +59,8 @@ TEST_CASE("ir: reader reports bad text with a line") {
   CHECK(err.find("line 3") != std::string::npos);
   CHECK(!ir::read("fn @f(0) -> 1 {\nb0:\n  ret v9\n}\n", err));
   CHECK(err.find("undefined value") != std::string::npos);
+  CHECK(!ir::read("fn @f(0) -> 0 {\nb0:\n  tick !4:x\n  ret\n}\n", err));
+  CHECK(err.find("line 3: bad source position '!x'") != std::string::npos);
 }
 
 TEST_CASE("ir: the verifier catches broken SSA") {

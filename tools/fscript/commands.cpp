@@ -68,7 +68,7 @@ int cmd_run(const Options& o, const std::string& file, const std::string& entry,
   }
   backends::RuntimeError err;
   if (!c.kernel->eval(in.data(), out.data(), err)) {
-    print_runtime_error(c.script.file->path(), err);
+    print_runtime_error(*c.script.file, err);
     return kExitInput;
   }
   bool named = entry.empty() && c.spec.outputs.size() > 1;
@@ -116,7 +116,7 @@ int cmd_eval(const Options& o, const std::string& file, const std::string& entry
   for (auto& v : outs) out.push_back(v.data());
   backends::RuntimeError err;
   if (!c.kernel->eval_batch(in.data(), out.data(), n, err)) {
-    print_runtime_error(c.script.file->path(), err);
+    print_runtime_error(*c.script.file, err);
     return kExitInput;
   }
   std::string buf;

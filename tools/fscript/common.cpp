@@ -76,10 +76,13 @@ bool parse_number(const std::string& text, float& out) {
   return end && *end == '\0';
 }
 
-void print_runtime_error(const std::string& path, const backends::RuntimeError& err) {
-  std::cerr << path;
-  if (err.line) std::cerr << ":" << err.line;
-  std::cerr << ": error: " << err.message << "\n";
+void print_runtime_error(const frontend::SourceFile& file, const backends::RuntimeError& err) {
+  if (err.line == 0) {
+    std::cerr << file.path() << ": error: " << err.message << "\n";
+    return;
+  }
+  frontend::LineCol at{err.line, std::max(err.col, 1u)};
+  std::cerr << frontend::render(frontend::located(frontend::Severity::Error, file.path(), at, file.line_at(err.line), err.message));
 }
 
 }  // namespace fscript::cli

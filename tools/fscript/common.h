@@ -44,7 +44,7 @@ bool refuse_scene(const std::string& path);
 // Accepts decimal, hex float, nan, inf, -inf, -0. Returns false on anything else.
 bool parse_number(const std::string& text, float& out);
 
-// Prints a runtime error as "FILE:LINE: error: message".
-void print_runtime_error(const std::string& path, const backends::RuntimeError& err);
+// Prints a runtime error as a compiler would: "FILE:LINE:COL: error: message", the line, a caret.
+void print_runtime_error(const frontend::SourceFile& file, const backends::RuntimeError& err);
 
 }  // namespace fscript::cli

@@ -108,7 +108,7 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
   }, err);
   double secs = std::chrono::duration<double>(Clock::now() - t0).count();
   if (!ok) {
-    print_runtime_error(c.script.file->path(), err);
+    print_runtime_error(*c.script.file, err);
     return kExitInput;
   }
   std::printf("%.6g evals/s\n%.4g ns/eval\n", static_cast<double>(points) / secs, secs * 1e9 / static_cast<double>(points));
@@ -199,7 +199,7 @@ int cmd_render2d(const Options& o, const std::string& file, const std::string& e
   bool ok = render::render_inside(*c.module, *c.kernel, g, ro, px, st, err);
   double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   if (!ok) {
-    print_runtime_error(c.script.file->path(), err);
+    print_runtime_error(*c.script.file, err);
     return kExitInput;
   }
   size_t white = static_cast<size_t>(std::count(px.begin(), px.end(), uint8_t{255}));

@@ -16,14 +16,14 @@ namespace fvrml_run {
 
 double evaluation_ms_since(uint64_t ns0) { return (mesh::evaluation_ns().load() - ns0) / 1e6; }
 
-void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, const std::string& what, uint32_t line) {
+void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, const fscript::backends::RuntimeError& err,
+            const std::string& prefix) {
   static std::mutex lock;  // frames are meshed in parallel
   std::lock_guard<std::mutex> hold(lock);
-  // One location: the script's own line in the .wrl (a runtime error knows it), else the node's.
-  if (line == 0) line = scene.file->position(n->span.begin).line;
-  std::cerr << o.path << ":" << line << ": " << (o.keep_going ? "warning: " : "error: ") << what << "\n";
-  std::vector<std::string> lines = fscript::frontend::split_lines(scene.file->text());
-  if (line >= 1 && line <= lines.size()) std::cerr << lines[line - 1] << "\n";
+  namespace fe = fscript::frontend;
+  fe::LineCol at = err.line ? fe::LineCol{err.line, std::max(err.col, 1u)} : scene.file->position(n->span.begin);
+  fe::Severity sev = o.keep_going ? fe::Severity::Warning : fe::Severity::Error;
+  std::cerr << fe::render(fe::located(sev, o.path, at, scene.file->line_at(at.line), prefix + err.message));
 }
 
 Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& model, bool world, int threads,
@@ -34,7 +34,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
     fscript::backends::RuntimeError err;
     bool mine = s.group < 0 && !skip.count(s.fshape);
     if (mine && !fscript::scene::mesh_shape(s, m, err, world, threads, o.prune)) {
-      report(o, scene, s.fshape, err.message, err.line);
+      report(o, scene, s.fshape, err);
       out.failed = true;
     }
     out.counts.push_back({m.positions.size(), m.triangles.size()});
@@ -45,7 +45,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
     mesh::Mesh m;
     fscript::backends::RuntimeError err;
     if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, world, threads, o.prune)) {
-      report(o, scene, model.groups[g].node, "FTransform: " + err.message, err.line);
+      report(o, scene, model.groups[g].node, err, "FTransform: ");
       out.failed = true;
     }
     out.group_counts[g] = {m.positions.size(), m.triangles.size()};

@@ -146,7 +146,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     mesh::FrameCache& cache = *caches.back();
     fscript::backends::RuntimeError err;
     if (!cache.fill(parallel, err)) {
-      report(o, l.scene, t.node, err.message, err.line);
+      report(o, l.scene, t.node, err);
       if (!o.keep_going) return 1;
       failed = true;
       continue;

@@ -54,10 +54,11 @@ struct Meshed {
   bool failed = false;
 };
 
-// Prints a shape's failure at its line: an error, or a warning under --keep-going.
-// "PATH:LINE: error: WHAT" and the line; LINE is `line` (a runtime error's line in the .wrl) or
+// Prints a shape's runtime error at one place, as a compiler would ("PATH:LINE:COL: error: WHAT",
+// the line and a caret): the script's own line and column in the scene (the error knows them), else
 // the node's. A warning with --keep-going.
-void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, const std::string& what, uint32_t line = 0);
+void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, const fscript::backends::RuntimeError& err,
+            const std::string& prefix = "");
 
 // Meshes every shape outside an FTransform and every top-level FTransform except those in `skip`;
 // `world` applies the enclosing Transforms (mesh files and pictures) or not (the VRML97 output keeps

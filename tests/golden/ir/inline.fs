@@ -17,7 +17,7 @@ function FRep(x, y, z, t) { return dist(x, y) + fact(3); }
 //   b2:
 //     v6 = const 1
 //     v7 = fsub v0, v6
-//     v8 = call @fact(v7) !4
+//     v8 = call @fact(v7) !4:53
 //     v9 = fmul v0, v8
 //     ret v9
 //   }
@@ -43,7 +43,7 @@ function FRep(x, y, z, t) { return dist(x, y) + fact(3); }
 //     gstore @r, v0
 //     gstore @g, v0
 //     gstore @b, v0
-//     v20 = call @fact(v9) !5
+//     v20 = call @fact(v9) !5:49
 //     v21 = fadd v8, v20
 //     ret v21
 //   }

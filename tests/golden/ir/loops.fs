@@ -18,7 +18,7 @@ function FRep(x, y, z, t) {
 //     v6 = flt v3, v5
 //     cbr v6, b2, b3
 //   b2:
-//     tick !4
+//     tick !4:3
 //     v9 = fadd v4, v0
 //     v10 = const 1
 //     v11 = fadd v3, v10

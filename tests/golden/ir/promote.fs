@@ -20,7 +20,7 @@ function FRep(x, y, z, t) { add(x); add(y); return acc + rec(2); }
 //     v8 = const 1
 //     v9 = fsub v1, v8
 //     gstore @acc, v7
-//     v11 = call @rec(v9) !4
+//     v11 = call @rec(v9) !4:65
 //     ret v11
 //   }
 //   fn @kernel(4) -> 1 kernel {
@@ -43,7 +43,7 @@ function FRep(x, y, z, t) { add(x); add(y); return acc + rec(2); }
 //     gstore @g, v0
 //     gstore @b, v0
 //     gstore @acc, v5
-//     v18 = call @rec(v6) !5
+//     v18 = call @rec(v6) !5:58
 //     v19 = fadd v5, v18
 //     ret v19
 //   }

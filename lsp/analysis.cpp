@@ -26,6 +26,32 @@ bool word_at(const std::string& text, size_t offset, size_t& begin, size_t& end)
   return end > begin && !std::isdigit(static_cast<unsigned char>(text[begin]));
 }
 
+bool scene_context(const std::string& text, size_t at, std::string& node) {
+  bool in_string = false;
+  std::vector<size_t> opens;
+  for (size_t i = 0; i < at && i < text.size(); ++i) {
+    char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '#') {
+      size_t nl = text.find('\n', i);
+      i = nl == std::string::npos ? text.size() : nl;
+    } else if (c == '{') {
+      opens.push_back(i);
+    } else if (c == '}' && !opens.empty()) {
+      opens.pop_back();
+    }
+  }
+  if (in_string || opens.empty()) return in_string;
+  size_t b, e, end = opens.back();
+  while (end > 0 && std::isspace(static_cast<unsigned char>(text[end - 1]))) --end;
+  if (end > 0 && word_at(text, end - 1, b, e)) node = text.substr(b, e - b);
+  return false;
+}
+
 bool embedded_script_at(const Document& scene, size_t offset, Document& script, size_t& base) {
   frontend::DiagnosticSink ignored;
   vrml::Scene parsed;
@@ -70,6 +96,9 @@ SymbolRef symbol_at(const Analysis& a, const std::string& text, size_t offset) {
   for (const auto& ex : prog.expr_arena) {
     if (ex->kind != frontend::ExprKind::Call || ex->name != r.word || !covers(ex->name_span)) continue;
     if (user && !ex->builtin_only) return found(SymbolRef::Kind::Function, f);
+    if (ex->sym <= -2) return found(SymbolRef::Kind::Builtin, -2 - ex->sym);  // also `Sin`, read as `sin`
+    if (ex->sym >= 0 && sema.symbols[static_cast<size_t>(ex->sym)].kind == frontend::SymKind::Function)
+      return found(SymbolRef::Kind::Function, sema.symbols[static_cast<size_t>(ex->sym)].slot);
     int k = frontend::find_builtin(r.word);
     return k >= 0 ? found(SymbolRef::Kind::Builtin, k) : r;
   }

@@ -21,10 +21,15 @@ std::shared_ptr<const Analysis> analyze_document(const Document& d);
 // The identifier around byte `offset` ([begin, end)); false when there is none.
 bool word_at(const std::string& text, size_t offset, size_t& begin, size_t& end);
 
+// In a .wrl: whether byte `at` is inside a string (where FScript lives); outside strings, `node`
+// gets the type of the node whose braces enclose `at` ("" at the top level).
+bool scene_context(const std::string& text, size_t at, std::string& node);
+
 // What the name under a position stands for: the one answer hover, definition, references and
 // rename all build on. Words are found by word_at (a cursor just after a name is on it); names
-// are exact (FScript is case-sensitive); a variable occurrence sema resolved wins over a function
-// of the same name, then a user function, then a built-in.
+// are exact (FScript is case-sensitive) except where sema resolved a call by letter case (`Sin`
+// calls `sin`, with a warning); a variable occurrence sema resolved wins over a function of the
+// same name, then a user function, then a built-in.
 struct SymbolRef {
   enum class Kind { None, Function, Variable, Builtin };
   Kind kind = Kind::None;

@@ -110,7 +110,11 @@ json Server::request(const std::string& method, const json& params, std::vector<
   if (std::find(std::begin(kDocumentMethods), std::end(kDocumentMethods), method) != std::end(kDocumentMethods)) {
     Document* d = doc();
     if (!d) return no_doc();
-    if (d->scene && (method == "textDocument/hover" || method == "textDocument/definition" ||
+    if (d->scene && method == "textDocument/hover") {
+      json in_script = in_embedded_script(*d, method, params);
+      return in_script.is_null() ? scene_hover(*d, params) : in_script;
+    }
+    if (d->scene && (method == "textDocument/definition" ||
                      method == "textDocument/signatureHelp" || method == "textDocument/references" ||
                      method == "textDocument/rename"))
       return in_embedded_script(*d, method, params);

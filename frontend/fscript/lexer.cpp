@@ -11,7 +11,7 @@ namespace fscript::frontend {
 const char* token_spelling(Tok t) {
   switch (t) {
 #define FS_TOKEN(N, S) case Tok::N: return S;
-#define FS_KEYWORD(N, S) case Tok::N: return S;
+#define FS_KEYWORD(N, S, D) case Tok::N: return S;
 #include "frontend/fscript/tokens.def"
   }
   return "?";
@@ -19,7 +19,7 @@ const char* token_spelling(Tok t) {
 
 bool is_keyword(Tok t) {
   switch (t) {
-#define FS_KEYWORD(N, S) case Tok::N: return true;
+#define FS_KEYWORD(N, S, D) case Tok::N: return true;
 #include "frontend/fscript/tokens.def"
     default: return false;
   }
@@ -32,7 +32,7 @@ struct Keyword {
   Tok tok;
 };
 constexpr Keyword kKeywords[] = {
-#define FS_KEYWORD(N, S) {S, Tok::N},
+#define FS_KEYWORD(N, S, D) {S, Tok::N},
 #include "frontend/fscript/tokens.def"
 };
 

@@ -12,7 +12,7 @@ namespace fscript::frontend {
 
 enum class Tok : uint8_t {
 #define FS_TOKEN(N, S) N,
-#define FS_KEYWORD(N, S) N,
+#define FS_KEYWORD(N, S, D) N,
 #include "frontend/fscript/tokens.def"
 };
 

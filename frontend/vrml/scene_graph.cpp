@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <unordered_map>
@@ -26,6 +27,42 @@ const char kStandardNodes[] =
 #include "nodes_vrml97.inc"
     ;
 
+// The "##" lines before a node or field declaration of the table document it (the declarations
+// themselves were read by parse_interfaces; this only pairs the comments with them).
+void attach_docs(const std::string& text, std::unordered_map<std::string, Interface>& table) {
+  std::string pending;
+  Interface* node = nullptr;
+  size_t at = 0;
+  while (at < text.size()) {
+    size_t nl = text.find('\n', at);
+    std::string line = text.substr(at, nl == std::string::npos ? std::string::npos : nl - at);
+    at = nl == std::string::npos ? text.size() : nl + 1;
+    size_t b = line.find_first_not_of(' ');
+    if (b == std::string::npos) continue;
+    if (line.compare(b, 2, "##") == 0) {
+      std::string part = line.substr(std::min(line.size(), b + 3));
+      pending += pending.empty() ? part : " " + part;
+      continue;
+    }
+    std::vector<std::string> words;
+    for (size_t i = b; i < line.size();) {
+      size_t e = std::min(line.find(' ', i), line.size());
+      words.push_back(line.substr(i, e - i));
+      i = line.find_first_not_of(' ', e);
+      if (i == std::string::npos) break;
+    }
+    if (b == 0 && words.size() == 2 && words[1] == "[") {
+      auto it = table.find(words[0]);
+      node = it == table.end() ? nullptr : &it->second;
+      if (node) node->doc = pending;
+    } else if (node && b > 0 && words.size() >= 3) {
+      for (auto& f : node->fields)
+        if (f.name == words[2]) f.doc = pending;
+    }
+    pending.clear();
+  }
+}
+
 const std::unordered_map<std::string, Interface>& standard_table() {
   static const auto table = [] {
     std::unordered_map<std::string, Interface> t;
@@ -37,6 +74,7 @@ const std::unordered_map<std::string, Interface>& standard_table() {
       std::abort();  // the built-in table is part of the program: a broken one is a bug
     }
     for (auto& i : list) t.emplace(i.name, std::move(i));
+    attach_docs(kStandardNodes, t);
     return t;
   }();
   return table;
@@ -102,6 +140,29 @@ const Value* Node::get(const std::string& field) const {
   for (const auto& d : script_decls)
     if (d.name == field && d.has_default) return &d.default_value;
   return nullptr;
+}
+
+std::string declaration_text(const FieldDecl& f) {
+  std::string out = std::string(access_name(f.access)) + " " + type_name(f.type) + " " + f.name;
+  if (!f.has_default) return out;
+  const Value& v = f.default_value;
+  std::vector<std::string> items;
+  if (f.type == FieldType::SFBool) {
+    items.push_back(!v.nums.empty() && v.nums[0] != 0 ? "TRUE" : "FALSE");
+  } else if (f.type == FieldType::SFNode) {
+    items.push_back("NULL");
+  } else if (f.type == FieldType::SFString || f.type == FieldType::MFString) {
+    for (const auto& s : v.strs) items.push_back("\"" + s + "\"");
+  } else {
+    for (double d : v.nums) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.9g", d);
+      items.push_back(buf);
+    }
+  }
+  std::string joined;
+  for (const auto& s : items) joined += (joined.empty() ? "" : " ") + s;
+  return out + " " + (is_multi(f.type) ? "[" + joined + "]" : joined);
 }
 
 const Interface* standard_interface(const std::string& node_type) {

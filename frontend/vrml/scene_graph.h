@@ -48,12 +48,14 @@ struct FieldDecl {
   bool has_default = false;  // EXTERNPROTO and eventIn/eventOut declarations have none
   Value default_value;
   frontend::Span span;
+  std::string doc;  // standard nodes: what the field does (the "##" lines of nodes_vrml97.wrl)
 };
 
 // A node type's interface: a standard node, an FVRML node, or a PROTO/EXTERNPROTO.
 struct Interface {
   std::string name;
   std::vector<FieldDecl> fields;
+  std::string doc;  // standard nodes: what the node is (the "##" lines of nodes_vrml97.wrl)
   const FieldDecl* find(const std::string& field) const;
 };
 
@@ -109,6 +111,8 @@ struct Scene {
 
 // The standard node interfaces (VRML97 and FVRML), parsed once from nodes_vrml97.wrl.
 const Interface* standard_interface(const std::string& node_type);
+// A declaration as the standard writes it: "exposedField SFVec3f bboxSize 10 10 10".
+std::string declaration_text(const FieldDecl& f);
 std::vector<std::string> standard_node_types();  // sorted
 bool is_fvrml_node(const std::string& node_type);
 

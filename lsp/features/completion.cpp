@@ -1,4 +1,5 @@
-// textDocument/completion: keywords, built-ins, the document's functions and variables.
+// textDocument/completion: keywords, built-ins, the document's functions and variables; in a .wrl,
+// node types and the enclosing node's fields, with their declarations and documentation.
 #include <cctype>
 #include <set>
 
@@ -14,38 +15,14 @@ namespace {
 // CompletionItemKind values of LSP 3.17.
 constexpr int kFunctionKind = 3, kVariableKind = 6, kKeywordKind = 14, kConstantKind = 21;
 
-const char* const kKeywords[] = {
-#define FS_KEYWORD(N, S) S,
+struct Keyword {
+  const char* word;
+  const char* doc;
+};
+constexpr Keyword kKeywords[] = {
+#define FS_KEYWORD(N, S, D) {S, D},
 #include "frontend/fscript/tokens.def"
 };
-
-// In a .wrl: whether `at` is inside a string (FScript lives there), else the node type whose
-// braces enclose it ("" at the top level).
-bool scene_context(const std::string& text, size_t at, std::string& node) {
-  bool in_string = false;
-  std::vector<size_t> opens;
-  for (size_t i = 0; i < at && i < text.size(); ++i) {
-    char c = text[i];
-    if (in_string) {
-      if (c == '\\') ++i;
-      else if (c == '"') in_string = false;
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '#') {
-      size_t nl = text.find('\n', i);
-      i = nl == std::string::npos ? text.size() : nl;
-    } else if (c == '{') {
-      opens.push_back(i);
-    } else if (c == '}' && !opens.empty()) {
-      opens.pop_back();
-    }
-  }
-  if (in_string || opens.empty()) return in_string;
-  size_t b, e, end = opens.back();
-  while (end > 0 && std::isspace(static_cast<unsigned char>(text[end - 1]))) --end;
-  if (end > 0 && word_at(text, end - 1, b, e)) node = text.substr(b, e - b);
-  return false;
-}
 
 }  // namespace
 
@@ -55,25 +32,26 @@ json completion(const Document& d, const json& params) {
   std::string prefix = word_at(d.text, at, b, e) ? d.text.substr(b, at - b) : "";
   json items = json::array();
   std::set<std::string> seen;
-  auto add = [&](const std::string& label, int kind, const std::string& detail) {
+  auto add = [&](const std::string& label, int kind, const std::string& detail, const std::string& doc = "") {
     if (label.empty() || label[0] == '$' || label.compare(0, prefix.size(), prefix) != 0 || !seen.insert(label).second)
       return;
     items.push_back({{"label", label}, {"kind", kind}, {"detail", detail}});
+    if (!doc.empty()) items.back()["documentation"] = {{"kind", "markdown"}, {"value", doc}};
   };
   std::string node;
   if (d.scene && !scene_context(d.text, at, node)) {  // VRML: node types, and the enclosing node's fields
     constexpr int kFieldKind = 5, kClassKind = 7;
     if (const vrml::Interface* iface = node.empty() ? nullptr : vrml::standard_interface(node))
-      for (const auto& f : iface->fields) add(f.name, kFieldKind, node + " field");
+      for (const auto& f : iface->fields) add(f.name, kFieldKind, vrml::declaration_text(f), field_doc(node, f));
     for (const auto& n : vrml::standard_node_types())
-      add(n, kClassKind, vrml::is_fvrml_node(n) ? "FVRML node" : "VRML97 node");
+      add(n, kClassKind, vrml::is_fvrml_node(n) ? "FVRML node" : "VRML97 node", node_doc(n, *vrml::standard_interface(n)));
     for (const char* k : {"DEF", "USE", "PROTO", "EXTERNPROTO", "ROUTE", "TO", "IS", "TRUE", "FALSE", "NULL"})
       add(k, kKeywordKind, "VRML97");
     return {{"isIncomplete", false}, {"items", items}};
   }
-  for (const char* k : kKeywords) add(k, kKeywordKind, "keyword");
+  for (const Keyword& k : kKeywords) add(k.word, kKeywordKind, "keyword", k.doc);
   for (int i = 0; i < frontend::kNumBuiltins; ++i)
-    add(frontend::kBuiltins[i].name, kFunctionKind, frontend::kBuiltins[i].signature);
+    add(frontend::kBuiltins[i].name, kFunctionKind, frontend::kBuiltins[i].signature, frontend::kBuiltins[i].doc);
   if (!d.scene) {
     auto a = analyze_document(d);
     // Locals only of the function the cursor is in: the variables in scope there.

@@ -12,7 +12,7 @@ namespace fscript::lsp {
 namespace {
 
 const char* const kKeywords[] = {
-#define FS_KEYWORD(N, S) S,
+#define FS_KEYWORD(N, S, D) S,
 #include "frontend/fscript/tokens.def"
 };
 

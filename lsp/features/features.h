@@ -5,6 +5,11 @@
 
 #include "lsp/documents.h"
 
+namespace fscript::vrml {
+struct Interface;
+struct FieldDecl;
+}  // namespace fscript::vrml
+
 namespace fscript::lsp {
 
 // JSON-RPC and LSP error codes.
@@ -16,6 +21,10 @@ using json = nlohmann::json;
 
 json diagnostics(const Document& d);  // the params of textDocument/publishDiagnostics
 json hover(const Document& d, const json& params);
+json scene_hover(const Document& d, const json& params);  // .wrl outside scripts: node types, fields
+// Markdown for a node type of the node table and for one of its fields (hover and completion).
+std::string node_doc(const std::string& type, const vrml::Interface& iface);
+std::string field_doc(const std::string& type, const vrml::FieldDecl& f);
 json completion(const Document& d, const json& params);
 json definition(const Document& d, const json& params);
 json document_symbols(const Document& d);

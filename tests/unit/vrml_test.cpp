@@ -221,3 +221,41 @@ TEST_CASE("vrml: exposedField events by their set_ and _changed names, and field
   CHECK(t.find("t.wrl:6:26: error: expected an integer (SFInt32)") != std::string::npos);
   CHECK(bad->diag.error_count() == 4);
 }
+
+TEST_CASE("vrml: every FVRML node and field is documented in the node table") {
+  int nodes = 0;
+  for (const std::string& type : vrml::standard_node_types()) {
+    if (!vrml::is_fvrml_node(type)) continue;
+    ++nodes;
+    const vrml::Interface* iface = vrml::standard_interface(type);
+    REQUIRE(iface);
+    INFO(type);
+    CHECK(iface->doc.size() > 20);
+    for (const auto& f : iface->fields) {
+      INFO(f.name);
+      CHECK(f.doc.size() > 10);
+    }
+  }
+  CHECK(nodes == 6);
+  // Each "##" block goes to the declaration right after it, and only to it.
+  const vrml::Interface* g = vrml::standard_interface("FGeometry");
+  CHECK(g->find("definition")->doc.rfind("FScript: an expression in x, y, z, t", 0) == 0);
+  CHECK(g->find("resolution")->doc.rfind("Implicit: grid cells per axis", 0) == 0);
+  CHECK(vrml::standard_interface("FShape")->find("frames")->doc.rfind("N > 0: N frames per cycle", 0) == 0);
+  CHECK(vrml::standard_interface("Transform")->doc == "");
+}
+
+TEST_CASE("vrml: declarations print as the standard writes them") {
+  auto decl = [](const char* node, const char* field) {
+    return vrml::declaration_text(*vrml::standard_interface(node)->find(field));
+  };
+  CHECK(decl("FGeometry", "bboxSize") == "exposedField SFVec3f bboxSize 10 10 10");
+  CHECK(decl("FGeometry", "resolution") == "exposedField MFInt32 resolution [50 50 50]");
+  CHECK(decl("FGeometry", "definition") == "exposedField SFString definition \"\"");
+  CHECK(decl("FShape", "loop") == "exposedField SFBool loop FALSE");
+  CHECK(decl("FShape", "geometry") == "exposedField SFNode geometry NULL");
+  CHECK(decl("FShape", "set_fraction") == "eventIn SFFloat set_fraction");
+  CHECK(decl("FTransform", "children") == "exposedField MFNode children []");
+  CHECK(decl("FMaterial", "bboxSize") == "exposedField SFVec3f bboxSize -1 -1 -1");
+  CHECK(decl("Viewpoint", "fieldOfView") == "exposedField SFFloat fieldOfView 0.785398");
+}

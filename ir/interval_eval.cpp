@@ -4,12 +4,11 @@
 #include <algorithm>
 
 namespace fscript::ir {
-namespace {
 
 using math::Interval;
 
 // Which operand a min / max (a, b) or select (a = condition, b, c) takes over the whole region.
-Choice choice(Op op, const Interval& a, const Interval& b, const Interval& c) {
+Choice choice_of(Op op, const Interval& a, const Interval& b, const Interval& c) {
   (void)c;
   if (op == Op::Select) {
     math::Truth t = math::truth_of(a);
@@ -25,8 +24,6 @@ Choice choice(Op op, const Interval& a, const Interval& b, const Interval& c) {
   if ((min ? b_below : a_below) && !a.nan) return Choice::Right;
   return Choice::Both;
 }
-
-}  // namespace
 
 bool interval_evaluable(const Function& fn) {
   if (fn.blocks.size() != 1) return false;
@@ -70,6 +67,10 @@ const Interval kNone = Interval::everything();
 
 }  // namespace
 
+Interval interval_rule(Op op, bool square, float imm, const Interval& a, const Interval& b, const Interval& c) {
+  return apply(op, square, imm, a, b, c);
+}
+
 Interval interval_of(const Inst& in, const std::vector<Interval>& v) {
   auto arg = [&](size_t i) -> const Interval& { return i < in.args.size() ? v[in.args[i]->id] : kNone; };
   return apply(in.op, in.op == Op::Mul && in.args[0] == in.args[1], in.imm, arg(0), arg(1), arg(2));
@@ -91,41 +92,62 @@ IntervalTape::IntervalTape(const Function& fn) : values_(fn.next_value), params_
 }
 
 IntervalTape IntervalTape::simplified(const IntervalEval& ev, size_t* collapsed) const {
-  // What each value stands for in the region: itself, or the side a decided choice takes.
-  std::vector<uint32_t> stands(values_);
-  size_t decided = 0;
-  for (const Step& s : steps_) {
-    uint32_t v = s.dst;
-    Choice c = ev.choices[s.dst];
-    if (c != Choice::Both && (s.op == Op::Min || s.op == Op::Max)) v = stands[c == Choice::Left ? s.a : s.b];
-    if (c != Choice::Both && s.op == Op::Select) v = stands[c == Choice::Left ? s.b : s.c];
-    decided += v != s.dst;
-    stands[s.dst] = v;
+  return simplified(ev.choices.data(), 1, collapsed);
+}
+
+IntervalTape IntervalTape::simplified(const IntervalBatchEval& ev, size_t lane, size_t* collapsed) const {
+  return simplified(ev.choices.data() + lane, kIntervalLanes, collapsed);
+}
+
+IntervalTape IntervalTape::simplified(const Choice* choices, size_t stride, size_t* collapsed) const {
+  // Scratch by value id, kept per thread: a quadtree simplifies thousands of tapes.
+  thread_local std::vector<uint32_t> renumber;
+  thread_local std::vector<uint8_t> live;  // 0 dead, 1 kept, 2 a decided choice: stands for its operand
+  live.assign(values_, 0);
+  renumber.resize(values_);
+  // Backward: what the outputs reach, a decided min / max / select passing through to its side.
+  for (uint32_t o : outputs_) live[o] = 1;
+  size_t kept = 0, decided = 0;
+  for (auto it = steps_.rbegin(); it != steps_.rend(); ++it) {
+    if (!live[it->dst] || it->op == Op::Param) {
+      kept += live[it->dst] != 0;
+      continue;
+    }
+    Choice c = choices[it->dst * stride];
+    bool chooses = c != Choice::Both && (it->op == Op::Min || it->op == Op::Max || it->op == Op::Select);
+    if (chooses) {
+      uint32_t side = it->op == Op::Select ? (c == Choice::Left ? it->b : it->c) : (c == Choice::Left ? it->a : it->b);
+      live[it->dst] = 2;
+      live[side] = std::max<uint8_t>(live[side], 1);
+      ++decided;
+      continue;
+    }
+    ++kept;
+    const uint32_t operands[] = {it->a, it->b, it->c};
+    for (size_t k = 0; k < it->arity; ++k) live[operands[k]] = std::max<uint8_t>(live[operands[k]], 1);
   }
   if (collapsed) *collapsed = decided;
-  // Live: what the outputs reach through the collapsed choices.
-  std::vector<char> live(values_, 0);
-  for (uint32_t o : outputs_) live[stands[o]] = 1;
-  for (auto it = steps_.rbegin(); it != steps_.rend(); ++it) {
-    if (!live[it->dst] || it->op == Op::Param) continue;
-    const uint32_t operands[] = {it->a, it->b, it->c};
-    for (size_t k = 0; k < it->arity; ++k) live[stands[operands[k]]] = 1;
-  }
-  // The copy, in the original order, numbered densely.
+  // Forward: the kept steps in the original order, numbered densely; a decided choice takes its
+  // side's number.
   IntervalTape out;
   out.params_ = params_;
-  std::vector<uint32_t> renumber(values_, 0);
+  out.steps_.reserve(kept);
   for (const Step& s : steps_) {
     if (!live[s.dst]) continue;
+    if (live[s.dst] == 2) {
+      Choice c = choices[s.dst * stride];
+      renumber[s.dst] = renumber[s.op == Op::Select ? (c == Choice::Left ? s.b : s.c) : (c == Choice::Left ? s.a : s.b)];
+      continue;
+    }
     Step c = s;
     c.dst = renumber[s.dst] = out.values_++;
     if (s.op != Op::Param) {
       uint32_t* slot[] = {&c.a, &c.b, &c.c};
-      for (size_t k = 0; k < s.arity; ++k) *slot[k] = renumber[stands[*slot[k]]];
+      for (size_t k = 0; k < s.arity; ++k) *slot[k] = renumber[*slot[k]];
     }
     out.steps_.push_back(c);
   }
-  for (uint32_t o : outputs_) out.outputs_.push_back(renumber[stands[o]]);
+  for (uint32_t o : outputs_) out.outputs_.push_back(renumber[o]);
   return out;
 }
 
@@ -139,7 +161,7 @@ void IntervalTape::eval(const std::vector<Interval>& inputs, IntervalEval& out) 
       continue;
     }
     v[s.dst] = apply(s.op, s.square, s.imm, v[s.a], v[s.b], v[s.c]);
-    if (s.op == Op::Min || s.op == Op::Max || s.op == Op::Select) out.choices[s.dst] = choice(s.op, v[s.a], v[s.b], v[s.c]);
+    if (s.op == Op::Min || s.op == Op::Max || s.op == Op::Select) out.choices[s.dst] = choice_of(s.op, v[s.a], v[s.b], v[s.c]);
   }
   out.outputs.clear();
   for (uint32_t o : outputs_) out.outputs.push_back(v[o]);

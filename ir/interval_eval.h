@@ -19,12 +19,36 @@ struct IntervalEval {
   std::vector<math::Interval> outputs;  // the kernel's results, in order
 };
 
+// Many regions at once: lane k of every value belongs to region k. Laid out for SIMD (one vector
+// register per field on AVX-512), so a tape's step costs about what one region's step costs.
+constexpr size_t kIntervalLanes = 16;
+struct IntervalLanes {
+  alignas(64) float lo[kIntervalLanes];
+  alignas(64) float hi[kIntervalLanes];
+  alignas(64) uint32_t nan[kIntervalLanes];
+
+  math::Interval lane(size_t k) const { return {lo[k], hi[k], nan[k]}; }
+  void set(size_t k, const math::Interval& v) { lo[k] = v.lo, hi[k] = v.hi, nan[k] = v.nan; }
+};
+
+struct IntervalBatchEval {
+  std::vector<IntervalLanes> values;  // by value id
+  std::vector<Choice> choices;        // [value id * kIntervalLanes + lane]
+  std::vector<uint32_t> outputs;      // value ids of the kernel's results
+  math::Interval output(size_t k, size_t lane) const { return values[outputs[k]].lane(lane); }
+};
+
 // Whether `fn` is straight-line pure code (one block of value ops ending in ret): what interval
 // evaluation and tape simplification take. Anything else runs dense (and stays correct).
 bool interval_evaluable(const Function& fn);
 
 // The interval rule of one value op over its operands' intervals `v` (by value id).
 math::Interval interval_of(const Inst& in, const std::vector<math::Interval>& v);
+// The rule of `op` on operand intervals (`square`: a Mul of one value by itself; `imm`: a Const's
+// value), and which operand a min / max / select takes over the whole region.
+math::Interval interval_rule(Op op, bool square, float imm, const math::Interval& a, const math::Interval& b,
+                             const math::Interval& c);
+Choice choice_of(Op op, const math::Interval& a, const math::Interval& b, const math::Interval& c);
 
 // Bounds every value of `fn` for parameters in `inputs` (one per parameter). False, with nothing
 // written, when `fn` is not interval_evaluable.
@@ -46,12 +70,17 @@ class IntervalTape {
 
   explicit IntervalTape(const Function& fn);  // fn must be interval_evaluable
   void eval(const std::vector<math::Interval>& inputs, IntervalEval& out) const;
+  // kIntervalLanes regions in one pass (`inputs[p]`: parameter p in each lane); every lane's
+  // bounds are sound, and as tight as eval's up to the last ulp (ir/interval_batch.cpp).
+  void eval_batch(const std::vector<IntervalLanes>& inputs, IntervalBatchEval& out) const;
 
   // The tape specialised to a region (`ev`: this tape's evaluation over it): every min / max /
   // select whose side was decided becomes that side, what only the other side needed is dropped,
   // values are renumbered densely. The same bits as this tape at every point of the region; it
   // recurses. `collapsed` (when given) counts the choices that were decided.
   IntervalTape simplified(const IntervalEval& ev, size_t* collapsed = nullptr) const;
+  // The same from lane `lane` of a batch evaluation.
+  IntervalTape simplified(const IntervalBatchEval& ev, size_t lane, size_t* collapsed = nullptr) const;
 
   const std::vector<Step>& steps() const { return steps_; }
   const std::vector<uint32_t>& outputs() const { return outputs_; }
@@ -61,6 +90,7 @@ class IntervalTape {
 
  private:
   IntervalTape() = default;
+  IntervalTape simplified(const Choice* choices, size_t stride, size_t* collapsed) const;
   std::vector<Step> steps_;
   std::vector<uint32_t> outputs_;
   uint32_t values_ = 0, params_ = 0;

@@ -1,5 +1,5 @@
-// The quadtree renderer: interval evaluation per region, tape simplification per level, dense
-// batches for the open 32x32 tiles. Every region writes only its own pixels, so the picture is the
+// The quadtree renderer: batched interval evaluation of each region's children, tape
+// simplification per region, dense batches for the open tiles of the last level. Every region writes only its own pixels, so the picture is the
 // same bits for any thread count and schedule.
 #include "runtime/render/quadtree.h"
 
@@ -24,10 +24,12 @@ float PlaneGrid::y(uint32_t row) const {
 
 namespace {
 
-// Region sides per level; the open regions of the last are evaluated densely. Chosen by measurement
-// (docs/performance.md): with 8 or 16 at the bottom, interval evaluation of the many small tiles
-// costs more than the points it saves.
-constexpr uint32_t kSizes[] = {256, 64, 32};
+// Region sides per level; the open regions of the last are evaluated densely, on the tape of the
+// level above. Each level splits a region into 4x4 children, bounded together in one batched
+// interval pass (ir::IntervalTape::eval_batch, 16 lanes). Chosen by measurement (docs/performance.md):
+// a fourth level (4x4 pixels) decides two thirds of the remaining pixels, but its simplified tapes
+// and their compiles cost more than the points they save.
+constexpr uint32_t kSizes[] = {256, 64, 16};
 constexpr size_t kLevels = sizeof(kSizes) / sizeof(kSizes[0]);
 
 struct Rect {
@@ -43,9 +45,17 @@ struct Compiled {
 // A tape: flat, for intervals and simplification, and compiled when needed.
 struct Tape {
   std::shared_ptr<const ir::IntervalTape> flat;
-  std::shared_ptr<Compiled> compiled = std::make_shared<Compiled>();
+  std::shared_ptr<Compiled> compiled;  // made when first needed, shared by the tapes that share it
   size_t ops = 0;
 };
+
+// The regions of side `s` that cover r, row by row.
+std::vector<Rect> split(Rect r, uint32_t s) {
+  std::vector<Rect> out;
+  for (uint32_t row = r.r0; row < r.r1; row += s)
+    for (uint32_t col = r.c0; col < r.c1; col += s) out.push_back({col, row, std::min(col + s, r.c1), std::min(row + s, r.r1)});
+  return out;
+}
 
 class Renderer {
  public:
@@ -54,32 +64,58 @@ class Renderer {
     for (uint32_t s : kSizes) stats_.levels.push_back({s, 0, 0, 0, 0});
   }
 
-  // Rendered region r at `level` on `tape`; false on a runtime error. `open` collects the tiles of
-  // the last level that the intervals leave open (the caller evaluates them in one batch).
-  bool region(Tape& tape, Rect r, size_t level, std::vector<Rect>& open) {
+  // Bounds `rects` (regions of `level`) on `tape` in batches; fills the decided ones and hands each
+  // open one, with its batch evaluation and lane, to `open`. False on a runtime error.
+  template <typename Open>
+  bool bound(const Tape& tape, const std::vector<Rect>& rects, size_t level, Open open) {
     QuadtreeLevel& st = stats_.levels[level];
-    std::vector<math::Interval> in(dense_.num_inputs(), math::Interval{0, 0, false});
-    in[0] = math::iv::hull(math::Interval::point(g_.x(r.c0)), math::Interval::point(g_.x(r.c1 - 1)));
-    in[1] = math::iv::hull(math::Interval::point(g_.y(r.r0)), math::Interval::point(g_.y(r.r1 - 1)));
-    ir::IntervalEval& ev = scratch_[level];  // per level: a parent's evaluation outlives its children's
-    tape.flat->eval(in, ev);
-    const math::Interval& f = ev.outputs[0];
-    if (!f.nan && f.lo >= 0) return ++st.full, fill(r, 255), true;
-    if (f.empty() || f.hi < 0) return ++st.empty, fill(r, 0), true;  // NaN is outside too
-    ++st.ambiguous;
-    if (level + 1 == kLevels) return open.push_back(r), true;
-    Tape child = simplified(tape, ev);
-    st.tape_ops += child.ops;
+    ir::IntervalBatchEval& ev = scratch_[level];  // per level: a parent's evaluation outlives its children's
+    std::vector<ir::IntervalLanes> in(dense_.num_inputs());
+    for (auto& lanes : in)
+      for (size_t k = 0; k < ir::kIntervalLanes; ++k) lanes.set(k, math::Interval{0, 0, false});
+    for (size_t first = 0; first < rects.size(); first += ir::kIntervalLanes) {
+      size_t n = std::min(ir::kIntervalLanes, rects.size() - first);
+      for (size_t k = 0; k < ir::kIntervalLanes; ++k) {
+        const Rect& r = rects[first + std::min(k, n - 1)];
+        in[0].set(k, math::iv::hull(math::Interval::point(g_.x(r.c0)), math::Interval::point(g_.x(r.c1 - 1))));
+        in[1].set(k, math::iv::hull(math::Interval::point(g_.y(r.r0)), math::Interval::point(g_.y(r.r1 - 1))));
+      }
+      tape.flat->eval_batch(in, ev);
+      for (size_t k = 0; k < n; ++k) {
+        const Rect& r = rects[first + k];
+        math::Interval f = ev.output(0, k);
+        if (!f.nan && f.lo >= 0) {
+          ++st.full, fill(r, 255);
+        } else if (f.empty() || f.hi < 0) {
+          ++st.empty, fill(r, 0);  // NaN is outside too
+        } else {
+          ++st.ambiguous;
+          if (!open(r, ev, k)) return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  // Region r, open at `level` (ev, lane: its bounds on `tape`): its children at the next level on
+  // a tape simplified for r; the last level's open children densely, in one batch on that tape.
+  bool region(Tape& tape, Rect r, size_t level, const ir::IntervalBatchEval& ev, size_t lane) {
+    Tape child = simplified(tape, ev, lane);
+    stats_.levels[level].tape_ops += child.ops;
+    if (level + 1 == kLevels) return dense(child, {r});
     std::vector<Rect> pending;
-    uint32_t s = kSizes[level + 1];
-    for (uint32_t row = r.r0; row < r.r1; row += s)
-      for (uint32_t col = r.c0; col < r.c1; col += s)
-        if (!region(child, {col, row, std::min(col + s, r.c1), std::min(row + s, r.r1)}, level + 1, pending)) return false;
-    return pending.empty() || dense(child, pending);
+    bool last = level + 2 == kLevels;
+    bool ok = bound(child, split(r, kSizes[level + 1]), level + 1,
+                    [&](Rect c, const ir::IntervalBatchEval& cev, size_t k) {
+                      if (last) return pending.push_back(c), true;
+                      return region(child, c, level + 1, cev, k);
+                    });
+    return ok && (pending.empty() || dense(child, pending));
   }
 
   // Every pixel of the rects, in one batch on the tape's kernel.
   bool dense(Tape& tape, const std::vector<Rect>& rects) {
+    if (!tape.compiled) tape.compiled = std::make_shared<Compiled>();
     if (!tape.compiled->kernel && !compile(tape)) return false;
     size_t n = 0;
     for (const Rect& r : rects) n += size_t(r.c1 - r.c0) * (r.r1 - r.r0);
@@ -114,9 +150,12 @@ class Renderer {
   }
 
   // The parent's tape specialised to the region, or the parent's itself when that saves little.
-  Tape simplified(Tape& parent, const ir::IntervalEval& ev) {
-    auto s = std::make_shared<const ir::IntervalTape>(parent.flat->simplified(ev));
-    if (s->length() * 10 > parent.ops * 9) return parent;  // under 10% shorter: share its kernel too
+  Tape simplified(Tape& parent, const ir::IntervalBatchEval& ev, size_t lane) {
+    auto s = std::make_shared<const ir::IntervalTape>(parent.flat->simplified(ev, lane));
+    if (s->length() * 10 > parent.ops * 9) {  // under 10% shorter: the parent, sharing its kernel too
+      if (!parent.compiled) parent.compiled = std::make_shared<Compiled>();
+      return parent;
+    }
     Tape t;
     t.flat = std::move(s);
     t.ops = t.flat->length();
@@ -134,7 +173,7 @@ class Renderer {
     return true;
   }
 
-  ir::IntervalEval scratch_[kLevels];
+  ir::IntervalBatchEval scratch_[kLevels];
   const backends::Kernel& dense_;
   const PlaneGrid& g_;
   const InsideOptions& o_;
@@ -168,20 +207,40 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   int parts = static_cast<int>(std::max(1u, std::min<unsigned>(o.threads, static_cast<unsigned>(tiles.size()))));
   std::vector<std::unique_ptr<Renderer>> renderers;
   for (int p = 0; p < parts; ++p) renderers.push_back(std::make_unique<Renderer>(dense, g, o, px));
+  Tape full;
+  if (prune) full.flat = std::make_shared<const ir::IntervalTape>(fn);
+  full.ops = stats.full_tape_ops;
+  full.compiled = std::make_shared<Compiled>();
+  full.compiled->kernel = &dense;  // the full tape is what `dense` was compiled from
+  // The top level is bounded up front, in batches; its open tiles go to whichever thread is free.
+  // Each writes only its own pixels, so the picture does not depend on the schedule.
+  struct Open {
+    Rect r;
+    size_t batch, lane;  // its bounds: top[batch], lane
+  };
+  std::vector<Open> open;
+  std::vector<ir::IntervalBatchEval> top;
+  bool ok = true;
+  if (prune) {
+    Renderer& r0 = *renderers[0];
+    size_t kept_for = SIZE_MAX;  // the batch whose evaluation top.back() is
+    for (size_t first = 0; first < tiles.size(); first += ir::kIntervalLanes) {
+      std::vector<Rect> part(tiles.begin() + static_cast<long>(first),
+                             tiles.begin() + static_cast<long>(std::min(tiles.size(), first + ir::kIntervalLanes)));
+      ok = ok && r0.bound(full, part, 0, [&](Rect r, const ir::IntervalBatchEval& ev, size_t k) {
+        if (kept_for != first) top.push_back(ev), kept_for = first;
+        open.push_back({r, top.size() - 1, k});
+        return true;
+      });
+    }
+  }
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
-  bool ok = support::run_parts(parts, [&](int p) {
+  ok = ok && support::run_parts(parts, [&](int p) {
     Renderer& r = *renderers[static_cast<size_t>(p)];
-    Tape full;
-    if (prune) full.flat = std::make_shared<const ir::IntervalTape>(fn);
-    full.ops = stats.full_tape_ops;
-    full.compiled->kernel = &dense;  // the full tape is what `dense` was compiled from
-    // Tiles go to whichever thread is free: each writes only its own pixels, so the picture does
-    // not depend on the schedule, and the regions' work is far from even.
-    for (size_t t; !failed && (t = next.fetch_add(1)) < tiles.size();) {
-      std::vector<Rect> open;
-      bool done = prune ? r.region(full, tiles[t], 0, open) && (open.empty() || r.dense(full, open))
-                        : r.dense(full, {tiles[t]});
+    size_t count = prune ? open.size() : tiles.size();
+    for (size_t t; !failed && (t = next.fetch_add(1)) < count;) {
+      bool done = prune ? r.region(full, open[t].r, 0, top[open[t].batch], open[t].lane) : r.dense(full, {tiles[t]});
       if (!done) return failed = true, false;
     }
     return true;

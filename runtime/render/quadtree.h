@@ -1,8 +1,9 @@
 #pragma once
 // Pictures of f(x, y, 0, 0) >= 0 by quadtree: a region whose interval is all inside or all outside
-// is filled whole; the others split (256, 64, then 32 pixels) on a tape simplified for them, and
-// only the 32x32 tiles the intervals leave open are evaluated point by point, in one batch per 64x64
-// tile. Every pixel is the one the dense path gives.
+// is filled whole; the others split (256, 64, then 16 pixels; each region's 16 children bounded in
+// one batched interval pass) on a tape simplified for them, and only the 16x16 tiles the intervals
+// leave open are evaluated point by point, in one batch per 64x64 tile. Every pixel is the one the
+// dense path gives.
 #include <cstdint>
 #include <string>
 #include <vector>

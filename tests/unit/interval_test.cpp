@@ -8,6 +8,7 @@
 #include "backends/vm/vm_backend.h"
 #include "ir/eval.h"
 #include "ir/interval_eval.h"
+#include "ir/interval_lanes.h"
 #include "ir/tape.h"
 #include "runtime/render/quadtree.h"
 #include "ir/text.h"
@@ -124,6 +125,32 @@ std::vector<std::vector<float>> run_all(const std::vector<std::unique_ptr<backen
   return results;
 }
 
+// Output 0 of `fn` over each case's boxes by the batched evaluator (16 cases a pass), on every ISA
+// variant this CPU runs: [variant][case].
+std::vector<std::vector<Interval>> batch_bounds(const ir::Function& fn, const std::vector<std::vector<Interval>>& cases) {
+  ir::IntervalTape tape(fn);
+  using Run = decltype(&ir::isa_base::eval_lanes);
+  std::vector<Run> variants = {ir::isa_base::eval_lanes};
+  if (__builtin_cpu_supports("x86-64-v3")) variants.push_back(ir::isa_avx2::eval_lanes);
+  if (__builtin_cpu_supports("x86-64-v4")) variants.push_back(ir::isa_avx512::eval_lanes);
+  constexpr size_t L = ir::kIntervalLanes;
+  std::vector<std::vector<Interval>> out;
+  for (Run run : variants) {
+    std::vector<Interval> got(cases.size());
+    for (size_t first = 0; first < cases.size(); first += L) {
+      std::vector<ir::IntervalLanes> in(tape.num_params());
+      for (size_t p = 0; p < in.size(); ++p)
+        for (size_t k = 0; k < L; ++k) in[p].set(k, cases[std::min(first + k, cases.size() - 1)][p]);
+      std::vector<ir::IntervalLanes> values(tape.num_values());
+      std::vector<ir::Choice> choices(values.size() * L);
+      run(tape.steps().data(), tape.steps().size(), in.data(), in.size(), values.data(), choices.data());
+      for (size_t k = 0; k < L && first + k < cases.size(); ++k) got[first + k] = values[tape.outputs()[0]].lane(k);
+    }
+    out.push_back(std::move(got));
+  }
+  return out;
+}
+
 }  // namespace
 
 TEST_CASE("intervals: every value op of the table holds every point result, on every backend") {
@@ -138,28 +165,34 @@ TEST_CASE("intervals: every value op of the table holds every point result, on e
     REQUIRE(m);
     auto kernels = every_backend(*m);
     std::vector<std::vector<Box>> cases(3000);
+    std::vector<std::vector<Interval>> boxes(cases.size());
     std::vector<Interval> want(cases.size());
     Batch batch{std::vector<std::vector<float>>(static_cast<size_t>(arity)), {}};
     for (size_t c = 0; c < cases.size(); ++c) {
-      std::vector<Interval> in;
+      std::vector<Interval>& in = boxes[c];
       for (int a = 0; a < arity; ++a) cases[c].push_back(random_box(rng)), in.push_back(cases[c].back().iv);
       ir::IntervalEval ev;
       REQUIRE(ir::eval_intervals(*m->functions[0], in, ev));
       want[c] = ev.outputs[0];
       add_case(batch, cases[c], c, rng, 12);
     }
+    // The scalar rules, then the batched evaluator on each ISA variant.
+    std::vector<std::vector<Interval>> bounds = batch_bounds(*m->functions[0], boxes);
+    bounds.insert(bounds.begin(), want);
     auto results = run_all(kernels, batch, 1);
     int bad = 0;
     for (size_t i = 0; i < batch.owner.size(); ++i) {
       float args[3] = {0, 0, 0}, scalar;
       for (int a = 0; a < arity; ++a) args[a] = batch.cols[static_cast<size_t>(a)][i];
       REQUIRE(ir::eval_pure(op, args, scalar));
-      const Interval& w = want[batch.owner[i]];
-      for (size_t r = 0; r <= results.size(); ++r) {
-        float got = r == results.size() ? scalar : results[r][i];
+      for (size_t r = 0; r < bounds.size() * (results.size() + 1); ++r) {
+        size_t by = r / (results.size() + 1), of = r % (results.size() + 1);
+        const Interval& w = bounds[by][batch.owner[i]];
+        float got = of == results.size() ? scalar : results[of][i];
         if (w.contains(got) || bad++ > 5) continue;
         const auto& bx = cases[batch.owner[i]];
-        FAIL_CHECK(ir::mnemonic(op) << (r == results.size() ? " (scalar)" : " (backend " + std::to_string(r) + ")")
+        FAIL_CHECK(ir::mnemonic(op) << (by ? " (batched intervals, variant " + std::to_string(by - 1) + ")" : "")
+                                    << (of == results.size() ? " (scalar)" : " (backend " + std::to_string(of) + ")")
                                     << " at (" << args[0] << ", " << args[1] << ", " << args[2] << ") = " << got
                                     << " outside [" << w.lo << ", " << w.hi << "]" << (w.nan ? " or NaN" : "")
                                     << "; boxes [" << bx[0].iv.lo << ", " << bx[0].iv.hi << "]"
@@ -290,6 +323,7 @@ TEST_CASE("intervals: thousands of random programs bound every point of random b
     }
     Batch batch{std::vector<std::vector<float>>(fn.num_params), {}};
     std::vector<Interval> want;
+    std::vector<std::vector<Interval>> cases;
     for (size_t c = 0; c < 4; ++c) {
       std::vector<Box> boxes;
       std::vector<Interval> in;
@@ -297,17 +331,21 @@ TEST_CASE("intervals: thousands of random programs bound every point of random b
       ir::IntervalEval ev;
       REQUIRE(ir::eval_intervals(fn, in, ev));
       want.push_back(ev.outputs[0]);
+      cases.push_back(in);
       add_case(batch, boxes, c, rng, 10);
     }
+    std::vector<std::vector<Interval>> bounds = batch_bounds(fn, cases);  // then the scalar rules
+    bounds.push_back(want);
     auto results = run_all(kernels, batch, 1);
     for (size_t i = 0; i < batch.owner.size(); ++i)
-      for (size_t r = 0; r < results.size(); ++r) {
+      for (size_t r = 0; r < results.size() * bounds.size(); ++r) {
         ++checked;
-        const Interval& w = want[batch.owner[i]];
-        if (w.contains(results[r][i])) continue;
+        const Interval& w = bounds[r / results.size()][batch.owner[i]];
+        if (w.contains(results[r % results.size()][i])) continue;
         FAIL_CHECK("return " << expr << ";\n at (" << batch.cols[0][i] << ", " << batch.cols[1][i] << ", "
-                             << batch.cols[2][i] << ") = " << results[r][i] << " outside [" << w.lo << ", " << w.hi
-                             << "]" << (w.nan ? " or NaN" : ""));
+                             << batch.cols[2][i] << ") = " << results[r % results.size()][i] << " outside [" << w.lo
+                             << ", " << w.hi << "]" << (w.nan ? " or NaN" : "")
+                             << (r / results.size() + 1 < bounds.size() ? " (batched intervals)" : ""));
         break;
       }
   }

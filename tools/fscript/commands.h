@@ -17,6 +17,7 @@ int cmd_fmt(const std::string& file, bool in_place, bool check_only);
 int cmd_bench(const Options& o, const std::string& file, const std::string& entry, size_t points, unsigned threads,
               bool one_point);
 int cmd_render2d(const Options& o, const std::string& file, const std::string& entry, const std::string& size,
-                 const std::string& bounds, const std::string& out_path, unsigned threads, bool prune, bool stats);
+                 const std::string& bounds, const std::string& out_path, unsigned threads, bool prune, bool stats,
+                 unsigned repeat);
 
 }  // namespace fscript::cli

@@ -19,7 +19,7 @@ struct Args {
   std::string file, entry, points_path, size, bounds, out, passes;
   std::vector<std::string> files, values;
   size_t points = 1'000'000;
-  unsigned threads = 1;
+  unsigned threads = 1, repeat = 1;
   bool opt = false, one_point = false, llvm = false, disk_cache = false, no_prune = false, stats = false;
   bool in_place = false, check_only = false;
   uint32_t max_depth = 1000;
@@ -56,7 +56,7 @@ int dispatch(CLI::App& app, Args& a) {
   if (app.got_subcommand("repl")) return run_repl(a.opts);
   if (app.got_subcommand("bench")) return cmd_bench(a.opts, a.file, a.entry, a.points, a.threads, a.one_point);
   if (app.got_subcommand("render2d"))
-    return cmd_render2d(a.opts, a.file, a.entry, a.size, a.bounds, a.out, a.threads, !a.no_prune, a.stats);
+    return cmd_render2d(a.opts, a.file, a.entry, a.size, a.bounds, a.out, a.threads, !a.no_prune, a.stats, a.repeat);
   // No subcommand: the REPL on a terminal; otherwise the program on standard input runs once.
   if (isatty(STDIN_FILENO)) return run_repl(a.opts);
   return cmd_run(a.opts, "-", a.entry, {});
@@ -114,6 +114,9 @@ int real_main(int argc, char** argv) {
       ->check(CLI::Range(1u, 1024u).description(""))
       ->type_name("N");
   r2d->add_flag("--no-prune", a.no_prune, "evaluate every pixel (no interval pruning; the same picture, slower)");
+  r2d->add_option("--repeat", a.repeat, "render N times and print the best time (benchmarks; default 1)")
+      ->check(CLI::Range(1u, 1000u).description(""))
+      ->type_name("N");
   r2d->add_flag("--stats", a.stats, "print how the quadtree went: regions per level, tape lengths, points evaluated");
 
   try {

@@ -169,7 +169,8 @@ void print_quadtree_stats(const render::QuadtreeStats& st, size_t pixels) {
 }
 
 int cmd_render2d(const Options& o, const std::string& file, const std::string& entry, const std::string& size,
-                 const std::string& bounds, const std::string& out_path, unsigned threads, bool prune, bool stats) {
+                 const std::string& bounds, const std::string& out_path, unsigned threads, bool prune, bool stats,
+                 unsigned repeat) {
   uint32_t w, h;
   float bd[4];
   if (!parse_size(size, w, h)) {
@@ -195,9 +196,14 @@ int cmd_render2d(const Options& o, const std::string& file, const std::string& e
   std::vector<uint8_t> px;
   render::QuadtreeStats st;
   backends::RuntimeError err;
-  auto t0 = Clock::now();
-  bool ok = render::render_inside(*c.module, *c.kernel, g, ro, px, st, err);
-  double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  double ms = 0;
+  bool ok = true;
+  for (unsigned r = 0; ok && r < std::max(1u, repeat); ++r) {  // the best of `repeat` (this machine is noisy)
+    auto t0 = Clock::now();
+    ok = render::render_inside(*c.module, *c.kernel, g, ro, px, st, err);
+    double t = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    ms = r == 0 ? t : std::min(ms, t);
+  }
   if (!ok) {
     print_runtime_error(*c.script.file, err);
     return kExitInput;

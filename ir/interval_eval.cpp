@@ -102,51 +102,59 @@ IntervalTape IntervalTape::simplified(const IntervalBatchEval& ev, size_t lane, 
 IntervalTape IntervalTape::simplified(const Choice* choices, size_t stride, size_t* collapsed) const {
   // Scratch by value id, kept per thread: a quadtree simplifies thousands of tapes.
   thread_local std::vector<uint32_t> renumber;
-  thread_local std::vector<uint8_t> live;  // 0 dead, 1 kept, 2 a decided choice: stands for its operand
+  thread_local std::vector<uint8_t> live;  // bit 0: used; bit 1: a decided choice, standing for its side
   live.assign(values_, 0);
   renumber.resize(values_);
+  auto side = [&](const Step& s) {
+    Choice c = choices[size_t(s.dst) * stride];
+    return s.op == Op::Select ? (c == Choice::Left ? s.b : s.c) : (c == Choice::Left ? s.a : s.b);
+  };
+  auto decided = [&](const Step& s) {
+    return (s.op == Op::Min || s.op == Op::Max || s.op == Op::Select) && choices[size_t(s.dst) * stride] != Choice::Both;
+  };
   // Backward: what the outputs reach, a decided min / max / select passing through to its side.
   for (uint32_t o : outputs_) live[o] = 1;
-  size_t kept = 0, decided = 0;
+  size_t kept = 0, collapsed_here = 0;
   for (auto it = steps_.rbegin(); it != steps_.rend(); ++it) {
-    if (!live[it->dst] || it->op == Op::Param) {
-      kept += live[it->dst] != 0;
-      continue;
-    }
-    Choice c = choices[it->dst * stride];
-    bool chooses = c != Choice::Both && (it->op == Op::Min || it->op == Op::Max || it->op == Op::Select);
-    if (chooses) {
-      uint32_t side = it->op == Op::Select ? (c == Choice::Left ? it->b : it->c) : (c == Choice::Left ? it->a : it->b);
-      live[it->dst] = 2;
-      live[side] = std::max<uint8_t>(live[side], 1);
-      ++decided;
+    const Step& s = *it;
+    if (!live[s.dst]) continue;
+    if (decided(s)) {
+      live[s.dst] = 2;
+      live[side(s)] |= 1;
+      ++collapsed_here;
       continue;
     }
     ++kept;
-    const uint32_t operands[] = {it->a, it->b, it->c};
-    for (size_t k = 0; k < it->arity; ++k) live[operands[k]] = std::max<uint8_t>(live[operands[k]], 1);
+    if (s.op == Op::Param) continue;
+    live[s.a] |= s.arity > 0;
+    live[s.b] |= s.arity > 1;
+    live[s.c] |= s.arity > 2;
   }
-  if (collapsed) *collapsed = decided;
+  if (collapsed) *collapsed = collapsed_here;
   // Forward: the kept steps in the original order, numbered densely; a decided choice takes its
   // side's number.
   IntervalTape out;
   out.params_ = params_;
-  out.steps_.reserve(kept);
+  out.steps_.resize(kept);
+  Step* next = out.steps_.data();
+  uint32_t n = 0;
   for (const Step& s : steps_) {
-    if (!live[s.dst]) continue;
-    if (live[s.dst] == 2) {
-      Choice c = choices[s.dst * stride];
-      renumber[s.dst] = renumber[s.op == Op::Select ? (c == Choice::Left ? s.b : s.c) : (c == Choice::Left ? s.a : s.b)];
+    uint8_t l = live[s.dst];
+    if (!l) continue;
+    if (l & 2) {
+      renumber[s.dst] = renumber[side(s)];
       continue;
     }
     Step c = s;
-    c.dst = renumber[s.dst] = out.values_++;
-    if (s.op != Op::Param) {
-      uint32_t* slot[] = {&c.a, &c.b, &c.c};
-      for (size_t k = 0; k < s.arity; ++k) *slot[k] = renumber[*slot[k]];
+    c.dst = renumber[s.dst] = n++;
+    if (s.op != Op::Param) {  // operand slots past the arity hold 0: renumbered harmlessly, never read
+      c.a = renumber[s.a];
+      c.b = renumber[s.b];
+      c.c = renumber[s.c];
     }
-    out.steps_.push_back(c);
+    *next++ = c;
   }
+  out.values_ = n;
   for (uint32_t o : outputs_) out.outputs_.push_back(renumber[o]);
   return out;
 }

@@ -1,9 +1,14 @@
 // Flat tape -> VM bytecode. Parameter registers come first and stay until their last use (the
 // executor fills them before the code runs); every other value takes a free register and gives it
 // back after its last use; constants are immediates of binary ops, else registers set once per run.
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <cstring>
 
 #include "backends/vm/vm_backend.h"
+#include "backends/vm/vm_points.h"
 
 namespace fscript::vm {
 
@@ -70,6 +75,32 @@ VmProgram tape_program(const ir::IntervalTape& t) {
   f.blocks.push_back(std::move(b));
   p.kernel = 0;
   return p;
+}
+
+void eval_tape_points(const ir::IntervalTape& t, const float* const* inputs, size_t num_inputs, size_t n, float* out) {
+  struct Free {
+    void operator()(float* p) const { std::free(p); }
+  };
+  thread_local std::unique_ptr<float[], Free> values;  // kPointLanes floats per value id, kept per thread
+  thread_local size_t capacity = 0;
+  size_t need = size_t(t.num_values()) * kPointLanes;
+  if (need > capacity) {
+    values.reset(static_cast<float*>(std::aligned_alloc(64, std::max<size_t>(need, 1) * sizeof(float))));
+    capacity = need;
+  }
+  float* v = values.get();
+  for (const ir::IntervalTape::Step& s : t.steps()) {
+    if (s.op != ir::Op::Param) continue;
+    float* d = v + size_t(s.dst) * kPointLanes;
+    std::memset(d, 0, kPointLanes * sizeof(float));
+    if (s.a < num_inputs && inputs[s.a]) std::memcpy(d, inputs[s.a], n * sizeof(float));
+  }
+  switch (math::active_isa()) {
+    case math::Isa::Base: isa_base::run_tape_points(t.steps().data(), t.steps().size(), v); break;
+    case math::Isa::Avx2: isa_avx2::run_tape_points(t.steps().data(), t.steps().size(), v); break;
+    case math::Isa::Avx512: isa_avx512::run_tape_points(t.steps().data(), t.steps().size(), v); break;
+  }
+  std::memcpy(out, v + size_t(t.outputs()[0]) * kPointLanes, n * sizeof(float));
 }
 
 std::unique_ptr<backends::Kernel> compile_tape(const ir::IntervalTape& t, const backends::Budgets& b) {

@@ -9,6 +9,7 @@
 
 #include "ir/interval_eval.h"
 #include "backends/vm/vm_backend.h"
+#include "backends/vm/vm_points.h"
 #include "ir/tape.h"
 #include "runtime/support/parallel.h"
 
@@ -29,7 +30,7 @@ namespace {
 // interval pass (ir::IntervalTape::eval_batch, 16 lanes). Chosen by measurement (docs/performance.md):
 // a fourth level (4x4 pixels) decides two thirds of the remaining pixels, but its simplified tapes
 // and their compiles cost more than the points they save.
-constexpr uint32_t kSizes[] = {256, 64, 16};
+constexpr uint32_t kSizes[] = {256, 64, 16, 4};
 constexpr size_t kLevels = sizeof(kSizes) / sizeof(kSizes[0]);
 
 struct Rect {
@@ -62,6 +63,8 @@ class Renderer {
   Renderer(const backends::Kernel& dense, const PlaneGrid& g, const InsideOptions& o, std::vector<uint8_t>& px)
       : dense_(dense), g_(g), o_(o), px_(px) {
     for (uint32_t s : kSizes) stats_.levels.push_back({s, 0, 0, 0, 0});
+    for (uint32_t c = 0; c < g.w; ++c) xs_.push_back(g.x(c));
+    for (uint32_t r = 0; r < g.h; ++r) ys_.push_back(g.y(r));
   }
 
   // Bounds `rects` (regions of `level`) on `tape` in batches; fills the decided ones and hands each
@@ -115,27 +118,34 @@ class Renderer {
 
   // Every pixel of the rects, in one batch on the tape's kernel.
   bool dense(Tape& tape, const std::vector<Rect>& rects) {
-    if (!tape.compiled) tape.compiled = std::make_shared<Compiled>();
-    if (!tape.compiled->kernel && !compile(tape)) return false;
     size_t n = 0;
     for (const Rect& r : rects) n += size_t(r.c1 - r.c0) * (r.r1 - r.r0);
-    std::vector<std::vector<float>> cols(dense_.num_inputs(), std::vector<float>(n, 0.0f));
-    std::vector<size_t> where(n);
+    cols_.resize(dense_.num_inputs());
+    for (auto& c : cols_) c.assign(n, 0.0f);
+    where_.resize(n);
     size_t i = 0;
     for (const Rect& r : rects)
       for (uint32_t row = r.r0; row < r.r1; ++row)
         for (uint32_t col = r.c0; col < r.c1; ++col, ++i) {
-          cols[0][i] = g_.x(col);
-          cols[1][i] = g_.y(row);
-          where[i] = size_t(row) * g_.w + col;
+          cols_[0][i] = xs_[col];
+          cols_[1][i] = ys_[row];
+          where_[i] = size_t(row) * g_.w + col;
         }
     std::vector<const float*> in;
-    for (auto& c : cols) in.push_back(c.data());
-    std::vector<std::vector<float>> outs(dense_.num_outputs(), std::vector<float>(n));
-    std::vector<float*> out;
-    for (auto& v : outs) out.push_back(v.data());
-    if (!tape.compiled->kernel->eval_batch(in.data(), out.data(), n, err_)) return false;
-    for (size_t k = 0; k < n; ++k) px_[where[k]] = outs[0][k] >= 0.0f ? 255 : 0;
+    for (auto& c : cols_) in.push_back(c.data());
+    outs_.resize(dense_.num_outputs());
+    for (auto& v : outs_) v.resize(std::max(n, vm::kPointLanes));
+    if (tape.flat && n <= vm::kPointLanes) {  // a few points on a short tape: run it, do not compile it
+      vm::eval_tape_points(*tape.flat, in.data(), in.size(), n, outs_[0].data());
+      ++stats_.direct;
+    } else {
+      if (!tape.compiled) tape.compiled = std::make_shared<Compiled>();
+      if (!tape.compiled->kernel && !compile(tape)) return false;
+      std::vector<float*> out;
+      for (auto& v : outs_) out.push_back(v.data());
+      if (!tape.compiled->kernel->eval_batch(in.data(), out.data(), n, err_)) return false;
+    }
+    for (size_t k = 0; k < n; ++k) px_[where_[k]] = outs_[0][k] >= 0.0f ? 255 : 0;
     stats_.points += n;
     return true;
   }
@@ -174,6 +184,9 @@ class Renderer {
   }
 
   ir::IntervalBatchEval scratch_[kLevels];
+  std::vector<float> xs_, ys_;  // the grid's coordinates, once
+  std::vector<std::vector<float>> cols_, outs_;  // dense batches' inputs and outputs, reused
+  std::vector<size_t> where_;
   const backends::Kernel& dense_;
   const PlaneGrid& g_;
   const InsideOptions& o_;
@@ -188,6 +201,7 @@ void merge(QuadtreeStats& into, const QuadtreeStats& part) {
     into.levels[l].tape_ops += part.levels[l].tape_ops;
   }
   into.points += part.points;
+  into.direct += part.direct;
   into.kernels += part.kernels;
 }
 

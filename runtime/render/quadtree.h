@@ -34,6 +34,7 @@ struct QuadtreeStats {
   size_t full_tape_ops = 0;
   size_t points = 0;   // pixels evaluated point by point
   size_t kernels = 0;  // simplified kernels compiled
+  size_t direct = 0;   // dense batches run straight from their tape (vm::eval_tape_points)
 };
 
 struct InsideOptions {

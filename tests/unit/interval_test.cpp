@@ -6,6 +6,7 @@
 #include <random>
 
 #include "backends/vm/vm_backend.h"
+#include "backends/vm/vm_points.h"
 #include "ir/eval.h"
 #include "ir/interval_eval.h"
 #include "ir/interval_lanes.h"
@@ -374,13 +375,30 @@ std::string same_bits(const ir::Module& full, const ir::Module& simple, const st
   return same_outputs(std::move(a), std::move(b), kernel_of(full).num_results, boxes, rng);
 }
 
-// The full kernel on the VM against the tape compiled by the VM without IR (vm::compile_tape).
+// The full kernel on the VM against the tape compiled by the VM without IR (vm::compile_tape), and
+// against the tape run with no compile at all (vm::eval_tape_points, output 0).
 std::string same_bits_on_tape(const ir::Module& full, const ir::IntervalTape& tape, const std::vector<Box>& boxes,
                               std::mt19937& rng) {
   std::string err;
   auto a = backends::make_backend("vm")->compile(full, {}, err);
   if (!a) return "compile: " + err;
-  return same_outputs(std::move(a), vm::compile_tape(tape, {}), kernel_of(full).num_results, boxes, rng);
+  Batch batch{std::vector<std::vector<float>>(boxes.size()), {}};
+  add_case(batch, boxes, 0, rng, 24);
+  size_t n = std::min(batch.owner.size(), vm::kPointLanes);
+  std::vector<const float*> in;
+  for (auto& c : batch.cols) in.push_back(c.data());
+  std::vector<float> want(batch.owner.size()), got(n);
+  std::vector<float*> outs(kernel_of(full).num_results, want.data());
+  std::vector<std::vector<float>> spare(outs.size(), std::vector<float>(want.size()));
+  for (size_t k = 1; k < outs.size(); ++k) outs[k] = spare[k].data();
+  backends::RuntimeError rerr;
+  if (!a->eval_batch(in.data(), outs.data(), batch.owner.size(), rerr)) return "vm: " + rerr.message;
+  vm::eval_tape_points(tape, in.data(), in.size(), n, got.data());
+  for (size_t i = 0; i < n; ++i)
+    if (!test::same(want[i], got[i]))
+      return "eval_tape_points at point " + std::to_string(i) + ": " + std::to_string(got[i]) + " vs " + std::to_string(want[i]);
+  auto b = backends::make_backend("vm")->compile(full, {}, err);
+  return same_outputs(std::move(b), vm::compile_tape(tape, {}), kernel_of(full).num_results, boxes, rng);
 }
 
 std::string same_outputs(std::unique_ptr<backends::Kernel> a, std::unique_ptr<backends::Kernel> b, size_t outs,

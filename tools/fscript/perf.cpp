@@ -163,9 +163,10 @@ void print_quadtree_stats(const render::QuadtreeStats& st, size_t pixels) {
     else std::printf(", mean simplified tape %.1f operations\n",
                      l.ambiguous ? static_cast<double>(l.tape_ops) / static_cast<double>(l.ambiguous) : 0.0);
   }
-  std::printf("points evaluated: %zu of %zu (%.2f%% of the dense path); simplified kernels compiled: %zu\n", st.points,
-              pixels, 100.0 * static_cast<double>(st.points) / static_cast<double>(std::max<size_t>(pixels, 1)),
-              st.kernels);
+  std::printf("points evaluated: %zu of %zu (%.2f%% of the dense path); simplified kernels compiled: %zu; batches run "
+              "straight from their tape: %zu\n",
+              st.points, pixels, 100.0 * static_cast<double>(st.points) / static_cast<double>(std::max<size_t>(pixels, 1)),
+              st.kernels, st.direct);
 }
 
 int cmd_render2d(const Options& o, const std::string& file, const std::string& entry, const std::string& size,

@@ -4,6 +4,7 @@
 # (meshing only), evaluation_ms (time inside function evaluation, summed over threads), write_ms,
 # the whole process's wall time, the share of grid points evaluated and the triangle count.
 # usage: bench/polygonize.sh [RUNS] [SCENE.wrl ...]   (default: 5 runs, bench/scenes/*.wrl and Figure 6)
+#   BACKENDS="vm sse llvm" THREADS="1" bench/polygonize.sh ...   other backends, thread counts (default vm; 1 2)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RUN=build/tools/fvrml-run/fvrml-run
@@ -14,15 +15,19 @@ SCENES=("$@")
 [ ${#SCENES[@]} -gt 0 ] || SCENES=(bench/scenes/*.wrl examples/paper/figure6-blends.wrl)
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
-printf '%-26s %7s %9s %13s %13s %8s %8s %9s %10s\n' scene threads mode polygonize_ms evaluation_ms write_ms total_ms evaluated triangles
+BACKENDS=${BACKENDS:-vm}
+THREADS=${THREADS:-1 2}
+printf '%-26s %7s %7s %9s %13s %13s %8s %8s %9s %10s\n' scene backend threads mode polygonize_ms evaluation_ms write_ms \
+  total_ms evaluated triangles
 for scene in "${SCENES[@]}"; do
-  for threads in 1 2; do
+  for backend in $BACKENDS; do
+  for threads in $THREADS; do
     for mode in pruned dense; do
       flag=""
       [ "$mode" = dense ] && flag=--no-prune
       for _ in $(seq "$RUNS"); do
         t0=$(date +%s%N)
-        line=$("$RUN" "$scene" -o "$OUT/out.ply" --stats --threads "$threads" --fraction 0.5 $flag 2>&1 >/dev/null | tail -1)
+        line=$("$RUN" "$scene" -o "$OUT/out.ply" --stats --threads "$threads" --backend "$backend" --fraction 0.5 $flag 2>&1 >/dev/null | tail -1)
         t1=$(date +%s%N)
         python3 -c 'import json, sys; j = json.loads(sys.argv[1]); j["total_ms"] = int(sys.argv[2]) / 1e6; print(json.dumps(j))' \
           "$line" "$((t1 - t0))"
@@ -31,9 +36,10 @@ import json, sys
 runs = [json.loads(l) for l in sys.stdin if l.startswith("{")]
 best = min(runs, key=lambda j: j["total_ms"])
 tris = sum(s.get("triangles", 0) for s in best["shapes"]) + sum(g.get("triangles", 0) for g in best["ftransforms"])
-print("%-26s %7s %9s %13.1f %13.1f %8.1f %8.1f %8.1f%% %10d" % (sys.argv[1], sys.argv[2], sys.argv[3], best["polygonize_ms"],
+print("%-26s %7s %7s %9s %13.1f %13.1f %8.1f %8.1f %8.1f%% %10d" % (sys.argv[1], sys.argv[4], sys.argv[2], sys.argv[3], best["polygonize_ms"],
       best["evaluation_ms"], best.get("write_ms", 0), best["total_ms"], 100 * best["prune"]["evaluated_fraction"], tris))
-' "$(basename "$scene")" "$threads" "$mode"
+'  "$(basename "$scene")" "$threads" "$mode" "$backend"
     done
+  done
   done
 done

@@ -9,6 +9,7 @@ void IntervalTape::eval_batch(const std::vector<IntervalLanes>& inputs, Interval
   out.values.resize(values_);
   out.choices.assign(size_t(values_) * kIntervalLanes, Choice::Both);
   out.outputs = outputs_;
+  out.masks = false;
   auto run = isa_base::eval_lanes;
   switch (math::active_isa()) {
     case math::Isa::Base: run = isa_base::eval_lanes; break;

@@ -95,54 +95,31 @@ IntervalTape IntervalTape::simplified(const IntervalEval& ev, size_t* collapsed)
   return simplified(ev.choices.data(), 1, collapsed);
 }
 
-IntervalTape IntervalTape::simplified(const IntervalBatchEval& ev, size_t lane, size_t* collapsed) const {
-  return simplified(ev.choices.data() + lane, kIntervalLanes, collapsed);
+namespace {
+
+bool chooses(Op op) { return op == Op::Min || op == Op::Max || op == Op::Select; }
+
+// The operand a decided min / max / select takes.
+uint32_t side_of(const IntervalTape::Step& s, Choice c) {
+  return s.op == Op::Select ? (c == Choice::Left ? s.b : s.c) : (c == Choice::Left ? s.a : s.b);
 }
 
-IntervalTape IntervalTape::simplified(const Choice* choices, size_t stride, size_t* collapsed) const {
-  // Scratch by value id, kept per thread: a quadtree simplifies thousands of tapes.
+}  // namespace
+
+template <typename Needed, typename Stands>
+IntervalTape IntervalTape::emit(const Choice* choices, size_t stride, Needed needed, Stands stands) const {
   thread_local std::vector<uint32_t> renumber;
-  thread_local std::vector<uint8_t> live;  // bit 0: used; bit 1: a decided choice, standing for its side
-  live.assign(values_, 0);
+  thread_local std::vector<Step> kept;  // the new tape, built here and copied once at its length
   renumber.resize(values_);
-  auto side = [&](const Step& s) {
-    Choice c = choices[size_t(s.dst) * stride];
-    return s.op == Op::Select ? (c == Choice::Left ? s.b : s.c) : (c == Choice::Left ? s.a : s.b);
-  };
-  auto decided = [&](const Step& s) {
-    return (s.op == Op::Min || s.op == Op::Max || s.op == Op::Select) && choices[size_t(s.dst) * stride] != Choice::Both;
-  };
-  // Backward: what the outputs reach, a decided min / max / select passing through to its side.
-  for (uint32_t o : outputs_) live[o] = 1;
-  size_t kept = 0, collapsed_here = 0;
-  for (auto it = steps_.rbegin(); it != steps_.rend(); ++it) {
-    const Step& s = *it;
-    if (!live[s.dst]) continue;
-    if (decided(s)) {
-      live[s.dst] = 2;
-      live[side(s)] |= 1;
-      ++collapsed_here;
-      continue;
-    }
-    ++kept;
-    if (s.op == Op::Param) continue;
-    live[s.a] |= s.arity > 0;
-    live[s.b] |= s.arity > 1;
-    live[s.c] |= s.arity > 2;
-  }
-  if (collapsed) *collapsed = collapsed_here;
-  // Forward: the kept steps in the original order, numbered densely; a decided choice takes its
-  // side's number.
+  if (kept.size() < steps_.size()) kept.resize(steps_.size());
   IntervalTape out;
   out.params_ = params_;
-  out.steps_.resize(kept);
-  Step* next = out.steps_.data();
+  Step* next = kept.data();
   uint32_t n = 0;
   for (const Step& s : steps_) {
-    uint8_t l = live[s.dst];
-    if (!l) continue;
-    if (l & 2) {
-      renumber[s.dst] = renumber[side(s)];
+    if (!needed(s.dst)) continue;
+    if (stands(s.dst)) {
+      renumber[s.dst] = renumber[side_of(s, choices[size_t(s.dst) * stride])];
       continue;
     }
     Step c = s;
@@ -154,9 +131,79 @@ IntervalTape IntervalTape::simplified(const Choice* choices, size_t stride, size
     }
     *next++ = c;
   }
+  out.steps_.assign(kept.data(), next);
   out.values_ = n;
   for (uint32_t o : outputs_) out.outputs_.push_back(renumber[o]);
   return out;
+}
+
+IntervalTape IntervalTape::simplified(const Choice* choices, size_t stride, size_t* collapsed) const {
+  thread_local std::vector<uint8_t> live;  // bit 0: needed; bit 1: a decided choice, standing for its side
+  live.assign(values_, 0);
+  // Backward: what the outputs reach, a decided min / max / select passing through to its side.
+  for (uint32_t o : outputs_) live[o] = 1;
+  size_t decided = 0;
+  for (auto it = steps_.rbegin(); it != steps_.rend(); ++it) {
+    const Step& s = *it;
+    if (!live[s.dst]) continue;
+    Choice c = chooses(s.op) ? choices[size_t(s.dst) * stride] : Choice::Both;
+    if (c != Choice::Both) {
+      live[s.dst] = 3;
+      live[side_of(s, c)] |= 1;
+      ++decided;
+      continue;
+    }
+    if (s.op == Op::Param) continue;
+    live[s.a] |= s.arity > 0;
+    live[s.b] |= s.arity > 1;
+    live[s.c] |= s.arity > 2;
+  }
+  if (collapsed) *collapsed = decided;
+  const uint8_t* l = live.data();
+  return emit(choices, stride, [l](uint32_t v) { return l[v] != 0; }, [l](uint32_t v) { return (l[v] & 2) != 0; });
+}
+
+// The backward pass of every lane at once, a bit per lane.
+void IntervalTape::lane_masks(IntervalBatchEval& ev) const {
+  ev.needed.assign(values_, 0);
+  ev.stands.assign(values_, 0);
+  uint16_t* need = ev.needed.data();
+  for (uint32_t o : outputs_) need[o] = 0xFFFF;
+  for (auto it = steps_.rbegin(); it != steps_.rend(); ++it) {
+    const Step& s = *it;
+    uint16_t m = need[s.dst];
+    if (!m || s.op == Op::Param) continue;
+    uint16_t left = 0, right = 0;
+    if (chooses(s.op)) {
+      const Choice* c = ev.choices.data() + size_t(s.dst) * kIntervalLanes;
+      for (size_t k = 0; k < kIntervalLanes; ++k) {
+        left |= static_cast<uint16_t>((c[k] == Choice::Left) << k);
+        right |= static_cast<uint16_t>((c[k] == Choice::Right) << k);
+      }
+      left &= m, right &= m;
+      ev.stands[s.dst] = left | right;
+    }
+    uint16_t both = m & ~(left | right);
+    if (s.op == Op::Select) {
+      need[s.a] |= both;
+      need[s.b] |= both | left;
+      need[s.c] |= both | right;
+      continue;
+    }
+    uint16_t to_a = both | (chooses(s.op) ? left : 0), to_b = both | (chooses(s.op) ? right : 0);
+    if (s.arity > 0) need[s.a] |= to_a;
+    if (s.arity > 1) need[s.b] |= to_b;
+    if (s.arity > 2) need[s.c] |= both;
+  }
+  ev.masks = true;
+}
+
+IntervalTape IntervalTape::simplified(IntervalBatchEval& ev, size_t lane) const {
+  if (!ev.masks) lane_masks(ev);
+  uint16_t bit = static_cast<uint16_t>(1u << lane);
+  const uint16_t *need = ev.needed.data(), *stand = ev.stands.data();
+  return emit(ev.choices.data() + lane, kIntervalLanes,
+              [need, bit](uint32_t v) { return (need[v] & bit) != 0; }, [stand, bit](uint32_t v) { return (stand[v] & bit) != 0; });
 }
 
 void IntervalTape::eval(const std::vector<Interval>& inputs, IntervalEval& out) const {

@@ -35,6 +35,10 @@ struct IntervalBatchEval {
   std::vector<IntervalLanes> values;  // by value id
   std::vector<Choice> choices;        // [value id * kIntervalLanes + lane]
   std::vector<uint32_t> outputs;      // value ids of the kernel's results
+  // Simplification's backward pass for all lanes at once, by value id, a bit per lane: the value is
+  // needed, and it is a decided choice standing for its side. Made by the first simplified().
+  std::vector<uint16_t> needed, stands;
+  bool masks = false;
   math::Interval output(size_t k, size_t lane) const { return values[outputs[k]].lane(lane); }
 };
 
@@ -79,8 +83,11 @@ class IntervalTape {
   // values are renumbered densely. The same bits as this tape at every point of the region; it
   // recurses. `collapsed` (when given) counts the choices that were decided.
   IntervalTape simplified(const IntervalEval& ev, size_t* collapsed = nullptr) const;
-  // The same from lane `lane` of a batch evaluation.
-  IntervalTape simplified(const IntervalBatchEval& ev, size_t lane, size_t* collapsed = nullptr) const;
+  // The same from lane `lane` of a batch evaluation (the first call does the backward pass of
+  // every lane, the others reuse it).
+  IntervalTape simplified(IntervalBatchEval& ev, size_t lane) const;
+  // That backward pass now (so threads may then simplify lanes of `ev` at once).
+  void lane_masks(IntervalBatchEval& ev) const;
 
   const std::vector<Step>& steps() const { return steps_; }
   const std::vector<uint32_t>& outputs() const { return outputs_; }
@@ -91,6 +98,9 @@ class IntervalTape {
  private:
   IntervalTape() = default;
   IntervalTape simplified(const Choice* choices, size_t stride, size_t* collapsed) const;
+  // The forward pass: the needed steps in order, renumbered, a standing choice taking its side's number.
+  template <typename Needed, typename Stands>
+  IntervalTape emit(const Choice* choices, size_t stride, Needed needed, Stands stands) const;
   std::vector<Step> steps_;
   std::vector<uint32_t> outputs_;
   uint32_t values_ = 0, params_ = 0;

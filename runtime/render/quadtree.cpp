@@ -102,14 +102,14 @@ class Renderer {
 
   // Region r, open at `level` (ev, lane: its bounds on `tape`): its children at the next level on
   // a tape simplified for r; the last level's open children densely, in one batch on that tape.
-  bool region(Tape& tape, Rect r, size_t level, const ir::IntervalBatchEval& ev, size_t lane) {
+  bool region(Tape& tape, Rect r, size_t level, ir::IntervalBatchEval& ev, size_t lane) {
     Tape child = simplified(tape, ev, lane);
     stats_.levels[level].tape_ops += child.ops;
     if (level + 1 == kLevels) return dense(child, {r});
     std::vector<Rect> pending;
     bool last = level + 2 == kLevels;
     bool ok = bound(child, split(r, kSizes[level + 1]), level + 1,
-                    [&](Rect c, const ir::IntervalBatchEval& cev, size_t k) {
+                    [&](Rect c, ir::IntervalBatchEval& cev, size_t k) {
                       if (last) return pending.push_back(c), true;
                       return region(child, c, level + 1, cev, k);
                     });
@@ -160,7 +160,7 @@ class Renderer {
   }
 
   // The parent's tape specialised to the region, or the parent's itself when that saves little.
-  Tape simplified(Tape& parent, const ir::IntervalBatchEval& ev, size_t lane) {
+  Tape simplified(Tape& parent, ir::IntervalBatchEval& ev, size_t lane) {
     auto s = std::make_shared<const ir::IntervalTape>(parent.flat->simplified(ev, lane));
     if (s->length() * 10 > parent.ops * 9) {  // under 10% shorter: the parent, sharing its kernel too
       if (!parent.compiled) parent.compiled = std::make_shared<Compiled>();
@@ -241,13 +241,14 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
     for (size_t first = 0; first < tiles.size(); first += ir::kIntervalLanes) {
       std::vector<Rect> part(tiles.begin() + static_cast<long>(first),
                              tiles.begin() + static_cast<long>(std::min(tiles.size(), first + ir::kIntervalLanes)));
-      ok = ok && r0.bound(full, part, 0, [&](Rect r, const ir::IntervalBatchEval& ev, size_t k) {
+      ok = ok && r0.bound(full, part, 0, [&](Rect r, ir::IntervalBatchEval& ev, size_t k) {
         if (kept_for != first) top.push_back(ev), kept_for = first;
         open.push_back({r, top.size() - 1, k});
         return true;
       });
     }
   }
+  for (auto& ev : top) full.flat->lane_masks(ev);  // before the threads share them
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
   ok = ok && support::run_parts(parts, [&](int p) {

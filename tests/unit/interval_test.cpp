@@ -428,7 +428,7 @@ TEST_CASE("tape simplification: the same bits inside the region, recursively, an
   std::string shared = std::getenv("FS_SHARED_DIR") ? std::getenv("FS_SHARED_DIR") : "", prospero;
   bool have_prospero = !shared.empty() && support::read_file(shared + "/data/prospero.fs", prospero, prospero);
   if (have_prospero) texts.push_back(prospero);
-  int collapsed = 0, checked = 0;
+  int collapsed = 0, checked = 0, lane_collapsed = 0;
   for (const auto& text : texts) {
     auto b = test::build(text);
     if (!b->ok || !ir::interval_evaluable(kernel_of(*b->module))) continue;
@@ -461,6 +461,24 @@ TEST_CASE("tape simplification: the same bits inside the region, recursively, an
       CHECK(same_bits_on_tape(*b->module, t2, boxes, rng) == "");
       ++checked;
     }
+    // Batched: 16 small boxes in the lanes of one evaluation, each lane's tape simplified from the
+    // shared backward pass; every lane's tape gives the full kernel's bits in its own box.
+    std::vector<std::vector<Box>> lane_boxes;
+    std::vector<ir::IntervalLanes> lanes(fn.num_params);
+    for (size_t k = 0; k < ir::kIntervalLanes; ++k) {
+      std::vector<Interval> in;
+      lane_boxes.push_back(boxes_around(rng, fn.num_params, 1.0f / 64, 1000, in));
+      for (size_t a = 0; a < fn.num_params; ++a) lanes[a].set(k, in[a]);
+    }
+    ir::IntervalTape full(fn);
+    ir::IntervalBatchEval bev;
+    full.eval_batch(lanes, bev);
+    for (size_t k = 0; k < ir::kIntervalLanes; k += 5) {
+      ir::IntervalTape t = full.simplified(bev, k);
+      INFO(text.substr(0, 300) << "\nlane " << k);
+      CHECK(same_bits_on_tape(*b->module, t, lane_boxes[k], rng) == "");
+      lane_collapsed += t.length() < full.length();
+    }
     if (&text == &texts.back() && have_prospero) {  // prospero: a small region keeps a small part
       std::vector<Interval> region(fn.num_params, Interval{0, 0, false});
       region[0] = {0.5f, 0.52f, false};
@@ -474,6 +492,7 @@ TEST_CASE("tape simplification: the same bits inside the region, recursively, an
   }
   CHECK(checked > 300);
   CHECK(collapsed > 100);
+  CHECK(lane_collapsed > 100);
 }
 
 TEST_CASE("quadtree rendering: the same pixels as the dense path, for random programs, sizes and threads") {

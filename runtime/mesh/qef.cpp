@@ -1,0 +1,76 @@
+// Qef: accumulation in double, minimisation by a symmetric eigen-decomposition (Eigen) with small
+// eigenvalues dropped relative to the largest, and rank reduction until the vertex is in its cell.
+#include "runtime/mesh/qef.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+namespace fscript::mesh {
+
+void Qef::add(const double p[3], const double n[3]) {
+  double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  if (!(len > 0) || !std::isfinite(len)) return;
+  double u[3] = {n[0] / len, n[1] / len, n[2] / len};
+  double d = u[0] * p[0] + u[1] * p[1] + u[2] * p[2];
+  const int pair[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+  for (int k = 0; k < 6; ++k) ata_[k] += u[pair[k][0]] * u[pair[k][1]];
+  for (int a = 0; a < 3; ++a) atb_[a] += u[a] * d, mass_[a] += p[a];
+  btb_ += d * d;
+  ++count_;
+}
+
+void Qef::merge(const Qef& o) {
+  for (int k = 0; k < 6; ++k) ata_[k] += o.ata_[k];
+  for (int a = 0; a < 3; ++a) atb_[a] += o.atb_[a], mass_[a] += o.mass_[a];
+  btb_ += o.btb_;
+  count_ += o.count_;
+}
+
+namespace {
+
+Eigen::Matrix3d matrix(const double m[6]) {
+  Eigen::Matrix3d a;
+  a << m[0], m[1], m[2], m[1], m[3], m[4], m[2], m[4], m[5];
+  return a;
+}
+
+}  // namespace
+
+double Qef::error(const double x[3]) const {
+  Eigen::Vector3d v(x[0], x[1], x[2]), atb(atb_[0], atb_[1], atb_[2]);
+  return std::max(0.0, v.dot(matrix(ata_) * v) - 2 * v.dot(atb) + btb_);
+}
+
+Qef::Solution Qef::solve(const double lo[3], const double hi[3]) const {
+  Solution s;
+  if (count_ == 0) {
+    for (int a = 0; a < 3; ++a) s.x[a] = (lo[a] + hi[a]) / 2;
+    return s;
+  }
+  Eigen::Matrix3d ata = matrix(ata_);
+  Eigen::Vector3d atb(atb_[0], atb_[1], atb_[2]);
+  Eigen::Vector3d c = Eigen::Vector3d(mass_[0], mass_[1], mass_[2]) / static_cast<double>(count_);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(ata);
+  const Eigen::Vector3d& lambda = eig.eigenvalues();  // ascending
+  const Eigen::Matrix3d& vec = eig.eigenvectors();
+  int usable = 0;
+  for (int i = 0; i < 3; ++i) usable += lambda[i] > kCutoff * lambda[2] && lambda[i] > 0;
+  // The cell, widened by a hair so a vertex on its face counts as inside.
+  double slack = 1e-9 * std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-300});
+  Eigen::Vector3d r = atb - ata * c;
+  for (int rank = usable; rank >= 0; --rank) {
+    Eigen::Vector3d x = c;
+    for (int i = 3 - rank; i < 3; ++i) x += vec.col(i) * (vec.col(i).dot(r) / lambda[i]);
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) inside &= x[a] >= lo[a] - slack && x[a] <= hi[a] + slack;
+    if (!inside && rank > 0) continue;
+    for (int a = 0; a < 3; ++a) s.x[a] = std::clamp(x[a], lo[a], hi[a]);  // only the mass point may need it
+    s.rank = rank;
+    s.error = error(s.x);
+    return s;
+  }
+  return s;
+}
+
+}  // namespace fscript::mesh

@@ -1,0 +1,40 @@
+#pragma once
+// Quadric error functions for dual contouring: the planes through a cell's surface crossings
+// (Hermite data: point and normal), accumulated, summed when cells merge, and minimised robustly
+// inside the cell. Eigen stays in qef.cpp.
+#include <cstddef>
+
+namespace fscript::mesh {
+
+class Qef {
+ public:
+  // The plane through p with normal n (any length but zero: normalised here).
+  void add(const double p[3], const double n[3]);
+  // The planes of both (a merged cell's QEF is the sum of its children's).
+  void merge(const Qef& o);
+  size_t count() const { return count_; }
+  // The sum of squared distances from x to the planes.
+  double error(const double x[3]) const;
+
+  struct Solution {
+    double x[3] = {0, 0, 0};
+    double error = 0;
+    int rank = 0;  // eigen-directions used: 3 a corner, 2 an edge, 1 a face, 0 the mass point
+  };
+  // The point of least error inside the box [lo, hi]: the minimiser around the mass point (the
+  // average crossing) with eigenvalues under kCutoff times the largest dropped, so near-parallel
+  // planes do not throw the vertex away; when that leaves the box, the best of fewer directions
+  // that stays in it (down to the mass point itself, clamped into the box).
+  Solution solve(const double lo[3], const double hi[3]) const;
+
+  static constexpr double kCutoff = 0.1;
+
+ private:
+  double ata_[6] = {0, 0, 0, 0, 0, 0};  // xx xy xz yy yz zz
+  double atb_[3] = {0, 0, 0};
+  double btb_ = 0;
+  double mass_[3] = {0, 0, 0};  // sum of the points
+  size_t count_ = 0;
+};
+
+}  // namespace fscript::mesh

@@ -144,8 +144,13 @@ for r in range(101):
     x=f32(-1.5+f32(i*f32(f32(3.0)/100))); y=f32(1.5-f32(r*f32(f32(3.0)/100)))
     c += 1-x*x-y*y >= 0
 print(c)")
-got=$("$F" render2d "$T/sphere.fs" --entry FRep --size 101 --bounds -1.5,1.5,-1.5,1.5 | head -1 | cut -d' ' -f1)
+got=$("$F" render2d "$T/sphere.fs" --entry FRep --size 101 --bounds -1.5,1.5,-1.5,1.5 -o "$T/disc2.png" | head -1 | cut -d' ' -f1)
 [ "$got" = "$want" ] || { echo "FAIL render2d-count: got $got want $want"; fails=$((fails + 1)); }
+# --repeat N renders N times (the same picture) and prints the best time once.
+got=$("$F" render2d "$T/sphere.fs" --entry FRep --size 101 --bounds -1.5,1.5,-1.5,1.5 -o "$T/disc3.png" --repeat 3)
+[ "$(echo "$got" | head -1 | cut -d' ' -f1)" = "$want" ] && [ "$(echo "$got" | grep -c ' ms$')" = 1 ] ||
+  { echo "FAIL render2d-repeat: $got"; fails=$((fails + 1)); }
+check usage-render-repeat 2 'repeat' -- "$F" render2d "$T/sphere.fs" --size 4 --bounds -1,1,-1,1 --repeat 0
 head -c 8 "$T/disc.png" | od -An -tx1 | grep -q '89 50 4e 47 0d 0a 1a 0a' || { echo "FAIL render2d-png: not a PNG"; fails=$((fails + 1)); }
 # Without -o the picture goes to the current folder, named after the script; every write says so.
 rm -f "$T/sphere.png"

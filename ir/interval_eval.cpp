@@ -222,6 +222,10 @@ void IntervalTape::eval(const std::vector<Interval>& inputs, IntervalEval& out) 
   for (uint32_t o : outputs_) out.outputs.push_back(v[o]);
 }
 
+bool IntervalTape::simd_only() const {
+  return std::all_of(steps_.begin(), steps_.end(), [](const Step& s) { return simd_interval_op(s.op); });
+}
+
 bool eval_intervals(const Function& fn, const std::vector<Interval>& inputs, IntervalEval& out) {
   if (!interval_evaluable(fn)) return false;
   IntervalTape(fn).eval(inputs, out);

@@ -42,6 +42,13 @@ struct IntervalBatchEval {
   math::Interval output(size_t k, size_t lane) const { return values[outputs[k]].lane(lane); }
 };
 
+// The ops the batched evaluator runs as SIMD (ir/interval_lanes.cpp); it runs every other op's
+// scalar rule lane by lane, an order of magnitude slower.
+constexpr bool simd_interval_op(Op op) {
+  return op == Op::Param || op == Op::Const || op == Op::Add || op == Op::Sub || op == Op::Mul || op == Op::Neg ||
+         op == Op::Min || op == Op::Max || op == Op::Sqrt;
+}
+
 // Whether `fn` is straight-line pure code (one block of value ops ending in ret): what interval
 // evaluation and tape simplification take. Anything else runs dense (and stays correct).
 bool interval_evaluable(const Function& fn);
@@ -94,6 +101,8 @@ class IntervalTape {
   uint32_t num_values() const { return values_; }  // value ids are below this
   uint32_t num_params() const { return params_; }
   size_t length() const { return steps_.size(); }  // value ops, parameters and constants included
+  // Whether every step is a simd_interval_op (batched bounds cost about what a few points do).
+  bool simd_only() const;
 
  private:
   IntervalTape() = default;

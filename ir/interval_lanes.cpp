@@ -171,7 +171,7 @@ void eval_lanes(const IntervalTape::Step* steps, size_t n, const IntervalLanes* 
       case Op::Min: min_max(true, v[s.a], v[s.b], r, choices + size_t(s.dst) * L); break;
       case Op::Max: min_max(false, v[s.a], v[s.b], r, choices + size_t(s.dst) * L); break;
       case Op::Sqrt: sqrt(v[s.a], r); break;
-      default: scalar(s, v, r, choices + size_t(s.dst) * L); break;  // the rest: see scalar()
+      default: scalar(s, v, r, choices + size_t(s.dst) * L); break;  // the rest: see scalar(), simd_interval_op
     }
   }
 }

@@ -105,7 +105,9 @@ class Renderer {
   bool region(Tape& tape, Rect r, size_t level, ir::IntervalBatchEval& ev, size_t lane) {
     Tape child = simplified(tape, ev, lane);
     stats_.levels[level].tape_ops += child.ops;
-    if (level + 1 == kLevels) return dense(child, {r});
+    // Bounding the last level's small tiles pays only when the bounds run as SIMD: a tape with
+    // transcendentals (bounded lane by lane) evaluates this region's pixels instead.
+    if (level + 1 == kLevels || (level + 2 == kLevels && !child.flat->simd_only())) return dense(child, {r});
     std::vector<Rect> pending;
     bool last = level + 2 == kLevels;
     bool ok = bound(child, split(r, kSizes[level + 1]), level + 1,

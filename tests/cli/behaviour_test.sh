@@ -87,7 +87,7 @@ check "and shows that line" 1 '^      while \(1\) \{ s = s \+ 1; \}$' -- "$R" "$
 check "with a caret under the loop" 1 '^      \^$' -- "$R" "$T/loop7.wrl" -o "$T/loop7.ply" --max-loop-iterations 1000
 # A long but finite loop (2^17 iterations a point, past the point where the VM goes lane by lane).
 printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 131072; i++) s = s + 1; return s - 131072 + x; }\n' > "$T/long.fs"
-check "a long loop finishes with every point on the VM" 0 '^2048 white pixels' -- "$F" render2d "$T/long.fs" --size 64 --bounds -1,1,-1,1 --backend vm
+check "a long loop finishes with every point on the VM" 0 '^2048 white pixels' -- "$F" render2d "$T/long.fs" -o "$T/long.png" --size 64 --bounds -1,1,-1,1 --backend vm
 check "call depth above the ceiling" 2 'max-call-depth: Value 100001 not in range 1 to 100000' -- "$F" run "$T/down.fs" 1 --max-call-depth 100001
 check "fvrml-run call depth above the ceiling" 2 'max-call-depth' -- "$R" "$P/figure1-morphing.wrl" --stats --max-call-depth 100001
 
@@ -266,10 +266,12 @@ same_picture blobs "$SRC/examples/blobs.fs" --size 200 --bounds -2,2,-2,2
 for f in "$SHARED"/bench/*.fs; do [ -f "$f" ] && same_picture "$(basename "$f")" "$f" --size 160x90 --bounds -1,1,-1,1; done
 if [ -f "$SHARED/data/prospero.fs" ]; then
   same_picture prospero "$SHARED/data/prospero.fs" --size 1024 --bounds -1,1,-1,1
-  check prospero-1024-pruned 0 '^132033 white pixels' -- "$F" render2d "$SHARED/data/prospero.fs" --size 1024 --bounds -1,1,-1,1
-  check render2d-stats 0 'points evaluated: [0-9]+ of 1048576' -- "$F" render2d "$SHARED/data/prospero.fs" --size 1024 --bounds -1,1,-1,1 --stats
-  check render2d-stats-levels 0 'level 32x32: [0-9]+ empty, [0-9]+ full, [0-9]+ ambiguous' -- "$F" render2d "$SHARED/data/prospero.fs" --size 1024 --bounds -1,1,-1,1 --stats
-  check render2d-no-prune-stats 0 'pruning: off' -- "$F" render2d "$SHARED/data/prospero.fs" --size 64 --bounds -1,1,-1,1 --stats --no-prune
+  P=("$F" render2d "$SHARED/data/prospero.fs" -o "$T/prospero.png")
+  check prospero-1024-pruned 0 '^132033 white pixels' -- "${P[@]}" --size 1024 --bounds -1,1,-1,1
+  check render2d-stats 0 'points evaluated: [0-9]+ of 1048576' -- "${P[@]}" --size 1024 --bounds -1,1,-1,1 --stats
+  check render2d-stats-levels 0 'level 4x4: [0-9]+ empty, [0-9]+ full, [0-9]+ ambiguous' -- "${P[@]}" --size 1024 --bounds -1,1,-1,1 --stats
+  check render2d-stats-direct 0 'batches run straight from their tape: [1-9][0-9]*$' -- "${P[@]}" --size 1024 --bounds -1,1,-1,1 --stats
+  check render2d-no-prune-stats 0 'pruning: off' -- "${P[@]}" --size 64 --bounds -1,1,-1,1 --stats --no-prune
 else
   skip_missing "render2d pruning on prospero" "the shared folder's data/prospero.fs"
 fi

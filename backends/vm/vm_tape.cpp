@@ -1,6 +1,7 @@
 // Flat tape -> VM bytecode. Parameter registers come first and stay until their last use (the
 // executor fills them before the code runs); every other value takes a free register and gives it
 // back after its last use; constants are immediates of binary ops, else registers set once per run.
+// Also the entry of running a flat tape at a few points with no bytecode at all (vm_points.h).
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>

@@ -1,0 +1,23 @@
+#pragma once
+// Dual contouring on the uniform grid (issue 16's first step; marching tetrahedra stays the
+// default): Hermite data on every sign-change edge of the padded, cell-centred grid (crossings by
+// regula falsi on the real function, normals from its gradient; the box faces close a cut solid
+// with their own planes), one vertex per group of inside corners of each dual cell (manifold dual
+// contouring) at the minimum of its QEF (qef.h), one quad per sign-change edge. Sharp CSG edges and
+// corners are kept. Known limits: a vertex may leave its cell by half a cell (so sharp corners are
+// reached), which can fold a triangle where features are closer than a cell; no adaptivity yet.
+#include "backends/backend.h"
+#include "runtime/mesh/implicit.h"
+#include "runtime/mesh/mesh.h"
+
+namespace fscript::mesh {
+
+struct DualContourStats {
+  size_t cells = 0;      // dual cells with a vertex
+  double max_error = 0;  // the largest QEF error of a vertex (squared distance units)
+};
+
+// The job's field over its box and samples (job.prune and job.threads are not used yet).
+bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, backends::RuntimeError& err);
+
+}  // namespace fscript::mesh

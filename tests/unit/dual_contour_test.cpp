@@ -1,0 +1,129 @@
+// Uniform dual contouring: closed, oriented, 2-manifold meshes with the right Euler characteristic;
+// vertices on the surface; the sharp corners of a cube turned off the grid axes kept within a tenth
+// of a cell (marching tetrahedra rounds them off); a solid cut by the box closed by the box faces.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <functional>
+
+#include "runtime/mesh/dual_contour.h"
+#include "runtime/mesh/implicit.h"
+
+using namespace fscript;
+
+namespace {
+
+// A field from a C++ function (inside where f > 0).
+struct FnField : mesh::Field {
+  std::function<double(double, double, double)> f;
+  explicit FnField(std::function<double(double, double, double)> fn) : f(std::move(fn)) {}
+  bool eval(const float* x, const float* y, const float* z, size_t n, float* out, backends::RuntimeError&) const override {
+    for (size_t i = 0; i < n; ++i) out[i] = static_cast<float>(f(x[i], y[i], z[i]));
+    return true;
+  }
+};
+
+mesh::ImplicitJob job(const mesh::Field& f, int cells, double half = 1.0) {
+  mesh::ImplicitJob j;
+  j.field = &f;
+  j.box = {-half, half, -half, half, -half, half};
+  j.cells = {cells, cells, cells};
+  return j;
+}
+
+// The rotation about (1, 2, 3) through 0.6 radians, and its inverse (the transpose).
+struct Turn {
+  double m[3][3];
+  Turn() {
+    double k[3] = {1 / std::sqrt(14.0), 2 / std::sqrt(14.0), 3 / std::sqrt(14.0)}, c = std::cos(0.6), s = std::sin(0.6);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m[i][j] = (i == j ? c : 0) + (1 - c) * k[i] * k[j];
+    m[0][1] -= s * k[2], m[0][2] += s * k[1], m[1][0] += s * k[2], m[1][2] -= s * k[0], m[2][0] -= s * k[1], m[2][1] += s * k[0];
+  }
+  void apply(const double p[3], double out[3], bool inverse) const {
+    for (int i = 0; i < 3; ++i) out[i] = 0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) out[i] += (inverse ? m[j][i] : m[i][j]) * p[j];
+  }
+};
+
+}  // namespace
+
+TEST_CASE("dual contouring: a sphere is closed, oriented, of genus 0, its vertices on the surface") {
+  FnField sphere([](double x, double y, double z) { return 0.7 - std::sqrt(x * x + y * y + z * z); });
+  mesh::Mesh m;
+  mesh::DualContourStats st;
+  backends::RuntimeError err;
+  REQUIRE(mesh::dual_contour(job(sphere, 32), m, st, err));
+  auto t = mesh::topology(m);
+  CHECK(t.watertight);
+  CHECK(t.oriented);
+  CHECK(t.manifold);
+  CHECK(t.euler == 2);
+  double h = 2.0 / 32, worst = 0;
+  for (const auto& p : m.positions) worst = std::max(worst, std::abs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 0.7));
+  CHECK(worst < 0.1 * h);
+  // Normals leave the solid.
+  size_t outward = 0;
+  for (size_t i = 0; i < m.positions.size(); ++i)
+    outward += m.normals[i][0] * m.positions[i][0] + m.normals[i][1] * m.positions[i][1] + m.normals[i][2] * m.positions[i][2] > 0;
+  CHECK(outward == m.positions.size());
+  CHECK(st.cells == m.positions.size());
+}
+
+TEST_CASE("dual contouring: a cube turned off the axes keeps its corners sharp") {
+  Turn turn;
+  FnField cube([&](double x, double y, double z) {
+    double p[3] = {x, y, z}, q[3];
+    turn.apply(p, q, true);
+    return 0.5 - std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2])});
+  });
+  for (int cells : {24, 40}) {
+    mesh::Mesh m;
+    mesh::DualContourStats st;
+    backends::RuntimeError err;
+    REQUIRE(mesh::dual_contour(job(cube, cells), m, st, err));
+    auto t = mesh::topology(m);
+    CHECK(t.watertight);
+    CHECK(t.oriented);
+    CHECK(t.euler == 2);
+    double h = 2.0 / cells, worst = 0;
+    for (int c = 0; c < 8; ++c) {
+      double corner[3] = {c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5}, w[3], best = 1e9;
+      turn.apply(corner, w, false);
+      for (const auto& p : m.positions) best = std::min(best, std::hypot(p[0] - w[0], p[1] - w[1], p[2] - w[2]));
+      worst = std::max(worst, best);
+    }
+    INFO(cells << " cells: worst corner " << worst / h << " of a cell");
+    CHECK(worst < 0.1 * h);
+    // Marching tetrahedra on the same grid rounds the corners off by far more.
+    mesh::Mesh mt;
+    REQUIRE(mesh::polygonize_implicit(job(cube, cells), mt, err));
+    double mt_worst = 0;
+    for (int c = 0; c < 8; ++c) {
+      double corner[3] = {c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5}, w[3], best = 1e9;
+      turn.apply(corner, w, false);
+      for (const auto& p : mt.positions) best = std::min(best, std::hypot(p[0] - w[0], p[1] - w[1], p[2] - w[2]));
+      mt_worst = std::max(mt_worst, best);
+    }
+    CHECK(mt_worst > 2 * worst);
+    CHECK(m.triangles.size() < mt.triangles.size());
+  }
+}
+
+TEST_CASE("dual contouring: a solid cut by the box is closed by the box faces") {
+  FnField ball([](double x, double y, double z) { return 1.2 - std::sqrt(x * x + y * y + z * z); });
+  mesh::Mesh m;
+  mesh::DualContourStats st;
+  backends::RuntimeError err;
+  REQUIRE(mesh::dual_contour(job(ball, 20), m, st, err));
+  auto t = mesh::topology(m);
+  CHECK(t.watertight);
+  CHECK(t.oriented);
+  CHECK(t.euler == 2);
+  size_t on_faces = 0;
+  for (const auto& p : m.positions) {
+    for (float c : p) CHECK(std::abs(c) <= 1.0f + 1e-6f);
+    on_faces += std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])}) > 1.0f - 1e-6f;
+  }
+  CHECK(on_faces > 100);  // the caps lie on the faces, their edges on the box's edges
+}

@@ -250,4 +250,13 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   return true;
 }
 
+bool polygonize(const ImplicitJob& job, Mesh& out, backends::RuntimeError& err) {
+  DualContourStats st;
+  switch (job.mesher) {
+    case Mesher::MarchingTetrahedra: return polygonize_implicit(job, out, err);
+    case Mesher::DualContouring: return dual_contour(job, out, st, err);
+  }
+  return false;
+}
+
 }  // namespace fscript::mesh

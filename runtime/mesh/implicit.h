@@ -15,6 +15,10 @@
 
 namespace fscript::mesh {
 
+// Which mesher an implicit job runs (fvrml-run --mesher): marching tetrahedra (the default) or
+// manifold dual contouring on the same grid (dual_contour.h).
+enum class Mesher : uint8_t { MarchingTetrahedra, DualContouring };
+
 struct ImplicitJob {
   const Field* field = nullptr;             // f(x, y, z), inside where f > 0
   std::array<double, 6> box{};              // x0 x1 y0 y1 z0 z1
@@ -23,9 +27,12 @@ struct ImplicitJob {
   int threads = 1;  // z-slabs marched in parallel; the output is the same bytes for any count
   bool prune = true;  // skip the bricks the field's bounds decide (same mesh); false: sample all
   PruneStats* stats = nullptr;  // filled when given (and added to prune_totals() in any case)
+  Mesher mesher = Mesher::MarchingTetrahedra;
 };
 
-// Polygonizes; returns false with a runtime error from the kernel (budget, bounds).
+// Polygonizes by marching tetrahedra; returns false with a runtime error from the kernel (budget, bounds).
 bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backends::RuntimeError& err);
+// By the job's mesher.
+bool polygonize(const ImplicitJob& job, Mesh& out, backends::RuntimeError& err);
 
 }  // namespace fscript::mesh

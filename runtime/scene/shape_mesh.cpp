@@ -146,7 +146,8 @@ void transform_mesh(const Mat4& t, mesh::Mesh& m) {
     for (auto& tri : m.triangles) std::swap(tri[1], tri[2]);
 }
 
-bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bool world, int threads, bool prune) {
+bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bool world, int threads, bool prune,
+                mesh::Mesher mesher) {
   if (!s.geometry.kernel) {
     err.message = "the shape has no compiled geometry";
     return false;
@@ -160,7 +161,8 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bo
     job.cells = s.resolution;
     job.threads = threads;
     job.prune = prune;
-    ok = mesh::polygonize_implicit(job, out, err);
+    job.mesher = mesher;
+    ok = mesh::polygonize(job, out, err);
   } else {
     mesh::KernelParametric map(*s.geometry.kernel, static_cast<float>(s.geometry.t));
     mesh::ParametricJob job;
@@ -226,7 +228,7 @@ const Shape* first_shape_below(const SceneModel& m, int group) {
 }  // namespace
 
 bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::RuntimeError& err, bool world,
-                int threads, bool prune) {
+                int threads, bool prune, mesh::Mesher mesher) {
   out = mesh::Mesh{};
   if (parametric_group(m, group)) {
     if (!mesh_parametric_group(m, group, out, err, threads, prune)) return false;
@@ -246,7 +248,8 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::Runti
   job.cells = field.cells();
   job.threads = threads;
   job.prune = prune;
-  if (!mesh::polygonize_implicit(job, out, err)) return false;
+  job.mesher = mesher;
+  if (!mesh::polygonize(job, out, err)) return false;
   const Shape* first = field.first_shape();
   if (first && (!colour_vertices(*first, out, err) || !evaluate_material(*first, out, err))) return false;
   if (first && world) transform_mesh(first->transform, out);

@@ -289,6 +289,13 @@ printf '0.7^2 - x^2 - y^2 - z^2\n' > "$T/expr.fs"
 check "fvrml-run an expression script" 0 'triangles, 1 shape' -- "$R" "$T/expr.fs" -o "$T/expr.ply"
 printf 'function FRep(x, y, z, t) {\n  return 0.8 - sqrt(x*x + y*y + z*z) +;\n}\n' > "$T/bad.fs"
 check "fvrml-run a script with a syntax error" 1 'bad.fs:2:39: error: expected an expression' -- "$R" "$T/bad.fs" -o "$T/bad.ply"
+# --mesher dc: dual contouring keeps a turned cube's corners with a closed mesh of fewer triangles.
+printf 'function FRep(x, y, z, t) {\n  var a = 0.8 * x + 0.6 * y, b = -0.6 * x + 0.8 * y;\n  return 0.5 - max(max(abs(a), abs(b)), abs(z));\n}\n' > "$T/turned.fs"
+check "fvrml-run --mesher mt" 0 'wrote [^ ]*turned-mt.ply' -- "$R" "$T/turned.fs" -o "$T/turned-mt.ply"
+jcheck "fvrml-run --mesher dc: closed, oriented, genus 0, under half the triangles" out "
+j['watertight'] and j['manifold'] and j['euler'] == 2 and j['triangles'] < 912 / 2 and j['hausdorff'] < 0.2
+" -- "$R" "$T/turned.fs" --mesher dc --check "$T/turned-mt.ply" -o "$T/turned-dc.ply"
+check "fvrml-run --mesher other" 2 'mesher: xx not in' -- "$R" "$T/turned.fs" --mesher xx -o "$T/turned-xx.ply"
 [ -e "$T/bad.ply" ] && fail "fvrml-run a script with a syntax error wrote bad.ply"
 printf 'function FRep(x, y, z, t) {\n  var s = 0;\n  while (1) { s = s + 1; }\n  return s;\n}\n' > "$T/loop.fs"
 check "fvrml-run a script: a runtime error at its line" 1 '^loop.fs:3:3: error: loop iteration budget|/loop.fs:3:3: error: loop iteration budget' \

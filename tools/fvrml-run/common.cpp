@@ -33,7 +33,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
     mesh::Mesh m;
     fscript::backends::RuntimeError err;
     bool mine = s.group < 0 && !skip.count(s.fshape);
-    if (mine && !fscript::scene::mesh_shape(s, m, err, world, threads, o.prune)) {
+    if (mine && !fscript::scene::mesh_shape(s, m, err, world, threads, o.prune, o.mesher)) {
       report(o, scene, s.fshape, err);
       out.failed = true;
     }
@@ -44,7 +44,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
     if (model.groups[g].parent >= 0 || skip.count(model.groups[g].node)) continue;
     mesh::Mesh m;
     fscript::backends::RuntimeError err;
-    if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, world, threads, o.prune)) {
+    if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, world, threads, o.prune, o.mesher)) {
       report(o, scene, model.groups[g].node, err, "FTransform: ");
       out.failed = true;
     }

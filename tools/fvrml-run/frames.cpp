@@ -139,9 +139,9 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     const auto& ms = models[t.frames];
     int parallel = std::min(o.threads, t.frames), per = std::max(1, o.threads / parallel);
     caches.push_back(std::make_unique<mesh::FrameCache>(
-        t.frames, [&ms, t, per, world, prune = o.prune](size_t i, mesh::Mesh& out, fscript::backends::RuntimeError& err) {
-          return t.group ? fscript::scene::mesh_group(ms[i], t.index, out, err, world, per, prune)
-                         : fscript::scene::mesh_shape(ms[i].shapes[t.index], out, err, world, per, prune);
+        t.frames, [&ms, t, per, world, prune = o.prune, mesher = o.mesher](size_t i, mesh::Mesh& out, fscript::backends::RuntimeError& err) {
+          return t.group ? fscript::scene::mesh_group(ms[i], t.index, out, err, world, per, prune, mesher)
+                         : fscript::scene::mesh_shape(ms[i].shapes[t.index], out, err, world, per, prune, mesher);
         }));
     mesh::FrameCache& cache = *caches.back();
     fscript::backends::RuntimeError err;

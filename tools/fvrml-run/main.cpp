@@ -272,6 +272,12 @@ int run(int argc, char** argv) {
   app.add_flag("--no-prune", no_prune,
                "sample every grid point of implicit shapes (the same meshes; by default interval bounds skip the "
                "regions far from the surface)");
+  std::string mesher = "mt";
+  app.add_option("--mesher", mesher,
+                 "implicit shapes by mt (marching tetrahedra, the default) or dc (dual contouring: sharp CSG edges "
+                 "and corners kept, fewer triangles; not yet adaptive)")
+      ->check(CLI::IsMember({"mt", "dc"}))
+      ->type_name("MESHER");
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
   app.add_option("--format", o.format, "wrl|glb|ply|obj|stl|png (default: from the output's extension; wrl)");
   app.add_flag("--keep-going", o.keep_going, "write what succeeded when a shape fails");
@@ -312,6 +318,7 @@ int run(int argc, char** argv) {
   }
   o.view_given = !view.empty();
   o.prune = !no_prune;
+  o.mesher = mesher == "dc" ? mesh::Mesher::DualContouring : mesh::Mesher::MarchingTetrahedra;
   if (std::string message; disk_cache && !fscript::backends::enable_llvm_disk_cache(message)) {
     std::cerr << "error: " << message << "\n";
     return 2;

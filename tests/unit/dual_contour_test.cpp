@@ -46,19 +46,26 @@ struct Turn {
   }
 };
 
-}  // namespace
-
-TEST_CASE("dual contouring: a sphere is closed, oriented, of genus 0, its vertices on the surface") {
-  FnField sphere([](double x, double y, double z) { return 0.7 - std::sqrt(x * x + y * y + z * z); });
+// Dual contouring of `f` over the job, which must succeed, and the mesh a closed, oriented,
+// 2-manifold surface of genus 0.
+mesh::Mesh closed_dc(const mesh::ImplicitJob& j, mesh::DualContourStats& st) {
   mesh::Mesh m;
-  mesh::DualContourStats st;
   backends::RuntimeError err;
-  REQUIRE(mesh::dual_contour(job(sphere, 32), m, st, err));
+  REQUIRE(mesh::dual_contour(j, m, st, err));
   auto t = mesh::topology(m);
   CHECK(t.watertight);
   CHECK(t.oriented);
   CHECK(t.manifold);
   CHECK(t.euler == 2);
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("dual contouring: a sphere is closed, oriented, of genus 0, its vertices on the surface") {
+  FnField sphere([](double x, double y, double z) { return 0.7 - std::sqrt(x * x + y * y + z * z); });
+  mesh::DualContourStats st;
+  mesh::Mesh m = closed_dc(job(sphere, 32), st);
   double h = 2.0 / 32, worst = 0;
   for (const auto& p : m.positions) worst = std::max(worst, std::abs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 0.7));
   CHECK(worst < 0.1 * h);
@@ -77,49 +84,36 @@ TEST_CASE("dual contouring: a cube turned off the axes keeps its corners sharp")
     turn.apply(p, q, true);
     return 0.5 - std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2])});
   });
-  for (int cells : {24, 40}) {
-    mesh::Mesh m;
-    mesh::DualContourStats st;
-    backends::RuntimeError err;
-    REQUIRE(mesh::dual_contour(job(cube, cells), m, st, err));
-    auto t = mesh::topology(m);
-    CHECK(t.watertight);
-    CHECK(t.oriented);
-    CHECK(t.euler == 2);
-    double h = 2.0 / cells, worst = 0;
+  // The farthest of the cube's eight corners from its nearest vertex of `m`.
+  auto worst_corner = [&](const mesh::Mesh& m) {
+    double worst = 0;
     for (int c = 0; c < 8; ++c) {
       double corner[3] = {c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5}, w[3], best = 1e9;
       turn.apply(corner, w, false);
       for (const auto& p : m.positions) best = std::min(best, std::hypot(p[0] - w[0], p[1] - w[1], p[2] - w[2]));
       worst = std::max(worst, best);
     }
+    return worst;
+  };
+  for (int cells : {24, 40}) {
+    mesh::DualContourStats st;
+    mesh::Mesh m = closed_dc(job(cube, cells), st);
+    double h = 2.0 / cells, worst = worst_corner(m);
     INFO(cells << " cells: worst corner " << worst / h << " of a cell");
     CHECK(worst < 0.1 * h);
     // Marching tetrahedra on the same grid rounds the corners off by far more.
     mesh::Mesh mt;
+    backends::RuntimeError err;
     REQUIRE(mesh::polygonize_implicit(job(cube, cells), mt, err));
-    double mt_worst = 0;
-    for (int c = 0; c < 8; ++c) {
-      double corner[3] = {c & 1 ? 0.5 : -0.5, c & 2 ? 0.5 : -0.5, c & 4 ? 0.5 : -0.5}, w[3], best = 1e9;
-      turn.apply(corner, w, false);
-      for (const auto& p : mt.positions) best = std::min(best, std::hypot(p[0] - w[0], p[1] - w[1], p[2] - w[2]));
-      mt_worst = std::max(mt_worst, best);
-    }
-    CHECK(mt_worst > 2 * worst);
+    CHECK(worst_corner(mt) > 2 * worst);
     CHECK(m.triangles.size() < mt.triangles.size());
   }
 }
 
 TEST_CASE("dual contouring: a solid cut by the box is closed by the box faces") {
   FnField ball([](double x, double y, double z) { return 1.2 - std::sqrt(x * x + y * y + z * z); });
-  mesh::Mesh m;
   mesh::DualContourStats st;
-  backends::RuntimeError err;
-  REQUIRE(mesh::dual_contour(job(ball, 20), m, st, err));
-  auto t = mesh::topology(m);
-  CHECK(t.watertight);
-  CHECK(t.oriented);
-  CHECK(t.euler == 2);
+  mesh::Mesh m = closed_dc(job(ball, 20), st);
   size_t on_faces = 0;
   for (const auto& p : m.positions) {
     for (float c : p) CHECK(std::abs(c) <= 1.0f + 1e-6f);

@@ -131,16 +131,21 @@ void constant(float v, Lanes& r) {
   }
 }
 
+// Every lane the whole real line, maybe NaN: a missing operand or parameter.
+const Lanes& everything() {
+  static const Lanes e = [] {
+    Lanes x;
+    for (size_t i = 0; i < L; ++i) x.set(i, math::Interval::everything());
+    return x;
+  }();
+  return e;
+}
+
 // Any other op: its scalar rule, lane by lane (interval_rule's switch lists every op).
 void scalar(const IntervalTape::Step& s, const Lanes* v, Lanes& r, Choice* choice) {
-  static const Lanes everything = [] {
-    Lanes e;
-    for (size_t i = 0; i < L; ++i) e.set(i, math::Interval::everything());
-    return e;
-  }();
-  const Lanes& a = s.arity > 0 ? v[s.a] : everything;
-  const Lanes& b = s.arity > 1 ? v[s.b] : everything;
-  const Lanes& c = s.arity > 2 ? v[s.c] : everything;
+  const Lanes& a = s.arity > 0 ? v[s.a] : everything();
+  const Lanes& b = s.arity > 1 ? v[s.b] : everything();
+  const Lanes& c = s.arity > 2 ? v[s.c] : everything();
   bool chooses = s.op == Op::Select;
   for (size_t i = 0; i < L; ++i) {
     math::Interval x = a.lane(i), y = b.lane(i), z = c.lane(i);
@@ -153,16 +158,11 @@ void scalar(const IntervalTape::Step& s, const Lanes* v, Lanes& r, Choice* choic
 
 void eval_lanes(const IntervalTape::Step* steps, size_t n, const IntervalLanes* inputs, size_t num_inputs,
                 IntervalLanes* v, Choice* choices) {
-  static const IntervalLanes everything = [] {
-    IntervalLanes e;
-    for (size_t i = 0; i < L; ++i) e.set(i, math::Interval::everything());
-    return e;
-  }();
   for (size_t k = 0; k < n; ++k) {
     const IntervalTape::Step& s = steps[k];
     Lanes& r = v[s.dst];
     switch (s.op) {
-      case Op::Param: r = s.a < num_inputs ? inputs[s.a] : everything; break;
+      case Op::Param: r = s.a < num_inputs ? inputs[s.a] : everything(); break;
       case Op::Const: constant(s.imm, r); break;
       case Op::Add: add(v[s.a], v[s.b], false, r); break;
       case Op::Sub: add(v[s.a], v[s.b], true, r); break;

@@ -18,6 +18,16 @@ struct Analysis {
 // The document's analysis, made once per revision of its text and shared by the features.
 std::shared_ptr<const Analysis> analyze_document(const Document& d);
 
+// FScript's keywords and what each does (frontend/fscript/tokens.def): completion, hover, rename.
+struct Keyword {
+  const char* word;
+  const char* doc;
+};
+inline constexpr Keyword kKeywords[] = {
+#define FS_KEYWORD(N, S, D) {S, D},
+#include "frontend/fscript/tokens.def"
+};
+
 // The identifier around byte `offset` ([begin, end)); false when there is none.
 bool word_at(const std::string& text, size_t offset, size_t& begin, size_t& end);
 

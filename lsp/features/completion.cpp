@@ -15,14 +15,6 @@ namespace {
 // CompletionItemKind values of LSP 3.17.
 constexpr int kFunctionKind = 3, kVariableKind = 6, kKeywordKind = 14, kConstantKind = 21;
 
-struct Keyword {
-  const char* word;
-  const char* doc;
-};
-constexpr Keyword kKeywords[] = {
-#define FS_KEYWORD(N, S, D) {S, D},
-#include "frontend/fscript/tokens.def"
-};
 
 }  // namespace
 

@@ -11,16 +11,11 @@ namespace fscript::lsp {
 
 namespace {
 
-const char* const kKeywords[] = {
-#define FS_KEYWORD(N, S, D) S,
-#include "frontend/fscript/tokens.def"
-};
-
 bool valid_name(const std::string& n) {
   static const std::regex ident("^[A-Za-z_$][A-Za-z0-9_$]*$");
   if (!std::regex_match(n, ident) || frontend::find_builtin(n) >= 0) return false;
-  for (const char* k : kKeywords)
-    if (n == k) return false;
+  for (const Keyword& k : kKeywords)
+    if (n == k.word) return false;
   return true;
 }
 

@@ -10,15 +10,6 @@ namespace fscript::lsp {
 
 namespace {
 
-struct KeywordDoc {
-  const char* word;
-  const char* doc;
-};
-constexpr KeywordDoc kKeywordDocs[] = {
-#define FS_KEYWORD(N, S, D) {S, D},
-#include "frontend/fscript/tokens.def"
-};
-
 std::string signature(const frontend::SemaResult& sema, const frontend::FunctionInfo& f) {
   std::string s = "function " + f.name + "(";
   for (size_t i = 0; i < f.params.size(); ++i) s += (i ? ", " : "") + sema.symbols[static_cast<size_t>(f.params[i])].name;
@@ -31,7 +22,7 @@ json keyword_hover(const std::string& text, size_t offset) {
   size_t b, e;
   if (!word_at(text, offset, b, e)) return nullptr;
   std::string w = text.substr(b, e - b);
-  for (const auto& k : kKeywordDocs)
+  for (const Keyword& k : kKeywords)
     if (w == k.word) {
       json r = markdown("```fscript\n" + w + "\n```\nkeyword: " + k.doc);
       r["range"] = range_of_span(text, static_cast<uint32_t>(b), static_cast<uint32_t>(e));

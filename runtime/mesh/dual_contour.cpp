@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "runtime/mesh/parametric.h"
 #include "runtime/mesh/qef.h"
 
 namespace fscript::mesh {
@@ -101,13 +102,13 @@ bool crossings(const Field& f, const Lattice& g, const std::vector<float>& v, st
     p[c.axis] += t * g.h[c.axis];
     return p;
   };
+  auto false_position = [&](size_t r) {  // where the chord through the bracket's ends crosses zero
+    double d = lo_f[r] - hi_f[r];
+    return d != 0 ? lo_t[r] + (hi_t[r] - lo_t[r]) * lo_f[r] / d : 0.5 * (lo_t[r] + hi_t[r]);
+  };
   for (int step = 0; step < kRefineSteps; ++step) {
     std::vector<double> t(real.size());
-    for (size_t r = 0; r < real.size(); ++r) {
-      double d = lo_f[r] - hi_f[r];
-      t[r] = d != 0 ? lo_t[r] + (hi_t[r] - lo_t[r]) * lo_f[r] / d : 0.5 * (lo_t[r] + hi_t[r]);
-      pts[r] = at(r, t[r]);
-    }
+    for (size_t r = 0; r < real.size(); ++r) t[r] = false_position(r), pts[r] = at(r, t[r]);
     if (!eval_points(f, pts, fv, err)) return false;
     for (size_t r = 0; r < real.size(); ++r) {
       bool same_as_lo = (fv[r] > 0) == (lo_f[r] > 0);
@@ -117,9 +118,7 @@ bool crossings(const Field& f, const Lattice& g, const std::vector<float>& v, st
   }
   std::vector<std::array<double, 3>> probes;
   for (size_t r = 0; r < real.size(); ++r) {
-    double d = lo_f[r] - hi_f[r];
-    double t = d != 0 ? lo_t[r] + (hi_t[r] - lo_t[r]) * lo_f[r] / d : 0.5 * (lo_t[r] + hi_t[r]);
-    auto p = at(r, std::clamp(t, 0.0, 1.0));
+    auto p = at(r, std::clamp(false_position(r), 0.0, 1.0));
     std::copy(p.begin(), p.end(), out[real[r]].p);
     for (int a = 0; a < 3; ++a)
       for (int sgn : {1, -1}) {
@@ -232,21 +231,7 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
       out.triangles.push_back({id[0], id[3], id[2]});
     }
   }
-  // Normals: the area-weighted mean of the faces around each vertex (sharp edges stay sharp in shape).
-  std::vector<std::array<double, 3>> sum(out.positions.size(), {0, 0, 0});
-  for (const auto& t : out.triangles) {
-    const Vec3 &a = out.positions[t[0]], &b = out.positions[t[1]], &c = out.positions[t[2]];
-    double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
-    double w[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
-    double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
-    for (uint32_t i : t)
-      for (int k = 0; k < 3; ++k) sum[i][static_cast<size_t>(k)] += n[k];
-  }
-  out.normals.resize(out.positions.size());
-  for (size_t i = 0; i < sum.size(); ++i) {
-    double len = std::sqrt(sum[i][0] * sum[i][0] + sum[i][1] * sum[i][1] + sum[i][2] * sum[i][2]);
-    for (int k = 0; k < 3; ++k) out.normals[i][static_cast<size_t>(k)] = len > 0 ? float(sum[i][static_cast<size_t>(k)] / len) : 0.0f;
-  }
+  face_normals_to_vertices(out);  // the area-weighted mean of the faces: sharp edges stay sharp in shape
   return true;
 }
 

@@ -80,8 +80,8 @@ class Renderer {
       size_t n = std::min(ir::kIntervalLanes, rects.size() - first);
       for (size_t k = 0; k < ir::kIntervalLanes; ++k) {
         const Rect& r = rects[first + std::min(k, n - 1)];
-        in[0].set(k, math::iv::hull(math::Interval::point(g_.x(r.c0)), math::Interval::point(g_.x(r.c1 - 1))));
-        in[1].set(k, math::iv::hull(math::Interval::point(g_.y(r.r0)), math::Interval::point(g_.y(r.r1 - 1))));
+        in[0].set(k, math::iv::hull(math::Interval::point(xs_[r.c0]), math::Interval::point(xs_[r.c1 - 1])));
+        in[1].set(k, math::iv::hull(math::Interval::point(ys_[r.r0]), math::Interval::point(ys_[r.r1 - 1])));
       }
       tape.flat->eval_batch(in, ev);
       for (size_t k = 0; k < n; ++k) {

@@ -2,8 +2,8 @@
 // Dual contouring on the uniform grid (issue 16's first step; marching tetrahedra stays the
 // default): Hermite data on every sign-change edge of the padded, cell-centred grid (crossings by
 // regula falsi on the real function, normals from its gradient; the box faces close a cut solid
-// with their own planes), one vertex per group of inside corners of each dual cell (manifold dual
-// contouring) at the minimum of its QEF (qef.h), one quad per sign-change edge. Sharp CSG edges and
+// with their own planes), one vertex per sheet of surface in each dual cell (manifold dual
+// contouring; ambiguous faces decided so that no edge is shared by two sheets) at the minimum of its QEF (qef.h), one quad per sign-change edge. Sharp CSG edges and
 // corners are kept. Known limits: a vertex may leave its cell by half a cell (so sharp corners are
 // reached), which can fold a triangle where features are closer than a cell; no adaptivity yet.
 #include "backends/backend.h"

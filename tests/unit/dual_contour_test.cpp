@@ -121,3 +121,25 @@ TEST_CASE("dual contouring: a solid cut by the box is closed by the box faces") 
   }
   CHECK(on_faces > 100);  // the caps lie on the faces, their edges on the box's edges
 }
+
+TEST_CASE("dual contouring: a gyroid too fine for the grid still gives a closed 2-manifold mesh") {
+  // Where the grid cannot resolve the surface, cells hold several sheets, and thin tubes cross
+  // ambiguous faces: one vertex per cell would pinch them, one per sheet would double an edge.
+  for (double periods : {2.0, 4.0, 6.0, 7.5})
+    for (int cells : {10, 13, 16, 19, 22, 31}) {
+      double k = 3.14159265358979 * periods;
+      FnField gyroid([k](double x, double y, double z) {
+        return std::sin(k * x) * std::cos(k * y) + std::sin(k * y) * std::cos(k * z) + std::sin(k * z) * std::cos(k * x);
+      });
+      mesh::Mesh m;
+      mesh::DualContourStats st;
+      backends::RuntimeError err;
+      REQUIRE(mesh::dual_contour(job(gyroid, cells), m, st, err));
+      auto t = mesh::topology(m);
+      INFO(periods << " periods, " << cells << " cells");
+      CHECK(t.watertight);
+      CHECK(t.oriented);
+      CHECK(t.manifold);
+      CHECK(t.degenerate_triangles == 0);
+    }
+}

@@ -1,43 +1,25 @@
-// Uniform dual contouring: samples, Hermite data on sign-change edges (batched evaluation), a QEF
-// vertex per dual cell, a quad per edge wound so that its normal leaves the solid.
+// Dual contouring: samples, Hermite data on sign-change edges (batched evaluation), a QEF vertex per
+// sheet of each dual cell, cells merged by the octree, a polygon per edge wound to leave the solid.
 #include "runtime/mesh/dual_contour.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <mutex>
 #include <unordered_map>
 #include <vector>
 
 #include "runtime/mesh/parametric.h"
-#include "runtime/mesh/qef.h"
+#include "runtime/mesh/dc_octree.h"
 
 namespace fscript::mesh {
 namespace {
 
 constexpr int kRefineSteps = 4;  // regula falsi steps per crossing
-// How far (in cells) a vertex may leave its cell, inside the box: a sharp corner whose tip pokes
-// into a cell without a sample inside is placed by its neighbours' planes, just outside them
-// (unit_dual_contour: corners of a turned cube within 0.1 of a cell; 1 cell away when kept in).
-constexpr double kReach = 0.5;
-
-// Samples at cell centres, indices -1 .. n per axis (the outer layer is padding, always outside).
-struct Lattice {
-  int n[3];
-  double lo[3], h[3];
-  double coord(int a, int i) const { return lo[a] + (i + 0.5) * h[a]; }
-  size_t at(int i, int j, int k) const {
-    return (static_cast<size_t>(k + 1) * (n[1] + 2) + static_cast<size_t>(j + 1)) * (n[0] + 2) + static_cast<size_t>(i + 1);
-  }
-  bool padding(const int s[3]) const {
-    for (int a = 0; a < 3; ++a)
-      if (s[a] < 0 || s[a] >= n[a]) return true;
-    return false;
-  }
-  // Dual cells: the cube between samples c .. c + 1, c from -1 to n - 1 per axis.
-  size_t cell(const int c[3]) const {
-    return (static_cast<size_t>(c[2] + 1) * (n[1] + 1) + static_cast<size_t>(c[1] + 1)) * (n[0] + 1) + static_cast<size_t>(c[0] + 1);
-  }
-};
+// The central differences' step, in cells: a crossing closer than this to a sharp edge gets a normal
+// blended from both faces (the QEF then misplaces the edge's vertices), so small, but large enough
+// that float rounding of the samples stays far below the differences.
+constexpr double kProbe = 0.01;
 
 struct Crossing {
   int s[3];  // the edge's lower sample
@@ -55,7 +37,8 @@ bool eval_points(const Field& f, const std::vector<std::array<double, 3>>& pts, 
   return pts.empty() || f.eval(x.data(), y.data(), z.data(), pts.size(), out.data(), err);
 }
 
-bool sample(const Field& f, const Lattice& g, std::vector<float>& v, backends::RuntimeError& err) {
+bool sample(const Field& f, Lattice& g, backends::RuntimeError& err) {
+  std::vector<float>& v = g.f;
   v.assign(static_cast<size_t>(g.n[0] + 2) * (g.n[1] + 2) * (g.n[2] + 2), -1.0f);
   std::vector<float> x, y, z, out(static_cast<size_t>(g.n[0]) * g.n[1]);
   for (int j = 0; j < g.n[1]; ++j)
@@ -71,8 +54,8 @@ bool sample(const Field& f, const Lattice& g, std::vector<float>& v, backends::R
 
 // Every sign-change edge; a real edge gets its crossing by regula falsi and its normal from the
 // gradient (central differences, a tenth of a cell), an edge into the padding gets the box face.
-bool crossings(const Field& f, const Lattice& g, const std::vector<float>& v, std::vector<Crossing>& out,
-               backends::RuntimeError& err) {
+bool crossings(const Field& f, const Lattice& g, std::vector<Crossing>& out, backends::RuntimeError& err) {
+  const std::vector<float>& v = g.f;
   std::vector<size_t> real;
   std::vector<double> lo_t, hi_t, lo_f, hi_f;  // bracket along the edge (t in [0, 1]) and f there
   for (int k = -1; k <= g.n[2]; ++k)
@@ -124,105 +107,15 @@ bool crossings(const Field& f, const Lattice& g, const std::vector<float>& v, st
     for (int a = 0; a < 3; ++a)
       for (int sgn : {1, -1}) {
         auto q = p;
-        q[a] += sgn * 0.1 * g.h[a];
+        q[a] += sgn * kProbe * g.h[a];
         probes.push_back(q);
       }
   }
   if (!eval_points(f, probes, fv, err)) return false;
   for (size_t r = 0; r < real.size(); ++r)
     for (int a = 0; a < 3; ++a)  // minus the gradient: out of the solid (inside is f > 0)
-      out[real[r]].normal[a] = -(double(fv[6 * r + 2 * a]) - fv[6 * r + 2 * a + 1]) / (0.2 * g.h[a]);
+      out[real[r]].normal[a] = -(double(fv[6 * r + 2 * a]) - fv[6 * r + 2 * a + 1]) / (2 * kProbe * g.h[a]);
   return true;
-}
-
-// Manifold dual contouring: one vertex per sheet of surface in a cell. On the cell's boundary the
-// inside corners join along cube edges and the outside corners across faces too (so neighbouring
-// cells, which see the same signs on their shared face, cut it the same way); the regions of inside
-// and of outside corners then tile the cube's boundary like a tree, and every sheet is the loop
-// between one inside region and one outside region. A crossing (its inside corner, its outside
-// corner) names its sheet; a cell the surface crosses twice gets two vertices, not one pinched by
-// both sheets. Regions are named by their lowest corner.
-struct CellSigns {
-  uint8_t in_group[8], out_group[8];
-};
-
-// `flips`: bit 2 * axis + side set where the face decides the other way (its inside corners join).
-CellSigns cell_signs(unsigned inside, unsigned flips) {
-  int in_parent[8], out_parent[8];
-  for (int c = 0; c < 8; ++c) in_parent[c] = out_parent[c] = c;
-  auto find = [](int* parent, int x) {
-    while (parent[x] != x) x = parent[x];
-    return x;
-  };
-  auto join = [&](int* parent, int a, int b) {
-    a = find(parent, a), b = find(parent, b);
-    parent[std::max(a, b)] = std::min(a, b);
-  };
-  for (int c = 0; c < 8; ++c)
-    for (int d = c + 1; d < 8; ++d) {
-      unsigned diff = static_cast<unsigned>(c ^ d), both_in = (inside >> c) & (inside >> d) & 1u;
-      bool both_out = !((inside >> c) & 1u) && !((inside >> d) & 1u);
-      if (__builtin_popcount(diff) == 1) {
-        if (both_in) join(in_parent, c, d);
-        if (both_out) join(out_parent, c, d);
-      } else if (__builtin_popcount(diff) == 2) {  // a face diagonal: the face's own choice
-        int axis = __builtin_ctz(~diff & 7u), side = (c >> axis) & 1;
-        bool flipped = (flips >> (2 * axis + side)) & 1u;
-        if (both_in && flipped) join(in_parent, c, d);
-        if (both_out && !flipped) join(out_parent, c, d);
-      }
-    }
-  CellSigns s;
-  for (int c = 0; c < 8; ++c) s.in_group[c] = static_cast<uint8_t>(find(in_parent, c)), s.out_group[c] = static_cast<uint8_t>(find(out_parent, c));
-  return s;
-}
-
-const CellSigns& signs_of(unsigned inside, unsigned flips) {
-  static const auto table = [] {
-    std::vector<CellSigns> t(256 * 64);
-    for (unsigned m = 0; m < 256; ++m)
-      for (unsigned f = 0; f < 64; ++f) t[m * 64 + f] = cell_signs(m, f);
-    return t;
-  }();
-  return table[inside * 64 + flips];
-}
-
-unsigned inside_mask(const Lattice& g, const std::vector<float>& v, const int cell[3]) {
-  unsigned m = 0;
-  for (int c = 0; c < 8; ++c)
-    m |= static_cast<unsigned>(v[g.at(cell[0] + (c & 1), cell[1] + ((c >> 1) & 1), cell[2] + ((c >> 2) & 1))] > 0) << c;
-  return m;
-}
-
-// The faces of `cell` decided the other way. A face whose two inside corners lie on a diagonal, and
-// are joined through the rest of the cell on both of its sides, is crossed by a tube of outside too
-// thin for the grid: cut the usual way, the two cells' sheets would meet along both of the face's
-// segments and share an edge four triangles use. Flipped, the tube is closed off on each side instead.
-unsigned face_flips(const Lattice& g, const std::vector<float>& v, const int cell[3], unsigned inside) {
-  unsigned flips = 0;
-  for (int axis = 0; axis < 3; ++axis)
-    for (int side = 0; side < 2; ++side) {
-      int on_face[4], n = 0;
-      for (int c = 0; c < 8; ++c)
-        if (((c >> axis) & 1) == side && ((inside >> c) & 1u)) on_face[n++ & 3] = c;
-      if (n != 2 || __builtin_popcount(static_cast<unsigned>(on_face[0] ^ on_face[1])) != 2) continue;
-      int other[3] = {cell[0], cell[1], cell[2]};
-      other[axis] += side ? 1 : -1;
-      if (other[axis] < -1 || other[axis] >= g.n[axis]) continue;
-      const CellSigns& here = signs_of(inside, 0);
-      const CellSigns& there = signs_of(inside_mask(g, v, other), 0);
-      int p = on_face[0] ^ (1 << axis), q = on_face[1] ^ (1 << axis);  // the same samples, seen from there
-      if (here.in_group[on_face[0]] == here.in_group[on_face[1]] && there.in_group[p] == there.in_group[q])
-        flips |= 1u << (2 * axis + side);
-    }
-  return flips;
-}
-
-// The sheet of `cell` that the crossing between corners `in` and `out` lies on: 0 .. 63.
-int sheet_of(const Lattice& g, const std::vector<float>& v, const int cell[3], int in, int out) {
-  unsigned inside = inside_mask(g, v, cell);
-  const CellSigns& s = signs_of(inside, face_flips(g, v, cell, inside));
-  return s.in_group[in] * 8 + s.out_group[out];
 }
 
 // The four dual cells around an edge, in the order that winds the quad around +axis.
@@ -232,6 +125,55 @@ void cells_of(const Crossing& c, int out[4][3]) {
   for (int q = 0; q < 4; ++q) {
     for (int a = 0; a < 3; ++a) out[q][a] = c.s[a];
     out[q][b] -= step[q][0], out[q][d] -= step[q][1];
+  }
+}
+
+// The sheets the crossings touch, each with the planes of its crossings and its vertex; ids[e] names
+// the sheets of crossing e's four cells, in winding order.
+std::vector<SheetVertex> sheets(const Lattice& g, const std::vector<Crossing>& xs, std::vector<std::array<uint32_t, 4>>& ids) {
+  std::unordered_map<uint64_t, uint32_t> sheet_id;
+  std::vector<SheetVertex> out;
+  ids.clear();
+  for (const Crossing& c : xs) {
+    int cells[4][3], inside[3] = {c.s[0], c.s[1], c.s[2]};
+    if (!c.lower_inside) ++inside[c.axis];
+    cells_of(c, cells);
+    std::array<uint32_t, 4> id;
+    for (int q = 0; q < 4; ++q) {
+      const int* cell = cells[q];
+      int in = (inside[0] - cell[0]) | (inside[1] - cell[1]) << 1 | (inside[2] - cell[2]) << 2;
+      uint64_t key = uint64_t(g.cell(cell)) * 64 + uint64_t(sheet_of(g, cell, in, in ^ (1 << c.axis)));
+      auto [it, fresh] = sheet_id.try_emplace(key, static_cast<uint32_t>(out.size()));
+      if (fresh) out.push_back(SheetVertex{{cell[0], cell[1], cell[2]}, Qef{}, {0, 0, 0}, 0});
+      out[it->second].qef.add(c.p, c.normal);
+      id[static_cast<size_t>(q)] = it->second;
+    }
+    ids.push_back(id);
+  }
+  for (SheetVertex& v : out) {
+    Qef::Solution s = solve_in_cells(g, v.qef, v.cell, 1);
+    std::copy(s.x, s.x + 3, v.x);
+    v.rms = std::sqrt(s.error / static_cast<double>(std::max<size_t>(v.qef.count(), 1)));
+  }
+  return out;
+}
+
+// One polygon per crossing over its cells' output vertices, wound to face out of the solid; where
+// merged cells repeat a vertex the quad becomes a triangle, or nothing inside a merged cell.
+void polygons(const std::vector<Crossing>& xs, const std::vector<std::array<uint32_t, 4>>& ids,
+              const std::vector<uint32_t>& vertex_of, Mesh& out) {
+  for (size_t e = 0; e < xs.size(); ++e) {
+    uint32_t ring[4];
+    int n = 0;
+    for (int q = 0; q < 4; ++q) {
+      uint32_t v = vertex_of[ids[e][static_cast<size_t>(q)]];
+      if (n == 0 || ring[n - 1] != v) ring[n++] = v;
+    }
+    if (n > 1 && ring[n - 1] == ring[0]) --n;
+    if (n < 3) continue;
+    if (!xs[e].lower_inside) std::reverse(ring, ring + n);  // the solid above: the polygon faces -axis
+    out.triangles.push_back({ring[0], ring[1], ring[2]});
+    if (n == 4) out.triangles.push_back({ring[0], ring[2], ring[3]});
   }
 }
 
@@ -250,66 +192,49 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
     g.lo[a] = job.box[static_cast<size_t>(2 * a)];
     g.h[a] = (job.box[static_cast<size_t>(2 * a + 1)] - g.lo[a]) / g.n[a];
   }
-  std::vector<float> v;
   std::vector<Crossing> xs;
-  if (!sample(*job.field, g, v, err) || !crossings(*job.field, g, v, xs, err)) return false;
-  // One QEF per group of inside corners of each dual cell an edge touches, then its vertex.
-  std::unordered_map<uint64_t, uint32_t> vertex_of;
-  std::vector<Qef> qefs;
-  std::vector<std::array<int, 3>> where;
-  std::vector<std::array<uint32_t, 4>> quad_ids;
-  for (const Crossing& c : xs) {
-    int cells[4][3], inside[3] = {c.s[0], c.s[1], c.s[2]};
-    if (!c.lower_inside) ++inside[c.axis];
-    cells_of(c, cells);
-    std::array<uint32_t, 4> ids;
-    for (int q = 0; q < 4; ++q) {
-      const int* cell = cells[q];
-      int in = (inside[0] - cell[0]) | (inside[1] - cell[1]) << 1 | (inside[2] - cell[2]) << 2;
-      uint64_t key = uint64_t(g.cell(cell)) * 64 + uint64_t(sheet_of(g, v, cell, in, in ^ (1 << c.axis)));
-      auto [it, fresh] = vertex_of.try_emplace(key, static_cast<uint32_t>(qefs.size()));
-      if (fresh) qefs.emplace_back(), where.push_back({cell[0], cell[1], cell[2]});
-      qefs[it->second].add(c.p, c.normal);
-      ids[static_cast<size_t>(q)] = it->second;
-    }
-    quad_ids.push_back(ids);
-  }
-  out.positions.resize(qefs.size());
-  for (size_t q = 0; q < qefs.size(); ++q) {
-    double lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::max(g.coord(a, where[q][a]), g.lo[a]);  // a padding cell ends at the box face
-      hi[a] = std::min(g.coord(a, where[q][a] + 1), g.lo[a] + g.n[a] * g.h[a]);
-    }
-    for (int a = 0; a < 3; ++a) {  // a corner whose tip no sample saw still gets its vertex (see kReach)
-      lo[a] = std::max(lo[a] - kReach * g.h[a], g.lo[a]);
-      hi[a] = std::min(hi[a] + kReach * g.h[a], g.lo[a] + g.n[a] * g.h[a]);
-    }
-    Qef::Solution s = qefs[q].solve(lo, hi);
-    out.positions[q] = {float(s.x[0]), float(s.x[1]), float(s.x[2])};
-    stats.max_error = std::max(stats.max_error, s.error);
-  }
-  stats.cells = qefs.size();
-  for (size_t e = 0; e < xs.size(); ++e) {
-    const Crossing& c = xs[e];
-    const std::array<uint32_t, 4>& id = quad_ids[e];
-    if (c.lower_inside) {  // the solid below, the quad faces +axis
-      out.triangles.push_back({id[0], id[1], id[2]});
-      out.triangles.push_back({id[0], id[2], id[3]});
-    } else {
-      out.triangles.push_back({id[0], id[2], id[1]});
-      out.triangles.push_back({id[0], id[3], id[2]});
-    }
-  }
+  if (!sample(*job.field, g, err) || !crossings(*job.field, g, xs, err)) return false;
+  std::vector<std::array<uint32_t, 4>> ids;
+  std::vector<SheetVertex> sv = sheets(g, xs, ids);
+  MergedVertices mv = merge_cells(g, sv, job.mesher.tolerance);
+  out.positions.reserve(mv.positions.size());
+  for (const auto& p : mv.positions) out.positions.push_back({float(p[0]), float(p[1]), float(p[2])});
+  polygons(xs, ids, mv.of_sheet, out);
+  double h = std::min({g.h[0], g.h[1], g.h[2]});
+  stats.cells = mv.positions.size();
+  stats.merged = mv.merged;
+  stats.triangles = out.triangles.size();
+  for (double r : mv.rms) stats.max_error = std::max(stats.max_error, r / h);
   face_normals_to_vertices(out);  // the area-weighted mean of the faces: sharp edges stay sharp in shape
   return true;
 }
 
+void DualContourStats::add(const DualContourStats& o) {
+  cells += o.cells, merged += o.merged, triangles += o.triangles, jobs += o.jobs;
+  max_error = std::max(max_error, o.max_error);
+}
+
+namespace {
+std::mutex totals_lock;  // frames are meshed in parallel
+DualContourStats totals;
+}  // namespace
+
+DualContourStats dual_contour_totals() {
+  std::lock_guard<std::mutex> hold(totals_lock);
+  return totals;
+}
+
 bool polygonize(const ImplicitJob& job, Mesh& out, backends::RuntimeError& err) {
   DualContourStats st;
-  switch (job.mesher) {
+  switch (job.mesher.kind) {
     case Mesher::MarchingTetrahedra: return polygonize_implicit(job, out, err);
-    case Mesher::DualContouring: return dual_contour(job, out, st, err);
+    case Mesher::DualContouring: {
+      if (!dual_contour(job, out, st, err)) return false;
+      st.jobs = 1;
+      std::lock_guard<std::mutex> hold(totals_lock);
+      totals.add(st);
+      return true;
+    }
   }
   return false;
 }

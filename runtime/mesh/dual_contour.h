@@ -13,9 +13,16 @@
 namespace fscript::mesh {
 
 struct DualContourStats {
-  size_t cells = 0;      // dual cells with a vertex
-  double max_error = 0;  // the largest QEF error of a vertex (squared distance units)
+  size_t cells = 0;      // output vertices: sheets of dual cells, or merged cells
+  size_t merged = 0;     // of those, merged cells (more than one dual cell)
+  size_t triangles = 0;
+  double max_error = 0;  // the largest root-mean-square distance of a vertex to its planes, in cells
+  size_t jobs = 0;        // implicit shapes meshed (in totals)
+  void add(const DualContourStats& o);
 };
+
+// The figures of every dual contouring job since the process started (fvrml-run --stats).
+DualContourStats dual_contour_totals();
 
 // The job's field over its box and samples (job.prune and job.threads are not used yet).
 bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, backends::RuntimeError& err);

@@ -19,6 +19,14 @@ namespace fscript::mesh {
 // manifold dual contouring on the same grid (dual_contour.h).
 enum class Mesher : uint8_t { MarchingTetrahedra, DualContouring };
 
+struct MesherOptions {
+  Mesher kind = Mesher::MarchingTetrahedra;
+  // Dual contouring merges cells while their vertex stays within this many cells (root-mean-square)
+  // of their tangent planes (fvrml-run --tolerance); 0 keeps every cell (dc_octree.h).
+  double tolerance = kDefaultTolerance;
+  static constexpr double kDefaultTolerance = 0.05;
+};
+
 struct ImplicitJob {
   const Field* field = nullptr;             // f(x, y, z), inside where f > 0
   std::array<double, 6> box{};              // x0 x1 y0 y1 z0 z1
@@ -27,7 +35,7 @@ struct ImplicitJob {
   int threads = 1;  // z-slabs marched in parallel; the output is the same bytes for any count
   bool prune = true;  // skip the bricks the field's bounds decide (same mesh); false: sample all
   PruneStats* stats = nullptr;  // filled when given (and added to prune_totals() in any case)
-  Mesher mesher = Mesher::MarchingTetrahedra;
+  MesherOptions mesher;
 };
 
 // Polygonizes by marching tetrahedra; returns false with a runtime error from the kernel (budget, bounds).

@@ -147,7 +147,7 @@ void transform_mesh(const Mat4& t, mesh::Mesh& m) {
 }
 
 bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bool world, int threads, bool prune,
-                mesh::Mesher mesher) {
+                const mesh::MesherOptions& mesher) {
   if (!s.geometry.kernel) {
     err.message = "the shape has no compiled geometry";
     return false;
@@ -228,7 +228,7 @@ const Shape* first_shape_below(const SceneModel& m, int group) {
 }  // namespace
 
 bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::RuntimeError& err, bool world,
-                int threads, bool prune, mesh::Mesher mesher) {
+                int threads, bool prune, const mesh::MesherOptions& mesher) {
   out = mesh::Mesh{};
   if (parametric_group(m, group)) {
     if (!mesh_parametric_group(m, group, out, err, threads, prune)) return false;

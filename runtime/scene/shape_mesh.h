@@ -11,12 +11,12 @@ namespace fscript::scene {
 // `world`: apply the enclosing Transforms (files of meshes); false keeps the shape's own
 // coordinates (the VRML97 output keeps the Transform nodes).
 bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bool world = true, int threads = 1,
-                bool prune = true, mesh::Mesher mesher = mesh::Mesher::MarchingTetrahedra);
+                bool prune = true, const mesh::MesherOptions& mesher = {});
 
 // A top-level FTransform: its combined implicit field polygonized over the union of the children's
 // boxes, coloured by its first shape's material.
 bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::RuntimeError& err, bool world = true,
-                int threads = 1, bool prune = true, mesh::Mesher mesher = mesh::Mesher::MarchingTetrahedra);
+                int threads = 1, bool prune = true, const mesh::MesherOptions& mesher = {});
 
 // Positions by the matrix, normals by its inverse transpose; a mirroring matrix flips the winding.
 void transform_mesh(const Mat4& t, mesh::Mesh& m);

@@ -21,6 +21,7 @@
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "runtime/mesh/distance.h"
+#include "runtime/mesh/dual_contour.h"
 #include "runtime/mesh/field.h"
 #include "runtime/mesh/mesh_io.h"
 #include "runtime/mesh/mesh_read.h"
@@ -165,6 +166,13 @@ nlohmann::json prune_json() {
           {"evaluated_fraction", p.points ? double(p.evaluated) / double(p.points) : 1.0}, {"fallbacks", p.fallbacks}};
 }
 
+// Dual contouring's figures over every implicit shape it meshed (runtime/mesh/dc_octree.h).
+nlohmann::json dual_contouring_json() {
+  mesh::DualContourStats d = mesh::dual_contour_totals();
+  return {{"shapes", d.jobs}, {"vertices", d.cells}, {"merged_cells", d.merged}, {"triangles", d.triangles},
+          {"max_qef_error_cells", d.max_error}};
+}
+
 // 590776 -> "590,776".
 std::string thousands(uint64_t n) {
   std::string s = std::to_string(n);
@@ -275,9 +283,14 @@ int run(int argc, char** argv) {
   std::string mesher = "mt";
   app.add_option("--mesher", mesher,
                  "implicit shapes by mt (marching tetrahedra, the default) or dc (dual contouring: sharp CSG edges "
-                 "and corners kept, fewer triangles; not yet adaptive)")
+                 "and corners kept, large triangles where the surface is flat)")
       ->check(CLI::IsMember({"mt", "dc"}))
       ->type_name("MESHER");
+  app.add_option("--tolerance", o.mesher.tolerance,
+                 "dual contouring merges cells while their vertex stays within T cells (root-mean-square) of the "
+                 "surface's tangent planes; 0 keeps every cell (default 0.05)")
+      ->check(CLI::Range(0.0, 10.0).description(""))
+      ->type_name("T");
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
   app.add_option("--format", o.format, "wrl|glb|ply|obj|stl|png (default: from the output's extension; wrl)");
   app.add_flag("--keep-going", o.keep_going, "write what succeeded when a shape fails");
@@ -318,7 +331,7 @@ int run(int argc, char** argv) {
   }
   o.view_given = !view.empty();
   o.prune = !no_prune;
-  o.mesher = mesher == "dc" ? mesh::Mesher::DualContouring : mesh::Mesher::MarchingTetrahedra;
+  o.mesher.kind = mesher == "dc" ? mesh::Mesher::DualContouring : mesh::Mesher::MarchingTetrahedra;
   if (std::string message; disk_cache && !fscript::backends::enable_llvm_disk_cache(message)) {
     std::cerr << "error: " << message << "\n";
     return 2;
@@ -372,6 +385,7 @@ int run(int argc, char** argv) {
   int rc = o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
   if (o.stats && rc == 0) {
     st["prune"] = prune_json();
+    if (o.mesher.kind == mesh::Mesher::DualContouring) st["dual_contouring"] = dual_contouring_json();
     std::cerr << st.dump() << "\n";
   }
   if (!o.stats && rc == 0 && !o.output.empty() && o.output != "-") std::cerr << written_summary(o, st, ms_since(t0)) << "\n";

@@ -1,0 +1,181 @@
+// The octree of merged dual cells, built bottom-up one level at a time over the cells that hold
+// surface, and each sheet's leaf found by climbing it.
+#include "runtime/mesh/dc_octree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace fscript::mesh {
+namespace {
+
+// A node of level L covers dual cells u * 2^L .. (u + 1) * 2^L - 1 per axis, counted from the
+// lowest cell (-1): 19 bits per axis, the level above them.
+uint64_t node_key(int level, const int u[3]) {
+  return static_cast<uint64_t>(level) << 57 | static_cast<uint64_t>(u[0]) << 38 | static_cast<uint64_t>(u[1]) << 19 |
+         static_cast<uint64_t>(u[2]);
+}
+
+struct Node {
+  Qef qef;
+  double x[3] = {0, 0, 0};
+  double rms = 0;
+  bool merged = false;  // one vertex for the whole node; false: its cells keep their own
+};
+
+using Level = std::unordered_map<uint64_t, Node>;
+
+// Whether the node's 27 samples (corners, edge and face midpoints, centre) allow one vertex: one
+// sheet, no ambiguous face, and every midpoint agreeing with a corner of the edge, face or body
+// it is the middle of.
+bool topology_safe(const Lattice& g, const int s0[3], int half) {
+  bool in[3][3][3];
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) in[k][j][i] = g.inside(s0[0] + i * half, s0[1] + j * half, s0[2] + k * half);
+  unsigned corners = 0;
+  for (int c = 0; c < 8; ++c) corners |= static_cast<unsigned>(in[c >> 2 & 1 ? 2 : 0][c >> 1 & 1 ? 2 : 0][c & 1 ? 2 : 0]) << c;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side)
+      if (ambiguous_face(corners, axis, side)) return false;
+  const CellSigns& cs = signs_of(corners, 0);
+  if (cs.regions_in != 1 || cs.regions_out != 1) return false;
+  for (int p = 0; p < 27; ++p) {
+    int q[3] = {p % 3, p / 3 % 3, p / 9};
+    int mids = (q[0] == 1) + (q[1] == 1) + (q[2] == 1);
+    if (mids == 0) continue;
+    bool agrees = false;  // with a corner got by moving each middle coordinate to an end
+    for (int e = 0; e < 8 && !agrees; ++e) {
+      int r[3];
+      for (int a = 0; a < 3; ++a) r[a] = q[a] == 1 ? (e >> a & 1) * 2 : q[a];
+      agrees = in[r[2]][r[1]][r[0]] == in[q[2]][q[1]][q[0]];
+    }
+    if (!agrees) return false;
+  }
+  return true;
+}
+
+class Merger {
+ public:
+  Merger(const Lattice& g, double tolerance) : g_(g), tol_(tolerance) {
+    h_ = std::min({g.h[0], g.h[1], g.h[2]});
+  }
+
+  void leaves(const std::vector<SheetVertex>& sheets) {
+    levels_.emplace_back();
+    for (const SheetVertex& s : sheets) {
+      int u[3] = {s.cell[0] + 1, s.cell[1] + 1, s.cell[2] + 1};
+      auto [it, fresh] = levels_[0].try_emplace(node_key(0, u));
+      Node& n = it->second;
+      n.merged = fresh;  // a second sheet in the cell: it keeps its vertices
+      n.qef = s.qef;
+      std::copy(s.x, s.x + 3, n.x);
+      n.rms = s.rms;
+    }
+  }
+
+  // Level after level, every parent of the level below tries to merge; stops at a level where none does.
+  void grow() {
+    for (int level = 1; level < 19; ++level) {
+      std::vector<uint64_t> parents;
+      for (const auto& [key, node] : levels_.back()) parents.push_back(parent(key));
+      std::sort(parents.begin(), parents.end());
+      parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
+      Level next;
+      bool any = false;
+      for (uint64_t p : parents) {
+        Node n = collapse(p, level);
+        any = any || n.merged;
+        next.emplace(p, n);
+      }
+      levels_.push_back(std::move(next));
+      if (!any) return;
+    }
+  }
+
+  // The topmost merged node above level-0 node `key` (itself when its parent did not merge).
+  std::pair<int, uint64_t> leaf(uint64_t key) const {
+    int level = 0;
+    for (uint64_t up = parent(key); level + 1 < static_cast<int>(levels_.size()); up = parent(up)) {
+      auto it = levels_[static_cast<size_t>(level + 1)].find(up);
+      if (it == levels_[static_cast<size_t>(level + 1)].end() || !it->second.merged) break;
+      key = up, ++level;
+    }
+    return {level, key};
+  }
+  const Node& node(int level, uint64_t key) const { return levels_[static_cast<size_t>(level)].at(key); }
+
+ private:
+  static uint64_t parent(uint64_t key) {
+    int level = static_cast<int>(key >> 57);
+    int u[3] = {static_cast<int>(key >> 38 & 0x7ffff) / 2, static_cast<int>(key >> 19 & 0x7ffff) / 2,
+                static_cast<int>(key & 0x7ffff) / 2};
+    return node_key(level + 1, u);
+  }
+
+  Node collapse(uint64_t key, int level) const {
+    Node out;
+    int u[3] = {static_cast<int>(key >> 38 & 0x7ffff), static_cast<int>(key >> 19 & 0x7ffff), static_cast<int>(key & 0x7ffff)};
+    int size = 1 << level, c0[3], s0[3];
+    for (int a = 0; a < 3; ++a) {
+      if ((u[a] + 1) * size > g_.n[a] + 1) return out;  // past the last cell
+      c0[a] = u[a] * size - 1, s0[a] = c0[a];
+    }
+    const Level& below = levels_[static_cast<size_t>(level - 1)];
+    for (int c = 0; c < 8; ++c) {
+      int v[3] = {2 * u[0] + (c & 1), 2 * u[1] + (c >> 1 & 1), 2 * u[2] + (c >> 2 & 1)};
+      auto it = below.find(node_key(level - 1, v));
+      if (it == below.end()) continue;  // no surface in it: all its samples have one sign
+      if (!it->second.merged) return out;
+      out.qef.merge(it->second.qef);
+    }
+    if (!topology_safe(g_, s0, size / 2)) return out;
+    Qef::Solution s = solve_in_cells(g_, out.qef, c0, size);
+    out.rms = std::sqrt(s.error / static_cast<double>(std::max<size_t>(out.qef.count(), 1)));
+    if (out.rms > tol_ * h_) return out;
+    std::copy(s.x, s.x + 3, out.x);
+    out.merged = true;
+    return out;
+  }
+
+  const Lattice& g_;
+  double tol_, h_;
+  std::vector<Level> levels_;
+};
+
+}  // namespace
+
+Qef::Solution solve_in_cells(const Lattice& g, const Qef& qef, const int c0[3], int size) {
+  double lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {  // a padding cell ends at the box face; see kReach for the widening
+    lo[a] = std::max(g.coord(a, c0[a]) - kReach * g.h[a], g.lo[a]);
+    hi[a] = std::min(g.coord(a, c0[a] + size) + kReach * g.h[a], g.end(a));
+  }
+  return qef.solve(lo, hi);
+}
+
+MergedVertices merge_cells(const Lattice& g, const std::vector<SheetVertex>& sheets, double tolerance) {
+  MergedVertices out;
+  Merger m(g, tolerance);
+  m.leaves(sheets);
+  if (tolerance > 0) m.grow();
+  std::unordered_map<uint64_t, uint32_t> id;  // leaf node, or a sheet of a cell with several (bit 63)
+  for (size_t i = 0; i < sheets.size(); ++i) {
+    const SheetVertex& s = sheets[i];
+    int u[3] = {s.cell[0] + 1, s.cell[1] + 1, s.cell[2] + 1};
+    uint64_t cell = node_key(0, u);
+    auto [level, key] = m.leaf(cell);
+    const Node& n = m.node(level, key);
+    bool own = level == 0 && !n.merged;
+    auto [it, fresh] = id.try_emplace(own ? (uint64_t{1} << 63 | i) : key, static_cast<uint32_t>(out.positions.size()));
+    if (fresh) {
+      out.positions.push_back(own ? std::array<double, 3>{s.x[0], s.x[1], s.x[2]} : std::array<double, 3>{n.x[0], n.x[1], n.x[2]});
+      out.rms.push_back(own ? s.rms : n.rms);
+      out.merged += level > 0;
+    }
+    out.of_sheet.push_back(it->second);
+  }
+  return out;
+}
+
+}  // namespace fscript::mesh

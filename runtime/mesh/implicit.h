@@ -24,7 +24,7 @@ struct MesherOptions {
   // Dual contouring merges cells while their vertex stays within this many cells (root-mean-square)
   // of their tangent planes (fvrml-run --tolerance); 0 keeps every cell (dc_octree.h).
   double tolerance = kDefaultTolerance;
-  static constexpr double kDefaultTolerance = 0.05;
+  static constexpr double kDefaultTolerance = 0.02;
 };
 
 struct ImplicitJob {

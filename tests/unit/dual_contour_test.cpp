@@ -7,44 +7,14 @@
 
 #include "runtime/mesh/dual_contour.h"
 #include "runtime/mesh/implicit.h"
+#include "tests/unit/field_helpers.h"
 
 using namespace fscript;
+using test::FnField;
+using test::job;
+using test::Turn;
 
 namespace {
-
-// A field from a C++ function (inside where f > 0).
-struct FnField : mesh::Field {
-  std::function<double(double, double, double)> f;
-  explicit FnField(std::function<double(double, double, double)> fn) : f(std::move(fn)) {}
-  bool eval(const float* x, const float* y, const float* z, size_t n, float* out, backends::RuntimeError&) const override {
-    for (size_t i = 0; i < n; ++i) out[i] = static_cast<float>(f(x[i], y[i], z[i]));
-    return true;
-  }
-};
-
-mesh::ImplicitJob job(const mesh::Field& f, int cells, double half = 1.0) {
-  mesh::ImplicitJob j;
-  j.field = &f;
-  j.box = {-half, half, -half, half, -half, half};
-  j.cells = {cells, cells, cells};
-  return j;
-}
-
-// The rotation about (1, 2, 3) through 0.6 radians, and its inverse (the transpose).
-struct Turn {
-  double m[3][3];
-  Turn() {
-    double k[3] = {1 / std::sqrt(14.0), 2 / std::sqrt(14.0), 3 / std::sqrt(14.0)}, c = std::cos(0.6), s = std::sin(0.6);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) m[i][j] = (i == j ? c : 0) + (1 - c) * k[i] * k[j];
-    m[0][1] -= s * k[2], m[0][2] += s * k[1], m[1][0] += s * k[2], m[1][2] -= s * k[0], m[2][0] -= s * k[1], m[2][1] += s * k[0];
-  }
-  void apply(const double p[3], double out[3], bool inverse) const {
-    for (int i = 0; i < 3; ++i) out[i] = 0;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) out[i] += (inverse ? m[j][i] : m[i][j]) * p[j];
-  }
-};
 
 // Dual contouring of `f` over the job, which must succeed, and the mesh a closed, oriented,
 // 2-manifold surface of genus 0.

@@ -288,7 +288,7 @@ int run(int argc, char** argv) {
       ->type_name("MESHER");
   app.add_option("--tolerance", o.mesher.tolerance,
                  "dual contouring merges cells while their vertex stays within T cells (root-mean-square) of the "
-                 "surface's tangent planes; 0 keeps every cell (default 0.05)")
+                 "surface's tangent planes; 0 keeps every cell (default 0.02)")
       ->check(CLI::Range(0.0, 10.0).description(""))
       ->type_name("T");
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");

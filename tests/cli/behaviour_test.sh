@@ -207,6 +207,19 @@ for w in figure1-morphing figure2-texture figure6-blends listing1-operation; do
   done
 done
 
+# Dual contouring too, frames (the frame cache) and colours included.
+for th in 1 2 3; do
+  "$R" "$P/figure6-blends.wrl" --mesher dc -o "$T/dc-th$th.glb" --threads "$th" --resolution-scale 0.5 2> /dev/null ||
+    fail "figure6-blends --mesher dc with --threads $th"
+  "$R" "$P/figure2-texture.wrl" --mesher dc --frames 3 -o "$T/dc-fr-th$th.wrl" --threads "$th" --resolution-scale 0.3 2> /dev/null ||
+    fail "figure2-texture --mesher dc --frames 3 with --threads $th"
+done
+for th in 2 3; do
+  n=$((n + 1))
+  cmp -s "$T/dc-th1.glb" "$T/dc-th$th.glb" || fail "figure6-blends --mesher dc: --threads $th differs from --threads 1"
+  cmp -s "$T/dc-fr-th1.wrl" "$T/dc-fr-th$th.wrl" || fail "figure2-texture --mesher dc --frames 3: --threads $th differs"
+done
+
 # ---- Colours through patternKey / patternColor: piecewise linear in the value, clamped ----
 printf '#VRML V2.0 utf8\nFShape { appearance FAppearance { material FMaterial { diffuseColor "x" patternKey [-0.5 0 0.5] patternColor [1 0 0, 0 1 0, 0 0 1] } }\n geometry FGeometry { definition "0.8^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [12] } }\n' > "$T/pattern.wrl"
 "$R" "$T/pattern.wrl" -o "$T/pattern-out.wrl" 2> /dev/null
@@ -296,6 +309,16 @@ jcheck "fvrml-run --mesher dc: closed, oriented, genus 0, under half the triangl
 j['watertight'] and j['manifold'] and j['euler'] == 2 and j['triangles'] < 912 / 2 and j['hausdorff'] < 0.2
 " -- "$R" "$T/turned.fs" --mesher dc --check "$T/turned-mt.ply" -o "$T/turned-dc.ply"
 check "fvrml-run --mesher other" 2 'mesher: xx not in' -- "$R" "$T/turned.fs" --mesher xx -o "$T/turned-xx.ply"
+# Adaptive: flat faces merge into large cells; --tolerance 0 keeps one vertex per sheet of every cell.
+jcheck "fvrml-run --mesher dc --stats: merged cells, fewer triangles, QEF error" err "
+j['dual_contouring']['shapes'] == 1 and j['dual_contouring']['merged_cells'] > 0 and
+j['dual_contouring']['triangles'] < 288 / 2 and j['dual_contouring']['max_qef_error_cells'] < 0.02
+" -- "$R" "$T/turned.fs" --mesher dc --stats -o "$T/turned-dc2.ply"
+jcheck "fvrml-run --mesher dc --tolerance 0: no merged cells" err "
+j['dual_contouring']['merged_cells'] == 0 and j['dual_contouring']['triangles'] == 288
+" -- "$R" "$T/turned.fs" --mesher dc --tolerance 0 --stats -o "$T/turned-dc3.ply"
+check "fvrml-run --tolerance below 0" 2 'tolerance: Value -1 not in range' -- "$R" "$T/turned.fs" --mesher dc --tolerance -1 -o "$T/turned-neg.ply"
+[ -e "$T/turned-neg.ply" ] && fail "fvrml-run --tolerance -1 wrote turned-neg.ply"
 [ -e "$T/bad.ply" ] && fail "fvrml-run a script with a syntax error wrote bad.ply"
 printf 'function FRep(x, y, z, t) {\n  var s = 0;\n  while (1) { s = s + 1; }\n  return s;\n}\n' > "$T/loop.fs"
 check "fvrml-run a script: a runtime error at its line" 1 '^loop.fs:3:3: error: loop iteration budget|/loop.fs:3:3: error: loop iteration budget' \

@@ -3,6 +3,7 @@
 #include "runtime/mesh/dc_cells.h"
 
 #include <algorithm>
+#include <array>
 
 namespace fscript::mesh {
 namespace {
@@ -83,20 +84,27 @@ unsigned inside_mask(const Lattice& g, const int cell[3]) {
 // thin for the grid: cut the usual way, the two cells' sheets would meet along both of the face's
 // segments and share an edge four triangles use. Flipped, the tube is closed off on each side instead.
 unsigned face_flips(const Lattice& g, const int cell[3], unsigned inside) {
+  static const auto ambiguous = [] {  // per sign pattern, bit 2 * axis + side for each ambiguous face
+    std::array<uint8_t, 256> t{};
+    int pair[2];
+    for (unsigned m = 0; m < 256; ++m)
+      for (int f = 0; f < 6; ++f) t[m] |= static_cast<uint8_t>(diagonal_pair(m, f / 2, f % 2, pair) << f);
+    return t;
+  }();
   unsigned flips = 0;
-  for (int axis = 0; axis < 3; ++axis)
-    for (int side = 0; side < 2; ++side) {
-      int on_face[2];
-      if (!diagonal_pair(inside, axis, side, on_face)) continue;
-      int other[3] = {cell[0], cell[1], cell[2]};
-      other[axis] += side ? 1 : -1;
-      if (other[axis] < -1 || other[axis] >= g.n[axis]) continue;
-      const CellSigns& here = signs_of(inside, 0);
-      const CellSigns& there = signs_of(inside_mask(g, other), 0);
-      int p = on_face[0] ^ (1 << axis), q = on_face[1] ^ (1 << axis);  // the same samples, seen from there
-      if (here.in_group[on_face[0]] == here.in_group[on_face[1]] && there.in_group[p] == there.in_group[q])
-        flips |= 1u << (2 * axis + side);
-    }
+  for (unsigned faces = ambiguous[inside]; faces; faces &= faces - 1) {
+    int f = __builtin_ctz(faces), axis = f / 2, side = f % 2;
+    int on_face[2];
+    diagonal_pair(inside, axis, side, on_face);
+    int other[3] = {cell[0], cell[1], cell[2]};
+    other[axis] += side ? 1 : -1;
+    if (other[axis] < -1 || other[axis] >= g.n[axis]) continue;
+    const CellSigns& here = signs_of(inside, 0);
+    const CellSigns& there = signs_of(inside_mask(g, other), 0);
+    int p = on_face[0] ^ (1 << axis), q = on_face[1] ^ (1 << axis);  // the same samples, seen from there
+    if (here.in_group[on_face[0]] == here.in_group[on_face[1]] && there.in_group[p] == there.in_group[q])
+      flips |= 1u << (2 * axis + side);
+  }
   return flips;
 }
 

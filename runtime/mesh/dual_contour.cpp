@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <mutex>
 #include <unordered_map>
 #include <vector>
 
 #include "runtime/mesh/parametric.h"
 #include "runtime/mesh/dc_octree.h"
+#include "runtime/mesh/octree.h"
 
 namespace fscript::mesh {
 namespace {
@@ -37,47 +39,109 @@ bool eval_points(const Field& f, const std::vector<std::array<double, 3>>& pts, 
   return pts.empty() || f.eval(x.data(), y.data(), z.data(), pts.size(), out.data(), err);
 }
 
-bool sample(const Field& f, Lattice& g, backends::RuntimeError& err) {
-  std::vector<float>& v = g.f;
-  v.assign(static_cast<size_t>(g.n[0] + 2) * (g.n[1] + 2) * (g.n[2] + 2), -1.0f);
-  std::vector<float> x, y, z, out(static_cast<size_t>(g.n[0]) * g.n[1]);
-  for (int j = 0; j < g.n[1]; ++j)
-    for (int i = 0; i < g.n[0]; ++i) x.push_back(float(g.coord(0, i))), y.push_back(float(g.coord(1, j)));
+// Every sample of the open bricks (every sample without a brick map); a sample of a decided brick
+// gets +1 or -1 for its sign and `decided` set, until its value is needed (exact_ends).
+bool sample(const Field& f, const BrickMap* bricks, Lattice& g, std::vector<uint8_t>& decided, size_t& evaluated,
+            backends::RuntimeError& err) {
+  size_t total = static_cast<size_t>(g.n[0] + 2) * (g.n[1] + 2) * (g.n[2] + 2);
+  g.f.assign(total, -1.0f);
+  decided.assign(total, 0);
+  std::vector<float> x, y, z, out;
+  std::vector<size_t> where;
+  constexpr int B = BrickMap::kBrick;
   for (int k = 0; k < g.n[2]; ++k) {
-    z.assign(x.size(), float(g.coord(2, k)));
-    if (!f.eval(x.data(), y.data(), z.data(), x.size(), out.data(), err)) return false;
+    x.clear(), y.clear(), where.clear();
     for (int j = 0; j < g.n[1]; ++j)
-      for (int i = 0; i < g.n[0]; ++i) v[g.at(i, j, k)] = out[static_cast<size_t>(j) * g.n[0] + i];
+      for (int i = 0; i < g.n[0]; ++i) {
+        BrickClass c = bricks ? bricks->at(i / B, j / B, k / B) : BrickClass::Open;
+        size_t at = g.at(i, j, k);
+        if (c == BrickClass::Open) {
+          x.push_back(float(g.coord(0, i))), y.push_back(float(g.coord(1, j))), where.push_back(at);
+        } else {
+          g.f[at] = c == BrickClass::Inside ? 1.0f : -1.0f;
+          decided[at] = 1;
+        }
+      }
+    z.assign(x.size(), float(g.coord(2, k)));
+    out.resize(x.size());
+    if (!x.empty() && !f.eval(x.data(), y.data(), z.data(), x.size(), out.data(), err)) return false;
+    for (size_t q = 0; q < where.size(); ++q) g.f[where[q]] = out[q];
+    evaluated += x.size();
   }
   return true;
 }
 
-// Every sign-change edge; a real edge gets its crossing by regula falsi and its normal from the
-// gradient (central differences, a tenth of a cell), an edge into the padding gets the box face.
-bool crossings(const Field& f, const Lattice& g, std::vector<Crossing>& out, backends::RuntimeError& err) {
+// Every sign-change edge of the lattice, padding included, as its lower sample and axis.
+std::vector<Crossing> sign_changes(const Lattice& g) {
+  std::vector<uint8_t> in(g.f.size());
+  for (size_t q = 0; q < in.size(); ++q) in[q] = g.f[q] > 0;
+  const size_t stride[3] = {1, static_cast<size_t>(g.n[0] + 2), static_cast<size_t>(g.n[0] + 2) * (g.n[1] + 2)};
+  std::vector<Crossing> out;
+  for (int k = -1; k <= g.n[2]; ++k)
+    for (int j = -1; j <= g.n[1]; ++j) {
+      size_t row = g.at(-1, j, k);
+      bool last[3] = {false, j == g.n[1], k == g.n[2]};
+      for (int i = -1; i <= g.n[0]; ++i) {
+        size_t q = row + static_cast<size_t>(i + 1);
+        last[0] = i == g.n[0];
+        for (int a = 0; a < 3; ++a)
+          if (!last[a] && in[q] != in[q + stride[a]]) out.push_back(Crossing{{i, j, k}, a, in[q] != 0, {0, 0, 0}, {0, 0, 0}});
+      }
+    }
+  return out;
+}
+
+// The values at the ends of the crossing edges that lie in decided bricks, so regula falsi starts
+// from the same brackets as on the dense lattice (the same mesh). False when a value contradicts its
+// brick's bound (the caller samples densely instead).
+bool exact_ends(const Field& f, Lattice& g, std::vector<uint8_t>& decided, const std::vector<Crossing>& xs, size_t& evaluated,
+                bool& sound, backends::RuntimeError& err) {
+  std::vector<size_t> where;
+  for (const Crossing& c : xs)
+    for (int end = 0; end < 2; ++end) {
+      int s[3] = {c.s[0], c.s[1], c.s[2]};
+      s[c.axis] += end;
+      size_t at = g.at(s[0], s[1], s[2]);
+      if (g.padding(s) || decided[at] != 1) continue;
+      decided[at] = 2;
+      where.push_back(at);
+    }
+  std::vector<std::array<double, 3>> pts;
+  for (size_t at : where) {
+    size_t nx = static_cast<size_t>(g.n[0] + 2), ny = static_cast<size_t>(g.n[1] + 2);
+    int i = static_cast<int>(at % nx) - 1, j = static_cast<int>(at / nx % ny) - 1, k = static_cast<int>(at / (nx * ny)) - 1;
+    pts.push_back({g.coord(0, i), g.coord(1, j), g.coord(2, k)});
+  }
+  std::vector<float> fv;
+  if (!eval_points(f, pts, fv, err)) return false;
+  evaluated += pts.size();
+  for (size_t q = 0; q < where.size(); ++q) {
+    sound = sound && (fv[q] > 0) == (g.f[where[q]] > 0);
+    g.f[where[q]] = fv[q];
+  }
+  return true;
+}
+
+// Hermite data for every crossing: a real edge gets its crossing by regula falsi and its normal from
+// the gradient (central differences, kProbe cells), an edge into the padding gets the box face.
+bool hermite(const Field& f, const Lattice& g, std::vector<Crossing>& out, backends::RuntimeError& err) {
   const std::vector<float>& v = g.f;
   std::vector<size_t> real;
   std::vector<double> lo_t, hi_t, lo_f, hi_f;  // bracket along the edge (t in [0, 1]) and f there
-  for (int k = -1; k <= g.n[2]; ++k)
-    for (int j = -1; j <= g.n[1]; ++j)
-      for (int i = -1; i <= g.n[0]; ++i)
-        for (int a = 0; a < 3; ++a) {
-          int s[3] = {i, j, k}, t[3] = {i, j, k};
-          if (++t[a] > g.n[a]) continue;
-          float fs = v[g.at(s[0], s[1], s[2])], ft = v[g.at(t[0], t[1], t[2])];
-          if ((fs > 0) == (ft > 0)) continue;
-          Crossing c{{i, j, k}, a, fs > 0, {0, 0, 0}, {0, 0, 0}};
-          for (int b = 0; b < 3; ++b) c.p[b] = g.coord(b, s[b]);
-          if (g.padding(s) || g.padding(t)) {  // the box face, facing out of the solid
-            bool upper_pad = g.padding(t);
-            c.p[a] = upper_pad ? g.lo[a] + g.n[a] * g.h[a] : g.lo[a];
-            c.normal[a] = upper_pad ? 1 : -1;
-          } else {
-            real.push_back(out.size());
-            lo_t.push_back(0), hi_t.push_back(1), lo_f.push_back(fs), hi_f.push_back(ft);
-          }
-          out.push_back(c);
-        }
+  for (size_t e = 0; e < out.size(); ++e) {
+    Crossing& c = out[e];
+    int a = c.axis, s[3] = {c.s[0], c.s[1], c.s[2]}, t[3] = {c.s[0], c.s[1], c.s[2]};
+    ++t[a];
+    for (int b = 0; b < 3; ++b) c.p[b] = g.coord(b, s[b]);
+    if (g.padding(s) || g.padding(t)) {  // the box face, facing out of the solid
+      bool upper_pad = g.padding(t);
+      c.p[a] = upper_pad ? g.end(a) : g.lo[a];
+      c.normal[a] = upper_pad ? 1 : -1;
+    } else {
+      real.push_back(e);
+      lo_t.push_back(0), hi_t.push_back(1), lo_f.push_back(v[g.at(s[0], s[1], s[2])]), hi_f.push_back(v[g.at(t[0], t[1], t[2])]);
+    }
+  }
   std::vector<std::array<double, 3>> pts(real.size());
   std::vector<float> fv;
   auto at = [&](size_t r, double t) {
@@ -177,6 +241,33 @@ void polygons(const std::vector<Crossing>& xs, const std::vector<std::array<uint
   }
 }
 
+// The lattice sampled (pruned by the field's bounds when it has them) and its Hermite data.
+bool sample_crossings(const ImplicitJob& job, Lattice& g, std::vector<Crossing>& xs, backends::RuntimeError& err) {
+  std::unique_ptr<BrickMap> bricks;
+  if (job.prune && job.field->can_bound()) {
+    std::array<std::vector<float>, 3> axis;
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < g.n[a]; ++i) axis[static_cast<size_t>(a)].push_back(static_cast<float>(g.coord(a, i)));
+    bricks = std::make_unique<BrickMap>(*job.field, axis, job.threads);
+  }
+  PruneStats st = bricks ? bricks->stats() : PruneStats{};
+  st.points = static_cast<size_t>(g.n[0]) * g.n[1] * g.n[2];
+  std::vector<uint8_t> decided;
+  bool sound = true;
+  bool ok = sample(*job.field, bricks.get(), g, decided, st.evaluated, err);
+  if (ok) xs = sign_changes(g);
+  ok = ok && exact_ends(*job.field, g, decided, xs, st.evaluated, sound, err);
+  if (ok && !sound) {  // a bound the function contradicts: the dense lattice instead
+    ++st.fallbacks;
+    st.evaluated = 0;
+    ok = sample(*job.field, nullptr, g, decided, st.evaluated, err);
+    if (ok) xs = sign_changes(g);
+  }
+  add_prune_totals(st);
+  if (job.stats) *job.stats = st;
+  return ok && hermite(*job.field, g, xs, err);
+}
+
 }  // namespace
 
 bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, backends::RuntimeError& err) {
@@ -193,7 +284,7 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
     g.h[a] = (job.box[static_cast<size_t>(2 * a + 1)] - g.lo[a]) / g.n[a];
   }
   std::vector<Crossing> xs;
-  if (!sample(*job.field, g, err) || !crossings(*job.field, g, xs, err)) return false;
+  if (!sample_crossings(job, g, xs, err)) return false;
   std::vector<std::array<uint32_t, 4>> ids;
   std::vector<SheetVertex> sv = sheets(g, xs, ids);
   MergedVertices mv = merge_cells(g, sv, job.mesher.tolerance);

@@ -10,7 +10,6 @@
 #include <unordered_map>
 #include <vector>
 
-#include "runtime/mesh/parametric.h"
 #include "runtime/mesh/dc_octree.h"
 #include "runtime/mesh/octree.h"
 
@@ -296,7 +295,8 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   stats.merged = mv.merged;
   stats.triangles = out.triangles.size();
   for (double r : mv.rms) stats.max_error = std::max(stats.max_error, r / h);
-  face_normals_to_vertices(out);  // the area-weighted mean of the faces: sharp edges stay sharp in shape
+  // No vertex normals: a vertex on a sharp edge has no one normal, and its faces' mean would shade
+  // both sides wrong; without them every output is shaded flat (glTF and VRML97 viewers too).
   return true;
 }
 

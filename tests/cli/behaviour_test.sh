@@ -375,6 +375,8 @@ WRL
 same_mesh csg3d "$T/csg3d.wrl"
 same_mesh gyroid-sphere "$SRC/bench/scenes/gyroid-sphere256.wrl" --resolution-scale 0.16
 same_mesh figure6 "$P/figure6-blends.wrl" --resolution-scale 0.2 --fraction 0.5
+same_mesh csg3d-dc "$T/csg3d.wrl" --mesher dc
+same_mesh gyroid-sphere-dc "$SRC/bench/scenes/gyroid-sphere256.wrl" --resolution-scale 0.16 --mesher dc
 jcheck "fvrml-run --stats: the octree decided regions and spared samples" err "
 j['prune']['pruned'] and 0 < j['prune']['evaluated'] < j['prune']['points'] == 61 ** 3 and
 sum(l['empty'] + l['full'] for l in j['prune']['levels']) > 0

@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+
+#include "runtime/mesh/flat_index.h"
 
 namespace fscript::mesh {
 namespace {
@@ -23,7 +24,16 @@ struct Node {
   bool merged = false;  // one vertex for the whole node; false: its cells keep their own
 };
 
-using Level = std::unordered_map<uint64_t, Node>;
+// One level's nodes in the order they were made (a deterministic order), found by key.
+struct Level {
+  FlatIndex index;
+  std::vector<uint64_t> keys;
+  std::vector<Node> nodes;
+  const Node* find(uint64_t key) const {
+    const uint32_t* i = index.find(key);
+    return i ? &nodes[*i] : nullptr;
+  }
+};
 
 // Whether the node's 27 samples (corners, edge and face midpoints, centre) allow one vertex: one
 // sheet, no ambiguous face, and every midpoint agreeing with a corner of the edge, face or body
@@ -63,30 +73,32 @@ class Merger {
 
   void leaves(const std::vector<SheetVertex>& sheets) {
     levels_.emplace_back();
+    Level& l = levels_[0];
     for (const SheetVertex& s : sheets) {
       int u[3] = {s.cell[0] + 1, s.cell[1] + 1, s.cell[2] + 1};
-      auto [it, fresh] = levels_[0].try_emplace(node_key(0, u));
-      Node& n = it->second;
-      n.merged = fresh;  // a second sheet in the cell: it keeps its vertices
+      uint64_t key = node_key(0, u);
+      auto [i, fresh] = l.index.try_emplace(key, static_cast<uint32_t>(l.nodes.size()));
+      if (!fresh) {
+        l.nodes[i].merged = false;  // a second sheet in the cell: it keeps its vertices
+        continue;
+      }
+      Node n;  // its vertex is solved only if no parent takes it (merge_cells)
+      n.merged = true;
       n.qef = s.qef;
-      std::copy(s.x, s.x + 3, n.x);
-      n.rms = s.rms;
+      l.keys.push_back(key), l.nodes.push_back(n);
     }
   }
 
   // Level after level, every parent of the level below tries to merge; stops at a level where none does.
   void grow() {
     for (int level = 1; level < 19; ++level) {
-      std::vector<uint64_t> parents;
-      for (const auto& [key, node] : levels_.back()) parents.push_back(parent(key));
-      std::sort(parents.begin(), parents.end());
-      parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
       Level next;
       bool any = false;
-      for (uint64_t p : parents) {
-        Node n = collapse(p, level);
-        any = any || n.merged;
-        next.emplace(p, n);
+      for (uint64_t child : levels_.back().keys) {
+        uint64_t p = parent(child);
+        if (!next.index.try_emplace(p, static_cast<uint32_t>(next.nodes.size())).second) continue;
+        next.keys.push_back(p), next.nodes.push_back(collapse(p, level));
+        any = any || next.nodes.back().merged;
       }
       levels_.push_back(std::move(next));
       if (!any) return;
@@ -97,13 +109,13 @@ class Merger {
   std::pair<int, uint64_t> leaf(uint64_t key) const {
     int level = 0;
     for (uint64_t up = parent(key); level + 1 < static_cast<int>(levels_.size()); up = parent(up)) {
-      auto it = levels_[static_cast<size_t>(level + 1)].find(up);
-      if (it == levels_[static_cast<size_t>(level + 1)].end() || !it->second.merged) break;
+      const Node* n = levels_[static_cast<size_t>(level + 1)].find(up);
+      if (!n || !n->merged) break;
       key = up, ++level;
     }
     return {level, key};
   }
-  const Node& node(int level, uint64_t key) const { return levels_[static_cast<size_t>(level)].at(key); }
+  const Node& node(int level, uint64_t key) const { return *levels_[static_cast<size_t>(level)].find(key); }
 
  private:
   static uint64_t parent(uint64_t key) {
@@ -124,10 +136,10 @@ class Merger {
     const Level& below = levels_[static_cast<size_t>(level - 1)];
     for (int c = 0; c < 8; ++c) {
       int v[3] = {2 * u[0] + (c & 1), 2 * u[1] + (c >> 1 & 1), 2 * u[2] + (c >> 2 & 1)};
-      auto it = below.find(node_key(level - 1, v));
-      if (it == below.end()) continue;  // no surface in it: all its samples have one sign
-      if (!it->second.merged) return out;
-      out.qef.merge(it->second.qef);
+      const Node* child = below.find(node_key(level - 1, v));
+      if (!child) continue;  // no surface in it: all its samples have one sign
+      if (!child->merged) return out;
+      out.qef.merge(child->qef);
     }
     if (!topology_safe(g_, s0, size / 2)) return out;
     Qef::Solution s = solve_in_cells(g_, out.qef, c0, size);
@@ -159,7 +171,7 @@ MergedVertices merge_cells(const Lattice& g, const std::vector<SheetVertex>& she
   Merger m(g, tolerance);
   m.leaves(sheets);
   if (tolerance > 0) m.grow();
-  std::unordered_map<uint64_t, uint32_t> id;  // leaf node, or a sheet of a cell with several (bit 63)
+  FlatIndex id(sheets.size());  // leaf node, or a sheet of a cell with several (bit 63)
   for (size_t i = 0; i < sheets.size(); ++i) {
     const SheetVertex& s = sheets[i];
     int u[3] = {s.cell[0] + 1, s.cell[1] + 1, s.cell[2] + 1};
@@ -167,13 +179,19 @@ MergedVertices merge_cells(const Lattice& g, const std::vector<SheetVertex>& she
     auto [level, key] = m.leaf(cell);
     const Node& n = m.node(level, key);
     bool own = level == 0 && !n.merged;
-    auto [it, fresh] = id.try_emplace(own ? (uint64_t{1} << 63 | i) : key, static_cast<uint32_t>(out.positions.size()));
+    auto [vertex, fresh] = id.try_emplace(own ? (uint64_t{1} << 63 | i) : key, static_cast<uint32_t>(out.positions.size()));
     if (fresh) {
-      out.positions.push_back(own ? std::array<double, 3>{s.x[0], s.x[1], s.x[2]} : std::array<double, 3>{n.x[0], n.x[1], n.x[2]});
-      out.rms.push_back(own ? s.rms : n.rms);
+      double x[3] = {n.x[0], n.x[1], n.x[2]}, rms = n.rms;
+      if (level == 0) {  // a cell of the uniform grid: its vertex now
+        Qef::Solution sol = solve_in_cells(g, s.qef, s.cell, 1);
+        std::copy(sol.x, sol.x + 3, x);
+        rms = std::sqrt(sol.error / static_cast<double>(std::max<size_t>(s.qef.count(), 1)));
+      }
+      out.positions.push_back({x[0], x[1], x[2]});
+      out.rms.push_back(rms);
       out.merged += level > 0;
     }
-    out.of_sheet.push_back(it->second);
+    out.of_sheet.push_back(vertex);
   }
   return out;
 }

@@ -18,9 +18,7 @@ namespace fscript::mesh {
 // One vertex of the uniform mesh: a sheet of surface in a dual cell.
 struct SheetVertex {
   int cell[3];
-  Qef qef;
-  double x[3];  // its vertex, in the cell
-  double rms;   // root-mean-square distance from x to the QEF's planes
+  Qef qef;  // the planes of its crossings
 };
 
 struct MergedVertices {

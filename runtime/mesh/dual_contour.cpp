@@ -7,10 +7,10 @@
 #include <cmath>
 #include <memory>
 #include <mutex>
-#include <unordered_map>
 #include <vector>
 
 #include "runtime/mesh/dc_octree.h"
+#include "runtime/mesh/flat_index.h"
 #include "runtime/mesh/octree.h"
 
 namespace fscript::mesh {
@@ -35,6 +35,7 @@ bool eval_points(const Field& f, const std::vector<std::array<double, 3>>& pts, 
   std::vector<float> x(pts.size()), y(pts.size()), z(pts.size());
   for (size_t i = 0; i < pts.size(); ++i) x[i] = float(pts[i][0]), y[i] = float(pts[i][1]), z[i] = float(pts[i][2]);
   out.resize(pts.size());
+  EvalTimer timed;
   return pts.empty() || f.eval(x.data(), y.data(), z.data(), pts.size(), out.data(), err);
 }
 
@@ -63,6 +64,7 @@ bool sample(const Field& f, const BrickMap* bricks, Lattice& g, std::vector<uint
       }
     z.assign(x.size(), float(g.coord(2, k)));
     out.resize(x.size());
+    EvalTimer timed;
     if (!x.empty() && !f.eval(x.data(), y.data(), z.data(), x.size(), out.data(), err)) return false;
     for (size_t q = 0; q < where.size(); ++q) g.f[where[q]] = out[q];
     evaluated += x.size();
@@ -191,10 +193,10 @@ void cells_of(const Crossing& c, int out[4][3]) {
   }
 }
 
-// The sheets the crossings touch, each with the planes of its crossings and its vertex; ids[e] names
+// The sheets the crossings touch, each with the planes of its crossings; ids[e] names
 // the sheets of crossing e's four cells, in winding order.
 std::vector<SheetVertex> sheets(const Lattice& g, const std::vector<Crossing>& xs, std::vector<std::array<uint32_t, 4>>& ids) {
-  std::unordered_map<uint64_t, uint32_t> sheet_id;
+  FlatIndex sheet_id(xs.size());
   std::vector<SheetVertex> out;
   ids.clear();
   for (const Crossing& c : xs) {
@@ -206,17 +208,12 @@ std::vector<SheetVertex> sheets(const Lattice& g, const std::vector<Crossing>& x
       const int* cell = cells[q];
       int in = (inside[0] - cell[0]) | (inside[1] - cell[1]) << 1 | (inside[2] - cell[2]) << 2;
       uint64_t key = uint64_t(g.cell(cell)) * 64 + uint64_t(sheet_of(g, cell, in, in ^ (1 << c.axis)));
-      auto [it, fresh] = sheet_id.try_emplace(key, static_cast<uint32_t>(out.size()));
-      if (fresh) out.push_back(SheetVertex{{cell[0], cell[1], cell[2]}, Qef{}, {0, 0, 0}, 0});
-      out[it->second].qef.add(c.p, c.normal);
-      id[static_cast<size_t>(q)] = it->second;
+      auto [sheet, fresh] = sheet_id.try_emplace(key, static_cast<uint32_t>(out.size()));
+      if (fresh) out.push_back(SheetVertex{{cell[0], cell[1], cell[2]}, Qef{}});
+      out[sheet].qef.add(c.p, c.normal);
+      id[static_cast<size_t>(q)] = sheet;
     }
     ids.push_back(id);
-  }
-  for (SheetVertex& v : out) {
-    Qef::Solution s = solve_in_cells(g, v.qef, v.cell, 1);
-    std::copy(s.x, s.x + 3, v.x);
-    v.rms = std::sqrt(s.error / static_cast<double>(std::max<size_t>(v.qef.count(), 1)));
   }
   return out;
 }

@@ -319,6 +319,8 @@ j['dual_contouring']['merged_cells'] == 0 and j['dual_contouring']['triangles'] 
 " -- "$R" "$T/turned.fs" --mesher dc --tolerance 0 --stats -o "$T/turned-dc3.ply"
 check "fvrml-run --tolerance below 0" 2 'tolerance: Value -1 not in range' -- "$R" "$T/turned.fs" --mesher dc --tolerance -1 -o "$T/turned-neg.ply"
 [ -e "$T/turned-neg.ply" ] && fail "fvrml-run --tolerance -1 wrote turned-neg.ply"
+check "fvrml-run --tolerance without --mesher dc warns" 0 'warning: --tolerance has no effect with --mesher mt' -- \
+  "$R" "$T/turned.fs" --tolerance 0.1 -o "$T/turned-mt2.ply"
 [ -e "$T/bad.ply" ] && fail "fvrml-run a script with a syntax error wrote bad.ply"
 printf 'function FRep(x, y, z, t) {\n  var s = 0;\n  while (1) { s = s + 1; }\n  return s;\n}\n' > "$T/loop.fs"
 check "fvrml-run a script: a runtime error at its line" 1 '^loop.fs:3:3: error: loop iteration budget|/loop.fs:3:3: error: loop iteration budget' \

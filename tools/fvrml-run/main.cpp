@@ -286,7 +286,7 @@ int run(int argc, char** argv) {
                  "and corners kept, large triangles where the surface is flat)")
       ->check(CLI::IsMember({"mt", "dc"}))
       ->type_name("MESHER");
-  app.add_option("--tolerance", o.mesher.tolerance,
+  CLI::Option* tolerance = app.add_option("--tolerance", o.mesher.tolerance,
                  "dual contouring merges cells while their vertex stays within T cells (root-mean-square) of the "
                  "surface's tangent planes; 0 keeps every cell (default 0.02)")
       ->check(CLI::Range(0.0, 10.0).description(""))
@@ -332,6 +332,8 @@ int run(int argc, char** argv) {
   o.view_given = !view.empty();
   o.prune = !no_prune;
   o.mesher.kind = mesher == "dc" ? mesh::Mesher::DualContouring : mesh::Mesher::MarchingTetrahedra;
+  if (tolerance->count() && o.mesher.kind != mesh::Mesher::DualContouring)
+    std::cerr << "warning: --tolerance has no effect with --mesher mt (marching tetrahedra merges no cells)\n";
   if (std::string message; disk_cache && !fscript::backends::enable_llvm_disk_cache(message)) {
     std::cerr << "error: " << message << "\n";
     return 2;

@@ -49,17 +49,22 @@ bool sample(const Field& f, const BrickMap* bricks, Lattice& g, std::vector<uint
   std::vector<float> x, y, z, out;
   std::vector<size_t> where;
   constexpr int B = BrickMap::kBrick;
+  std::vector<float> xs(static_cast<size_t>(g.n[0]));
+  for (int i = 0; i < g.n[0]; ++i) xs[static_cast<size_t>(i)] = float(g.coord(0, i));
   for (int k = 0; k < g.n[2]; ++k) {
     x.clear(), y.clear(), where.clear();
     for (int j = 0; j < g.n[1]; ++j)
-      for (int i = 0; i < g.n[0]; ++i) {
-        BrickClass c = bricks ? bricks->at(i / B, j / B, k / B) : BrickClass::Open;
-        size_t at = g.at(i, j, k);
+      for (int i0 = 0; i0 < g.n[0]; i0 += B) {  // a brick's run of the row at a time
+        int i1 = std::min(i0 + B, g.n[0]);
+        BrickClass c = bricks ? bricks->at(i0 / B, j / B, k / B) : BrickClass::Open;
+        size_t at = g.at(i0, j, k), n = static_cast<size_t>(i1 - i0);
         if (c == BrickClass::Open) {
-          x.push_back(float(g.coord(0, i))), y.push_back(float(g.coord(1, j))), where.push_back(at);
+          x.insert(x.end(), xs.begin() + i0, xs.begin() + i1);
+          y.insert(y.end(), n, float(g.coord(1, j)));
+          for (size_t q = 0; q < n; ++q) where.push_back(at + q);
         } else {
-          g.f[at] = c == BrickClass::Inside ? 1.0f : -1.0f;
-          decided[at] = 1;
+          std::fill_n(g.f.begin() + static_cast<std::ptrdiff_t>(at), n, c == BrickClass::Inside ? 1.0f : -1.0f);
+          std::fill_n(decided.begin() + static_cast<std::ptrdiff_t>(at), n, uint8_t{1});
         }
       }
     z.assign(x.size(), float(g.coord(2, k)));
@@ -78,10 +83,19 @@ std::vector<Crossing> sign_changes(const Lattice& g) {
   for (size_t q = 0; q < in.size(); ++q) in[q] = g.f[q] > 0;
   const size_t stride[3] = {1, static_cast<size_t>(g.n[0] + 2), static_cast<size_t>(g.n[0] + 2) * (g.n[1] + 2)};
   std::vector<Crossing> out;
+  const size_t len = stride[1];
+  auto constant = [&](size_t row) {  // the row's samples all on one side, that of its first
+    return std::find(in.begin() + static_cast<std::ptrdiff_t>(row), in.begin() + static_cast<std::ptrdiff_t>(row + len),
+                     in[row] ^ 1) == in.begin() + static_cast<std::ptrdiff_t>(row + len);
+  };
   for (int k = -1; k <= g.n[2]; ++k)
     for (int j = -1; j <= g.n[1]; ++j) {
       size_t row = g.at(-1, j, k);
       bool last[3] = {false, j == g.n[1], k == g.n[2]};
+      // Most rows are far from the surface: no change along them or to the rows above and behind.
+      if (constant(row) && (last[1] || (in[row + stride[1]] == in[row] && constant(row + stride[1]))) &&
+          (last[2] || (in[row + stride[2]] == in[row] && constant(row + stride[2]))))
+        continue;
       for (int i = -1; i <= g.n[0]; ++i) {
         size_t q = row + static_cast<size_t>(i + 1);
         last[0] = i == g.n[0];

@@ -137,6 +137,14 @@ bool exact_ends(const Field& f, Lattice& g, std::vector<uint8_t>& decided, const
   return true;
 }
 
+// One component of the gradient at a point on the surface (f = 0 there) from its probes `step`
+// either side: central where both are defined, one-sided where one is, 0 where neither.
+double gradient(float plus, float minus, double step) {
+  bool p = std::isfinite(plus), m = std::isfinite(minus);
+  if (p && m) return (double(plus) - minus) / (2 * step);
+  return p ? plus / step : m ? -minus / step : 0.0;
+}
+
 // Hermite data for every crossing: a real edge gets its crossing by regula falsi and its normal from
 // the gradient (central differences, kProbe cells), an edge into the padding gets the box face.
 bool hermite(const Field& f, const Lattice& g, std::vector<Crossing>& out, backends::RuntimeError& err) {
@@ -166,8 +174,8 @@ bool hermite(const Field& f, const Lattice& g, std::vector<Crossing>& out, backe
     return p;
   };
   auto false_position = [&](size_t r) {  // where the chord through the bracket's ends crosses zero
-    double d = lo_f[r] - hi_f[r];
-    return d != 0 ? lo_t[r] + (hi_t[r] - lo_t[r]) * lo_f[r] / d : 0.5 * (lo_t[r] + hi_t[r]);
+    double d = lo_f[r] - hi_f[r];  // NaN or infinite where the function is undefined: bisect instead
+    return d != 0 && std::isfinite(d) ? lo_t[r] + (hi_t[r] - lo_t[r]) * lo_f[r] / d : 0.5 * (lo_t[r] + hi_t[r]);
   };
   for (int step = 0; step < kRefineSteps; ++step) {
     std::vector<double> t(real.size());
@@ -191,9 +199,12 @@ bool hermite(const Field& f, const Lattice& g, std::vector<Crossing>& out, backe
       }
   }
   if (!eval_points(f, probes, fv, err)) return false;
-  for (size_t r = 0; r < real.size(); ++r)
-    for (int a = 0; a < 3; ++a)  // minus the gradient: out of the solid (inside is f > 0)
-      out[real[r]].normal[a] = -(double(fv[6 * r + 2 * a]) - fv[6 * r + 2 * a + 1]) / (2 * kProbe * g.h[a]);
+  for (size_t r = 0; r < real.size(); ++r) {
+    Crossing& c = out[real[r]];
+    for (int a = 0; a < 3; ++a) c.normal[a] = -gradient(fv[6 * r + 2 * a], fv[6 * r + 2 * a + 1], kProbe * g.h[a]);
+    if (!(std::abs(c.normal[0]) + std::abs(c.normal[1]) + std::abs(c.normal[2]) > 0))
+      c.normal[c.axis] = c.lower_inside ? 1 : -1;  // no gradient at all: the edge's own direction
+  }
   return true;
 }
 

@@ -119,3 +119,21 @@ TEST_CASE("dual contouring: a gyroid too fine for the grid still gives a closed 
       CHECK(t.degenerate_triangles == 0);
     }
 }
+
+TEST_CASE("dual contouring: a function undefined outside its solid still gives the solid") {
+  // sqrt of a negative number is NaN outside the ball of radius 0.8: outside, as for every mesher;
+  // crossings toward those samples bisect, and their normals use the side that is defined.
+  const double r = std::sqrt(0.63);
+  FnField ball([](double x, double y, double z) { return std::sqrt(0.64 - x * x - y * y - z * z) - 0.1; });
+  for (double tolerance : {0.0, mesh::MesherOptions::kDefaultTolerance}) {
+    mesh::ImplicitJob j = job(ball, 32);
+    j.mesher.tolerance = tolerance;
+    mesh::DualContourStats st;
+    mesh::Mesh m = closed_dc(j, st);
+    double h = 2.0 / 32, worst = 0;
+    for (const auto& p : m.positions) worst = std::max(worst, std::abs(std::hypot(p[0], p[1], p[2]) - r));
+    INFO("tolerance " << tolerance << ": " << m.triangles.size() << " triangles, worst " << worst / h << " of a cell");
+    CHECK(worst < 0.1 * h);
+    CHECK(m.triangles.size() > 1000);
+  }
+}

@@ -92,6 +92,7 @@ unsigned face_flips(const Lattice& g, const int cell[3], unsigned inside) {
     return t;
   }();
   unsigned flips = 0;
+  const CellSigns& here = signs_of(inside, 0);
   for (unsigned faces = ambiguous[inside]; faces; faces &= faces - 1) {
     int f = __builtin_ctz(faces), axis = f / 2, side = f % 2;
     int on_face[2];
@@ -99,7 +100,6 @@ unsigned face_flips(const Lattice& g, const int cell[3], unsigned inside) {
     int other[3] = {cell[0], cell[1], cell[2]};
     other[axis] += side ? 1 : -1;
     if (other[axis] < -1 || other[axis] >= g.n[axis]) continue;
-    const CellSigns& here = signs_of(inside, 0);
     const CellSigns& there = signs_of(inside_mask(g, other), 0);
     int p = on_face[0] ^ (1 << axis), q = on_face[1] ^ (1 << axis);  // the same samples, seen from there
     if (here.in_group[on_face[0]] == here.in_group[on_face[1]] && there.in_group[p] == there.in_group[q])

@@ -17,6 +17,16 @@ uint64_t node_key(int level, const int u[3]) {
          static_cast<uint64_t>(u[2]);
 }
 
+// The node's position: u of node_key.
+void node_cells(uint64_t key, int u[3]) {
+  u[0] = static_cast<int>(key >> 38 & 0x7ffff), u[1] = static_cast<int>(key >> 19 & 0x7ffff), u[2] = static_cast<int>(key & 0x7ffff);
+}
+
+// The root-mean-square distance from a solution to the QEF's planes.
+double rms(const Qef& q, const Qef::Solution& s) {
+  return std::sqrt(s.error / static_cast<double>(std::max<size_t>(q.count(), 1)));
+}
+
 struct Node {
   Qef qef;
   double x[3] = {0, 0, 0};
@@ -119,19 +129,19 @@ class Merger {
 
  private:
   static uint64_t parent(uint64_t key) {
-    int level = static_cast<int>(key >> 57);
-    int u[3] = {static_cast<int>(key >> 38 & 0x7ffff) / 2, static_cast<int>(key >> 19 & 0x7ffff) / 2,
-                static_cast<int>(key & 0x7ffff) / 2};
-    return node_key(level + 1, u);
+    int u[3];
+    node_cells(key, u);
+    for (int& c : u) c /= 2;
+    return node_key(static_cast<int>(key >> 57) + 1, u);
   }
 
   Node collapse(uint64_t key, int level) const {
     Node out;
-    int u[3] = {static_cast<int>(key >> 38 & 0x7ffff), static_cast<int>(key >> 19 & 0x7ffff), static_cast<int>(key & 0x7ffff)};
-    int size = 1 << level, c0[3], s0[3];
+    int u[3], size = 1 << level, c0[3];  // c0: the first cell, whose lowest corner is the node's
+    node_cells(key, u);
     for (int a = 0; a < 3; ++a) {
       if ((u[a] + 1) * size > g_.n[a] + 1) return out;  // past the last cell
-      c0[a] = u[a] * size - 1, s0[a] = c0[a];
+      c0[a] = u[a] * size - 1;
     }
     const Level& below = levels_[static_cast<size_t>(level - 1)];
     for (int c = 0; c < 8; ++c) {
@@ -141,9 +151,9 @@ class Merger {
       if (!child->merged) return out;
       out.qef.merge(child->qef);
     }
-    if (!topology_safe(g_, s0, size / 2)) return out;
+    if (!topology_safe(g_, c0, size / 2)) return out;
     Qef::Solution s = solve_in_cells(g_, out.qef, c0, size);
-    out.rms = std::sqrt(s.error / static_cast<double>(std::max<size_t>(out.qef.count(), 1)));
+    out.rms = rms(out.qef, s);
     if (out.rms > tol_ * h_) return out;
     std::copy(s.x, s.x + 3, out.x);
     out.merged = true;
@@ -181,14 +191,14 @@ MergedVertices merge_cells(const Lattice& g, const std::vector<SheetVertex>& she
     bool own = level == 0 && !n.merged;
     auto [vertex, fresh] = id.try_emplace(own ? (uint64_t{1} << 63 | i) : key, static_cast<uint32_t>(out.positions.size()));
     if (fresh) {
-      double x[3] = {n.x[0], n.x[1], n.x[2]}, rms = n.rms;
+      double x[3] = {n.x[0], n.x[1], n.x[2]}, distance = n.rms;
       if (level == 0) {  // a cell of the uniform grid: its vertex now
         Qef::Solution sol = solve_in_cells(g, s.qef, s.cell, 1);
         std::copy(sol.x, sol.x + 3, x);
-        rms = std::sqrt(sol.error / static_cast<double>(std::max<size_t>(s.qef.count(), 1)));
+        distance = rms(s.qef, sol);
       }
       out.positions.push_back({x[0], x[1], x[2]});
-      out.rms.push_back(rms);
+      out.rms.push_back(distance);
       out.merged += level > 0;
     }
     out.of_sheet.push_back(vertex);

@@ -264,13 +264,7 @@ void polygons(const std::vector<Crossing>& xs, const std::vector<std::array<uint
 
 // The lattice sampled (pruned by the field's bounds when it has them) and its Hermite data.
 bool sample_crossings(const ImplicitJob& job, Lattice& g, std::vector<Crossing>& xs, backends::RuntimeError& err) {
-  std::unique_ptr<BrickMap> bricks;
-  if (job.prune && job.field->can_bound()) {
-    std::array<std::vector<float>, 3> axis;
-    for (int a = 0; a < 3; ++a)
-      for (int i = 0; i < g.n[a]; ++i) axis[static_cast<size_t>(a)].push_back(static_cast<float>(g.coord(a, i)));
-    bricks = std::make_unique<BrickMap>(*job.field, axis, job.threads);
-  }
+  std::unique_ptr<BrickMap> bricks = job_bricks(job);
   PruneStats st = bricks ? bricks->stats() : PruneStats{};
   st.points = static_cast<size_t>(g.n[0]) * g.n[1] * g.n[2];
   std::vector<uint8_t> decided;

@@ -520,6 +520,17 @@ bool march(const Grid& g, const Field& f, const BrickMap* bricks, int threads, M
 
 }  // namespace
 
+std::unique_ptr<BrickMap> job_bricks(const ImplicitJob& job) {
+  if (!job.prune || !job.field->can_bound()) return nullptr;
+  std::array<std::vector<float>, 3> axis;
+  for (size_t a = 0; a < 3; ++a) {
+    int n = std::max(1, job.cells[a]);
+    double lo = job.box[2 * a], h = (job.box[2 * a + 1] - lo) / n;
+    for (int i = 0; i < n; ++i) axis[a].push_back(static_cast<float>(lo + (i + 0.5) * h));
+  }
+  return std::make_unique<BrickMap>(*job.field, axis, job.threads);
+}
+
 bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backends::RuntimeError& err) {
   out = Mesh{};
   if (!job.field) {
@@ -535,13 +546,7 @@ bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backends::RuntimeErr
     g.lo[a] = job.box[2 * a];
     g.h[a] = (job.box[2 * a + 1] - job.box[2 * a]) / n[a];
   }
-  std::unique_ptr<BrickMap> bricks;
-  if (job.prune && job.field->can_bound()) {
-    std::array<std::vector<float>, 3> axis;
-    for (int a = 0; a < 3; ++a)
-      for (int i = 0; i < n[a]; ++i) axis[a].push_back(static_cast<float>(g.coord(a, i)));
-    bricks = std::make_unique<BrickMap>(*job.field, axis, job.threads);
-  }
+  std::unique_ptr<BrickMap> bricks = job_bricks(job);
   PruneStats st = bricks ? bricks->stats() : PruneStats{};
   st.points = static_cast<size_t>(g.nx) * g.ny * g.nz;
   std::vector<Edge> edges;

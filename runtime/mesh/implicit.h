@@ -7,6 +7,7 @@
 // by regula falsi on the real function; normals come from its gradient. All evaluation goes through
 // Kernel batches; the octree of interval bounds (octree.h) spares the samples far from the surface.
 #include <array>
+#include <memory>
 
 #include "backends/backend.h"
 #include "runtime/mesh/field.h"
@@ -37,6 +38,10 @@ struct ImplicitJob {
   PruneStats* stats = nullptr;  // filled when given (and added to prune_totals() in any case)
   MesherOptions mesher;
 };
+
+// The brick map of the job's sample grid (null when job.prune is off or the field cannot bound
+// itself): both meshers sample the same cell-centred points.
+std::unique_ptr<BrickMap> job_bricks(const ImplicitJob& job);
 
 // Polygonizes by marching tetrahedra; returns false with a runtime error from the kernel (budget, bounds).
 bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backends::RuntimeError& err);

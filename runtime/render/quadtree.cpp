@@ -1,6 +1,6 @@
 // The quadtree renderer: batched interval evaluation of each region's children, tape
-// simplification per region, dense batches for the open tiles of the last level. Every region writes only its own pixels, so the picture is the
-// same bits for any thread count and schedule.
+// simplification per region, dense batches for the open tiles of the last level. Every region
+// writes only its own pixels, so the picture is the same bits for any thread count and schedule.
 #include "runtime/render/quadtree.h"
 
 #include <algorithm>

@@ -73,39 +73,15 @@ bool diagonal_pair(unsigned inside, int axis, int side, int pair[2]) {
   return n == 2 && __builtin_popcount(static_cast<unsigned>(on_face[0] ^ on_face[1])) == 2;
 }
 
-unsigned inside_mask(const Lattice& g, const int cell[3]) {
-  unsigned m = 0;
-  for (int c = 0; c < 8; ++c) m |= static_cast<unsigned>(g.inside(cell[0] + (c & 1), cell[1] + ((c >> 1) & 1), cell[2] + ((c >> 2) & 1))) << c;
-  return m;
-}
-
-// The faces of `cell` decided the other way. A face whose two inside corners lie on a diagonal, and
-// are joined through the rest of the cell on both of its sides, is crossed by a tube of outside too
-// thin for the grid: cut the usual way, the two cells' sheets would meet along both of the face's
-// segments and share an edge four triangles use. Flipped, the tube is closed off on each side instead.
-unsigned face_flips(const Lattice& g, const int cell[3], unsigned inside) {
-  static const auto ambiguous = [] {  // per sign pattern, bit 2 * axis + side for each ambiguous face
-    std::array<uint8_t, 256> t{};
+const std::array<uint8_t, 256>& ambiguous_table() {
+  static const auto t = [] {
+    std::array<uint8_t, 256> out{};
     int pair[2];
     for (unsigned m = 0; m < 256; ++m)
-      for (int f = 0; f < 6; ++f) t[m] |= static_cast<uint8_t>(diagonal_pair(m, f / 2, f % 2, pair) << f);
-    return t;
+      for (int f = 0; f < 6; ++f) out[m] |= static_cast<uint8_t>(diagonal_pair(m, f / 2, f % 2, pair) << f);
+    return out;
   }();
-  unsigned flips = 0;
-  const CellSigns& here = signs_of(inside, 0);
-  for (unsigned faces = ambiguous[inside]; faces; faces &= faces - 1) {
-    int f = __builtin_ctz(faces), axis = f / 2, side = f % 2;
-    int on_face[2];
-    diagonal_pair(inside, axis, side, on_face);
-    int other[3] = {cell[0], cell[1], cell[2]};
-    other[axis] += side ? 1 : -1;
-    if (other[axis] < -1 || other[axis] >= g.n[axis]) continue;
-    const CellSigns& there = signs_of(inside_mask(g, other), 0);
-    int p = on_face[0] ^ (1 << axis), q = on_face[1] ^ (1 << axis);  // the same samples, seen from there
-    if (here.in_group[on_face[0]] == here.in_group[on_face[1]] && there.in_group[p] == there.in_group[q])
-      flips |= 1u << (2 * axis + side);
-  }
-  return flips;
+  return t;
 }
 
 }  // namespace
@@ -115,11 +91,18 @@ bool ambiguous_face(unsigned inside, int axis, int side) {
   return diagonal_pair(inside, axis, side, pair);
 }
 
-// The sheet of `cell` that the crossing between corners `in` and `out` lies on: 0 .. 63.
-int sheet_of(const Lattice& g, const int cell[3], int in, int out) {
-  unsigned inside = inside_mask(g, cell);
-  const CellSigns& s = signs_of(inside, face_flips(g, cell, inside));
-  return s.in_group[in] * 8 + s.out_group[out];
+uint8_t ambiguous_faces(unsigned inside) { return ambiguous_table()[inside]; }
+
+// A face whose two inside corners lie on a diagonal, and are joined through the rest of the cell on
+// both of its sides, is crossed by a tube of outside too thin for the grid: cut the usual way, the
+// two cells' sheets would meet along both of the face's segments and share an edge four triangles
+// use. Flipped, the tube is closed off on each side instead.
+bool face_flipped(unsigned inside, unsigned there, int axis, int side) {
+  int on_face[2];
+  diagonal_pair(inside, axis, side, on_face);
+  int p = on_face[0] ^ (1 << axis), q = on_face[1] ^ (1 << axis);  // the same samples, seen from there
+  const CellSigns &a = signs_of(inside, 0), &b = signs_of(there, 0);
+  return a.in_group[on_face[0]] == a.in_group[on_face[1]] && b.in_group[p] == b.in_group[q];
 }
 
 }  // namespace fscript::mesh

@@ -8,26 +8,19 @@
 
 namespace fscript::mesh {
 
-// Samples at cell centres, indices -1 .. n per axis (the outer layer is padding, always outside).
+// The sample lattice's geometry: samples at cell centres, indices -1 .. n per axis (the outer layer
+// is padding, always outside). Dual cells are the cubes between samples c .. c + 1, c from -1 to
+// n - 1 per axis. The samples themselves live in blocks (dc_block.h).
 struct Lattice {
   int n[3];
   double lo[3], h[3];
-  std::vector<float> f;  // the field at every sample, padding included (-1 there)
 
   double coord(int a, int i) const { return lo[a] + (i + 0.5) * h[a]; }
   double end(int a) const { return lo[a] + n[a] * h[a]; }
-  size_t at(int i, int j, int k) const {
-    return (static_cast<size_t>(k + 1) * (n[1] + 2) + static_cast<size_t>(j + 1)) * (n[0] + 2) + static_cast<size_t>(i + 1);
-  }
-  bool inside(int i, int j, int k) const { return f[at(i, j, k)] > 0; }
   bool padding(const int s[3]) const {
     for (int a = 0; a < 3; ++a)
       if (s[a] < 0 || s[a] >= n[a]) return true;
     return false;
-  }
-  // Dual cells: the cube between samples c .. c + 1, c from -1 to n - 1 per axis.
-  size_t cell(const int c[3]) const {
-    return (static_cast<size_t>(c[2] + 1) * (n[1] + 1) + static_cast<size_t>(c[1] + 1)) * (n[0] + 1) + static_cast<size_t>(c[0] + 1);
   }
 };
 
@@ -41,8 +34,18 @@ const CellSigns& signs_of(unsigned inside, unsigned flips);
 
 // Whether a face of the cube has its two inside corners on a diagonal.
 bool ambiguous_face(unsigned inside, int axis, int side);
+// Bit 2 * axis + side for each such face.
+uint8_t ambiguous_faces(unsigned inside);
 
-// The sheet of dual cell `cell` that the crossing between its corners `in` and `out` lies on: 0 .. 63.
-int sheet_of(const Lattice& g, const int cell[3], int in, int out);
+// Whether the ambiguous face (axis, side) of a cell with corners `inside` is decided the other way,
+// given the corners `there` of the cell across it (face_flips of the old whole-grid mesher).
+bool face_flipped(unsigned inside, unsigned there, int axis, int side);
+
+// The sheet (0 .. 63) of a cell with corners `inside` and face choices `flips` that the crossing
+// between its corners `in` and `out` lies on.
+inline int sheet_key(unsigned inside, unsigned flips, int in, int out) {
+  const CellSigns& s = signs_of(inside, flips);
+  return s.in_group[in] * 8 + s.out_group[out];
+}
 
 }  // namespace fscript::mesh

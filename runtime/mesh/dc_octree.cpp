@@ -1,5 +1,5 @@
-// The octree of merged dual cells, built bottom-up one level at a time over the cells that hold
-// surface, and each sheet's leaf found by climbing it.
+// The octree of merged dual cells: levels inside a block on dense arrays, then levels above the
+// blocks over a hash of the blocks that merged whole; each sheet's vertex is its topmost merged cell.
 #include "runtime/mesh/dc_octree.h"
 
 #include <algorithm>
@@ -10,54 +10,23 @@
 namespace fscript::mesh {
 namespace {
 
-// A node of level L covers dual cells u * 2^L .. (u + 1) * 2^L - 1 per axis, counted from the
-// lowest cell (-1): 19 bits per axis, the level above them.
-uint64_t node_key(int level, const int u[3]) {
-  return static_cast<uint64_t>(level) << 57 | static_cast<uint64_t>(u[0]) << 38 | static_cast<uint64_t>(u[1]) << 19 |
-         static_cast<uint64_t>(u[2]);
-}
-
-// The node's position: u of node_key.
-void node_cells(uint64_t key, int u[3]) {
-  u[0] = static_cast<int>(key >> 38 & 0x7ffff), u[1] = static_cast<int>(key >> 19 & 0x7ffff), u[2] = static_cast<int>(key & 0x7ffff);
-}
-
 // The root-mean-square distance from a solution to the QEF's planes.
 double rms(const Qef& q, const Qef::Solution& s) {
   return std::sqrt(s.error / static_cast<double>(std::max<size_t>(q.count(), 1)));
 }
 
-struct Node {
-  Qef qef;
-  double x[3] = {0, 0, 0};
-  double rms = 0;
-  bool merged = false;  // one vertex for the whole node; false: its cells keep their own
-};
-
-// One level's nodes in the order they were made (a deterministic order), found by key.
-struct Level {
-  FlatIndex index;
-  std::vector<uint64_t> keys;
-  std::vector<Node> nodes;
-  const Node* find(uint64_t key) const {
-    const uint32_t* i = index.find(key);
-    return i ? &nodes[*i] : nullptr;
-  }
-};
-
-// Whether the node's 27 samples (corners, edge and face midpoints, centre) allow one vertex: one
-// sheet, no ambiguous face, and every midpoint agreeing with a corner of the edge, face or body
-// it is the middle of.
-bool topology_safe(const Lattice& g, const int s0[3], int half) {
+// Whether a node whose lowest sample is s0 and whose side is 2 * half allows one vertex, from its 27
+// samples (corners, edge and face midpoints, centre): one sheet, no ambiguous face, and every
+// midpoint agreeing with a corner of the edge, face or body it is the middle of.
+template <class Inside>
+bool topology_safe(Inside inside, const int s0[3], int half) {
   bool in[3][3][3];
   for (int k = 0; k < 3; ++k)
     for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) in[k][j][i] = g.inside(s0[0] + i * half, s0[1] + j * half, s0[2] + k * half);
+      for (int i = 0; i < 3; ++i) in[k][j][i] = inside(s0[0] + i * half, s0[1] + j * half, s0[2] + k * half);
   unsigned corners = 0;
   for (int c = 0; c < 8; ++c) corners |= static_cast<unsigned>(in[c >> 2 & 1 ? 2 : 0][c >> 1 & 1 ? 2 : 0][c & 1 ? 2 : 0]) << c;
-  for (int axis = 0; axis < 3; ++axis)
-    for (int side = 0; side < 2; ++side)
-      if (ambiguous_face(corners, axis, side)) return false;
+  if (ambiguous_faces(corners)) return false;
   const CellSigns& cs = signs_of(corners, 0);
   if (cs.regions_in != 1 || cs.regions_out != 1) return false;
   for (int p = 0; p < 27; ++p) {
@@ -75,95 +44,132 @@ bool topology_safe(const Lattice& g, const int s0[3], int half) {
   return true;
 }
 
-class Merger {
- public:
-  Merger(const Lattice& g, double tolerance) : g_(g), tol_(tolerance) {
-    h_ = std::min({g.h[0], g.h[1], g.h[2]});
-  }
+enum class State : uint8_t { Empty, Merged, Kept };  // no surface; one vertex; its cells keep theirs
 
-  void leaves(const std::vector<SheetVertex>& sheets) {
-    levels_.emplace_back();
-    Level& l = levels_[0];
-    for (const SheetVertex& s : sheets) {
-      int u[3] = {s.cell[0] + 1, s.cell[1] + 1, s.cell[2] + 1};
-      uint64_t key = node_key(0, u);
-      auto [i, fresh] = l.index.try_emplace(key, static_cast<uint32_t>(l.nodes.size()));
-      if (!fresh) {
-        l.nodes[i].merged = false;  // a second sheet in the cell: it keeps its vertices
-        continue;
-      }
-      Node n;  // its vertex is solved only if no parent takes it (merge_cells)
-      n.merged = true;
-      n.qef = s.qef;
-      l.keys.push_back(key), l.nodes.push_back(n);
-    }
-  }
+struct Node {
+  Qef qef;
+  double x[3] = {0, 0, 0};
+  double rms = 0;
+  State state = State::Empty;
+};
 
-  // Level after level, every parent of the level below tries to merge; stops at a level where none does.
-  void grow() {
-    for (int level = 1; level < 19; ++level) {
-      Level next;
+// What a parent needs of a child: a cell of the block (a sheet's planes) or a node.
+struct Child {
+  State state;
+  const Qef* qef;
+};
+
+// A node of lattice cells c0 .. c0 + size - 1 per axis from its children: merged when every child
+// with surface is merged, the topology allows it and the vertex stays within the tolerance.
+template <class Inside, class ChildAt>
+Node collapse(const Lattice& g, Inside inside, ChildAt child, const int c0[3], int size, double limit) {
+  Node out;
+  bool any = false;
+  for (int c = 0; c < 8; ++c) {
+    Child n = child(c);
+    if (n.state == State::Empty) continue;  // no surface in it: all its samples have one sign
+    any = true;
+    if (n.state == State::Kept) out.state = State::Kept;
+    out.qef.merge(*n.qef);
+  }
+  if (!any) return Node{};
+  if (out.state == State::Kept) return out;
+  out.state = State::Kept;
+  for (int a = 0; a < 3; ++a)
+    if (c0[a] + size > g.n[a]) return out;  // past the last cell
+  if (!topology_safe(inside, c0, size / 2)) return out;
+  Qef::Solution s = solve_in_cells(g, out.qef, c0, size);
+  out.rms = rms(out.qef, s);
+  if (out.rms > limit) return out;
+  std::copy(s.x, s.x + 3, out.x);
+  out.state = State::Merged;
+  return out;
+}
+
+// The block's octree levels: level L has (kBlock >> L)^3 nodes.
+struct BlockTree {
+  std::vector<Node> level[kBlockLevels + 1];  // level 0 is the block's cells (leaf())
+  int built = 0;  // levels above this one merged nothing (not built)
+
+  static size_t index(int level, const int u[3]) {
+    size_t side = static_cast<size_t>(kBlock >> level);
+    return (static_cast<size_t>(u[2]) * side + static_cast<size_t>(u[1])) * side + static_cast<size_t>(u[0]);
+  }
+  // Level 0: the block's cells, as their sheets say (a vertex per sheet where there are several).
+  static Child leaf(const Block& b, size_t c) {
+    if (b.first[c] == kNone) return {State::Empty, nullptr};
+    const Sheet& s = b.sheets[b.first[c]];
+    return {s.next == kNone ? State::Merged : State::Kept, &s.qef};
+  }
+  void grow(const Lattice& g, const Block& b, double limit) {
+    auto inside = [&](int i, int j, int k) { return b.inside(i, j, k); };
+    for (int l = 1; l <= kBlockLevels; ++l) {
+      int side = kBlock >> l, size = 1 << l;
+      level[l].assign(static_cast<size_t>(side) * side * side, Node{});
       bool any = false;
-      for (uint64_t child : levels_.back().keys) {
-        uint64_t p = parent(child);
-        if (!next.index.try_emplace(p, static_cast<uint32_t>(next.nodes.size())).second) continue;
-        next.keys.push_back(p), next.nodes.push_back(collapse(p, level));
-        any = any || next.nodes.back().merged;
-      }
-      levels_.push_back(std::move(next));
+      for (int k = 0; k < side; ++k)
+        for (int j = 0; j < side; ++j)
+          for (int i = 0; i < side; ++i) {
+            int u[3] = {i, j, k}, c0[3] = {i * size, j * size, k * size}, cell[3];
+            for (int a = 0; a < 3; ++a) cell[a] = b.s0[a] + c0[a];
+            auto child = [&](int c) {
+              int v[3] = {2 * i + (c & 1), 2 * j + (c >> 1 & 1), 2 * k + (c >> 2 & 1)};
+              if (l == 1) return leaf(b, Block::cell(v[0], v[1], v[2]));
+              const Node& n = level[l - 1][index(l - 1, v)];
+              return Child{n.state, &n.qef};
+            };
+            Node& n = level[l][index(l, u)];
+            n = collapse(g, [&](int x, int y, int z) { return inside(x - b.s0[0], y - b.s0[1], z - b.s0[2]); }, child, cell,
+                         size, limit);
+            any = any || n.state == State::Merged;
+          }
+      built = l;
       if (!any) return;
     }
   }
-
-  // The topmost merged node above level-0 node `key` (itself when its parent did not merge).
-  std::pair<int, uint64_t> leaf(uint64_t key) const {
-    int level = 0;
-    for (uint64_t up = parent(key); level + 1 < static_cast<int>(levels_.size()); up = parent(up)) {
-      const Node* n = levels_[static_cast<size_t>(level + 1)].find(up);
-      if (!n || !n->merged) break;
-      key = up, ++level;
+  // The topmost merged level above cell c (0: the cell itself).
+  int top(const int c[3]) const {
+    int l = 0;
+    while (l < built) {
+      int u[3] = {c[0] >> (l + 1), c[1] >> (l + 1), c[2] >> (l + 1)};
+      if (level[l + 1][index(l + 1, u)].state != State::Merged) break;
+      ++l;
     }
-    return {level, key};
+    return l;
   }
-  const Node& node(int level, uint64_t key) const { return *levels_[static_cast<size_t>(level)].find(key); }
-
- private:
-  static uint64_t parent(uint64_t key) {
-    int u[3];
-    node_cells(key, u);
-    for (int& c : u) c /= 2;
-    return node_key(static_cast<int>(key >> 57) + 1, u);
-  }
-
-  Node collapse(uint64_t key, int level) const {
-    Node out;
-    int u[3], size = 1 << level, c0[3];  // c0: the first cell, whose lowest corner is the node's
-    node_cells(key, u);
-    for (int a = 0; a < 3; ++a) {
-      if ((u[a] + 1) * size > g_.n[a] + 1) return out;  // past the last cell
-      c0[a] = u[a] * size - 1;
-    }
-    const Level& below = levels_[static_cast<size_t>(level - 1)];
-    for (int c = 0; c < 8; ++c) {
-      int v[3] = {2 * u[0] + (c & 1), 2 * u[1] + (c >> 1 & 1), 2 * u[2] + (c >> 2 & 1)};
-      const Node* child = below.find(node_key(level - 1, v));
-      if (!child) continue;  // no surface in it: all its samples have one sign
-      if (!child->merged) return out;
-      out.qef.merge(child->qef);
-    }
-    if (!topology_safe(g_, c0, size / 2)) return out;
-    Qef::Solution s = solve_in_cells(g_, out.qef, c0, size);
-    out.rms = rms(out.qef, s);
-    if (out.rms > tol_ * h_) return out;
-    std::copy(s.x, s.x + 3, out.x);
-    out.merged = true;
-    return out;
-  }
-
-  const Lattice& g_;
-  double tol_, h_;
-  std::vector<Level> levels_;
 };
+
+// A node above the blocks: level L covers lattice cells u * 2^L - 1 .. (u + 1) * 2^L - 2 per axis.
+uint64_t node_key(int level, const int u[3]) {
+  return static_cast<uint64_t>(level) << 57 | static_cast<uint64_t>(u[0]) << 38 | static_cast<uint64_t>(u[1]) << 19 |
+         static_cast<uint64_t>(u[2]);
+}
+
+// One level above the blocks, its nodes in the order they were made, found by key.
+struct Level {
+  FlatIndex index;
+  std::vector<uint64_t> keys;
+  std::vector<Node> nodes;
+  const Node* find(uint64_t key) const {
+    const uint32_t* i = index.find(key);
+    return i ? &nodes[*i] : nullptr;
+  }
+  void add(uint64_t key, const Node& n) {
+    index.try_emplace(key, static_cast<uint32_t>(nodes.size()));
+    keys.push_back(key), nodes.push_back(n);
+  }
+};
+
+void node_position(uint64_t key, int u[3]) {
+  u[0] = static_cast<int>(key >> 38 & 0x7ffff), u[1] = static_cast<int>(key >> 19 & 0x7ffff), u[2] = static_cast<int>(key & 0x7ffff);
+}
+
+uint64_t parent(uint64_t key) {
+  int u[3];
+  node_position(key, u);
+  for (int& c : u) c /= 2;
+  return node_key(static_cast<int>(key >> 57) + 1, u);
+}
 
 }  // namespace
 
@@ -176,34 +182,97 @@ Qef::Solution solve_in_cells(const Lattice& g, const Qef& qef, const int c0[3], 
   return qef.solve(lo, hi);
 }
 
-MergedVertices merge_cells(const Lattice& g, const std::vector<SheetVertex>& sheets, double tolerance) {
-  MergedVertices out;
-  Merger m(g, tolerance);
-  m.leaves(sheets);
-  if (tolerance > 0) m.grow();
-  FlatIndex id(sheets.size());  // leaf node, or a sheet of a cell with several (bit 63)
-  for (size_t i = 0; i < sheets.size(); ++i) {
-    const SheetVertex& s = sheets[i];
-    int u[3] = {s.cell[0] + 1, s.cell[1] + 1, s.cell[2] + 1};
-    uint64_t cell = node_key(0, u);
-    auto [level, key] = m.leaf(cell);
-    const Node& n = m.node(level, key);
-    bool own = level == 0 && !n.merged;
-    auto [vertex, fresh] = id.try_emplace(own ? (uint64_t{1} << 63 | i) : key, static_cast<uint32_t>(out.positions.size()));
-    if (fresh) {
-      double x[3] = {n.x[0], n.x[1], n.x[2]}, distance = n.rms;
-      if (level == 0) {  // a cell of the uniform grid: its vertex now
-        Qef::Solution sol = solve_in_cells(g, s.qef, s.cell, 1);
-        std::copy(sol.x, sol.x + 3, x);
-        distance = rms(s.qef, sol);
+void merge_block(const Lattice& g, Block& b, double tolerance) {
+  thread_local BlockTree tree;
+  double limit = tolerance * std::min({g.h[0], g.h[1], g.h[2]});
+  tree.built = 0;
+  if (tolerance > 0) tree.grow(g, b, limit);
+  b.vertex.assign(b.sheets.size(), kNone);
+  b.positions.clear(), b.rms.clear(), b.merged = 0;
+  std::vector<uint32_t> node_vertex[kBlockLevels + 1];
+  for (int l = 1; l <= tree.built; ++l) node_vertex[l].assign(tree.level[l].size(), kNone);
+  for (size_t s = 0; s < b.sheets.size(); ++s) {
+    const Sheet& sh = b.sheets[s];
+    int c[3] = {static_cast<int>(sh.cell % kBlock), static_cast<int>(sh.cell / kBlock % kBlock), static_cast<int>(sh.cell / (kBlock * kBlock))};
+    int l = tree.top(c);
+    uint32_t* named = nullptr;
+    if (l > 0) {
+      int u[3] = {c[0] >> l, c[1] >> l, c[2] >> l};
+      named = &node_vertex[l][BlockTree::index(l, u)];
+      if (*named != kNone) {
+        b.vertex[s] = *named;
+        continue;
       }
-      out.positions.push_back({x[0], x[1], x[2]});
-      out.rms.push_back(distance);
-      out.merged += level > 0;
+      const Node& n = tree.level[l][BlockTree::index(l, u)];
+      b.positions.push_back({n.x[0], n.x[1], n.x[2]}), b.rms.push_back(n.rms), ++b.merged;
+    } else {  // a cell of the uniform grid: its vertex now
+      int cell[3] = {b.s0[0] + c[0], b.s0[1] + c[1], b.s0[2] + c[2]};
+      Qef::Solution sol = solve_in_cells(g, sh.qef, cell, 1);
+      b.positions.push_back({sol.x[0], sol.x[1], sol.x[2]}), b.rms.push_back(rms(sh.qef, sol));
     }
-    out.of_sheet.push_back(vertex);
+    b.vertex[s] = static_cast<uint32_t>(b.positions.size() - 1);
+    if (named) *named = b.vertex[s];
   }
-  return out;
+  b.root = tree.built == kBlockLevels && tree.level[kBlockLevels][0].state == State::Merged;
+  b.root_qef = b.root ? tree.level[kBlockLevels][0].qef : Qef{};
+}
+
+std::vector<int32_t> merge_blocks(const BlockGrid& grid, double tolerance, std::vector<BlockGroup>& groups) {
+  const Lattice& g = grid.lattice();
+  const std::vector<Block>& blocks = grid.blocks();
+  std::vector<int32_t> group(blocks.size(), -1);
+  groups.clear();
+  if (!(tolerance > 0)) return group;
+  double limit = tolerance * std::min({g.h[0], g.h[1], g.h[2]});
+  std::vector<Level> levels(1);
+  for (const Block& b : blocks)
+    if (!b.sheets.empty()) {
+      Node n;
+      n.state = b.root ? State::Merged : State::Kept;
+      n.qef = b.root_qef;
+      levels[0].add(node_key(kBlockLevels, b.b), n);
+    }
+  auto inside = [&](int i, int j, int k) { return grid.inside(i, j, k); };
+  for (int l = kBlockLevels + 1; l < 19; ++l) {
+    const Level& below = levels.back();
+    Level next;
+    bool any = false;
+    for (uint64_t child : below.keys) {
+      uint64_t p = parent(child);
+      if (next.find(p)) continue;
+      int u[3], c0[3], size = 1 << l;
+      node_position(p, u);
+      for (int a = 0; a < 3; ++a) c0[a] = u[a] * size - 1;
+      auto child_at = [&](int c) {
+        int v[3] = {2 * u[0] + (c & 1), 2 * u[1] + (c >> 1 & 1), 2 * u[2] + (c >> 2 & 1)};
+        const Node* n = below.find(node_key(l - 1, v));
+        return n ? Child{n->state, &n->qef} : Child{State::Empty, nullptr};
+      };
+      next.add(p, collapse(g, inside, child_at, c0, size, limit));
+      any = any || next.nodes.back().state == State::Merged;
+    }
+    levels.push_back(std::move(next));
+    if (!any) break;
+  }
+  FlatIndex named(16);
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    if (!blocks[i].root) continue;
+    uint64_t key = node_key(kBlockLevels, blocks[i].b), top = key;
+    for (size_t l = 1; l < levels.size(); ++l) {
+      key = parent(key);
+      const Node* n = levels[l].find(key);
+      if (!n || n->state != State::Merged) break;
+      top = key;
+    }
+    if (top == node_key(kBlockLevels, blocks[i].b)) continue;  // the block's own root
+    auto [at, fresh] = named.try_emplace(top, static_cast<uint32_t>(groups.size()));
+    if (fresh) {
+      const Node& n = *levels[static_cast<size_t>((top >> 57) - kBlockLevels)].find(top);
+      groups.push_back(BlockGroup{top, {n.x[0], n.x[1], n.x[2]}, n.rms});
+    }
+    group[i] = static_cast<int32_t>(at);
+  }
+  return group;
 }
 
 }  // namespace fscript::mesh

@@ -51,7 +51,8 @@ Qef::Solution Qef::solve(const double lo[3], const double hi[3]) const {
   Eigen::Matrix3d ata = matrix(ata_);
   Eigen::Vector3d atb(atb_[0], atb_[1], atb_[2]);
   Eigen::Vector3d c = Eigen::Vector3d(mass_[0], mass_[1], mass_[2]) / static_cast<double>(count_);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(ata);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(ata);  // closed form: several times faster than the iterative solver on 3x3
   const Eigen::Vector3d& lambda = eig.eigenvalues();  // ascending
   const Eigen::Matrix3d& vec = eig.eigenvectors();
   int usable = 0;

@@ -1,0 +1,351 @@
+// One block of dual contouring: its samples (pruned by the brick map), sign-change edges, Hermite data
+// (batched evaluation), and the sheets of its cells; and the grid of blocks that answers for signs.
+#include "runtime/mesh/dc_block.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fscript::mesh {
+
+namespace {
+
+constexpr int kRefineSteps = 4;    // regula falsi steps per crossing, at most
+constexpr double kSettled = 1e-4;  // and fewer once it moves less than this share of the edge
+// The central differences' step, in cells: a crossing closer than this to a sharp edge gets a normal
+// blended from both faces (the QEF then misplaces the edge's vertices), so small, but large enough
+// that float rounding of the samples stays far below the differences.
+constexpr double kProbe = 0.01;
+constexpr size_t kSamples = static_cast<size_t>(kBlockSamples) * kBlockSamples * kBlockSamples;
+constexpr size_t kCells = static_cast<size_t>(kBlock) * kBlock * kBlock;
+
+// Scratch arrays for one batch of points, reused per thread.
+struct Batch {
+  std::vector<float> x, y, z, out;
+  void clear() { x.clear(), y.clear(), z.clear(); }
+  void add(double px, double py, double pz) { x.push_back(float(px)), y.push_back(float(py)), z.push_back(float(pz)); }
+  bool run(const Field& f, backends::RuntimeError& err) {
+    out.resize(x.size());
+    EvalTimer timed;
+    return x.empty() || f.eval(x.data(), y.data(), z.data(), x.size(), out.data(), err);
+  }
+};
+
+Batch& scratch() {
+  thread_local Batch b;
+  return b;
+}
+
+// Every sign-change edge between the block's samples, by lower sample then axis: each row of
+// samples is a bit mask of its inside samples, compared with its neighbours along x, y and z.
+void find_crossings(Block& b) {
+  b.xs.clear();
+  uint32_t rows[kBlockSamples][kBlockSamples];  // [k][j]: bit i where sample (i, j, k) is inside
+  for (int k = 0; k <= b.m[2]; ++k)
+    for (int j = 0; j <= b.m[1]; ++j) {
+      const float* f = &b.f[Block::sample(0, j, k)];
+      uint32_t r = 0;
+      for (int i = 0; i <= b.m[0]; ++i) r |= static_cast<uint32_t>(f[i] > 0) << i;
+      rows[k][j] = r;
+    }
+  const uint32_t along_x = (1u << b.m[0]) - 1;
+  for (int k = 0; k <= b.m[2]; ++k)
+    for (int j = 0; j <= b.m[1]; ++j) {
+      uint32_t r = rows[k][j], change[3] = {(r ^ (r >> 1)) & along_x, j < b.m[1] ? r ^ rows[k][j + 1] : 0,
+                                            k < b.m[2] ? r ^ rows[k + 1][j] : 0};
+      for (uint32_t any = change[0] | change[1] | change[2]; any; any &= any - 1) {
+        int i = __builtin_ctz(any);
+        for (int a = 0; a < 3; ++a)
+          if (change[a] >> i & 1) b.xs.push_back(Crossing{{i, j, k}, a, (r >> i & 1) != 0, {0, 0, 0}, {0, 0, 0}});
+      }
+    }
+}
+
+// Whether the block counts sample l as its own (in the figures): the samples on its upper faces
+// are the next block's, or padding.
+bool owned(const int l[3]) { return l[0] < kBlock && l[1] < kBlock && l[2] < kBlock; }
+
+// The values at the ends of the crossing edges that lie in decided bricks. An end whose value
+// contradicts its brick's bound makes the block unsound (the caller samples densely instead).
+bool exact_ends(const Field& f, const Lattice& g, Block& b, backends::RuntimeError& err) {
+  std::vector<size_t> where;
+  Batch& pts = scratch();
+  pts.clear();
+  for (const Crossing& c : b.xs)
+    for (int end = 0; end < 2; ++end) {
+      int l[3] = {c.l[0], c.l[1], c.l[2]};
+      l[c.axis] += end;
+      size_t at = Block::sample(l[0], l[1], l[2]);
+      if (b.decided[at] != 1) continue;
+      b.decided[at] = 2;
+      where.push_back(at);
+      b.evaluated += owned(l);
+      pts.add(g.coord(0, b.s0[0] + l[0]), g.coord(1, b.s0[1] + l[1]), g.coord(2, b.s0[2] + l[2]));
+    }
+  if (!pts.run(f, err)) return false;
+  for (size_t q = 0; q < where.size(); ++q) {
+    b.sound = b.sound && (pts.out[q] > 0) == (b.f[where[q]] > 0);
+    b.f[where[q]] = pts.out[q];
+  }
+  return true;
+}
+
+// One component of the gradient at a point on the surface (f = 0 there) from its probes `step`
+// either side: central where both are defined, one-sided where one is, 0 where neither.
+double gradient(float plus, float minus, double step) {
+  bool p = std::isfinite(plus), m = std::isfinite(minus);
+  if (p && m) return (double(plus) - minus) / (2 * step);
+  return p ? plus / step : m ? -minus / step : 0.0;
+}
+
+// The cells (in the block, possibly -1) around a crossing's edge, in the order that winds its quad
+// around +axis.
+void cells_of(const Crossing& c, int out[4][3]) {
+  int b = (c.axis + 1) % 3, d = (c.axis + 2) % 3;
+  const int step[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int q = 0; q < 4; ++q) {
+    for (int a = 0; a < 3; ++a) out[q][a] = c.l[a];
+    out[q][b] -= step[q][0], out[q][d] -= step[q][1];
+  }
+}
+
+}  // namespace
+
+BlockGrid::BlockGrid(const Lattice& g, const BrickMap* bricks) : g_(g) {
+  for (int a = 0; a < 3; ++a) nb_[a] = (g.n[a] + 1 + kBlock - 1) / kBlock;  // n + 1 cells per axis
+  slot_.assign(static_cast<size_t>(nb_[0]) * nb_[1] * nb_[2], kAllOutside);
+  size_t at = 0;
+  for (int k = 0; k < nb_[2]; ++k)
+    for (int j = 0; j < nb_[1]; ++j)
+      for (int i = 0; i < nb_[0]; ++i, ++at) {
+        Block b;
+        b.b[0] = i, b.b[1] = j, b.b[2] = k;
+        bool in = false, out = false;
+        int lo[3], hi[3];  // its samples' lattice range, and the bricks that hold them
+        for (int a = 0; a < 3; ++a) {
+          b.s0[a] = b.b[a] * kBlock - 1;
+          b.m[a] = std::min(kBlock, g.n[a] + 1 - b.b[a] * kBlock);
+          out = out || b.s0[a] < 0 || b.s0[a] + b.m[a] >= g.n[a];
+          lo[a] = std::max(0, b.s0[a]) / BrickMap::kBrick, hi[a] = std::min(g.n[a] - 1, b.s0[a] + b.m[a]) / BrickMap::kBrick;
+        }
+        bool open = !bricks;
+        for (int bk = lo[2]; bk <= hi[2] && !open; ++bk)
+          for (int bj = lo[1]; bj <= hi[1] && !open; ++bj)
+            for (int bi = lo[0]; bi <= hi[0] && !open; ++bi) {
+              BrickClass c = bricks->at(bi, bj, bk);
+              open = c == BrickClass::Open;
+              (c == BrickClass::Inside ? in : out) = true;
+            }
+        if (!open && !(in && out)) {
+          slot_[at] = in ? kAllInside : kAllOutside;
+          continue;
+        }
+        slot_[at] = static_cast<int32_t>(blocks_.size());
+        blocks_.push_back(std::move(b));
+      }
+}
+
+const Block* BlockGrid::at(int bi, int bj, int bk) const {
+  if (bi < 0 || bj < 0 || bk < 0 || bi >= nb_[0] || bj >= nb_[1] || bk >= nb_[2]) return nullptr;
+  int32_t s = slot_[(static_cast<size_t>(bk) * nb_[1] + static_cast<size_t>(bj)) * nb_[0] + static_cast<size_t>(bi)];
+  return s >= 0 ? &blocks_[static_cast<size_t>(s)] : nullptr;
+}
+
+bool BlockGrid::inside(int i, int j, int k) const {
+  int s[3] = {i, j, k}, b[3], l[3];
+  if (g_.padding(s)) return false;
+  for (int a = 0; a < 3; ++a) {  // a sample on a block face: the lower block's, or the last block's
+    b[a] = std::min((s[a] + 1) / kBlock, nb_[a] - 1);
+    l[a] = s[a] + 1 - b[a] * kBlock;
+  }
+  int32_t slot = slot_[(static_cast<size_t>(b[2]) * nb_[1] + static_cast<size_t>(b[1])) * nb_[0] + static_cast<size_t>(b[0])];
+  if (slot < 0) return slot == kAllInside;
+  return blocks_[static_cast<size_t>(slot)].inside(l[0], l[1], l[2]);
+}
+
+unsigned BlockGrid::mask(const int c[3]) const {
+  unsigned m = 0;
+  for (int q = 0; q < 8; ++q) m |= static_cast<unsigned>(inside(c[0] + (q & 1), c[1] + (q >> 1 & 1), c[2] + (q >> 2 & 1))) << q;
+  return m;
+}
+
+uint32_t Block::sheet(size_t c, int in, int out) const {
+  int key = sheet_key(mask[c], flips[c], in, out);
+  uint32_t s = first[c];
+  while (s != kNone && sheets[s].key != key) s = sheets[s].next;
+  return s;
+}
+
+bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Block& b, backends::RuntimeError& err) {
+  constexpr int B = BrickMap::kBrick;
+  b.f.assign(kSamples, -1.0f);  // the padding's value
+  b.decided.assign(kSamples, 0);
+  b.evaluated = 0;
+  b.sound = true;
+  Batch& pts = scratch();
+  pts.clear();
+  std::vector<size_t> where;
+  for (int k = 0; k <= b.m[2]; ++k)
+    for (int j = 0; j <= b.m[1]; ++j) {
+      int sj = b.s0[1] + j, sk = b.s0[2] + k;
+      if (sj < 0 || sj >= g.n[1] || sk < 0 || sk >= g.n[2]) continue;
+      float y = float(g.coord(1, sj)), z = float(g.coord(2, sk));
+      int i = b.s0[0] < 0 ? 1 : 0, end = std::min(b.m[0], g.n[0] - 1 - b.s0[0]);
+      while (i <= end) {  // a brick's run of the row at a time
+        int si = b.s0[0] + i, run_end = std::min(end, i + B - 1 - si % B);
+        BrickClass c = bricks ? bricks->at(si / B, sj / B, sk / B) : BrickClass::Open;
+        size_t at = Block::sample(i, j, k);
+        if (c == BrickClass::Open) {
+          for (int q = i; q <= run_end; ++q, ++at) {
+            where.push_back(at);
+            pts.x.push_back(float(g.coord(0, b.s0[0] + q))), pts.y.push_back(y), pts.z.push_back(z);
+            b.evaluated += q < kBlock && j < kBlock && k < kBlock;
+          }
+        } else {
+          std::fill_n(b.f.begin() + static_cast<std::ptrdiff_t>(at), run_end - i + 1, c == BrickClass::Inside ? 1.0f : -1.0f);
+          std::fill_n(b.decided.begin() + static_cast<std::ptrdiff_t>(at), run_end - i + 1, uint8_t{1});
+        }
+        i = run_end + 1;
+      }
+    }
+  if (!pts.run(f, err)) return false;
+  for (size_t q = 0; q < where.size(); ++q) b.f[where[q]] = pts.out[q];
+  find_crossings(b);
+  return exact_ends(f, g, b, err);
+}
+
+bool hermite(const Field& f, const Lattice& g, Block& b, backends::RuntimeError& err) {
+  std::vector<size_t> real;
+  std::vector<double> lo_t, hi_t, lo_f, hi_f;  // bracket along the edge (t in [0, 1]) and f there
+  for (size_t e = 0; e < b.xs.size(); ++e) {
+    Crossing& c = b.xs[e];
+    int a = c.axis, s[3], t[3];
+    for (int k = 0; k < 3; ++k) s[k] = t[k] = b.s0[k] + c.l[k];
+    ++t[a];
+    for (int k = 0; k < 3; ++k) c.p[k] = g.coord(k, s[k]);
+    if (g.padding(s) || g.padding(t)) {  // the box face, facing out of the solid
+      bool upper_pad = g.padding(t);
+      c.p[a] = upper_pad ? g.end(a) : g.lo[a];
+      c.normal[a] = upper_pad ? 1 : -1;
+      continue;
+    }
+    real.push_back(e);
+    size_t at = Block::sample(c.l[0], c.l[1], c.l[2]);
+    lo_t.push_back(0), hi_t.push_back(1), lo_f.push_back(b.f[at]);
+    hi_f.push_back(b.f[at + (a == 0 ? 1 : a == 1 ? kBlockSamples : static_cast<size_t>(kBlockSamples) * kBlockSamples)]);
+  }
+  auto point = [&](size_t r, double t, double out[3]) {
+    const Crossing& c = b.xs[real[r]];
+    std::copy(c.p, c.p + 3, out);
+    out[c.axis] += t * g.h[c.axis];
+  };
+  auto false_position = [&](size_t r) {  // where the chord through the bracket's ends crosses zero
+    double d = lo_f[r] - hi_f[r];  // NaN or infinite where the function is undefined: bisect instead
+    return d != 0 && std::isfinite(d) ? lo_t[r] + (hi_t[r] - lo_t[r]) * lo_f[r] / d : 0.5 * (lo_t[r] + hi_t[r]);
+  };
+  Batch& pts = scratch();
+  std::vector<double> t(real.size());
+  std::vector<size_t> active(real.size());
+  for (size_t r = 0; r < real.size(); ++r) active[r] = r;
+  for (int step = 0; step < kRefineSteps && !active.empty(); ++step) {
+    pts.clear();
+    for (size_t r : active) {
+      double p[3];
+      t[r] = false_position(r), point(r, t[r], p);
+      pts.add(p[0], p[1], p[2]);
+    }
+    if (!pts.run(f, err)) return false;
+    size_t kept = 0;
+    for (size_t q = 0; q < active.size(); ++q) {
+      size_t r = active[q];
+      double v = pts.out[q];
+      bool same_as_lo = (v > 0) == (lo_f[r] > 0);
+      (same_as_lo ? lo_t[r] : hi_t[r]) = t[r];
+      (same_as_lo ? lo_f[r] : hi_f[r]) = v;
+      // Settled: the chord's next step would move the crossing by less than kSettled of the edge.
+      double d = std::abs(lo_f[r] - hi_f[r]);
+      if (!(std::isfinite(d) && std::abs(v) * (hi_t[r] - lo_t[r]) <= kSettled * d)) active[kept++] = r;
+    }
+    active.resize(kept);
+  }
+  pts.clear();
+  for (size_t r = 0; r < real.size(); ++r) {
+    Crossing& c = b.xs[real[r]];
+    point(r, std::clamp(false_position(r), 0.0, 1.0), c.p);
+    for (int a = 0; a < 3; ++a)
+      for (int sgn : {1, -1}) {
+        double q[3] = {c.p[0], c.p[1], c.p[2]};
+        q[a] += sgn * kProbe * g.h[a];
+        pts.add(q[0], q[1], q[2]);
+      }
+  }
+  if (!pts.run(f, err)) return false;
+  for (size_t r = 0; r < real.size(); ++r) {
+    Crossing& c = b.xs[real[r]];
+    for (int a = 0; a < 3; ++a) c.normal[a] = -gradient(pts.out[6 * r + 2 * a], pts.out[6 * r + 2 * a + 1], kProbe * g.h[a]);
+    if (!(std::abs(c.normal[0]) + std::abs(c.normal[1]) + std::abs(c.normal[2]) > 0))
+      c.normal[c.axis] = c.lower_inside ? 1 : -1;  // no gradient at all: the edge's own direction
+  }
+  return true;
+}
+
+namespace {
+
+unsigned cell_mask(const Block& b, int i, int j, int k) {
+  unsigned m = 0;
+  for (int q = 0; q < 8; ++q) m |= static_cast<unsigned>(b.inside(i + (q & 1), j + (q >> 1 & 1), k + (q >> 2 & 1))) << q;
+  return m;
+}
+
+// A cell's inside corners and the faces decided the other way (dc_cells.h), looking across the
+// block's faces through the grid.
+void cell_signs(const BlockGrid& grid, Block& b, const int l[3], size_t c) {
+  const Lattice& g = grid.lattice();
+  unsigned mask = cell_mask(b, l[0], l[1], l[2]), flips = 0;
+  for (unsigned faces = ambiguous_faces(mask); faces; faces &= faces - 1) {
+    int face = __builtin_ctz(faces), axis = face / 2, side = face % 2;
+    int o[3] = {l[0], l[1], l[2]};
+    o[axis] += side ? 1 : -1;
+    int cell[3] = {b.s0[0] + o[0], b.s0[1] + o[1], b.s0[2] + o[2]};
+    if (cell[axis] < -1 || cell[axis] >= g.n[axis]) continue;
+    bool here = o[axis] >= 0 && o[axis] < b.m[axis];
+    unsigned there = here ? cell_mask(b, o[0], o[1], o[2]) : grid.mask(cell);
+    if (face_flipped(mask, there, axis, side)) flips |= 1u << face;
+  }
+  b.mask[c] = static_cast<uint8_t>(mask), b.flips[c] = static_cast<uint8_t>(flips);
+}
+
+}  // namespace
+
+void cell_sheets(const BlockGrid& grid, Block& b) {
+  b.mask.assign(kCells, 0);  // filled for the cells with surface
+  b.flips.assign(kCells, 0);
+  b.first.assign(kCells, kNone);
+  b.sheets.clear();
+  b.ids.clear();
+  for (const Crossing& c : b.xs) {
+    int cells[4][3], inside[3] = {c.l[0], c.l[1], c.l[2]};
+    if (!c.lower_inside) ++inside[c.axis];
+    cells_of(c, cells);
+    std::array<uint32_t, 4> id{kNone, kNone, kNone, kNone};
+    for (int q = 0; q < 4; ++q) {
+      const int* l = cells[q];
+      bool here = true;
+      for (int a = 0; a < 3; ++a) here = here && l[a] >= 0 && l[a] < b.m[a];
+      if (!here) continue;
+      size_t cell = Block::cell(l[0], l[1], l[2]);
+      if (b.first[cell] == kNone) cell_signs(grid, b, l, cell);
+      int in = (inside[0] - l[0]) | (inside[1] - l[1]) << 1 | (inside[2] - l[2]) << 2;
+      uint32_t s = b.sheet(cell, in, in ^ (1 << c.axis));
+      if (s == kNone) {
+        s = static_cast<uint32_t>(b.sheets.size());
+        b.sheets.push_back(Sheet{static_cast<uint32_t>(cell), b.first[cell], sheet_key(b.mask[cell], b.flips[cell], in, in ^ (1 << c.axis)), Qef{}});
+        b.first[cell] = s;
+      }
+      b.sheets[s].qef.add(c.p, c.normal);
+      id[static_cast<size_t>(q)] = s;
+    }
+    b.ids.push_back(id);
+  }
+}
+
+}  // namespace fscript::mesh

@@ -1,0 +1,102 @@
+#pragma once
+// Dual contouring block by block: kBlock^3 dual cells with their (kBlock + 1)^3 samples, so each step
+// works on small dense arrays that stay in cache, only the blocks the surface may cross are kept,
+// and blocks run on any thread (dual_contour.cpp joins them in a fixed order: the same bytes).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "backends/backend.h"
+#include "runtime/mesh/dc_cells.h"
+#include "runtime/mesh/field.h"
+#include "runtime/mesh/octree.h"
+#include "runtime/mesh/qef.h"
+
+namespace fscript::mesh {
+
+constexpr int kBlockLevels = 4;                 // octree levels inside a block
+constexpr int kBlock = 1 << kBlockLevels;       // dual cells per block side
+constexpr int kBlockSamples = kBlock + 1;       // samples per block side (faces shared with neighbours)
+constexpr uint32_t kNone = ~uint32_t{0};
+
+// A sign-change edge between two samples of a block, with its Hermite data.
+struct Crossing {
+  int l[3];  // the edge's lower sample, in the block
+  int axis;
+  bool lower_inside;
+  double p[3], normal[3];
+};
+
+// One sheet of surface in a dual cell (manifold dual contouring), with the planes of its crossings.
+struct Sheet {
+  uint32_t cell;  // in the block
+  uint32_t next;  // the cell's next sheet, or kNone
+  int key;        // sheet_key: which sheet of the cell
+  Qef qef;
+};
+
+struct Block {
+  int b[3];   // the block's position among blocks
+  int s0[3];  // the lattice sample (from -1) of its sample 0, the lowest corner of its cell 0
+  int m[3];   // its cells per axis: kBlock, fewer at the lattice's end
+  std::vector<float> f;           // samples, x fastest
+  std::vector<uint8_t> decided;   // 1: sign from the brick map, value not evaluated; 2: evaluated since
+  std::vector<Crossing> xs;       // on every edge between the block's samples
+  std::vector<uint8_t> mask, flips;  // per cell: its inside corners, its faces decided the other way
+  std::vector<uint32_t> first;       // per cell: its first sheet, or kNone
+  std::vector<Sheet> sheets;
+  std::vector<std::array<uint32_t, 4>> ids;  // per crossing: its cells' sheets here (kNone: another block's)
+  // Vertices (dc_octree.h): each sheet's block vertex, and their positions and plane distances.
+  std::vector<uint32_t> vertex;
+  std::vector<std::array<double, 3>> positions;
+  std::vector<double> rms;
+  size_t merged = 0;        // of those, merged cells
+  bool root = false;        // one merged cell holds every sheet: it may merge with other blocks
+  Qef root_qef;
+  std::vector<uint32_t> out;  // per sheet: its vertex in the output mesh
+  size_t evaluated = 0;
+  bool sound = true;  // no evaluated sample contradicted its brick's bound
+
+  static size_t sample(int i, int j, int k) {
+    return (static_cast<size_t>(k) * kBlockSamples + static_cast<size_t>(j)) * kBlockSamples + static_cast<size_t>(i);
+  }
+  static size_t cell(int i, int j, int k) {
+    return (static_cast<size_t>(k) * kBlock + static_cast<size_t>(j)) * kBlock + static_cast<size_t>(i);
+  }
+  bool inside(int i, int j, int k) const { return f[sample(i, j, k)] > 0; }
+  // The sheet of cell c (in the block) that holds the crossing between its corners in and out.
+  uint32_t sheet(size_t c, int in, int out) const;
+};
+
+// Every block of a lattice: the ones the surface may cross are kept, the others are known to be all
+// inside or all outside.
+class BlockGrid {
+ public:
+  BlockGrid(const Lattice& g, const BrickMap* bricks);
+  const Lattice& lattice() const { return g_; }
+  std::vector<Block>& blocks() { return blocks_; }
+  const std::vector<Block>& blocks() const { return blocks_; }
+  // The block at position b, or nullptr where none is kept.
+  const Block* at(int bi, int bj, int bk) const;
+  // Whether lattice sample s (from -1 per axis) is inside; the padding is not.
+  bool inside(int i, int j, int k) const;
+  // The inside corners of dual cell c.
+  unsigned mask(const int c[3]) const;
+
+ private:
+  static constexpr int32_t kAllInside = -1, kAllOutside = -2;
+  Lattice g_;
+  int nb_[3];
+  std::vector<int32_t> slot_;  // per block: its index in blocks_, or kAllInside / kAllOutside
+  std::vector<Block> blocks_;  // in the order of their positions
+};
+
+// Samples the block (open bricks evaluated, decided ones signed), finds its sign-change edges and
+// evaluates the decided samples at their ends (so regula falsi starts from the dense lattice's values).
+bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Block& b, backends::RuntimeError& err);
+// Crossing points by regula falsi and normals from the gradient; box faces where an end is padding.
+bool hermite(const Field& f, const Lattice& g, Block& b, backends::RuntimeError& err);
+// The cells' signs and face choices, and the sheets of the crossings with their planes.
+void cell_sheets(const BlockGrid& grid, Block& b);
+
+}  // namespace fscript::mesh

@@ -39,7 +39,8 @@ Batch& scratch() {
 // samples is a bit mask of its inside samples, compared with its neighbours along x, y and z.
 void find_crossings(Block& b) {
   b.xs.clear();
-  uint32_t rows[kBlockSamples][kBlockSamples];  // [k][j]: bit i where sample (i, j, k) is inside
+  auto& rows = b.rows;
+  std::fill(&rows[0][0], &rows[0][0] + kBlockSamples * kBlockSamples, 0u);
   for (int k = 0; k <= b.m[2]; ++k)
     for (int j = 0; j <= b.m[1]; ++j) {
       const float* f = &b.f[Block::sample(0, j, k)];
@@ -55,7 +56,8 @@ void find_crossings(Block& b) {
       for (uint32_t any = change[0] | change[1] | change[2]; any; any &= any - 1) {
         int i = __builtin_ctz(any);
         for (int a = 0; a < 3; ++a)
-          if (change[a] >> i & 1) b.xs.push_back(Crossing{{i, j, k}, a, (r >> i & 1) != 0, {0, 0, 0}, {0, 0, 0}});
+          if (change[a] >> i & 1)
+            b.xs.push_back(Crossing{{uint8_t(i), uint8_t(j), uint8_t(k)}, uint8_t(a), (r >> i & 1) != 0});
       }
     }
 }
@@ -210,33 +212,38 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
   if (!pts.run(f, err)) return false;
   for (size_t q = 0; q < where.size(); ++q) b.f[where[q]] = pts.out[q];
   find_crossings(b);
-  return exact_ends(f, g, b, err);
+  bool ok = exact_ends(f, g, b, err);
+  b.decided = {};
+  return ok;
 }
 
 bool hermite(const Field& f, const Lattice& g, Block& b, backends::RuntimeError& err) {
   std::vector<size_t> real;
   std::vector<double> lo_t, hi_t, lo_f, hi_f;  // bracket along the edge (t in [0, 1]) and f there
+  std::vector<std::array<double, 3>> at(b.xs.size());  // the edge's lower end, then its crossing
+  b.planes.assign(b.xs.size(), Plane{});
   for (size_t e = 0; e < b.xs.size(); ++e) {
-    Crossing& c = b.xs[e];
+    const Crossing& c = b.xs[e];
     int a = c.axis, s[3], t[3];
-    for (int k = 0; k < 3; ++k) s[k] = t[k] = b.s0[k] + c.l[k];
+    for (int k = 0; k < 3; ++k) s[k] = t[k] = b.s0[k] + c.l[k], at[e][static_cast<size_t>(k)] = g.coord(k, s[k]);
     ++t[a];
-    for (int k = 0; k < 3; ++k) c.p[k] = g.coord(k, s[k]);
     if (g.padding(s) || g.padding(t)) {  // the box face, facing out of the solid
       bool upper_pad = g.padding(t);
-      c.p[a] = upper_pad ? g.end(a) : g.lo[a];
-      c.normal[a] = upper_pad ? 1 : -1;
+      double normal[3] = {0, 0, 0};
+      at[e][static_cast<size_t>(a)] = upper_pad ? g.end(a) : g.lo[a];
+      normal[a] = upper_pad ? 1 : -1;
+      b.planes[e] = Qef::plane(at[e].data(), normal);
       continue;
     }
     real.push_back(e);
-    size_t at = Block::sample(c.l[0], c.l[1], c.l[2]);
-    lo_t.push_back(0), hi_t.push_back(1), lo_f.push_back(b.f[at]);
-    hi_f.push_back(b.f[at + (a == 0 ? 1 : a == 1 ? kBlockSamples : static_cast<size_t>(kBlockSamples) * kBlockSamples)]);
+    size_t q = Block::sample(c.l[0], c.l[1], c.l[2]);
+    lo_t.push_back(0), hi_t.push_back(1), lo_f.push_back(b.f[q]);
+    hi_f.push_back(b.f[q + (a == 0 ? 1 : a == 1 ? kBlockSamples : static_cast<size_t>(kBlockSamples) * kBlockSamples)]);
   }
   auto point = [&](size_t r, double t, double out[3]) {
-    const Crossing& c = b.xs[real[r]];
-    std::copy(c.p, c.p + 3, out);
-    out[c.axis] += t * g.h[c.axis];
+    size_t e = real[r];
+    std::copy(at[e].begin(), at[e].end(), out);
+    out[b.xs[e].axis] += t * g.h[b.xs[e].axis];
   };
   auto false_position = [&](size_t r) {  // where the chord through the bracket's ends crosses zero
     double d = lo_f[r] - hi_f[r];  // NaN or infinite where the function is undefined: bisect instead
@@ -269,22 +276,26 @@ bool hermite(const Field& f, const Lattice& g, Block& b, backends::RuntimeError&
   }
   pts.clear();
   for (size_t r = 0; r < real.size(); ++r) {
-    Crossing& c = b.xs[real[r]];
-    point(r, std::clamp(false_position(r), 0.0, 1.0), c.p);
+    double p[3];
+    point(r, std::clamp(false_position(r), 0.0, 1.0), p);
+    std::copy(p, p + 3, at[real[r]].begin());
     for (int a = 0; a < 3; ++a)
       for (int sgn : {1, -1}) {
-        double q[3] = {c.p[0], c.p[1], c.p[2]};
+        double q[3] = {p[0], p[1], p[2]};
         q[a] += sgn * kProbe * g.h[a];
         pts.add(q[0], q[1], q[2]);
       }
   }
   if (!pts.run(f, err)) return false;
   for (size_t r = 0; r < real.size(); ++r) {
-    Crossing& c = b.xs[real[r]];
-    for (int a = 0; a < 3; ++a) c.normal[a] = -gradient(pts.out[6 * r + 2 * a], pts.out[6 * r + 2 * a + 1], kProbe * g.h[a]);
-    if (!(std::abs(c.normal[0]) + std::abs(c.normal[1]) + std::abs(c.normal[2]) > 0))
-      c.normal[c.axis] = c.lower_inside ? 1 : -1;  // no gradient at all: the edge's own direction
+    const Crossing& c = b.xs[real[r]];
+    double normal[3];
+    for (int a = 0; a < 3; ++a) normal[a] = -gradient(pts.out[6 * r + 2 * a], pts.out[6 * r + 2 * a + 1], kProbe * g.h[a]);
+    if (!(std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0))
+      normal[c.axis] = c.lower_inside ? 1 : -1;  // no gradient at all: the edge's own direction
+    b.planes[real[r]] = Qef::plane(at[real[r]].data(), normal);
   }
+  b.f = {};  // the samples' signs stay in rows
   return true;
 }
 
@@ -322,7 +333,10 @@ void cell_sheets(const BlockGrid& grid, Block& b) {
   b.first.assign(kCells, kNone);
   b.sheets.clear();
   b.ids.clear();
-  for (const Crossing& c : b.xs) {
+  b.sheets.reserve(b.xs.size());
+  b.ids.reserve(b.xs.size());
+  for (size_t e = 0; e < b.xs.size(); ++e) {
+    const Crossing& c = b.xs[e];
     int cells[4][3], inside[3] = {c.l[0], c.l[1], c.l[2]};
     if (!c.lower_inside) ++inside[c.axis];
     cells_of(c, cells);
@@ -341,11 +355,12 @@ void cell_sheets(const BlockGrid& grid, Block& b) {
         b.sheets.push_back(Sheet{static_cast<uint32_t>(cell), b.first[cell], sheet_key(b.mask[cell], b.flips[cell], in, in ^ (1 << c.axis)), Qef{}});
         b.first[cell] = s;
       }
-      b.sheets[s].qef.add(c.p, c.normal);
+      b.sheets[s].qef.add(b.planes[e]);
       id[static_cast<size_t>(q)] = s;
     }
     b.ids.push_back(id);
   }
+  b.planes = {};
 }
 
 }  // namespace fscript::mesh

@@ -19,12 +19,11 @@ constexpr int kBlock = 1 << kBlockLevels;       // dual cells per block side
 constexpr int kBlockSamples = kBlock + 1;       // samples per block side (faces shared with neighbours)
 constexpr uint32_t kNone = ~uint32_t{0};
 
-// A sign-change edge between two samples of a block, with its Hermite data.
+// A sign-change edge between two samples of a block.
 struct Crossing {
-  int l[3];  // the edge's lower sample, in the block
-  int axis;
+  uint8_t l[3];  // the edge's lower sample, in the block
+  uint8_t axis;
   bool lower_inside;
-  double p[3], normal[3];
 };
 
 // One sheet of surface in a dual cell (manifold dual contouring), with the planes of its crossings.
@@ -39,10 +38,12 @@ struct Block {
   int b[3];   // the block's position among blocks
   int s0[3];  // the lattice sample (from -1) of its sample 0, the lowest corner of its cell 0
   int m[3];   // its cells per axis: kBlock, fewer at the lattice's end
-  std::vector<float> f;           // samples, x fastest
-  std::vector<uint8_t> decided;   // 1: sign from the brick map, value not evaluated; 2: evaluated since
+  std::vector<float> f;           // samples, x fastest (until the Hermite data is done)
+  std::vector<uint8_t> decided;   // 1: sign from the brick map, value not evaluated (while sampling)
+  uint32_t rows[kBlockSamples][kBlockSamples];  // [k][j]: bit i where sample (i, j, k) is inside
   std::vector<Crossing> xs;       // on every edge between the block's samples
-  std::vector<uint8_t> mask, flips;  // per cell: its inside corners, its faces decided the other way
+  std::vector<Plane> planes;      // their Hermite data: the tangent plane at the crossing (until the sheets are done)
+  std::vector<uint8_t> mask, flips;  // per cell with surface: its inside corners, its faces decided the other way
   std::vector<uint32_t> first;       // per cell: its first sheet, or kNone
   std::vector<Sheet> sheets;
   std::vector<std::array<uint32_t, 4>> ids;  // per crossing: its cells' sheets here (kNone: another block's)
@@ -63,7 +64,7 @@ struct Block {
   static size_t cell(int i, int j, int k) {
     return (static_cast<size_t>(k) * kBlock + static_cast<size_t>(j)) * kBlock + static_cast<size_t>(i);
   }
-  bool inside(int i, int j, int k) const { return f[sample(i, j, k)] > 0; }
+  bool inside(int i, int j, int k) const { return rows[k][j] >> i & 1; }
   // The sheet of cell c (in the block) that holds the crossing between its corners in and out.
   uint32_t sheet(size_t c, int in, int out) const;
 };

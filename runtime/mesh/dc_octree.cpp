@@ -86,14 +86,26 @@ Node collapse(const Lattice& g, Inside inside, ChildAt child, const int c0[3], i
   return out;
 }
 
-// The block's octree levels: level L has (kBlock >> L)^3 nodes.
+// The block's octree levels above its cells: the nodes with surface, found through a dense slot
+// array per level ((kBlock >> L)^3 positions), so empty space costs nothing.
 struct BlockTree {
-  std::vector<Node> level[kBlockLevels + 1];  // level 0 is the block's cells (leaf())
+  static constexpr uint16_t kEmpty = 0xffff;
+  std::vector<uint16_t> slot[kBlockLevels + 1];  // per position: its node, or kEmpty
+  std::vector<Node> nodes[kBlockLevels + 1];     // in the order their first sheet names them
+  std::vector<uint32_t> where[kBlockLevels + 1];  // each node's position
   int built = 0;  // levels above this one merged nothing (not built)
 
   static size_t index(int level, const int u[3]) {
     size_t side = static_cast<size_t>(kBlock >> level);
     return (static_cast<size_t>(u[2]) * side + static_cast<size_t>(u[1])) * side + static_cast<size_t>(u[0]);
+  }
+  static void position(int level, size_t at, int u[3]) {
+    int side = kBlock >> level;
+    u[0] = static_cast<int>(at % side), u[1] = static_cast<int>(at / side % side), u[2] = static_cast<int>(at / side / side);
+  }
+  const Node* at(int level, const int u[3]) const {
+    uint16_t s = slot[level][index(level, u)];
+    return s == kEmpty ? nullptr : &nodes[level][s];
   }
   // Level 0: the block's cells, as their sheets say (a vertex per sheet where there are several).
   static Child leaf(const Block& b, size_t c) {
@@ -101,28 +113,50 @@ struct BlockTree {
     const Sheet& s = b.sheets[b.first[c]];
     return {s.next == kNone ? State::Merged : State::Kept, &s.qef};
   }
+  // The level's nodes: the parents of the level below's (of the cells with sheets for level 1).
+  void make_level(const Block& b, int l) {
+    int side = kBlock >> l;
+    slot[l].assign(static_cast<size_t>(side) * side * side, kEmpty);
+    nodes[l].clear(), where[l].clear();
+    auto add = [&](const int child[3]) {
+      int u[3] = {child[0] / 2, child[1] / 2, child[2] / 2};
+      size_t at = index(l, u);
+      if (slot[l][at] != kEmpty) return;
+      slot[l][at] = static_cast<uint16_t>(nodes[l].size());
+      nodes[l].emplace_back(), where[l].push_back(static_cast<uint32_t>(at));
+    };
+    if (l == 1) {
+      for (const Sheet& s : b.sheets) {
+        int c[3] = {static_cast<int>(s.cell % kBlock), static_cast<int>(s.cell / kBlock % kBlock), static_cast<int>(s.cell / (kBlock * kBlock))};
+        add(c);
+      }
+      return;
+    }
+    for (uint32_t at : where[l - 1]) {
+      int u[3];
+      position(l - 1, at, u);
+      add(u);
+    }
+  }
   void grow(const Lattice& g, const Block& b, double limit) {
-    auto inside = [&](int i, int j, int k) { return b.inside(i, j, k); };
+    auto inside = [&](int x, int y, int z) { return b.inside(x - b.s0[0], y - b.s0[1], z - b.s0[2]); };
     for (int l = 1; l <= kBlockLevels; ++l) {
-      int side = kBlock >> l, size = 1 << l;
-      level[l].assign(static_cast<size_t>(side) * side * side, Node{});
+      make_level(b, l);
+      int size = 1 << l;
       bool any = false;
-      for (int k = 0; k < side; ++k)
-        for (int j = 0; j < side; ++j)
-          for (int i = 0; i < side; ++i) {
-            int u[3] = {i, j, k}, c0[3] = {i * size, j * size, k * size}, cell[3];
-            for (int a = 0; a < 3; ++a) cell[a] = b.s0[a] + c0[a];
-            auto child = [&](int c) {
-              int v[3] = {2 * i + (c & 1), 2 * j + (c >> 1 & 1), 2 * k + (c >> 2 & 1)};
-              if (l == 1) return leaf(b, Block::cell(v[0], v[1], v[2]));
-              const Node& n = level[l - 1][index(l - 1, v)];
-              return Child{n.state, &n.qef};
-            };
-            Node& n = level[l][index(l, u)];
-            n = collapse(g, [&](int x, int y, int z) { return inside(x - b.s0[0], y - b.s0[1], z - b.s0[2]); }, child, cell,
-                         size, limit);
-            any = any || n.state == State::Merged;
-          }
+      for (size_t q = 0; q < nodes[l].size(); ++q) {
+        int u[3], cell[3];
+        position(l, where[l][q], u);
+        for (int a = 0; a < 3; ++a) cell[a] = b.s0[a] + u[a] * size;
+        auto child = [&](int c) {
+          int v[3] = {2 * u[0] + (c & 1), 2 * u[1] + (c >> 1 & 1), 2 * u[2] + (c >> 2 & 1)};
+          if (l == 1) return leaf(b, Block::cell(v[0], v[1], v[2]));
+          const Node* n = at(l - 1, v);
+          return n ? Child{n->state, &n->qef} : Child{State::Empty, nullptr};
+        };
+        nodes[l][q] = collapse(g, inside, child, cell, size, limit);
+        any = any || nodes[l][q].state == State::Merged;
+      }
       built = l;
       if (!any) return;
     }
@@ -132,7 +166,8 @@ struct BlockTree {
     int l = 0;
     while (l < built) {
       int u[3] = {c[0] >> (l + 1), c[1] >> (l + 1), c[2] >> (l + 1)};
-      if (level[l + 1][index(l + 1, u)].state != State::Merged) break;
+      const Node* n = at(l + 1, u);
+      if (!n || n->state != State::Merged) break;
       ++l;
     }
     return l;
@@ -190,7 +225,7 @@ void merge_block(const Lattice& g, Block& b, double tolerance) {
   b.vertex.assign(b.sheets.size(), kNone);
   b.positions.clear(), b.rms.clear(), b.merged = 0;
   std::vector<uint32_t> node_vertex[kBlockLevels + 1];
-  for (int l = 1; l <= tree.built; ++l) node_vertex[l].assign(tree.level[l].size(), kNone);
+  for (int l = 1; l <= tree.built; ++l) node_vertex[l].assign(tree.nodes[l].size(), kNone);
   for (size_t s = 0; s < b.sheets.size(); ++s) {
     const Sheet& sh = b.sheets[s];
     int c[3] = {static_cast<int>(sh.cell % kBlock), static_cast<int>(sh.cell / kBlock % kBlock), static_cast<int>(sh.cell / (kBlock * kBlock))};
@@ -198,12 +233,13 @@ void merge_block(const Lattice& g, Block& b, double tolerance) {
     uint32_t* named = nullptr;
     if (l > 0) {
       int u[3] = {c[0] >> l, c[1] >> l, c[2] >> l};
-      named = &node_vertex[l][BlockTree::index(l, u)];
+      uint16_t q = tree.slot[l][BlockTree::index(l, u)];
+      named = &node_vertex[l][q];
       if (*named != kNone) {
         b.vertex[s] = *named;
         continue;
       }
-      const Node& n = tree.level[l][BlockTree::index(l, u)];
+      const Node& n = tree.nodes[l][q];
       b.positions.push_back({n.x[0], n.x[1], n.x[2]}), b.rms.push_back(n.rms), ++b.merged;
     } else {  // a cell of the uniform grid: its vertex now
       int cell[3] = {b.s0[0] + c[0], b.s0[1] + c[1], b.s0[2] + c[2]};
@@ -213,8 +249,8 @@ void merge_block(const Lattice& g, Block& b, double tolerance) {
     b.vertex[s] = static_cast<uint32_t>(b.positions.size() - 1);
     if (named) *named = b.vertex[s];
   }
-  b.root = tree.built == kBlockLevels && tree.level[kBlockLevels][0].state == State::Merged;
-  b.root_qef = b.root ? tree.level[kBlockLevels][0].qef : Qef{};
+  b.root = tree.built == kBlockLevels && tree.nodes[kBlockLevels].size() == 1 && tree.nodes[kBlockLevels][0].state == State::Merged;
+  b.root_qef = b.root ? tree.nodes[kBlockLevels][0].qef : Qef{};
 }
 
 std::vector<int32_t> merge_blocks(const BlockGrid& grid, double tolerance, std::vector<BlockGroup>& groups) {

@@ -8,15 +8,23 @@
 
 namespace fscript::mesh {
 
-void Qef::add(const double p[3], const double n[3]) {
+Plane Qef::plane(const double p[3], const double n[3]) {
+  Plane q;
   double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (!(len > 0) || !std::isfinite(len)) return;
-  double u[3] = {n[0] / len, n[1] / len, n[2] / len};
-  double d = u[0] * p[0] + u[1] * p[1] + u[2] * p[2];
-  const int pair[6][2] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
-  for (int k = 0; k < 6; ++k) ata_[k] += u[pair[k][0]] * u[pair[k][1]];
-  for (int a = 0; a < 3; ++a) atb_[a] += u[a] * d, mass_[a] += p[a];
-  btb_ += d * d;
+  if (!(len > 0) || !std::isfinite(len)) return q;
+  for (int a = 0; a < 3; ++a) q.u[a] = n[a] / len, q.p[a] = p[a];
+  q.d = q.u[0] * p[0] + q.u[1] * p[1] + q.u[2] * p[2];
+  q.valid = true;
+  return q;
+}
+
+void Qef::add(const Plane& q) {
+  if (!q.valid) return;
+  const double* u = q.u;
+  ata_[0] += u[0] * u[0], ata_[1] += u[0] * u[1], ata_[2] += u[0] * u[2];
+  ata_[3] += u[1] * u[1], ata_[4] += u[1] * u[2], ata_[5] += u[2] * u[2];
+  for (int a = 0; a < 3; ++a) atb_[a] += u[a] * q.d, mass_[a] += q.p[a];
+  btb_ += q.d * q.d;
   ++count_;
 }
 

@@ -6,10 +6,18 @@
 
 namespace fscript::mesh {
 
+// A tangent plane ready to add: unit normal u, offset d = u.p, and the point p on it.
+struct Plane {
+  double u[3], d, p[3];
+  bool valid = false;  // false when the normal was zero or not finite (the plane adds nothing)
+};
+
 class Qef {
  public:
   // The plane through p with normal n (any length but zero: normalised here).
-  void add(const double p[3], const double n[3]);
+  static Plane plane(const double p[3], const double n[3]);
+  void add(const Plane& q);
+  void add(const double p[3], const double n[3]) { add(plane(p, n)); }
   // The planes of both (a merged cell's QEF is the sum of its children's).
   void merge(const Qef& o);
   size_t count() const { return count_; }

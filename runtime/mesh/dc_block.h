@@ -43,7 +43,10 @@ struct Block {
   uint32_t rows[kBlockSamples][kBlockSamples];  // [k][j]: bit i where sample (i, j, k) is inside
   std::vector<Crossing> xs;       // on every edge between the block's samples
   std::vector<Plane> planes;      // their Hermite data: the tangent plane at the crossing (until the sheets are done)
-  std::vector<uint8_t> mask, flips;  // per cell with surface: its inside corners, its faces decided the other way
+  // Per cell with surface: its inside corners, its faces decided the other way (bits 0-5) and
+  // kOneSheet where the whole cell is one sheet (its sheets need no key then).
+  std::vector<uint8_t> mask, flips;
+  static constexpr uint8_t kOneSheet = 0x80;
   std::vector<uint32_t> first;       // per cell: its first sheet, or kNone
   std::vector<Sheet> sheets;
   std::vector<std::array<uint32_t, 4>> ids;  // per crossing: its cells' sheets here (kNone: another block's)
@@ -65,8 +68,10 @@ struct Block {
     return (static_cast<size_t>(k) * kBlock + static_cast<size_t>(j)) * kBlock + static_cast<size_t>(i);
   }
   bool inside(int i, int j, int k) const { return rows[k][j] >> i & 1; }
-  // The sheet of cell c (in the block) that holds the crossing between its corners in and out.
+  // The sheet of cell c (in the block) that holds the crossing between its corners in and out,
+  // or kNone; and the key that names it in the cell.
   uint32_t sheet(size_t c, int in, int out) const;
+  int key(size_t c, int in, int out) const;
 };
 
 // Every block of a lattice: the ones the surface may cross are kept, the others are known to be all

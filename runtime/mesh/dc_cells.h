@@ -44,7 +44,7 @@ bool face_flipped(unsigned inside, unsigned there, int axis, int side);
 // The sheet (0 .. 63) of a cell with corners `inside` and face choices `flips` that the crossing
 // between its corners `in` and `out` lies on.
 inline int sheet_key(unsigned inside, unsigned flips, int in, int out) {
-  const CellSigns& s = signs_of(inside, flips);
+  const CellSigns& s = signs_of(inside, flips & 63);
   return s.in_group[in] * 8 + s.out_group[out];
 }
 

@@ -5,9 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -168,40 +165,21 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
     g.h[a] = (job.box[static_cast<size_t>(2 * a + 1)] - g.lo[a]) / g.n[a];
   }
   std::unique_ptr<BlockGrid> grid;
-  auto T0 = std::chrono::steady_clock::now();
-  auto lap = [&](const char* what) { auto now = std::chrono::steady_clock::now(); if (getenv("DC_TIME")) fprintf(stderr, "%s %.1f ms\n", what, std::chrono::duration<double, std::milli>(now - T0).count()); T0 = now; };
   if (!sample_blocks(job, g, grid, err)) return false;
-  lap("sample");
   std::vector<Block>& blocks = grid->blocks();
   bool ok = for_blocks(blocks.size(), job.threads, [&](size_t i, backends::RuntimeError& e) {
     Block& b = blocks[i];
     if (b.xs.empty()) return true;
     if (!hermite(*job.field, g, b, e)) return false;
-    return true;
-  }, err);
-  lap("hermite");
-  ok = ok && for_blocks(blocks.size(), job.threads, [&](size_t i, backends::RuntimeError&) {
-    Block& b = blocks[i];
-    if (b.xs.empty()) return true;
     cell_sheets(*grid, b);
-    return true;
-  }, err);
-  lap("sheets");
-  ok = ok && for_blocks(blocks.size(), job.threads, [&](size_t i, backends::RuntimeError&) {
-    Block& b = blocks[i];
-    if (b.xs.empty()) return true;
     merge_block(g, b, job.mesher.tolerance);
     return true;
   }, err);
-  lap("merge");
   if (!ok) return false;
   std::vector<BlockGroup> groups;
   std::vector<int32_t> group = merge_blocks(*grid, job.mesher.tolerance, groups);
-  lap("merge_blocks");
   number_vertices(*grid, group, groups, out, stats);
-  lap("number");
   for (const Block& b : blocks) polygons(*grid, b, out);
-  lap("polygons");
   stats.triangles = out.triangles.size();
   // No vertex normals: a vertex on a sharp edge has no one normal, and its faces' mean would shade
   // both sides wrong; without them every output is shaded flat (glTF and VRML97 viewers too).

@@ -228,7 +228,13 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
   for (size_t q = 0; q < where.size(); ++q) b.f[where[q]] = pts.out[q];
   find_crossings(b);
   bool ok = exact_ends(f, g, b, err);
-  b.decided = {};
+  const size_t stride[3] = {1, kBlockSamples, static_cast<size_t>(kBlockSamples) * kBlockSamples};
+  b.ends.resize(b.xs.size());
+  for (size_t e = 0; e < b.xs.size(); ++e) {
+    size_t q = Block::sample(b.xs[e].l[0], b.xs[e].l[1], b.xs[e].l[2]);
+    b.ends[e] = {b.f[q], b.f[q + stride[b.xs[e].axis]]};
+  }
+  b.decided = {}, b.f = {};  // the signs stay in rows
   return ok;
 }
 
@@ -294,9 +300,7 @@ bool hermite(const Field& f, const Lattice& g, Block& b, backends::RuntimeError&
       continue;
     }
     real.push_back(e);
-    size_t q = Block::sample(c.l[0], c.l[1], c.l[2]);
-    lo_t.push_back(0), hi_t.push_back(1), lo_f.push_back(b.f[q]);
-    hi_f.push_back(b.f[q + (a == 0 ? 1 : a == 1 ? kBlockSamples : static_cast<size_t>(kBlockSamples) * kBlockSamples)]);
+    lo_t.push_back(0), hi_t.push_back(1), lo_f.push_back(b.ends[e][0]), hi_f.push_back(b.ends[e][1]);
   }
   auto false_position = [&](size_t r) {  // where the chord through the bracket's ends crosses zero
     double d = lo_f[r] - hi_f[r];  // NaN or infinite where the function is undefined: bisect instead
@@ -331,7 +335,7 @@ bool hermite(const Field& f, const Lattice& g, Block& b, backends::RuntimeError&
   // A settled crossing stays where f was last evaluated; the others go to the final chord's zero.
   for (size_t r : E.active) t[r] = std::clamp(false_position(r), 0.0, 1.0);
   bool ok = normals(f, g, b, E, err);
-  b.f = {};  // the samples' signs stay in rows
+  b.ends = {};
   return ok;
 }
 
@@ -365,11 +369,12 @@ void cell_signs(const BlockGrid& grid, Block& b, const int l[3], size_t c) {
 
 }  // namespace
 
-void cell_sheets(const BlockGrid& grid, Block& b) {
+void cell_sheets(const BlockGrid& grid, Block& b, std::vector<Qef>& qefs) {
   b.mask.assign(kCells, 0);  // filled for the cells with surface
   b.flips.assign(kCells, 0);
   b.first.assign(kCells, kNone);
   b.sheets.clear();
+  qefs.clear();
   b.ids.clear();
   b.sheets.reserve(b.xs.size());
   b.ids.reserve(b.xs.size());
@@ -390,10 +395,11 @@ void cell_sheets(const BlockGrid& grid, Block& b) {
       uint32_t s = b.sheet(cell, in, in ^ (1 << c.axis));
       if (s == kNone) {
         s = static_cast<uint32_t>(b.sheets.size());
-        b.sheets.push_back(Sheet{static_cast<uint32_t>(cell), b.first[cell], b.key(cell, in, in ^ (1 << c.axis)), Qef{}});
+        b.sheets.push_back(Sheet{static_cast<uint32_t>(cell), b.first[cell], b.key(cell, in, in ^ (1 << c.axis))});
+        qefs.resize(b.sheets.size());
         b.first[cell] = s;
       }
-      b.sheets[s].qef.add(b.planes[e]);
+      qefs[s].add(b.planes[e]);
       id[static_cast<size_t>(q)] = s;
     }
     b.ids.push_back(id);

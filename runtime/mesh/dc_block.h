@@ -26,22 +26,23 @@ struct Crossing {
   bool lower_inside;
 };
 
-// One sheet of surface in a dual cell (manifold dual contouring), with the planes of its crossings.
+// One sheet of surface in a dual cell (manifold dual contouring). Its planes (a Qef) live only while
+// the block is merged (cell_sheets to merge_block), so the blocks stay small.
 struct Sheet {
   uint32_t cell;  // in the block
   uint32_t next;  // the cell's next sheet, or kNone
   int key;        // sheet_key: which sheet of the cell
-  Qef qef;
 };
 
 struct Block {
   int b[3];   // the block's position among blocks
   int s0[3];  // the lattice sample (from -1) of its sample 0, the lowest corner of its cell 0
   int m[3];   // its cells per axis: kBlock, fewer at the lattice's end
-  std::vector<float> f;           // samples, x fastest (until the Hermite data is done)
+  std::vector<float> f;           // samples, x fastest (while sampling)
   std::vector<uint8_t> decided;   // 1: sign from the brick map, value not evaluated (while sampling)
   uint32_t rows[kBlockSamples][kBlockSamples];  // [k][j]: bit i where sample (i, j, k) is inside
   std::vector<Crossing> xs;       // on every edge between the block's samples
+  std::vector<std::array<float, 2>> ends;  // f at their lower and upper samples (until the Hermite data is done)
   std::vector<Plane> planes;      // their Hermite data: the tangent plane at the crossing (until the sheets are done)
   // Per cell with surface: its inside corners, its faces decided the other way (bits 0-5) and
   // kOneSheet where the whole cell is one sheet (its sheets need no key then).
@@ -102,7 +103,7 @@ class BlockGrid {
 bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Block& b, backends::RuntimeError& err);
 // Crossing points by regula falsi and normals from the gradient; box faces where an end is padding.
 bool hermite(const Field& f, const Lattice& g, Block& b, backends::RuntimeError& err);
-// The cells' signs and face choices, and the sheets of the crossings with their planes.
-void cell_sheets(const BlockGrid& grid, Block& b);
+// The cells' signs and face choices, and the sheets of the crossings; qefs[s]: sheet s's planes.
+void cell_sheets(const BlockGrid& grid, Block& b, std::vector<Qef>& qefs);
 
 }  // namespace fscript::mesh

@@ -108,10 +108,9 @@ struct BlockTree {
     return s == kEmpty ? nullptr : &nodes[level][s];
   }
   // Level 0: the block's cells, as their sheets say (a vertex per sheet where there are several).
-  static Child leaf(const Block& b, size_t c) {
+  static Child leaf(const Block& b, const std::vector<Qef>& qefs, size_t c) {
     if (b.first[c] == kNone) return {State::Empty, nullptr};
-    const Sheet& s = b.sheets[b.first[c]];
-    return {s.next == kNone ? State::Merged : State::Kept, &s.qef};
+    return {b.sheets[b.first[c]].next == kNone ? State::Merged : State::Kept, &qefs[b.first[c]]};
   }
   // The level's nodes: the parents of the level below's (of the cells with sheets for level 1).
   void make_level(const Block& b, int l) {
@@ -138,7 +137,7 @@ struct BlockTree {
       add(u);
     }
   }
-  void grow(const Lattice& g, const Block& b, double limit) {
+  void grow(const Lattice& g, const Block& b, const std::vector<Qef>& qefs, double limit) {
     auto inside = [&](int x, int y, int z) { return b.inside(x - b.s0[0], y - b.s0[1], z - b.s0[2]); };
     for (int l = 1; l <= kBlockLevels; ++l) {
       make_level(b, l);
@@ -150,7 +149,7 @@ struct BlockTree {
         for (int a = 0; a < 3; ++a) cell[a] = b.s0[a] + u[a] * size;
         auto child = [&](int c) {
           int v[3] = {2 * u[0] + (c & 1), 2 * u[1] + (c >> 1 & 1), 2 * u[2] + (c >> 2 & 1)};
-          if (l == 1) return leaf(b, Block::cell(v[0], v[1], v[2]));
+          if (l == 1) return leaf(b, qefs, Block::cell(v[0], v[1], v[2]));
           const Node* n = at(l - 1, v);
           return n ? Child{n->state, &n->qef} : Child{State::Empty, nullptr};
         };
@@ -217,11 +216,11 @@ Qef::Solution solve_in_cells(const Lattice& g, const Qef& qef, const int c0[3], 
   return qef.solve(lo, hi);
 }
 
-void merge_block(const Lattice& g, Block& b, double tolerance) {
+void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, double tolerance) {
   thread_local BlockTree tree;
   double limit = tolerance * std::min({g.h[0], g.h[1], g.h[2]});
   tree.built = 0;
-  if (tolerance > 0) tree.grow(g, b, limit);
+  if (tolerance > 0) tree.grow(g, b, qefs, limit);
   b.vertex.assign(b.sheets.size(), kNone);
   b.positions.clear(), b.rms.clear(), b.merged = 0;
   std::vector<uint32_t> node_vertex[kBlockLevels + 1];
@@ -243,8 +242,8 @@ void merge_block(const Lattice& g, Block& b, double tolerance) {
       b.positions.push_back({n.x[0], n.x[1], n.x[2]}), b.rms.push_back(n.rms), ++b.merged;
     } else {  // a cell of the uniform grid: its vertex now
       int cell[3] = {b.s0[0] + c[0], b.s0[1] + c[1], b.s0[2] + c[2]};
-      Qef::Solution sol = solve_in_cells(g, sh.qef, cell, 1);
-      b.positions.push_back({sol.x[0], sol.x[1], sol.x[2]}), b.rms.push_back(rms(sh.qef, sol));
+      Qef::Solution sol = solve_in_cells(g, qefs[s], cell, 1);
+      b.positions.push_back({sol.x[0], sol.x[1], sol.x[2]}), b.rms.push_back(rms(qefs[s], sol));
     }
     b.vertex[s] = static_cast<uint32_t>(b.positions.size() - 1);
     if (named) *named = b.vertex[s];

@@ -24,9 +24,9 @@ constexpr double kReach = 0.5;
 // The vertex of `qef` in the lattice's cells [c0, c0 + size) per axis, widened by kReach cells.
 Qef::Solution solve_in_cells(const Lattice& g, const Qef& qef, const int c0[3], int size);
 
-// Merges the block's cells while the root-mean-square plane distance stays within `tolerance`
+// Merges the block's cells (qefs: their sheets' planes, from cell_sheets) while the root-mean-square plane distance stays within `tolerance`
 // cells (0: never), and gives every sheet its block vertex (Block::vertex, positions, rms, root).
-void merge_block(const Lattice& g, Block& b, double tolerance);
+void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, double tolerance);
 
 // A vertex standing for several whole blocks.
 struct BlockGroup {

@@ -171,8 +171,9 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
     Block& b = blocks[i];
     if (b.xs.empty()) return true;
     if (!hermite(*job.field, g, b, e)) return false;
-    cell_sheets(*grid, b);
-    merge_block(g, b, job.mesher.tolerance);
+    thread_local std::vector<Qef> qefs;
+    cell_sheets(*grid, b, qefs);
+    merge_block(g, b, qefs, job.mesher.tolerance);
     return true;
   }, err);
   if (!ok) return false;

@@ -39,12 +39,15 @@ D3 closest_on_triangle(D3 p, D3 a, D3 b, D3 c) {
 
 class Grid {
  public:
-  explicit Grid(const Mesh& m) : m_(m) {
+  // `queries`: how many points will be measured against it. A grid as fine as the denser of the two
+  // meshes keeps the candidates per query few when this mesh's triangles are much larger (an
+  // adaptive dual contouring mesh against a dense reference: 17 s before, under 1 s after).
+  Grid(const Mesh& m, size_t queries) : m_(m) {
     lo_ = {1e300, 1e300, 1e300};
     D3 hi = {-1e300, -1e300, -1e300};
     for (const auto& p : m.positions)
       for (int a = 0; a < 3; ++a) lo_[a] = std::min(lo_[a], double(p[a])), hi[a] = std::max(hi[a], double(p[a]));
-    size_t n = std::max<size_t>(1, m.triangles.size());
+    size_t n = std::max<size_t>({1, m.triangles.size(), queries / 2});
     double diag = std::sqrt(dot(sub(hi, lo_), sub(hi, lo_)));
     cell_ = std::max(diag / std::max(1.0, std::cbrt(double(n))), 1e-9);
     for (int a = 0; a < 3; ++a) dims_[a] = std::max(1, int(std::ceil((hi[a] - lo_[a]) / cell_)) + 1);
@@ -75,8 +78,11 @@ class Grid {
     double best = std::numeric_limits<double>::infinity();
     int max_r = std::max({dims_[0], dims_[1], dims_[2]});
     for (int r = 0; r <= max_r; ++r) {
-      // Everything within ring r was searched: nothing outside is closer than (r - 1) cells, roughly.
-      if (best <= (r - 1) * cell_) break;
+      // Rings 0 .. r - 1 searched: nothing else is nearer than the boundary of the block they make.
+      double margin = std::numeric_limits<double>::infinity();
+      for (int a = 0; a < 3 && r > 0; ++a)
+        margin = std::min({margin, p[a] - (lo_[a] + (c[a] - r + 1) * cell_), lo_[a] + (c[a] + r) * cell_ - p[a]});
+      if (r > 0 && best <= margin) break;
       for (int z = c[2] - r; z <= c[2] + r; ++z)
         for (int y = c[1] - r; y <= c[1] + r; ++y)
           for (int x = c[0] - r; x <= c[0] + r; ++x) {
@@ -132,7 +138,8 @@ void directed(const Mesh& from, const Grid& to, double& max_d, double& mean_d) {
 
 Distances mesh_distances(const Mesh& a, const Mesh& b) {
   Distances d;
-  Grid ga(a), gb(b);
+  size_t na = a.positions.size() + a.triangles.size(), nb = b.positions.size() + b.triangles.size();
+  Grid ga(a, nb), gb(b, na);
   directed(a, gb, d.max_ab, d.mean_ab);
   directed(b, ga, d.max_ba, d.mean_ba);
   d.hausdorff = std::max(d.max_ab, d.max_ba);

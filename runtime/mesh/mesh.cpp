@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <map>
-#include <unordered_map>
 
 namespace fscript::mesh {
 
@@ -41,11 +40,12 @@ void Mesh::append(const Mesh& o) {
 
 Topology topology(const Mesh& m) {
   Topology t;
-  // Directed edge counts and, per undirected edge, how many triangles use it.
-  std::unordered_map<uint64_t, int> directed;
-  std::unordered_map<uint64_t, int> undirected;
+  // Every directed edge and every undirected one, sorted (runs count the triangles using each):
+  // sorting beats hashing several times on the millions of edges of a dense reference mesh.
+  std::vector<uint64_t> directed, undirected;
   auto key = [](uint32_t a, uint32_t b) { return (static_cast<uint64_t>(a) << 32) | b; };
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> fans(m.positions.size());
+  directed.reserve(3 * m.triangles.size()), undirected.reserve(3 * m.triangles.size());
   for (const auto& tri : m.triangles) {
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
       ++t.degenerate_triangles;
@@ -53,21 +53,25 @@ Topology topology(const Mesh& m) {
     }
     for (int k = 0; k < 3; ++k) {
       uint32_t a = tri[k], b = tri[(k + 1) % 3];
-      ++directed[key(a, b)];
-      ++undirected[key(std::min(a, b), std::max(a, b))];
+      directed.push_back(key(a, b)), undirected.push_back(key(std::min(a, b), std::max(a, b)));
       fans[tri[k]].push_back({tri[(k + 1) % 3], tri[(k + 2) % 3]});
     }
   }
+  std::sort(directed.begin(), directed.end()), std::sort(undirected.begin(), undirected.end());
   t.watertight = true;
   t.oriented = true;
-  for (const auto& [e, n] : undirected) {
-    if (n != 2) t.watertight = false;
-    if (n == 1) ++t.boundary_edges;
+  size_t edges = 0;
+  for (size_t i = 0, j; i < undirected.size(); i = j, ++edges) {
+    for (j = i; j < undirected.size() && undirected[j] == undirected[i]; ++j) {
+    }
+    if (j - i != 2) t.watertight = false;
+    if (j - i == 1) ++t.boundary_edges;
   }
-  for (const auto& [e, n] : directed) {
-    if (n != 1) t.oriented = false;
+  for (size_t i = 0; i < directed.size(); ++i) {
+    uint64_t e = directed[i];
+    if (i + 1 < directed.size() && directed[i + 1] == e) t.oriented = false;
     uint32_t a = static_cast<uint32_t>(e >> 32), b = static_cast<uint32_t>(e);
-    if (!directed.count(key(b, a))) t.oriented = false;
+    if (!std::binary_search(directed.begin(), directed.end(), key(b, a))) t.oriented = false;
   }
   // 2-manifold vertices: the triangles around each vertex form a single fan (walk the ring).
   t.manifold = true;
@@ -88,7 +92,7 @@ Topology topology(const Mesh& m) {
     if (steps != fan.size() || cur != start) t.manifold = false;
   }
   size_t faces = m.triangles.size() - t.degenerate_triangles;
-  t.euler = static_cast<long>(used_vertices) - static_cast<long>(undirected.size()) + static_cast<long>(faces);
+  t.euler = static_cast<long>(used_vertices) - static_cast<long>(edges) + static_cast<long>(faces);
   return t;
 }
 

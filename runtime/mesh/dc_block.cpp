@@ -200,7 +200,13 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
   b.sound = true;
   Batch& pts = scratch();
   pts.clear();
-  std::vector<size_t> where;
+  struct Run {
+    size_t at, n;  // samples at .. at + n - 1 of the block, evaluated as one run of the batch
+  };
+  thread_local std::vector<Run> runs;
+  runs.clear();
+  float xs[kBlockSamples];
+  for (int i = 0; i <= b.m[0]; ++i) xs[i] = float(g.coord(0, b.s0[0] + i));
   for (int k = 0; k <= b.m[2]; ++k)
     for (int j = 0; j <= b.m[1]; ++j) {
       int sj = b.s0[1] + j, sk = b.s0[2] + k;
@@ -210,22 +216,22 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
       while (i <= end) {  // a brick's run of the row at a time
         int si = b.s0[0] + i, run_end = std::min(end, i + B - 1 - si % B);
         BrickClass c = bricks ? bricks->at(si / B, sj / B, sk / B) : BrickClass::Open;
-        size_t at = Block::sample(i, j, k);
+        size_t at = Block::sample(i, j, k), n = static_cast<size_t>(run_end - i + 1);
         if (c == BrickClass::Open) {
-          for (int q = i; q <= run_end; ++q, ++at) {
-            where.push_back(at);
-            pts.x.push_back(float(g.coord(0, b.s0[0] + q))), pts.y.push_back(y), pts.z.push_back(z);
-            b.evaluated += q < kBlock && j < kBlock && k < kBlock;
-          }
+          runs.push_back({at, n});
+          pts.x.insert(pts.x.end(), xs + i, xs + run_end + 1);
+          pts.y.resize(pts.y.size() + n, y), pts.z.resize(pts.z.size() + n, z);
+          if (j < kBlock && k < kBlock) b.evaluated += static_cast<size_t>(std::max(0, std::min(run_end, kBlock - 1) - i + 1));
         } else {
-          std::fill_n(b.f.begin() + static_cast<std::ptrdiff_t>(at), run_end - i + 1, c == BrickClass::Inside ? 1.0f : -1.0f);
-          std::fill_n(b.decided.begin() + static_cast<std::ptrdiff_t>(at), run_end - i + 1, uint8_t{1});
+          std::fill_n(b.f.begin() + static_cast<std::ptrdiff_t>(at), n, c == BrickClass::Inside ? 1.0f : -1.0f);
+          std::fill_n(b.decided.begin() + static_cast<std::ptrdiff_t>(at), n, uint8_t{1});
         }
         i = run_end + 1;
       }
     }
   if (!pts.run(f, err)) return false;
-  for (size_t q = 0; q < where.size(); ++q) b.f[where[q]] = pts.out[q];
+  const float* out = pts.out.data();
+  for (const Run& r : runs) std::copy(out, out + r.n, b.f.begin() + static_cast<std::ptrdiff_t>(r.at)), out += r.n;
   find_crossings(b);
   bool ok = exact_ends(f, g, b, err);
   const size_t stride[3] = {1, kBlockSamples, static_cast<size_t>(kBlockSamples) * kBlockSamples};

@@ -52,15 +52,12 @@ CellSigns cell_signs(unsigned inside, unsigned flips) {
 
 }  // namespace
 
-const CellSigns& signs_of(unsigned inside, unsigned flips) {
-  static const auto table = [] {
-    std::vector<CellSigns> t(256 * 64);
-    for (unsigned m = 0; m < 256; ++m)
-      for (unsigned f = 0; f < 64; ++f) t[m * 64 + f] = cell_signs(m, f);
-    return t;
-  }();
-  return table[inside * 64 + flips];
-}
+const CellSigns* const kCellSigns = [] {
+  static std::vector<CellSigns> t(256 * 64);
+  for (unsigned m = 0; m < 256; ++m)
+    for (unsigned f = 0; f < 64; ++f) t[m * 64 + f] = cell_signs(m, f);
+  return t.data();
+}();
 
 namespace {
 

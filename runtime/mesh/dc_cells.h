@@ -30,7 +30,9 @@ struct CellSigns {
   uint8_t regions_in = 0, regions_out = 0;
 };
 // `flips`: bit 2 * axis + side set where that face is decided the other way (its inside corners join).
-const CellSigns& signs_of(unsigned inside, unsigned flips);
+// A table of 256 * 64 entries, made before main runs.
+extern const CellSigns* const kCellSigns;
+inline const CellSigns& signs_of(unsigned inside, unsigned flips) { return kCellSigns[inside * 64 + flips]; }
 
 // Whether a face of the cube has its two inside corners on a diagonal.
 bool ambiguous_face(unsigned inside, int axis, int side);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <vector>
 
 namespace fscript::mesh {
 namespace {
@@ -52,12 +53,6 @@ CellSigns cell_signs(unsigned inside, unsigned flips) {
 
 }  // namespace
 
-const CellSigns* const kCellSigns = [] {
-  static std::vector<CellSigns> t(256 * 64);
-  for (unsigned m = 0; m < 256; ++m)
-    for (unsigned f = 0; f < 64; ++f) t[m * 64 + f] = cell_signs(m, f);
-  return t.data();
-}();
 
 namespace {
 
@@ -101,5 +96,15 @@ bool face_flipped(unsigned inside, unsigned there, int axis, int side) {
   const CellSigns &a = signs_of(inside, 0), &b = signs_of(there, 0);
   return a.in_group[on_face[0]] == a.in_group[on_face[1]] && b.in_group[p] == b.in_group[q];
 }
+
+// Only face choices on ambiguous faces change anything, and only those are asked for: the others
+// are left empty (a full table took 10 ms at start-up).
+const CellSigns* const kCellSigns = [] {
+  static std::vector<CellSigns> t(256 * 64);
+  for (unsigned m = 0; m < 256; ++m)
+    for (unsigned f = 0; f < 64; ++f)
+      if (!(f & ~unsigned(ambiguous_faces(m)))) t[m * 64 + f] = cell_signs(m, f);
+  return t.data();
+}();
 
 }  // namespace fscript::mesh

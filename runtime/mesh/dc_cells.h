@@ -29,8 +29,8 @@ struct CellSigns {
   uint8_t in_group[8], out_group[8];  // the region of each corner, named by its lowest corner
   uint8_t regions_in = 0, regions_out = 0;
 };
-// `flips`: bit 2 * axis + side set where that face is decided the other way (its inside corners join).
-// A table of 256 * 64 entries, made before main runs.
+// `flips`: bit 2 * axis + side set where that face is decided the other way (its inside corners
+// join); only ambiguous faces (ambiguous_faces) may be flipped. A table made before main runs.
 extern const CellSigns* const kCellSigns;
 inline const CellSigns& signs_of(unsigned inside, unsigned flips) { return kCellSigns[inside * 64 + flips]; }
 

@@ -3,6 +3,7 @@
 #include "runtime/mesh/dc_octree.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "runtime/mesh/flat_index.h"
@@ -15,31 +16,41 @@ double rms(const Qef& q, const Qef::Solution& s) {
   return std::sqrt(s.error / static_cast<double>(std::max<size_t>(q.count(), 1)));
 }
 
+// Per sample of a node's 3x3x3 (corners, edge and face midpoints, centre; p = i + 3j + 9k), the
+// corners of the edge, face or body it is the middle of (bits c = i/2 + 2 j/2 + 4 k/2); 0 for corners.
+const std::array<uint8_t, 27>& middle_of() {
+  static const auto t = [] {
+    std::array<uint8_t, 27> out{};
+    for (int p = 0; p < 27; ++p) {
+      int q[3] = {p % 3, p / 3 % 3, p / 9};
+      if (q[0] != 1 && q[1] != 1 && q[2] != 1) continue;
+      for (int c = 0; c < 8; ++c) {
+        bool on = true;
+        for (int a = 0; a < 3; ++a) on = on && (q[a] == 1 || q[a] == 2 * (c >> a & 1));
+        out[static_cast<size_t>(p)] |= static_cast<uint8_t>(on << c);
+      }
+    }
+    return out;
+  }();
+  return t;
+}
+
 // Whether a node whose lowest sample is s0 and whose side is 2 * half allows one vertex, from its 27
-// samples (corners, edge and face midpoints, centre): one sheet, no ambiguous face, and every
-// midpoint agreeing with a corner of the edge, face or body it is the middle of.
+// samples: one sheet, no ambiguous face, and every midpoint agreeing in sign with a corner of the
+// edge, face or body it is the middle of.
 template <class Inside>
 bool topology_safe(Inside inside, const int s0[3], int half) {
-  bool in[3][3][3];
-  for (int k = 0; k < 3; ++k)
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) in[k][j][i] = inside(s0[0] + i * half, s0[1] + j * half, s0[2] + k * half);
+  const std::array<uint8_t, 27>& middle = middle_of();
+  uint32_t in = 0;  // bit p: sample p inside
+  for (int p = 0; p < 27; ++p) in |= static_cast<uint32_t>(inside(s0[0] + p % 3 * half, s0[1] + p / 3 % 3 * half, s0[2] + p / 9 * half)) << p;
   unsigned corners = 0;
-  for (int c = 0; c < 8; ++c) corners |= static_cast<unsigned>(in[c >> 2 & 1 ? 2 : 0][c >> 1 & 1 ? 2 : 0][c & 1 ? 2 : 0]) << c;
+  for (int c = 0; c < 8; ++c) corners |= (in >> ((c & 1) * 2 + (c >> 1 & 1) * 6 + (c >> 2 & 1) * 18) & 1u) << c;
   if (ambiguous_faces(corners)) return false;
   const CellSigns& cs = signs_of(corners, 0);
   if (cs.regions_in != 1 || cs.regions_out != 1) return false;
   for (int p = 0; p < 27; ++p) {
-    int q[3] = {p % 3, p / 3 % 3, p / 9};
-    int mids = (q[0] == 1) + (q[1] == 1) + (q[2] == 1);
-    if (mids == 0) continue;
-    bool agrees = false;  // with a corner got by moving each middle coordinate to an end
-    for (int e = 0; e < 8 && !agrees; ++e) {
-      int r[3];
-      for (int a = 0; a < 3; ++a) r[a] = q[a] == 1 ? (e >> a & 1) * 2 : q[a];
-      agrees = in[r[2]][r[1]][r[0]] == in[q[2]][q[1]][q[0]];
-    }
-    if (!agrees) return false;
+    unsigned around = middle[static_cast<size_t>(p)];  // agrees: some corner around it has its sign
+    if (around && !((in >> p & 1) ? (corners & around) : (~corners & around))) return false;
   }
   return true;
 }

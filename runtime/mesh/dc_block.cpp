@@ -194,6 +194,15 @@ uint32_t Block::sheet(size_t c, int in, int out) const {
 
 bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Block& b, backends::RuntimeError& err) {
   constexpr int B = BrickMap::kBrick;
+  // The samples live in buffers of this thread while the block is sampled: fresh ones per block
+  // spent a fifth of the sampling in page faults.
+  thread_local std::vector<float> samples;
+  thread_local std::vector<uint8_t> flags;
+  struct Lend {
+    Block& b;
+    Lend(Block& blk) : b(blk) { b.f.swap(samples), b.decided.swap(flags); }
+    ~Lend() { b.f.swap(samples), b.decided.swap(flags); }
+  } lend(b);
   b.f.assign(kSamples, -1.0f);  // the padding's value
   b.decided.assign(kSamples, 0);
   b.evaluated = 0;
@@ -240,8 +249,7 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
     size_t q = Block::sample(b.xs[e].l[0], b.xs[e].l[1], b.xs[e].l[2]);
     b.ends[e] = {b.f[q], b.f[q + stride[b.xs[e].axis]]};
   }
-  b.decided = {}, b.f = {};  // the signs stay in rows
-  return ok;
+  return ok;  // the signs stay in rows
 }
 
 namespace {
@@ -257,7 +265,7 @@ struct Edges {
 // Normals from the gradient by central differences, kProbe cells either side of the crossing
 // (forward differences from the crossing cost two evaluations less but take a sharp edge's other face
 // whole where a probe crosses it: vertices 0.16 of a cell off in unit_dc_csg, against under 0.1).
-bool normals(const Field& f, const Lattice& g, Block& b, Edges& E, backends::RuntimeError& err) {
+bool normals(const Field& f, const Lattice& g, const Block& b, Edges& E, std::vector<Plane>& planes, backends::RuntimeError& err) {
   Batch& pts = scratch();
   pts.clear();
   const size_t n = E.real.size();
@@ -278,20 +286,20 @@ bool normals(const Field& f, const Lattice& g, Block& b, Edges& E, backends::Run
     for (int a = 0; a < 3; ++a) normal[a] = -gradient(pts.out[6 * r + 2 * a], pts.out[6 * r + 2 * a + 1], kProbe * g.h[a]);
     if (!(std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0))
       normal[c.axis] = c.lower_inside ? 1 : -1;  // no gradient at all: the edge's own direction
-    b.planes[E.real[r]] = Qef::plane(E.at[E.real[r]].data(), normal);
+    planes[E.real[r]] = Qef::plane(E.at[E.real[r]].data(), normal);
   }
   return true;
 }
 
 }  // namespace
 
-bool hermite(const Field& f, const Lattice& g, Block& b, backends::RuntimeError& err) {
+bool hermite(const Field& f, const Lattice& g, Block& b, std::vector<Plane>& planes, backends::RuntimeError& err) {
   thread_local Edges E;
   std::vector<size_t>& real = E.real;
   std::vector<double> &lo_t = E.lo_t, &hi_t = E.hi_t, &lo_f = E.lo_f, &hi_f = E.hi_f, &t = E.t, &v = E.v;
   real.clear(), lo_t.clear(), hi_t.clear(), lo_f.clear(), hi_f.clear();
   E.at.resize(b.xs.size());
-  b.planes.assign(b.xs.size(), Plane{});
+  planes.assign(b.xs.size(), Plane{});
   for (size_t e = 0; e < b.xs.size(); ++e) {
     const Crossing& c = b.xs[e];
     int a = c.axis, s[3], u[3];
@@ -302,7 +310,7 @@ bool hermite(const Field& f, const Lattice& g, Block& b, backends::RuntimeError&
       double normal[3] = {0, 0, 0};
       E.at[e][static_cast<size_t>(a)] = upper_pad ? g.end(a) : g.lo[a];
       normal[a] = upper_pad ? 1 : -1;
-      b.planes[e] = Qef::plane(E.at[e].data(), normal);
+      planes[e] = Qef::plane(E.at[e].data(), normal);
       continue;
     }
     real.push_back(e);
@@ -340,7 +348,7 @@ bool hermite(const Field& f, const Lattice& g, Block& b, backends::RuntimeError&
   }
   // A settled crossing stays where f was last evaluated; the others go to the final chord's zero.
   for (size_t r : E.active) t[r] = std::clamp(false_position(r), 0.0, 1.0);
-  bool ok = normals(f, g, b, E, err);
+  bool ok = normals(f, g, b, E, planes, err);
   b.ends = {};
   return ok;
 }
@@ -375,12 +383,13 @@ void cell_signs(const BlockGrid& grid, Block& b, const int l[3], size_t c) {
 
 }  // namespace
 
-void cell_sheets(const BlockGrid& grid, Block& b, std::vector<Qef>& qefs) {
+void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& planes, std::vector<Qef>& qefs) {
   b.mask.assign(kCells, 0);  // filled for the cells with surface
   b.flips.assign(kCells, 0);
   b.first.assign(kCells, kNone);
   b.sheets.clear();
   qefs.clear();
+  qefs.reserve(b.xs.size());
   b.ids.clear();
   b.sheets.reserve(b.xs.size());
   b.ids.reserve(b.xs.size());
@@ -402,15 +411,14 @@ void cell_sheets(const BlockGrid& grid, Block& b, std::vector<Qef>& qefs) {
       if (s == kNone) {
         s = static_cast<uint32_t>(b.sheets.size());
         b.sheets.push_back(Sheet{static_cast<uint32_t>(cell), b.first[cell], b.key(cell, in, in ^ (1 << c.axis))});
-        qefs.resize(b.sheets.size());
+        qefs.emplace_back();
         b.first[cell] = s;
       }
-      qefs[s].add(b.planes[e]);
+      qefs[s].add(planes[e]);
       id[static_cast<size_t>(q)] = s;
     }
     b.ids.push_back(id);
   }
-  b.planes = {};
 }
 
 }  // namespace fscript::mesh

@@ -38,12 +38,11 @@ struct Block {
   int b[3];   // the block's position among blocks
   int s0[3];  // the lattice sample (from -1) of its sample 0, the lowest corner of its cell 0
   int m[3];   // its cells per axis: kBlock, fewer at the lattice's end
-  std::vector<float> f;           // samples, x fastest (while sampling)
-  std::vector<uint8_t> decided;   // 1: sign from the brick map, value not evaluated (while sampling)
+  std::vector<float> f;           // samples, x fastest (while sampling, in a buffer of the thread)
+  std::vector<uint8_t> decided;   // 1: sign from the brick map, value not evaluated (the same)
   uint32_t rows[kBlockSamples][kBlockSamples];  // [k][j]: bit i where sample (i, j, k) is inside
   std::vector<Crossing> xs;       // on every edge between the block's samples
   std::vector<std::array<float, 2>> ends;  // f at their lower and upper samples (until the Hermite data is done)
-  std::vector<Plane> planes;      // their Hermite data: the tangent plane at the crossing (until the sheets are done)
   // Per cell with surface: its inside corners, its faces decided the other way (bits 0-5) and
   // kOneSheet where the whole cell is one sheet (its sheets need no key then).
   std::vector<uint8_t> mask, flips;
@@ -101,9 +100,10 @@ class BlockGrid {
 // Samples the block (open bricks evaluated, decided ones signed), finds its sign-change edges and
 // evaluates the decided samples at their ends (so regula falsi starts from the dense lattice's values).
 bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Block& b, backends::RuntimeError& err);
-// Crossing points by regula falsi and normals from the gradient; box faces where an end is padding.
-bool hermite(const Field& f, const Lattice& g, Block& b, backends::RuntimeError& err);
+// The Hermite data of each crossing, planes[e]: the crossing by regula falsi, the normal from the
+// gradient; the box face where an end is padding.
+bool hermite(const Field& f, const Lattice& g, Block& b, std::vector<Plane>& planes, backends::RuntimeError& err);
 // The cells' signs and face choices, and the sheets of the crossings; qefs[s]: sheet s's planes.
-void cell_sheets(const BlockGrid& grid, Block& b, std::vector<Qef>& qefs);
+void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& planes, std::vector<Qef>& qefs);
 
 }  // namespace fscript::mesh

@@ -170,9 +170,10 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   bool ok = for_blocks(blocks.size(), job.threads, [&](size_t i, backends::RuntimeError& e) {
     Block& b = blocks[i];
     if (b.xs.empty()) return true;
-    if (!hermite(*job.field, g, b, e)) return false;
+    thread_local std::vector<Plane> planes;  // scratch of this thread, reused block after block
     thread_local std::vector<Qef> qefs;
-    cell_sheets(*grid, b, qefs);
+    if (!hermite(*job.field, g, b, planes, e)) return false;
+    cell_sheets(*grid, b, planes, qefs);
     merge_block(g, b, qefs, job.mesher.tolerance);
     return true;
   }, err);

@@ -180,16 +180,40 @@ unsigned BlockGrid::mask(const int c[3]) const {
   return m;
 }
 
-int Block::key(size_t c, int in, int out) const {
-  return flips[c] & kOneSheet ? 0 : sheet_key(mask[c], flips[c], in, out);
+int Block::key(const CellInfo& c, int in, int out) {
+  return c.flips & kOneSheet ? 0 : sheet_key(c.mask, c.flips, in, out);
 }
 
-uint32_t Block::sheet(size_t c, int in, int out) const {
-  if (flips[c] & kOneSheet) return first[c];
-  int key = sheet_key(mask[c], flips[c], in, out);
-  uint32_t s = first[c];
-  while (s != kNone && sheets[s].key != key) s = sheets[s].next;
+uint32_t Block::sheet(const CellInfo& c, int in, int out) const {
+  if (c.flips & kOneSheet) return c.first;
+  int k = key(c, in, out);
+  uint32_t s = c.first;
+  while (s != kNone && sheets[s].key != k) s = sheets[s].next;
   return s;
+}
+
+size_t Block::rim_index(int i, int j, int k) {
+  constexpr int S = kBlock, L = kBlock - 1;
+  if (k == L) return static_cast<size_t>(j * S + i);
+  if (j == L) return static_cast<size_t>(S * S + k * S + i);
+  return static_cast<size_t>(S * S + L * S + k * L + j);
+}
+
+namespace {
+std::vector<Block::CellInfo>& cell_buffer() {
+  thread_local std::vector<Block::CellInfo> buffer;
+  return buffer;
+}
+}  // namespace
+
+void Block::keep_rim() {
+  constexpr int L = kBlock - 1;
+  rim.assign(static_cast<size_t>(kBlock * kBlock + L * kBlock + L * L), CellInfo{});
+  for (int k = 0; k < m[2]; ++k)
+    for (int j = 0; j < m[1]; ++j)
+      for (int i = 0; i < m[0]; ++i)
+        if (i == L || j == L || k == L) rim[rim_index(i, j, k)] = cells[cell(i, j, k)];
+  cells.swap(cell_buffer());
 }
 
 bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Block& b, backends::RuntimeError& err) {
@@ -378,15 +402,14 @@ void cell_signs(const BlockGrid& grid, Block& b, const int l[3], size_t c) {
   }
   const CellSigns& cs = signs_of(mask, flips);
   if (cs.regions_in == 1 && cs.regions_out == 1) flips |= Block::kOneSheet;
-  b.mask[c] = static_cast<uint8_t>(mask), b.flips[c] = static_cast<uint8_t>(flips);
+  b.cells[c].mask = static_cast<uint8_t>(mask), b.cells[c].flips = static_cast<uint8_t>(flips);
 }
 
 }  // namespace
 
 void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& planes, std::vector<Qef>& qefs) {
-  b.mask.assign(kCells, 0);  // filled for the cells with surface
-  b.flips.assign(kCells, 0);
-  b.first.assign(kCells, kNone);
+  b.cells.swap(cell_buffer());  // given back by keep_rim
+  b.cells.assign(kCells, Block::CellInfo{});  // filled for the cells with surface
   b.sheets.clear();
   qefs.clear();
   qefs.reserve(b.xs.size());
@@ -405,14 +428,15 @@ void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& plan
       for (int a = 0; a < 3; ++a) here = here && l[a] >= 0 && l[a] < b.m[a];
       if (!here) continue;
       size_t cell = Block::cell(l[0], l[1], l[2]);
-      if (b.first[cell] == kNone) cell_signs(grid, b, l, cell);
+      Block::CellInfo& info = b.cells[cell];
+      if (info.first == kNone) cell_signs(grid, b, l, cell);
       int in = (inside[0] - l[0]) | (inside[1] - l[1]) << 1 | (inside[2] - l[2]) << 2;
-      uint32_t s = b.sheet(cell, in, in ^ (1 << c.axis));
+      uint32_t s = b.sheet(info, in, in ^ (1 << c.axis));
       if (s == kNone) {
         s = static_cast<uint32_t>(b.sheets.size());
-        b.sheets.push_back(Sheet{static_cast<uint32_t>(cell), b.first[cell], b.key(cell, in, in ^ (1 << c.axis))});
+        b.sheets.push_back(Sheet{static_cast<uint32_t>(cell), info.first, Block::key(info, in, in ^ (1 << c.axis))});
         qefs.emplace_back();
-        b.first[cell] = s;
+        info.first = s;
       }
       qefs[s].add(planes[e]);
       id[static_cast<size_t>(q)] = s;

@@ -44,10 +44,14 @@ struct Block {
   std::vector<Crossing> xs;       // on every edge between the block's samples
   std::vector<std::array<float, 2>> ends;  // f at their lower and upper samples (until the Hermite data is done)
   // Per cell with surface: its inside corners, its faces decided the other way (bits 0-5) and
-  // kOneSheet where the whole cell is one sheet (its sheets need no key then).
-  std::vector<uint8_t> mask, flips;
+  // kOneSheet where the whole cell is one sheet (its sheets need no key then), and its first sheet.
+  struct CellInfo {
+    uint8_t mask = 0, flips = 0;
+    uint32_t first = kNone;
+  };
   static constexpr uint8_t kOneSheet = 0x80;
-  std::vector<uint32_t> first;       // per cell: its first sheet, or kNone
+  std::vector<CellInfo> cells;  // every cell, while the block is worked (a buffer of the thread)
+  std::vector<CellInfo> rim;    // then only its cells on its upper faces, which the next blocks' polygons reach
   std::vector<Sheet> sheets;
   std::vector<std::array<uint32_t, 4>> ids;  // per crossing: its cells' sheets here (kNone: another block's)
   // Vertices (dc_octree.h): each sheet's block vertex, and their positions and plane distances.
@@ -68,10 +72,14 @@ struct Block {
     return (static_cast<size_t>(k) * kBlock + static_cast<size_t>(j)) * kBlock + static_cast<size_t>(i);
   }
   bool inside(int i, int j, int k) const { return rows[k][j] >> i & 1; }
-  // The sheet of cell c (in the block) that holds the crossing between its corners in and out,
-  // or kNone; and the key that names it in the cell.
-  uint32_t sheet(size_t c, int in, int out) const;
-  int key(size_t c, int in, int out) const;
+  // The sheet of a cell that holds the crossing between its corners in and out, or kNone; and the
+  // key that names it in the cell.
+  uint32_t sheet(const CellInfo& c, int in, int out) const;
+  static int key(const CellInfo& c, int in, int out);
+  // Where a cell with a coordinate kBlock - 1 is in `rim`.
+  static size_t rim_index(int i, int j, int k);
+  // Keeps the rim of `cells` and gives the buffer back.
+  void keep_rim();
 };
 
 // Every block of a lattice: the ones the surface may cross are kept, the others are known to be all

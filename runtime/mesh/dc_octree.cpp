@@ -120,8 +120,9 @@ struct BlockTree {
   }
   // Level 0: the block's cells, as their sheets say (a vertex per sheet where there are several).
   static Child leaf(const Block& b, const std::vector<Qef>& qefs, size_t c) {
-    if (b.first[c] == kNone) return {State::Empty, nullptr};
-    return {b.sheets[b.first[c]].next == kNone ? State::Merged : State::Kept, &qefs[b.first[c]]};
+    uint32_t first = b.cells[c].first;
+    if (first == kNone) return {State::Empty, nullptr};
+    return {b.sheets[first].next == kNone ? State::Merged : State::Kept, &qefs[first]};
   }
   // The level's nodes: the parents of the level below's (of the cells with sheets for level 1).
   void make_level(const Block& b, int l) {

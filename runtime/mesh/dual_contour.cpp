@@ -110,7 +110,7 @@ uint32_t vertex_at(const BlockGrid& grid, const Block& b, const int l[3], const 
   if (!owner) return kNone;  // only if the sign of a sample differed between two blocks
   int in = 0;
   for (int a = 0; a < 3; ++a) in |= (b.s0[a] + inside[a] - owner->s0[a] - nl[a]) << a;
-  uint32_t s = owner->sheet(Block::cell(nl[0], nl[1], nl[2]), in, in ^ (1 << axis));
+  uint32_t s = owner->sheet(owner->rim[Block::rim_index(nl[0], nl[1], nl[2])], in, in ^ (1 << axis));
   return s == kNone ? kNone : owner->out[s];
 }
 
@@ -175,6 +175,7 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
     if (!hermite(*job.field, g, b, planes, e)) return false;
     cell_sheets(*grid, b, planes, qefs);
     merge_block(g, b, qefs, job.mesher.tolerance);
+    b.keep_rim();
     return true;
   }, err);
   if (!ok) return false;

@@ -321,6 +321,36 @@ check "fvrml-run --tolerance below 0" 2 'tolerance: Value -1 not in range' -- "$
 [ -e "$T/turned-neg.ply" ] && fail "fvrml-run --tolerance -1 wrote turned-neg.ply"
 check "fvrml-run --tolerance without --mesher dc warns" 0 'warning: --tolerance has no effect with --mesher mt' -- \
   "$R" "$T/turned.fs" --tolerance 0.1 -o "$T/turned-mt2.ply"
+# Dual contouring through everything a shape can have and every output: colour by pattern, a
+# displacement texture, a time-dependent definition, frames; PLY, OBJ, STL, glTF, VRML97 and PNG.
+printf '#VRML V2.0 utf8\nFShape { cycleInterval 2 loop TRUE\n appearance FAppearance { material FMaterial { diffuseColor "x" patternKey [-0.5 0 0.5] patternColor [1 0 0, 0 1 0, 0 0 1] }\n  texture3D FTexture3D { definition "DISP" type "displacement" } }\n geometry FGeometry { definition "(0.6+0.2*t)^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [24] } }\n' > "$T/dc-all.tpl"
+sed 's|DISP|0.04*sin(8*x)|' "$T/dc-all.tpl" > "$T/dc-all.wrl"
+sed 's|DISP|0|' "$T/dc-all.tpl" > "$T/dc-plain.wrl"
+for ext in ply obj stl glb wrl png; do
+  check "fvrml-run --mesher dc -o .$ext" 0 "wrote [^ ]*dc-out.$ext" -- "$R" "$T/dc-all.wrl" --mesher dc -o "$T/dc-out.$ext"
+done
+for ext in ply obj stl; do
+  jcheck "--mesher dc .$ext: closed, oriented, 2-manifold" out "all(j['a'][k] for k in ('watertight', 'oriented', 'manifold'))" \
+    -- "$D" "$T/dc-out.$ext" "$T/dc-out.ply"
+done
+head -c 8 "$T/dc-out.png" | od -An -c | grep -q 'P   N   G' || fail "--mesher dc -o .png is not a PNG"
+jcheck "--mesher dc: every vertex coloured by its x through the pattern" out "
+len(j['points']) > 100 and all(len(p) == 6 for p in j['points']) and all(
+  max(abs(a - b) for a, b in zip(p[3:], [min(1, max(0, -2 * p[0])), max(0, 1 - 2 * abs(p[0])), min(1, max(0, 2 * p[0]))])) < 2e-3
+  for p in j['points'])
+" -- python3 "$SRC/tests/clients/mesh_probe.py" "$T/dc-out.wrl" --vertices
+"$R" "$T/dc-plain.wrl" --mesher dc -o "$T/dc-plain.ply" 2> /dev/null
+jcheck "--mesher dc: the displacement texture moves the surface (by up to 0.04)" out "
+0.02 < j['hausdorff'] < 0.06
+" -- "$D" "$T/dc-plain.ply" "$T/dc-out.ply"
+"$R" "$T/dc-all.wrl" --mesher dc --time 1 -o "$T/dc-t1.ply" 2> /dev/null
+jcheck "--mesher dc --time 1 (t = 0.5): the time-dependent radius grows by 0.1" out "
+0.08 < j['hausdorff'] < 0.16
+" -- "$D" "$T/dc-out.ply" "$T/dc-t1.ply"
+jcheck "--mesher dc --frames 3: three frames of the animation, each meshed by dual contouring" err "
+j['dual_contouring']['shapes'] == 3 and j['dual_contouring']['triangles'] > 3 * 1000
+" -- "$R" "$T/dc-all.wrl" --mesher dc --frames 3 --stats -o "$T/dc-anim.glb"
+[ -s "$T/dc-anim.glb" ] || fail "--mesher dc --frames 3 wrote no dc-anim.glb"
 [ -e "$T/bad.ply" ] && fail "fvrml-run a script with a syntax error wrote bad.ply"
 printf 'function FRep(x, y, z, t) {\n  var s = 0;\n  while (1) { s = s + 1; }\n  return s;\n}\n' > "$T/loop.fs"
 check "fvrml-run a script: a runtime error at its line" 1 '^loop.fs:3:3: error: loop iteration budget|/loop.fs:3:3: error: loop iteration budget' \

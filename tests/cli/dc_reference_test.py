@@ -15,21 +15,18 @@ import sys
 import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import skip as skip_rules  # noqa: E402
+
 RUN, DIFF, SRC, SHARED = sys.argv[1:5]
 SCALE, REFERENCE = "0.5", "1.5"
 SLACK = 1.25  # dual contouring's Hausdorff distance may be this much of marching tetrahedra's
-failures, skipped = [], []
+failures = []
 
 
 def skip(name, why):
-    """A visible skip (tests/support/skip.sh's rules): logged, and a failure under CI."""
-    ci = os.environ.get("CI", "") not in ("", "0", "false", "no")
-    print(f"SKIP {name}: {why}")
-    if os.environ.get("FS_SKIP_LOG"):
-        with open(os.environ["FS_SKIP_LOG"], "a") as log:
-            log.write(f"{'FAILED (not skipped under CI)' if ci else 'skipped'} {name}: {why}\n")
-    if ci:
-        failures.append(f"{name}: {why} (CI is set: a check may not be skipped because something is missing)")
+    """A visible skip (tests/support/skip.py)."""
+    skip_rules.skip(name, why, failures)
 
 
 def mesh(scene, out, *args):

@@ -13,6 +13,9 @@ import tempfile
 
 from ptyread import read_until
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+import skip as skip_rules  # noqa: E402
+
 SRC, BUILD, SHARED = sys.argv[1], os.path.abspath(sys.argv[2]), os.path.abspath(sys.argv[3])
 readme = open(os.path.join(SRC, "README.md")).read()
 failures, checked = [], 0
@@ -34,14 +37,8 @@ def fenced_blocks(text):
 
 
 def skip(name, why):
-    """A visible skip (tests/support/skip.sh's rules): logged, and a failure under CI."""
-    ci = os.environ.get("CI", "") not in ("", "0", "false", "no")
-    print(f"SKIP {name}: {why}")
-    if os.environ.get("FS_SKIP_LOG"):
-        with open(os.environ["FS_SKIP_LOG"], "a") as log:
-            log.write(f"{'FAILED (not skipped under CI)' if ci else 'skipped'} {name}: {why}\n")
-    if ci:
-        failures.append(f"{name}: {why} (CI is set: a check may not be skipped because something is missing)")
+    """A visible skip (tests/support/skip.py)."""
+    skip_rules.skip(name, why, failures)
 
 
 def run_commented_blocks(tmp):

@@ -1,11 +1,13 @@
 #pragma once
-// Dual contouring on the uniform grid (issue 16's first step; marching tetrahedra stays the
-// default): Hermite data on every sign-change edge of the padded, cell-centred grid (crossings by
-// regula falsi on the real function, normals from its gradient; the box faces close a cut solid
-// with their own planes), one vertex per sheet of surface in each dual cell (manifold dual
-// contouring; ambiguous faces decided so that no edge is shared by two sheets) at the minimum of its QEF (qef.h), one quad per sign-change edge. Sharp CSG edges and
-// corners are kept. Known limits: a vertex may leave its cell by half a cell (so sharp corners are
-// reached), which can fold a triangle where features are closer than a cell; no adaptivity yet.
+// Adaptive manifold dual contouring (fvrml-run --mesher dc; marching tetrahedra stays the default
+// until it meets its speed targets): Hermite data on every sign-change edge of the padded,
+// cell-centred grid (crossings by regula falsi on the real function, normals from its gradient; the
+// box faces close a cut solid with their own planes), one vertex per sheet of surface in each dual
+// cell at the minimum of its QEF (qef.h), cells merged up an octree while the tolerance and the
+// topology allow (dc_octree.h), one polygon per sign-change edge. Worked in blocks (dc_block.h) on
+// every thread; the same bytes for any count. Sharp CSG edges and corners are kept. Known limits: a
+// vertex may leave its cell by half a cell (so sharp corners are reached), which can fold a
+// triangle where features are closer than a cell.
 #include "backends/backend.h"
 #include "runtime/mesh/implicit.h"
 #include "runtime/mesh/mesh.h"
@@ -24,7 +26,7 @@ struct DualContourStats {
 // The figures of every dual contouring job since the process started (fvrml-run --stats).
 DualContourStats dual_contour_totals();
 
-// The job's field over its box and samples (job.prune and job.threads are not used yet).
+// The job's field over its box and samples, pruned by its bounds (job.prune), on job.threads.
 bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, backends::RuntimeError& err);
 
 }  // namespace fscript::mesh

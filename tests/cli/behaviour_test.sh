@@ -355,6 +355,9 @@ j['dual_contouring']['shapes'] == 3 and j['dual_contouring']['triangles'] > 3 * 
 printf 'function FRep(x, y, z, t) {\n  var s = 0;\n  while (1) { s = s + 1; }\n  return s;\n}\n' > "$T/loop.fs"
 check "fvrml-run a script: a runtime error at its line" 1 '^loop.fs:3:3: error: loop iteration budget|/loop.fs:3:3: error: loop iteration budget' \
   -- "$R" "$T/loop.fs" -o "$T/loop.ply" --max-loop-iterations 1000
+check "fvrml-run --mesher dc --threads 2: a runtime error at its line" 1 '/loop.fs:3:3: error: loop iteration budget' \
+  -- "$R" "$T/loop.fs" -o "$T/loop-dc.ply" --max-loop-iterations 1000 --mesher dc --threads 2
+[ -e "$T/loop-dc.ply" ] && fail "fvrml-run --mesher dc with a runtime error wrote loop-dc.ply"
 printf 'function parametric_x(u,v,w,t){return u;}\nfunction parametric_y(u,v,w,t){return v;}\nfunction parametric_z(u,v,w,t){return 0;}\n' > "$T/flat.fs"
 check "fvrml-run a parametric script says what to do" 1 'takes an implicit script.*FShape of a .wrl' -- "$R" "$T/flat.fs" -o "$T/flat.ply"
 [ -e "$T/flat.ply" ] && fail "fvrml-run a parametric script wrote flat.ply"

@@ -22,15 +22,32 @@ constexpr double kProbe = 0.01;
 constexpr size_t kSamples = static_cast<size_t>(kBlockSamples) * kBlockSamples * kBlockSamples;
 constexpr size_t kCells = static_cast<size_t>(kBlock) * kBlock * kBlock;
 
-// Scratch arrays for one batch of points, reused per thread.
+// Scratch arrays for one batch of points, reused per thread: they only grow, and `n` says how many
+// points the batch holds (shrinking and growing them again zero-filled them at every step).
 struct Batch {
   std::vector<float> x, y, z, out;
-  void clear() { x.clear(), y.clear(), z.clear(); }
-  void add(double px, double py, double pz) { x.push_back(float(px)), y.push_back(float(py)), z.push_back(float(pz)); }
+  size_t n = 0;
+  void clear() { n = 0; }
+  void resize(size_t m) {
+    if (x.size() < m) x.resize(m), y.resize(m), z.resize(m);
+    n = m;
+  }
+  void set(size_t i, double px, double py, double pz) { x[i] = float(px), y[i] = float(py), z[i] = float(pz); }
+  void add(double px, double py, double pz) {
+    if (n == x.size()) x.resize(2 * n + 64), y.resize(2 * n + 64), z.resize(2 * n + 64);
+    set(n++, px, py, pz);
+  }
+  // `count` points of one row: x from xs, y and z fixed.
+  void add_row(const float* xs, size_t count, float py, float pz) {
+    size_t at = n;
+    resize(n + count);
+    std::copy(xs, xs + count, x.begin() + static_cast<std::ptrdiff_t>(at));
+    std::fill_n(y.begin() + static_cast<std::ptrdiff_t>(at), count, py), std::fill_n(z.begin() + static_cast<std::ptrdiff_t>(at), count, pz);
+  }
   bool run(const Field& f, backends::RuntimeError& err) {
-    out.resize(x.size());
+    if (out.size() < n) out.resize(x.size());
     EvalTimer timed;
-    return x.empty() || f.eval(x.data(), y.data(), z.data(), x.size(), out.data(), err);
+    return n == 0 || f.eval(x.data(), y.data(), z.data(), n, out.data(), err);
   }
 };
 
@@ -209,10 +226,11 @@ std::vector<Block::CellInfo>& cell_buffer() {
 void Block::keep_rim() {
   constexpr int L = kBlock - 1;
   rim.assign(static_cast<size_t>(kBlock * kBlock + L * kBlock + L * L), CellInfo{});
-  for (int k = 0; k < m[2]; ++k)
-    for (int j = 0; j < m[1]; ++j)
-      for (int i = 0; i < m[0]; ++i)
-        if (i == L || j == L || k == L) rim[rim_index(i, j, k)] = cells[cell(i, j, k)];
+  auto keep = [&](int i, int j, int k) {
+    if (i < m[0] && j < m[1] && k < m[2]) rim[rim_index(i, j, k)] = cells[cell(i, j, k)];
+  };
+  for (int a = 0; a < kBlock; ++a)
+    for (int c = 0; c < kBlock; ++c) keep(c, a, L), keep(c, L, a), keep(L, c, a);  // the faces k, j and i = L
   cells.swap(cell_buffer());
 }
 
@@ -252,8 +270,7 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
         size_t at = Block::sample(i, j, k), n = static_cast<size_t>(run_end - i + 1);
         if (c == BrickClass::Open) {
           runs.push_back({at, n});
-          pts.x.insert(pts.x.end(), xs + i, xs + run_end + 1);
-          pts.y.resize(pts.y.size() + n, y), pts.z.resize(pts.z.size() + n, z);
+          pts.add_row(xs + i, n, y, z);
           if (j < kBlock && k < kBlock) b.evaluated += static_cast<size_t>(std::max(0, std::min(run_end, kBlock - 1) - i + 1));
         } else {
           std::fill_n(b.f.begin() + static_cast<std::ptrdiff_t>(at), n, c == BrickClass::Inside ? 1.0f : -1.0f);
@@ -291,17 +308,16 @@ struct Edges {
 // whole where a probe crosses it: vertices 0.16 of a cell off in unit_dc_csg, against under 0.1).
 bool normals(const Field& f, const Lattice& g, const Block& b, Edges& E, std::vector<Plane>& planes, backends::RuntimeError& err) {
   Batch& pts = scratch();
-  pts.clear();
   const size_t n = E.real.size();
+  pts.resize(6 * n);
+  const double d[3] = {kProbe * g.h[0], kProbe * g.h[1], kProbe * g.h[2]};
   for (size_t r = 0; r < n; ++r) {
     std::array<double, 3>& p = E.at[E.real[r]];
     p[b.xs[E.real[r]].axis] += E.t[r] * g.h[b.xs[E.real[r]].axis];
-    for (int a = 0; a < 3; ++a)
-      for (int sgn : {1, -1}) {
-        double q[3] = {p[0], p[1], p[2]};
-        q[a] += sgn * kProbe * g.h[a];
-        pts.add(q[0], q[1], q[2]);
-      }
+    size_t q = 6 * r;
+    pts.set(q, p[0] + d[0], p[1], p[2]), pts.set(q + 1, p[0] - d[0], p[1], p[2]);
+    pts.set(q + 2, p[0], p[1] + d[1], p[2]), pts.set(q + 3, p[0], p[1] - d[1], p[2]);
+    pts.set(q + 4, p[0], p[1], p[2] + d[2]), pts.set(q + 5, p[0], p[1], p[2] - d[2]);
   }
   if (!pts.run(f, err)) return false;
   for (size_t r = 0; r < n; ++r) {
@@ -349,12 +365,13 @@ bool hermite(const Field& f, const Lattice& g, Block& b, std::vector<Plane>& pla
   E.active.resize(real.size());
   for (size_t r = 0; r < real.size(); ++r) E.active[r] = r;
   for (int step = 0; step < kRefineSteps && !E.active.empty(); ++step) {
-    pts.clear();
-    for (size_t r : E.active) {
+    pts.resize(E.active.size());
+    for (size_t q = 0; q < E.active.size(); ++q) {
+      size_t r = E.active[q];
       t[r] = false_position(r);
       std::array<double, 3> p = E.at[real[r]];
       p[b.xs[real[r]].axis] += t[r] * g.h[b.xs[real[r]].axis];
-      pts.add(p[0], p[1], p[2]);
+      pts.set(q, p[0], p[1], p[2]);
     }
     if (!pts.run(f, err)) return false;
     size_t kept = 0;

@@ -2,6 +2,8 @@
 // vertices on the surface; the sharp corners of a cube turned off the grid axes kept within a tenth
 // of a cell (marching tetrahedra rounds them off); a solid cut by the box closed by the box faces.
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 
@@ -135,5 +137,27 @@ TEST_CASE("dual contouring: a function undefined outside its solid still gives t
     INFO("tolerance " << tolerance << ": " << m.triangles.size() << " triangles, worst " << worst / h << " of a cell");
     CHECK(worst < 0.1 * h);
     CHECK(m.triangles.size() > 1000);
+  }
+}
+
+TEST_CASE("dual contouring: blocks of every size and shape, on any number of threads, make one closed mesh") {
+  // Lattices whose cells (n + 1 per axis, with the padding) end a 16-cell block exactly, just
+  // after, just before, and differently per axis; a sphere with a slab cut through the blocks.
+  FnField shape([](double x, double y, double z) {
+    return std::min(0.8 - std::sqrt(x * x + y * y + z * z), 0.3 - std::abs(0.6 * x + 0.8 * z - 0.1 * y));
+  });
+  const std::array<int, 3> sizes[] = {{15, 15, 15}, {16, 16, 16}, {31, 32, 33}, {5, 17, 33}, {33, 5, 17}, {47, 9, 30}};
+  for (const auto& n : sizes) {
+    mesh::ImplicitJob j = job(shape, 1);
+    j.cells = n;
+    mesh::DualContourStats st;
+    mesh::Mesh one = closed_dc(j, st);
+    for (int threads : {2, 5}) {
+      j.threads = threads;
+      mesh::Mesh many = closed_dc(j, st);
+      INFO(n[0] << "x" << n[1] << "x" << n[2] << " cells on " << threads << " threads");
+      CHECK(many.positions == one.positions);
+      CHECK(many.triangles == one.triangles);
+    }
   }
 }

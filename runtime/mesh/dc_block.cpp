@@ -126,17 +126,6 @@ double gradient(float plus, float minus, double step) {
   return p ? plus / step : m ? -minus / step : 0.0;
 }
 
-// The cells (in the block, possibly -1) around a crossing's edge, in the order that winds its quad
-// around +axis.
-void cells_of(const Crossing& c, int out[4][3]) {
-  int b = (c.axis + 1) % 3, d = (c.axis + 2) % 3;
-  const int step[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  for (int q = 0; q < 4; ++q) {
-    for (int a = 0; a < 3; ++a) out[q][a] = c.l[a];
-    out[q][b] -= step[q][0], out[q][d] -= step[q][1];
-  }
-}
-
 }  // namespace
 
 BlockGrid::BlockGrid(const Lattice& g, const BrickMap* bricks) : g_(g) {
@@ -195,6 +184,15 @@ unsigned BlockGrid::mask(const int c[3]) const {
   unsigned m = 0;
   for (int q = 0; q < 8; ++q) m |= static_cast<unsigned>(inside(c[0] + (q & 1), c[1] + (q >> 1 & 1), c[2] + (q >> 2 & 1))) << q;
   return m;
+}
+
+void cells_of(const Crossing& c, int out[4][3]) {
+  int b = (c.axis + 1) % 3, d = (c.axis + 2) % 3;
+  const int step[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int q = 0; q < 4; ++q) {
+    for (int a = 0; a < 3; ++a) out[q][a] = c.l[a];
+    out[q][b] -= step[q][0], out[q][d] -= step[q][1];
+  }
 }
 
 int Block::key(const CellInfo& c, int in, int out) {

@@ -26,6 +26,10 @@ struct Crossing {
   bool lower_inside;
 };
 
+// The four cells (in the block; -1 where they are in the blocks below) around a crossing's edge, in
+// the order that winds its polygon around +axis.
+void cells_of(const Crossing& c, int out[4][3]);
+
 // One sheet of surface in a dual cell (manifold dual contouring). Its planes (a Qef) live only while
 // the block is merged (cell_sheets to merge_block), so the blocks stay small.
 struct Sheet {

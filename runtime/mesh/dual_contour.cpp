@@ -114,6 +114,24 @@ uint32_t vertex_at(const BlockGrid& grid, const Block& b, const int l[3], const 
   return s == kNone ? kNone : owner->out[s];
 }
 
+// The output vertices of crossing e's four cells in winding order, repeated ones dropped; false
+// where a cell has none (only if two blocks disagreed on the sign of a sample).
+bool ring_of(const BlockGrid& grid, const Block& b, size_t e, uint32_t ring[4], int& n) {
+  const Crossing& c = b.xs[e];
+  int cells[4][3], inside[3] = {c.l[0], c.l[1], c.l[2]};
+  if (!c.lower_inside) ++inside[c.axis];
+  cells_of(c, cells);
+  n = 0;
+  for (int q = 0; q < 4; ++q) {
+    uint32_t s = b.ids[e][static_cast<size_t>(q)];
+    uint32_t v = s != kNone ? b.out[s] : vertex_at(grid, b, cells[q], inside, c.axis);
+    if (v == kNone) return false;
+    if (n == 0 || ring[n - 1] != v) ring[n++] = v;
+  }
+  if (n > 1 && ring[n - 1] == ring[0]) --n;
+  return true;
+}
+
 // One polygon per crossing whose highest cell is in the block, over its cells' output vertices,
 // wound to face out of the solid; where merged cells repeat a vertex the quad becomes a triangle,
 // or nothing inside a merged cell.
@@ -121,28 +139,9 @@ void polygons(const BlockGrid& grid, const Block& b, Mesh& out) {
   for (size_t e = 0; e < b.xs.size(); ++e) {
     const Crossing& c = b.xs[e];
     if (c.l[0] >= b.m[0] || c.l[1] >= b.m[1] || c.l[2] >= b.m[2]) continue;  // the next block's
-    int inside[3] = {c.l[0], c.l[1], c.l[2]}, bb = (c.axis + 1) % 3, d = (c.axis + 2) % 3;
-    if (!c.lower_inside) ++inside[c.axis];
-    const int step[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     uint32_t ring[4];
-    int n = 0;
-    for (int q = 0; q < 4; ++q) {
-      uint32_t s = b.ids[e][static_cast<size_t>(q)], v;
-      if (s != kNone) {
-        v = b.out[s];
-      } else {
-        int l[3] = {c.l[0], c.l[1], c.l[2]};
-        l[bb] -= step[q][0], l[d] -= step[q][1];
-        v = vertex_at(grid, b, l, inside, c.axis);
-      }
-      if (v == kNone) break;
-      if (n == 0 || ring[n - 1] != v) ring[n++] = v;
-      if (q == 3) n = -n;  // every cell had its vertex
-    }
-    if (n >= 0) continue;
-    n = -n;
-    if (n > 1 && ring[n - 1] == ring[0]) --n;
-    if (n < 3) continue;
+    int n;
+    if (!ring_of(grid, b, e, ring, n) || n < 3) continue;
     if (!c.lower_inside) std::reverse(ring, ring + n);  // the solid above: the polygon faces -axis
     out.triangles.push_back({ring[0], ring[1], ring[2]});
     if (n == 4) out.triangles.push_back({ring[0], ring[2], ring[3]});

@@ -138,7 +138,8 @@ struct BlockTree {
     };
     if (l == 1) {
       for (const Sheet& s : b.sheets) {
-        int c[3] = {static_cast<int>(s.cell % kBlock), static_cast<int>(s.cell / kBlock % kBlock), static_cast<int>(s.cell / (kBlock * kBlock))};
+        int c[3];
+        position(0, s.cell, c);  // level 0: the block's cells
         add(c);
       }
       return;
@@ -239,7 +240,8 @@ void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, doubl
   for (int l = 1; l <= tree.built; ++l) node_vertex[l].assign(tree.nodes[l].size(), kNone);
   for (size_t s = 0; s < b.sheets.size(); ++s) {
     const Sheet& sh = b.sheets[s];
-    int c[3] = {static_cast<int>(sh.cell % kBlock), static_cast<int>(sh.cell / kBlock % kBlock), static_cast<int>(sh.cell / (kBlock * kBlock))};
+    int c[3];
+    BlockTree::position(0, sh.cell, c);
     int l = tree.top(c);
     uint32_t* named = nullptr;
     if (l > 0) {

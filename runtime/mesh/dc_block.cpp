@@ -187,12 +187,9 @@ unsigned BlockGrid::mask(const int c[3]) const {
 }
 
 void cells_of(const Crossing& c, int out[4][3]) {
-  int b = (c.axis + 1) % 3, d = (c.axis + 2) % 3;
-  const int step[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  for (int q = 0; q < 4; ++q) {
-    for (int a = 0; a < 3; ++a) out[q][a] = c.l[a];
-    out[q][b] -= step[q][0], out[q][d] -= step[q][1];
-  }
+  int u = kNextAxis[c.axis], w = kNextAxis[u];
+  for (int q = 0; q < 4; ++q) out[q][0] = c.l[0], out[q][1] = c.l[1], out[q][2] = c.l[2];
+  --out[1][u], --out[2][u], --out[2][w], --out[3][w];  // winding (0, 0), (1, 0), (1, 1), (0, 1) below
 }
 
 int Block::key(const CellInfo& c, int in, int out) {
@@ -394,10 +391,10 @@ bool hermite(const Field& f, const Lattice& g, Block& b, std::vector<Plane>& pla
 
 namespace {
 
+// Corner q of the cell at bit q: two corners along x at a time, from the rows' bits.
 unsigned cell_mask(const Block& b, int i, int j, int k) {
-  unsigned m = 0;
-  for (int q = 0; q < 8; ++q) m |= static_cast<unsigned>(b.inside(i + (q & 1), j + (q >> 1 & 1), k + (q >> 2 & 1))) << q;
-  return m;
+  auto two = [&](int y, int z) { return b.rows[z][y] >> i & 3u; };
+  return two(j, k) | two(j + 1, k) << 2 | two(j, k + 1) << 4 | two(j + 1, k + 1) << 6;
 }
 
 // A cell's inside corners and the faces decided the other way (dc_cells.h), looking across the
@@ -436,12 +433,15 @@ void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& plan
     int cells[4][3], inside[3] = {c.l[0], c.l[1], c.l[2]};
     if (!c.lower_inside) ++inside[c.axis];
     cells_of(c, cells);
+    // The four cells are the edge's lower sample minus 0 or 1 along the two other axes: in the block
+    // where that stays in 0 .. m - 1 (along the edge's own axis it always does).
+    int u = kNextAxis[c.axis], w = kNextAxis[u];
+    bool u0 = c.l[u] < b.m[u], u1 = c.l[u] > 0, w0 = c.l[w] < b.m[w], w1 = c.l[w] > 0;
+    const bool here[4] = {u0 && w0, u1 && w0, u1 && w1, u0 && w1};
     std::array<uint32_t, 4> id{kNone, kNone, kNone, kNone};
     for (int q = 0; q < 4; ++q) {
+      if (!here[q]) continue;
       const int* l = cells[q];
-      bool here = true;
-      for (int a = 0; a < 3; ++a) here = here && l[a] >= 0 && l[a] < b.m[a];
-      if (!here) continue;
       size_t cell = Block::cell(l[0], l[1], l[2]);
       Block::CellInfo& info = b.cells[cell];
       if (info.first == kNone) cell_signs(grid, b, l, cell);

@@ -18,6 +18,7 @@ constexpr int kBlockLevels = 4;                 // octree levels inside a block
 constexpr int kBlock = 1 << kBlockLevels;       // dual cells per block side
 constexpr int kBlockSamples = kBlock + 1;       // samples per block side (faces shared with neighbours)
 constexpr uint32_t kNone = ~uint32_t{0};
+constexpr int kNextAxis[3] = {1, 2, 0};
 
 // A sign-change edge between two samples of a block.
 struct Crossing {

@@ -35,14 +35,31 @@ const std::array<uint8_t, 27>& middle_of() {
   return t;
 }
 
-// Whether a node whose lowest sample is s0 and whose side is 2 * half allows one vertex, from its 27
-// samples: one sheet, no ambiguous face, and every midpoint agreeing in sign with a corner of the
-// edge, face or body it is the middle of.
+// The signs of the 27 samples of a node whose lowest sample is s0 and whose side is 2 * half: bit p
+// (p = i + 3j + 9k) set where sample s0 + half * (i, j, k) is inside.
 template <class Inside>
-bool topology_safe(Inside inside, const int s0[3], int half) {
-  const std::array<uint8_t, 27>& middle = middle_of();
-  uint32_t in = 0;  // bit p: sample p inside
+uint32_t node_samples(Inside inside, const int s0[3], int half) {
+  uint32_t in = 0;
   for (int p = 0; p < 27; ++p) in |= static_cast<uint32_t>(inside(s0[0] + p % 3 * half, s0[1] + p / 3 % 3 * half, s0[2] + p / 9 * half)) << p;
+  return in;
+}
+
+// The same for a node inside a block (s0 in the block's samples), three samples of a row at a time.
+uint32_t node_samples(const Block& b, const int s0[3], int half) {
+  uint32_t in = 0;
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 3; ++j) {
+      uint32_t r = b.rows[s0[2] + k * half][s0[1] + j * half] >> s0[0];
+      in |= ((r & 1) | (r >> half & 1) << 1 | (r >> 2 * half & 1) << 2) << (3 * j + 9 * k);
+    }
+  return in;
+}
+
+// Whether a node allows one vertex, from its 27 samples (node_samples): one sheet, no ambiguous
+// face, and every midpoint agreeing in sign with a corner of the edge, face or body it is the
+// middle of.
+bool topology_safe(uint32_t in) {
+  const std::array<uint8_t, 27>& middle = middle_of();
   unsigned corners = 0;
   for (int c = 0; c < 8; ++c) corners |= (in >> ((c & 1) * 2 + (c >> 1 & 1) * 6 + (c >> 2 & 1) * 18) & 1u) << c;
   if (ambiguous_faces(corners)) return false;
@@ -72,8 +89,8 @@ struct Child {
 
 // A node of lattice cells c0 .. c0 + size - 1 per axis from its children: merged when every child
 // with surface is merged, the topology allows it and the vertex stays within the tolerance.
-template <class Inside, class ChildAt>
-Node collapse(const Lattice& g, Inside inside, ChildAt child, const int c0[3], int size, double limit) {
+template <class Samples, class ChildAt>
+Node collapse(const Lattice& g, Samples samples, ChildAt child, const int c0[3], int size, double limit) {
   Node out;
   bool any = false;
   for (int c = 0; c < 8; ++c) {
@@ -88,7 +105,7 @@ Node collapse(const Lattice& g, Inside inside, ChildAt child, const int c0[3], i
   out.state = State::Kept;
   for (int a = 0; a < 3; ++a)
     if (c0[a] + size > g.n[a]) return out;  // past the last cell
-  if (!topology_safe(inside, c0, size / 2)) return out;
+  if (!topology_safe(samples())) return out;
   Qef::Solution s = solve_in_cells(g, out.qef, c0, size);
   out.rms = rms(out.qef, s);
   if (out.rms > limit) return out;
@@ -151,7 +168,6 @@ struct BlockTree {
     }
   }
   void grow(const Lattice& g, const Block& b, const std::vector<Qef>& qefs, double limit) {
-    auto inside = [&](int x, int y, int z) { return b.inside(x - b.s0[0], y - b.s0[1], z - b.s0[2]); };
     for (int l = 1; l <= kBlockLevels; ++l) {
       make_level(b, l);
       int size = 1 << l;
@@ -166,7 +182,9 @@ struct BlockTree {
           const Node* n = at(l - 1, v);
           return n ? Child{n->state, &n->qef} : Child{State::Empty, nullptr};
         };
-        nodes[l][q] = collapse(g, inside, child, cell, size, limit);
+        int s0[3] = {u[0] * size, u[1] * size, u[2] * size};
+        auto samples = [&] { return node_samples(b, s0, size / 2); };
+        nodes[l][q] = collapse(g, samples, child, cell, size, limit);
         any = any || nodes[l][q].state == State::Merged;
       }
       built = l;
@@ -297,7 +315,8 @@ std::vector<int32_t> merge_blocks(const BlockGrid& grid, double tolerance, std::
         const Node* n = below.find(node_key(l - 1, v));
         return n ? Child{n->state, &n->qef} : Child{State::Empty, nullptr};
       };
-      next.add(p, collapse(g, inside, child_at, c0, size, limit));
+      auto samples = [&] { return node_samples(inside, c0, size / 2); };
+      next.add(p, collapse(g, samples, child_at, c0, size, limit));
       any = any || next.nodes.back().state == State::Merged;
     }
     levels.push_back(std::move(next));

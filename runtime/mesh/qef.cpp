@@ -12,31 +12,32 @@ Plane Qef::plane(const double p[3], const double n[3]) {
   Plane q;
   double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
   if (!(len > 0) || !std::isfinite(len)) return q;
-  for (int a = 0; a < 3; ++a) q.u[a] = n[a] / len, q.p[a] = p[a];
-  q.d = q.u[0] * p[0] + q.u[1] * p[1] + q.u[2] * p[2];
+  double u[3];
+  for (int a = 0; a < 3; ++a) u[a] = n[a] / len;
+  double d = u[0] * p[0] + u[1] * p[1] + u[2] * p[2];
+  double* w = q.w;
+  w[kXX] = u[0] * u[0], w[kXY] = u[0] * u[1], w[kXZ] = u[0] * u[2];
+  w[kYY] = u[1] * u[1], w[kYZ] = u[1] * u[2], w[kZZ] = u[2] * u[2];
+  for (int a = 0; a < 3; ++a) w[kBX + a] = u[a] * d, w[kMX + a] = p[a];
+  w[kBB] = d * d;
   q.valid = true;
   return q;
 }
 
 void Qef::add(const Plane& q) {
   if (!q.valid) return;
-  const double* u = q.u;
-  ata_[0] += u[0] * u[0], ata_[1] += u[0] * u[1], ata_[2] += u[0] * u[2];
-  ata_[3] += u[1] * u[1], ata_[4] += u[1] * u[2], ata_[5] += u[2] * u[2];
-  for (int a = 0; a < 3; ++a) atb_[a] += u[a] * q.d, mass_[a] += q.p[a];
-  btb_ += q.d * q.d;
+  for (int k = 0; k < kQefTerms; ++k) s_[k] += q.w[k];
   ++count_;
 }
 
 void Qef::merge(const Qef& o) {
-  for (int k = 0; k < 6; ++k) ata_[k] += o.ata_[k];
-  for (int a = 0; a < 3; ++a) atb_[a] += o.atb_[a], mass_[a] += o.mass_[a];
-  btb_ += o.btb_;
+  for (int k = 0; k < kQefTerms; ++k) s_[k] += o.s_[k];
   count_ += o.count_;
 }
 
 namespace {
 
+// The symmetric matrix of the first six terms.
 Eigen::Matrix3d matrix(const double m[6]) {
   Eigen::Matrix3d a;
   a << m[0], m[1], m[2], m[1], m[3], m[4], m[2], m[4], m[5];
@@ -46,8 +47,8 @@ Eigen::Matrix3d matrix(const double m[6]) {
 }  // namespace
 
 double Qef::error(const double x[3]) const {
-  Eigen::Vector3d v(x[0], x[1], x[2]), atb(atb_[0], atb_[1], atb_[2]);
-  return std::max(0.0, v.dot(matrix(ata_) * v) - 2 * v.dot(atb) + btb_);
+  Eigen::Vector3d v(x[0], x[1], x[2]), atb(s_[kBX], s_[kBY], s_[kBZ]);
+  return std::max(0.0, v.dot(matrix(s_) * v) - 2 * v.dot(atb) + s_[kBB]);
 }
 
 Qef::Solution Qef::solve(const double lo[3], const double hi[3]) const {
@@ -56,9 +57,9 @@ Qef::Solution Qef::solve(const double lo[3], const double hi[3]) const {
     for (int a = 0; a < 3; ++a) s.x[a] = (lo[a] + hi[a]) / 2;
     return s;
   }
-  Eigen::Matrix3d ata = matrix(ata_);
-  Eigen::Vector3d atb(atb_[0], atb_[1], atb_[2]);
-  Eigen::Vector3d c = Eigen::Vector3d(mass_[0], mass_[1], mass_[2]) / static_cast<double>(count_);
+  Eigen::Matrix3d ata = matrix(s_);
+  Eigen::Vector3d atb(s_[kBX], s_[kBY], s_[kBZ]);
+  Eigen::Vector3d c = Eigen::Vector3d(s_[kMX], s_[kMY], s_[kMZ]) / static_cast<double>(count_);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(ata);  // closed form: several times faster than the iterative solver on 3x3
   const Eigen::Vector3d& lambda = eig.eigenvalues();  // ascending

@@ -6,9 +6,14 @@
 
 namespace fscript::mesh {
 
-// A tangent plane ready to add: unit normal u, offset d = u.p, and the point p on it.
+// The sums a QEF keeps: A^T A (xx xy xz yy yz zz), A^T b, b^T b and the sum of the points, and a
+// pad so the sums add in pairs.
+enum QefTerm { kXX, kXY, kXZ, kYY, kYZ, kZZ, kBX, kBY, kBZ, kBB, kMX, kMY, kMZ, kQefTerms = 14 };
+
+// A tangent plane ready to add (unit normal u, offset d = u.p, the point p on it), as its terms:
+// made once per crossing and added to up to four cells, so the products are not made four times.
 struct Plane {
-  double u[3], d, p[3];
+  double w[kQefTerms] = {};
   bool valid = false;  // false when the normal was zero or not finite (the plane adds nothing)
 };
 
@@ -38,10 +43,7 @@ class Qef {
   static constexpr double kCutoff = 0.1;
 
  private:
-  double ata_[6] = {0, 0, 0, 0, 0, 0};  // xx xy xz yy yz zz
-  double atb_[3] = {0, 0, 0};
-  double btb_ = 0;
-  double mass_[3] = {0, 0, 0};  // sum of the points
+  double s_[kQefTerms] = {};  // QefTerm
   size_t count_ = 0;
 };
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "runtime/math/math.h"
 
@@ -210,28 +211,25 @@ bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, 
     for (size_t i = 0; i < n; ++i) apply(inverse_, lx[i], ly[i], lz[i]);
     x = lx.data(), y = ly.data(), z = lz.data();
   }
-  std::vector<std::vector<float>> vals(kids_.size(), std::vector<float>(n));
-  for (size_t k = 0; k < kids_.size(); ++k)
-    if (!kids_[k]->eval(x, y, z, n, vals[k].data(), err)) return false;
-  std::string op = g_.operation.empty() ? "union" : g_.operation;
-  if (g_.op_kernel) {  // analytical: inputs f, g, f1..f16, t
-    std::vector<float> zero(n, 0.0f), t(n, static_cast<float>(g_.op_kernel->t));
-    std::vector<const float*> in;
-    in.push_back(vals[0].data());
-    in.push_back(kids_.size() > 1 ? vals[1].data() : zero.data());
-    for (int k = 0; k < kMaxOperands; ++k) in.push_back(k < static_cast<int>(kids_.size()) ? vals[k].data() : zero.data());
-    in.push_back(t.data());
-    float* outs[1] = {out};
-    return g_.op_kernel->kernel->eval_batch(in.data(), outs, n, err);
+  if (kids_.empty()) {  // an empty group holds nothing: outside everywhere
+    std::fill_n(out, n, -1.0f);
+    return true;
   }
+  if (g_.op_kernel) return eval_operator(x, y, z, n, out, err);
+  // The first child straight into out and the others into one buffer left uninitialised: zeroing
+  // and copying per batch cost as much as the folds themselves.
+  std::unique_ptr<float[]> rest(new float[n * (kids_.size() - 1)]);
+  auto vals = [&](size_t k) { return k == 0 ? out : rest.get() + n * (k - 1); };
+  for (size_t k = 0; k < kids_.size(); ++k)
+    if (!kids_[k]->eval(x, y, z, n, vals(k), err)) return false;
+  std::string op = g_.operation.empty() ? "union" : g_.operation;
   const vrml::Value* p = g_.node->get("parameters");
   double a0 = p && p->nums.size() > 0 ? p->nums[0] : 0, a1 = p && p->nums.size() > 1 ? p->nums[1] : 1,
          a2 = p && p->nums.size() > 2 ? p->nums[2] : 1;
-  std::copy(vals[0].begin(), vals[0].end(), out);
   bool blend = op == "blend_union" || op == "blend_intersection";
   double sign = op == "blend_union" ? 1 : -1;
   for (size_t k = 1; k < kids_.size(); ++k) {
-    const float* g = vals[k].data();
+    const float* g = vals(k);
     if (op == "intersection") {
       for (size_t i = 0; i < n; ++i) out[i] = math::min(out[i], g[i]);
     } else if (op == "subtraction" || op == "difference") {
@@ -247,6 +245,22 @@ bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, 
     }
   }
   return true;
+}
+
+bool GroupField::eval_operator(const float* x, const float* y, const float* z, size_t n, float* out,
+                               backends::RuntimeError& err) const {
+  std::vector<std::vector<float>> vals(kids_.size(), std::vector<float>(n));
+  for (size_t k = 0; k < kids_.size(); ++k)
+    if (!kids_[k]->eval(x, y, z, n, vals[k].data(), err)) return false;
+  // Inputs f, g, f1..f16, t.
+  std::vector<float> zero(n, 0.0f), t(n, static_cast<float>(g_.op_kernel->t));
+  std::vector<const float*> in;
+  in.push_back(vals[0].data());
+  in.push_back(kids_.size() > 1 ? vals[1].data() : zero.data());
+  for (int k = 0; k < kMaxOperands; ++k) in.push_back(k < static_cast<int>(kids_.size()) ? vals[k].data() : zero.data());
+  in.push_back(t.data());
+  float* outs[1] = {out};
+  return g_.op_kernel->kernel->eval_batch(in.data(), outs, n, err);
 }
 
 bool GroupField::can_bound() const {

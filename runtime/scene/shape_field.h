@@ -44,6 +44,8 @@ class GroupField : public mesh::Field {
   const Shape* first_shape() const;      // for the colour of the result
 
  private:
+  // An analytical operation (the FTransform's operation as a script) over the children's values.
+  bool eval_operator(const float* x, const float* y, const float* z, size_t n, float* out, backends::RuntimeError& err) const;
   const SceneModel& m_;
   const Group& g_;
   std::vector<std::unique_ptr<mesh::Field>> kids_;

@@ -59,14 +59,14 @@ struct Block {
   std::vector<CellInfo> rim;    // then only its cells on its upper faces, which the next blocks' polygons reach
   std::vector<Sheet> sheets;
   std::vector<std::array<uint32_t, 4>> ids;  // per crossing: its cells' sheets here (kNone: another block's)
-  // Vertices (dc_octree.h): each sheet's block vertex, and their positions and plane distances.
+  // Vertices (dc_octree.h): each sheet's vertex among the block's (then, once numbered, in the
+  // output mesh), their positions (as the mesh stores them) and their largest plane distance.
   std::vector<uint32_t> vertex;
-  std::vector<std::array<double, 3>> positions;
-  std::vector<double> rms;
+  std::vector<std::array<float, 3>> positions;
+  double max_rms = 0;
   size_t merged = 0;        // of those, merged cells
   bool root = false;        // one merged cell holds every sheet: it may merge with other blocks
   Qef root_qef;
-  std::vector<uint32_t> out;  // per sheet: its vertex in the output mesh
   size_t evaluated = 0;
   bool sound = true;  // no evaluated sample contradicted its brick's bound
 

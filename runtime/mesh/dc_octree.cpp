@@ -253,7 +253,10 @@ void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, doubl
   tree.built = 0;
   if (tolerance > 0) tree.grow(g, b, qefs, limit);
   b.vertex.assign(b.sheets.size(), kNone);
-  b.positions.clear(), b.rms.clear(), b.merged = 0;
+  b.positions.clear(), b.max_rms = 0, b.merged = 0;
+  auto add = [&b](const double x[3], double rms) {
+    b.positions.push_back({float(x[0]), float(x[1]), float(x[2])}), b.max_rms = std::max(b.max_rms, rms);
+  };
   std::vector<uint32_t> node_vertex[kBlockLevels + 1];
   for (int l = 1; l <= tree.built; ++l) node_vertex[l].assign(tree.nodes[l].size(), kNone);
   for (size_t s = 0; s < b.sheets.size(); ++s) {
@@ -271,11 +274,11 @@ void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, doubl
         continue;
       }
       const Node& n = tree.nodes[l][q];
-      b.positions.push_back({n.x[0], n.x[1], n.x[2]}), b.rms.push_back(n.rms), ++b.merged;
+      add(n.x, n.rms), ++b.merged;
     } else {  // a cell of the uniform grid: its vertex now
       int cell[3] = {b.s0[0] + c[0], b.s0[1] + c[1], b.s0[2] + c[2]};
       Qef::Solution sol = solve_in_cells(g, qefs[s], cell, 1);
-      b.positions.push_back({sol.x[0], sol.x[1], sol.x[2]}), b.rms.push_back(rms(qefs[s], sol));
+      add(sol.x, rms(qefs[s], sol));
     }
     b.vertex[s] = static_cast<uint32_t>(b.positions.size() - 1);
     if (named) *named = b.vertex[s];

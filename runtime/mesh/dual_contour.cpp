@@ -71,31 +71,36 @@ bool sample_blocks(const ImplicitJob& job, const Lattice& g, std::unique_ptr<Blo
 }
 
 // The output vertices: blocks in order, each block's own vertices in the order its sheets name them,
-// or the vertex of the group of blocks it merged into when the group is first named.
+// or the vertex of the group of blocks it merged into when the group is first named; each sheet's
+// vertex (Block::vertex) becomes its output vertex.
 void number_vertices(BlockGrid& grid, const std::vector<int32_t>& group, const std::vector<BlockGroup>& groups, Mesh& out,
                      DualContourStats& stats) {
   std::vector<uint32_t> group_vertex(groups.size(), kNone);
   double h = std::min({grid.lattice().h[0], grid.lattice().h[1], grid.lattice().h[2]});
-  auto add = [&](const std::array<double, 3>& p, double rms) {
-    out.positions.push_back({float(p[0]), float(p[1]), float(p[2])});
-    stats.max_error = std::max(stats.max_error, rms / h);
-    return static_cast<uint32_t>(out.positions.size() - 1);
-  };
   std::vector<Block>& blocks = grid.blocks();
+  size_t total = groups.size();
+  for (const Block& b : blocks) total += b.positions.size();
+  out.positions.reserve(total);
   for (size_t i = 0; i < blocks.size(); ++i) {
     Block& b = blocks[i];
-    b.out.resize(b.sheets.size());
     if (b.sheets.empty()) continue;
     if (group[i] >= 0) {
+      const BlockGroup& bg = groups[static_cast<size_t>(group[i])];
       uint32_t& v = group_vertex[static_cast<size_t>(group[i])];
-      if (v == kNone) v = add(groups[static_cast<size_t>(group[i])].x, groups[static_cast<size_t>(group[i])].rms), ++stats.merged;
-      std::fill(b.out.begin(), b.out.end(), v);
+      if (v == kNone) {
+        out.positions.push_back({float(bg.x[0]), float(bg.x[1]), float(bg.x[2])});
+        v = static_cast<uint32_t>(out.positions.size() - 1), ++stats.merged;
+        stats.max_error = std::max(stats.max_error, bg.rms / h);
+      }
+      std::fill(b.vertex.begin(), b.vertex.end(), v);
       continue;
     }
     uint32_t base = static_cast<uint32_t>(out.positions.size());
-    for (size_t v = 0; v < b.positions.size(); ++v) add(b.positions[v], b.rms[v]);
-    for (size_t s = 0; s < b.sheets.size(); ++s) b.out[s] = base + b.vertex[s];
+    out.positions.insert(out.positions.end(), b.positions.begin(), b.positions.end());
+    for (uint32_t& v : b.vertex) v += base;
+    stats.max_error = std::max(stats.max_error, b.max_rms / h);
     stats.merged += b.merged;
+    b.positions = {};
   }
   stats.cells = out.positions.size();
 }
@@ -111,7 +116,7 @@ uint32_t vertex_at(const BlockGrid& grid, const Block& b, const int l[3], const 
   int in = 0;
   for (int a = 0; a < 3; ++a) in |= (b.s0[a] + inside[a] - owner->s0[a] - nl[a]) << a;
   uint32_t s = owner->sheet(owner->rim[Block::rim_index(nl[0], nl[1], nl[2])], in, in ^ (1 << axis));
-  return s == kNone ? kNone : owner->out[s];
+  return s == kNone ? kNone : owner->vertex[s];
 }
 
 // The output vertices of crossing e's four cells in winding order, repeated ones dropped; false
@@ -124,7 +129,7 @@ bool ring_of(const BlockGrid& grid, const Block& b, size_t e, uint32_t ring[4], 
   n = 0;
   for (int q = 0; q < 4; ++q) {
     uint32_t s = b.ids[e][static_cast<size_t>(q)];
-    uint32_t v = s != kNone ? b.out[s] : vertex_at(grid, b, cells[q], inside, c.axis);
+    uint32_t v = s != kNone ? b.vertex[s] : vertex_at(grid, b, cells[q], inside, c.axis);
     if (v == kNone) return false;
     if (n == 0 || ring[n - 1] != v) ring[n++] = v;
   }
@@ -181,6 +186,9 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   std::vector<BlockGroup> groups;
   std::vector<int32_t> group = merge_blocks(*grid, job.mesher.tolerance, groups);
   number_vertices(*grid, group, groups, out, stats);
+  size_t crossings = 0;  // at most two triangles each: reserved, not touched, so no doubling copies
+  for (const Block& b : blocks) crossings += b.xs.size();
+  out.triangles.reserve(2 * crossings);
   for (const Block& b : blocks) polygons(*grid, b, out);
   stats.triangles = out.triangles.size();
   // No vertex normals: a vertex on a sharp edge has no one normal, and its faces' mean would shade

@@ -41,8 +41,8 @@ struct Batch {
   void add_row(const float* xs, size_t count, float py, float pz) {
     size_t at = n;
     resize(n + count);
-    std::copy(xs, xs + count, x.begin() + static_cast<std::ptrdiff_t>(at));
-    std::fill_n(y.begin() + static_cast<std::ptrdiff_t>(at), count, py), std::fill_n(z.begin() + static_cast<std::ptrdiff_t>(at), count, pz);
+    float *px = x.data() + at, *yy = y.data() + at, *zz = z.data() + at;
+    for (size_t i = 0; i < count; ++i) px[i] = xs[i], yy[i] = py, zz[i] = pz;  // plain loops vectorize; fill_n's did not
   }
   bool run(const Field& f, backends::RuntimeError& err) {
     if (out.size() < n) out.resize(x.size());
@@ -240,7 +240,9 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
     Lend(Block& blk) : b(blk) { b.f.swap(samples), b.decided.swap(flags); }
     ~Lend() { b.f.swap(samples), b.decided.swap(flags); }
   } lend(b);
-  b.f.assign(kSamples, -1.0f);  // the padding's value
+  b.f.resize(kSamples);
+  float* f0 = b.f.data();
+  for (size_t q = 0; q < kSamples; ++q) f0[q] = -1.0f;  // the padding's value (a plain loop: vector::assign's is not vectorized)
   b.decided.assign(kSamples, 0);
   b.evaluated = 0;
   b.sound = true;
@@ -264,7 +266,8 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
         BrickClass c = bricks ? bricks->at(si / B, sj / B, sk / B) : BrickClass::Open;
         size_t at = Block::sample(i, j, k), n = static_cast<size_t>(run_end - i + 1);
         if (c == BrickClass::Open) {
-          runs.push_back({at, n});
+          if (!runs.empty() && runs.back().at + runs.back().n == at) runs.back().n += n;  // the row's run goes on
+          else runs.push_back({at, n});
           pts.add_row(xs + i, n, y, z);
           if (j < kBlock && k < kBlock) b.evaluated += static_cast<size_t>(std::max(0, std::min(run_end, kBlock - 1) - i + 1));
         } else {

@@ -16,12 +16,12 @@
 
 namespace fscript::mesh {
 
-// Which mesher an implicit job runs (fvrml-run --mesher): marching tetrahedra (the default) or
-// manifold dual contouring on the same grid (dual_contour.h).
+// Which mesher an implicit job runs (fvrml-run --mesher): manifold dual contouring (the default:
+// dual_contour.h) or marching tetrahedra on the same grid.
 enum class Mesher : uint8_t { MarchingTetrahedra, DualContouring };
 
 struct MesherOptions {
-  Mesher kind = Mesher::MarchingTetrahedra;
+  Mesher kind = Mesher::DualContouring;
   // Dual contouring merges cells while their vertex stays within this many cells (root-mean-square)
   // of their tangent planes (fvrml-run --tolerance); 0 keeps every cell (dc_octree.h).
   double tolerance = kDefaultTolerance;

@@ -2,6 +2,7 @@
 #include "runtime/mesh/mesh.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace fscript::mesh {
@@ -94,6 +95,43 @@ Topology topology(const Mesh& m) {
   size_t faces = m.triangles.size() - t.degenerate_triangles;
   t.euler = static_cast<long>(used_vertices) - static_cast<long>(edges) + static_cast<long>(faces);
   return t;
+}
+
+std::vector<Vec3> crease_normals(const Mesh& m, double crease) {
+  const size_t nt = m.triangles.size();
+  std::vector<std::array<double, 3>> face(nt);  // area-weighted
+  std::vector<double> length(nt);
+  for (size_t t = 0; t < nt; ++t) {
+    const Vec3 &a = m.positions[m.triangles[t][0]], &b = m.positions[m.triangles[t][1]], &c = m.positions[m.triangles[t][2]];
+    double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
+    double v[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
+    face[t] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    length[t] = std::sqrt(face[t][0] * face[t][0] + face[t][1] * face[t][1] + face[t][2] * face[t][2]);
+  }
+  // The triangles around each vertex, as one array cut by offsets.
+  std::vector<uint32_t> start(m.positions.size() + 1, 0), around(3 * nt);
+  for (const auto& t : m.triangles)
+    for (uint32_t v : t) ++start[v + 1];
+  for (size_t v = 0; v < m.positions.size(); ++v) start[v + 1] += start[v];
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  for (size_t t = 0; t < nt; ++t)
+    for (uint32_t v : m.triangles[t]) around[fill[v]++] = static_cast<uint32_t>(t);
+  const double cos_crease = std::cos(crease);
+  std::vector<Vec3> out(3 * nt);
+  for (size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      uint32_t v = m.triangles[t][static_cast<size_t>(k)];
+      double n[3] = {0, 0, 0};
+      for (uint32_t q = start[v]; q < start[v + 1]; ++q) {
+        uint32_t o = around[q];
+        double d = face[t][0] * face[o][0] + face[t][1] * face[o][1] + face[t][2] * face[o][2];
+        if (o != t && !(d >= cos_crease * length[t] * length[o])) continue;  // across a crease
+        for (int a = 0; a < 3; ++a) n[a] += face[o][a];
+      }
+      double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (int a = 0; a < 3; ++a) out[3 * t + static_cast<size_t>(k)][static_cast<size_t>(a)] = len > 0 ? float(n[a] / len) : 0.0f;
+    }
+  return out;
 }
 
 }  // namespace fscript::mesh

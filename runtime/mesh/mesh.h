@@ -43,4 +43,13 @@ struct Topology {
 };
 Topology topology(const Mesh& m);
 
+// Normals per triangle corner (3 per triangle) for shading a mesh that has no vertex normals (dual
+// contouring's): the area-weighted mean of the normals of the triangles around the corner's vertex
+// that meet its own triangle's within `crease` radians, as VRML97's creaseAngle does; so smooth
+// surfaces shade smooth and sharp edges stay sharp.
+std::vector<Vec3> crease_normals(const Mesh& m, double crease);
+// The crease angle our pictures and VRML97 files use (40 degrees): CSG edges are sharper, the
+// faces of a curved surface meshed at the usual resolutions meet at less.
+constexpr double kCreaseAngle = 0.7;
+
 }  // namespace fscript::mesh

@@ -96,9 +96,10 @@ class Raster {
   }
 
   std::vector<uint8_t> run() {
+    if (m_.normals.size() != m_.positions.size()) corner_ = mesh::crease_normals(m_, o_.crease_angle);
     proj_.resize(m_.positions.size());
     for (size_t i = 0; i < m_.positions.size(); ++i) proj_[i] = project(m_.positions[i]);
-    for (const auto& t : m_.triangles) triangle(t);
+    for (size_t t = 0; t < m_.triangles.size(); ++t) triangle(t);
     for (const auto& l : m_.polylines)
       for (size_t k = 0; k + 1 < l.size(); ++k) line(l[k], l[k + 1]);
     return downsample();
@@ -152,7 +153,8 @@ class Raster {
     return out;
   }
 
-  void triangle(const std::array<uint32_t, 3>& t) {
+  void triangle(size_t ti) {
+    const std::array<uint32_t, 3>& t = m_.triangles[ti];
     const V3 &a = proj_[t[0]], &b = proj_[t[1]], &c = proj_[t[2]];
     if (a[2] <= 1e-6 || b[2] <= 1e-6 || c[2] <= 1e-6) return;  // behind or at the eye
     double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
@@ -182,9 +184,10 @@ class Raster {
         auto ca = colour(t[0]), cb = colour(t[1]), cc = colour(t[2]);
         for (int k = 0; k < 3; ++k) base[k] = static_cast<float>(q0 * ca[k] + q1 * cb[k] + q2 * cc[k]);
         V3 n = face;
-        if (normals)
-          for (int k = 0; k < 3; ++k)
-            n[k] = q0 * m_.normals[t[0]][k] + q1 * m_.normals[t[1]][k] + q2 * m_.normals[t[2]][k];
+        const mesh::Vec3* c = normals ? nullptr : &corner_[3 * ti];  // no vertex normals: by corner
+        auto normal = [&](int q) { return normals ? m_.normals[t[static_cast<size_t>(q)]] : c[q]; };
+        if (normals || (face[0] != 0 || face[1] != 0 || face[2] != 0))
+          for (int k = 0; k < 3; ++k) n[k] = q0 * normal(0)[k] + q1 * normal(1)[k] + q2 * normal(2)[k];
         V3 p;
         for (int k = 0; k < 3; ++k)
           p[k] = q0 * m_.positions[t[0]][k] + q1 * m_.positions[t[1]][k] + q2 * m_.positions[t[2]][k];
@@ -232,6 +235,7 @@ class Raster {
   }
 
   const mesh::Mesh& m_;
+  std::vector<mesh::Vec3> corner_;  // crease_normals, where the mesh has no vertex normals
   const RenderOptions& o_;
   uint32_t w_, h_;
   View v_;

@@ -38,6 +38,9 @@ struct RenderOptions {
   std::array<float, 3> default_colour{0.8f, 0.8f, 0.8f};  // the Material default diffuseColor
   std::vector<Light> lights;                     // the scene's; none: the built-in key light
   bool headlight = true;                         // NavigationInfo.headlight
+  // A mesh without vertex normals (dual contouring's) shades smooth across edges whose faces meet
+  // within this angle (radians; VRML97's creaseAngle) and sharp across the others.
+  double crease_angle = mesh::kCreaseAngle;
 };
 
 // RGB pixels, row-major from the top row.

@@ -106,6 +106,8 @@ NodePtr shape_node(const mesh::Mesh& m, const std::string& def_name) {
     set(*nor, "vector", vec3s(m.normals, FieldType::MFVec3f));
     set(*geo, "normal", node_value(nor));
     set(*geo, "solid", numbers(FieldType::SFBool, {0}));
+  } else if (!lines) {  // no normals (dual contouring): the browser smooths all but the sharp edges
+    set(*geo, "creaseAngle", numbers(FieldType::SFFloat, {mesh::kCreaseAngle}));
   }
   set(*shape, "geometry", node_value(geo));
   return shape;

@@ -296,3 +296,49 @@ TEST_CASE("mesh: a crossing starts at the linear estimate along its edge, exact 
   CHECK(on_plane > 100);
   CHECK(mesh::topology(m).watertight);
 }
+
+TEST_CASE("crease normals: a cube's corners keep their faces' normals; a sphere's are radial") {
+  mesh::Mesh cube;
+  for (int c = 0; c < 8; ++c) cube.positions.push_back({float(c & 1), float(c >> 1 & 1), float(c >> 2 & 1)});
+  // Two outward triangles per face.
+  cube.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                    {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  REQUIRE(mesh::topology(cube).watertight);
+  auto n = mesh::crease_normals(cube, mesh::kCreaseAngle);
+  REQUIRE(n.size() == 36);
+  for (size_t t = 0; t < 12; ++t) {
+    const auto &a = cube.positions[cube.triangles[t][0]], &b = cube.positions[cube.triangles[t][1]],
+               &c = cube.positions[cube.triangles[t][2]];
+    float f[3] = {(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+                  (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+                  (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])};
+    for (int k = 0; k < 3; ++k)
+      for (int a2 = 0; a2 < 3; ++a2) CHECK(n[3 * t + k][a2] == Approx(f[a2]).margin(1e-6));  // unit already
+  }
+  // Past the crease angle every corner is smooth: a right angle counts as smooth at 100 degrees.
+  auto soft = mesh::crease_normals(cube, 100 * 3.14159265 / 180);
+  CHECK(std::fabs(soft[0][0]) > 0.1);
+  CHECK(std::fabs(soft[0][1]) > 0.1);
+  // A sphere meshed by dual contouring: every corner's normal within a few degrees of radial.
+  auto b = test::build("function FRep(x,y,z,t){ return 0.7*0.7 - x*x - y*y - z*z; }");
+  REQUIRE(b->ok);
+  mesh::KernelField field(*b->kernel, 0);
+  mesh::ImplicitJob job;
+  job.field = &field;
+  job.box = {-1, 1, -1, 1, -1, 1};
+  job.cells = {32, 32, 32};
+  mesh::Mesh ball;
+  backends::RuntimeError err;
+  REQUIRE(mesh::polygonize(job, ball, err));
+  REQUIRE(ball.normals.empty());
+  auto r = mesh::crease_normals(ball, mesh::kCreaseAngle);
+  double worst = 1;
+  for (size_t t = 0; t < ball.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const auto& p = ball.positions[ball.triangles[t][static_cast<size_t>(k)]];
+      double len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+      const auto& q = r[3 * t + static_cast<size_t>(k)];
+      worst = std::min(worst, (p[0] * q[0] + p[1] * q[1] + p[2] * q[2]) / len);
+    }
+  CHECK(worst > std::cos(10 * 3.14159265 / 180));
+}

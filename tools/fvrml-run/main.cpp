@@ -280,10 +280,10 @@ int run(int argc, char** argv) {
   app.add_flag("--no-prune", no_prune,
                "sample every grid point of implicit shapes (the same meshes; by default interval bounds skip the "
                "regions far from the surface)");
-  std::string mesher = "mt";
+  std::string mesher = "dc";
   app.add_option("--mesher", mesher,
-                 "implicit shapes by mt (marching tetrahedra, the default) or dc (dual contouring: sharp CSG edges "
-                 "and corners kept, large triangles where the surface is flat)")
+                 "implicit shapes by dc (dual contouring, the default: sharp CSG edges and corners kept, large "
+                 "triangles where the surface is flat) or mt (marching tetrahedra: a dense mesh with smooth normals)")
       ->check(CLI::IsMember({"mt", "dc"}))
       ->type_name("MESHER");
   CLI::Option* tolerance = app.add_option("--tolerance", o.mesher.tolerance,

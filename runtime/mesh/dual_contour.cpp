@@ -51,8 +51,11 @@ bool sample_blocks(const ImplicitJob& job, const Lattice& g, std::unique_ptr<Blo
   auto run = [&](const BrickMap* map) {
     grid = std::make_unique<BlockGrid>(g, map);
     std::vector<Block>& blocks = grid->blocks();
+    if (job.progress) job.progress->set_units(2 * blocks.size());  // sampled, then meshed
     return for_blocks(blocks.size(), job.threads, [&](size_t i, backends::RuntimeError& e) {
-      return sample_block(*job.field, map, g, blocks[i], e);
+      bool ok = sample_block(*job.field, map, g, blocks[i], e);
+      if (job.progress) job.progress->advance(1);
+      return ok;
     }, err);
   };
   bool ok = run(bricks.get());
@@ -173,13 +176,17 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   std::vector<Block>& blocks = grid->blocks();
   bool ok = for_blocks(blocks.size(), job.threads, [&](size_t i, backends::RuntimeError& e) {
     Block& b = blocks[i];
-    if (b.xs.empty()) return true;
+    if (b.xs.empty()) {
+      if (job.progress) job.progress->advance(1);
+      return true;
+    }
     thread_local std::vector<Plane> planes;  // scratch of this thread, reused block after block
     thread_local std::vector<Qef> qefs;
     if (!hermite(*job.field, g, b, planes, e)) return false;
     cell_sheets(*grid, b, planes, qefs);
     merge_block(g, b, qefs, job.mesher.tolerance);
     b.keep_rim();
+    if (job.progress) job.progress->advance(1);
     return true;
   }, err);
   if (!ok) return false;

@@ -124,8 +124,8 @@ inline Vec3 position(const Grid& g, const Edge& e, float t) {
 // when k0 > -1) are placeholders into `boundary`.
 class Slab {
  public:
-  Slab(const Grid& g, const Field& f, const BrickMap* bricks, int k0, int k1)
-      : g_(g), f_(f), bricks_(bricks), k0_(k0), k1_(k1) {}
+  Slab(const Grid& g, const Field& f, const BrickMap* bricks, int k0, int k1, support::ProgressJob* progress)
+      : g_(g), f_(f), bricks_(bricks), progress_(progress), k0_(k0), k1_(k1) {}
 
   bool run(backends::RuntimeError& err) {
     size_t plane = g_.plane_size();
@@ -143,6 +143,7 @@ class Slab {
     quads(values_hi_, quad_hi);
     for (int k = k0_; k < k1_; ++k) {
       z_ = k;
+      if (progress_) progress_->advance(1);
       if ((inexact_lo_ || inexact_hi_) && !settle(quad_lo, quad_hi, err)) return false;
       for (int j = -1; j < g_.ny; ++j) {
         size_t base = g_.in_plane(-1, j);
@@ -365,6 +366,7 @@ class Slab {
   const Grid& g_;
   const Field& f_;
   const BrickMap* bricks_;  // null: every point is sampled
+  support::ProgressJob* progress_;
   int k0_, k1_, z_ = 0;
   std::vector<uint32_t> cache_lo_, cache_hi_;
   std::vector<size_t> dirty_lo_, dirty_hi_;
@@ -502,13 +504,13 @@ bool merge(std::vector<Slab>& slabs, Mesh& m, std::vector<Edge>& edges, backends
 
 // Samples and marches the grid in z-slabs, then merges them. A slab whose decided points were
 // contradicted by the function sets st.fallbacks (the caller runs again without bricks).
-bool march(const Grid& g, const Field& f, const BrickMap* bricks, int threads, Mesh& out, std::vector<Edge>& edges,
-           PruneStats& st, backends::RuntimeError& err) {
+bool march(const Grid& g, const Field& f, const BrickMap* bricks, int threads, support::ProgressJob* progress, Mesh& out,
+           std::vector<Edge>& edges, PruneStats& st, backends::RuntimeError& err) {
   // Cube layers -1 .. nz-1, in contiguous slabs of at least 8 layers.
   int layers = g.nz + 1;
   int parts = std::max(1, std::min(threads, layers / 8));
   std::vector<Slab> slabs;
-  for (int s = 0; s < parts; ++s) slabs.emplace_back(g, f, bricks, -1 + layers * s / parts, -1 + layers * (s + 1) / parts);
+  for (int s = 0; s < parts; ++s) slabs.emplace_back(g, f, bricks, -1 + layers * s / parts, -1 + layers * (s + 1) / parts, progress);
   bool ok = support::run_parts(parts, [&](int s, backends::RuntimeError& e) { return slabs[static_cast<size_t>(s)].run(e); }, err);
   st.evaluated = 0;
   for (const Slab& s : slabs) st.evaluated += s.evaluated, st.fallbacks += s.unsound;
@@ -550,8 +552,9 @@ bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backends::RuntimeErr
   PruneStats st = bricks ? bricks->stats() : PruneStats{};
   st.points = static_cast<size_t>(g.nx) * g.ny * g.nz;
   std::vector<Edge> edges;
-  bool ok = march(g, *job.field, bricks.get(), job.threads, out, edges, st, err);
-  if (!ok && st.fallbacks) ok = march(g, *job.field, nullptr, job.threads, out, edges, st, err);
+  if (job.progress) job.progress->set_units(static_cast<uint64_t>(g.nz) + 1);  // cube layers
+  bool ok = march(g, *job.field, bricks.get(), job.threads, job.progress, out, edges, st, err);
+  if (!ok && st.fallbacks) ok = march(g, *job.field, nullptr, job.threads, job.progress, out, edges, st, err);
   add_prune_totals(st);
   if (job.stats) *job.stats = st;
   return ok && refine(g, *job.field, edges, out, job.refine_steps, job.threads, err) &&

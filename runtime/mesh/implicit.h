@@ -13,6 +13,7 @@
 #include "runtime/mesh/field.h"
 #include "runtime/mesh/mesh.h"
 #include "runtime/mesh/octree.h"
+#include "runtime/support/progress.h"
 
 namespace fscript::mesh {
 
@@ -37,6 +38,7 @@ struct ImplicitJob {
   bool prune = true;  // skip the bricks the field's bounds decide (same mesh); false: sample all
   PruneStats* stats = nullptr;  // filled when given (and added to prune_totals() in any case)
   MesherOptions mesher;
+  support::ProgressJob* progress = nullptr;  // when given, told how much of the grid is done
 };
 
 // The brick map of the job's sample grid (null when job.prune is off or the field cannot bound

@@ -253,12 +253,14 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   for (auto& ev : top) full.flat->lane_masks(ev);  // before the threads share them
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
+  size_t count = prune ? open.size() : tiles.size();
+  if (o.progress) o.progress->set_units(count);
   ok = ok && support::run_parts(parts, [&](int p) {
     Renderer& r = *renderers[static_cast<size_t>(p)];
-    size_t count = prune ? open.size() : tiles.size();
     for (size_t t; !failed && (t = next.fetch_add(1)) < count;) {
       bool done = prune ? r.region(full, open[t].r, 0, top[open[t].batch], open[t].lane) : r.dense(full, {tiles[t]});
       if (!done) return failed = true, false;
+      if (o.progress) o.progress->advance(1);
     }
     return true;
   });

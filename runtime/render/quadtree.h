@@ -10,6 +10,7 @@
 
 #include "backends/backend.h"
 #include "ir/ir.h"
+#include "runtime/support/progress.h"
 
 namespace fscript::render {
 
@@ -41,6 +42,7 @@ struct InsideOptions {
   backends::Budgets budgets;
   unsigned threads = 1;
   bool prune = true;
+  support::ProgressJob* progress = nullptr;  // when given, told as top-level tiles are done
 };
 
 // px[row * w + col] = 255 where output 0 of `dense` is >= 0, else 0. `m` is the module `dense` was

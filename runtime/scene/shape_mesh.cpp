@@ -1,6 +1,8 @@
 // Shapes to meshes.
 #include "runtime/scene/shape_mesh.h"
 
+#include "runtime/support/progress.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -153,9 +155,11 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bo
     return false;
   }
   bool ok;
+  support::ProgressJob progress;  // one job of the run's progress line
   if (s.kind == ShapeKind::Implicit) {
     ShapeField field(s);
     mesh::ImplicitJob job;
+    job.progress = &progress;
     job.field = &field;
     job.box = s.domain;
     job.cells = s.resolution;
@@ -230,6 +234,7 @@ const Shape* first_shape_below(const SceneModel& m, int group) {
 bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::RuntimeError& err, bool world,
                 int threads, bool prune, const mesh::MesherOptions& mesher) {
   out = mesh::Mesh{};
+  support::ProgressJob progress;
   if (parametric_group(m, group)) {
     if (!mesh_parametric_group(m, group, out, err, threads, prune)) return false;
     const Shape* first = first_shape_below(m, group);
@@ -243,6 +248,7 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::Runti
     return false;
   }
   mesh::ImplicitJob job;
+  job.progress = &progress;
   job.field = &field;
   job.box = field.box();
   job.cells = field.cells();

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #ifdef FS_HAVE_LLVM
@@ -14,6 +15,7 @@
 #include "runtime/render/png.h"
 #include "runtime/render/quadtree.h"
 #include "runtime/support/parallel.h"
+#include "runtime/support/progress.h"
 #include "tools/fscript/commands.h"
 
 namespace fscript::cli {
@@ -199,12 +201,19 @@ int cmd_render2d(const Options& o, const std::string& file, const std::string& e
   backends::RuntimeError err;
   double ms = 0;
   bool ok = true;
+  support::progress_expect(std::max(1u, repeat), "pictures");
+  std::optional<support::ProgressLine> line;  // on a terminal, for runs over a second
+  line.emplace("fscript render2d");
   for (unsigned r = 0; ok && r < std::max(1u, repeat); ++r) {  // the best of `repeat` (this machine is noisy)
     auto t0 = Clock::now();
+    support::ProgressJob job;
+    ro.progress = &job;
     ok = render::render_inside(*c.module, *c.kernel, g, ro, px, st, err);
+    ro.progress = nullptr;
     double t = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     ms = r == 0 ? t : std::min(ms, t);
   }
+  line.reset();  // erased before anything else is printed
   if (!ok) {
     print_runtime_error(*c.script.file, err);
     return kExitInput;

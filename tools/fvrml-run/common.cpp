@@ -54,6 +54,13 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
   return out;
 }
 
+uint64_t mesh_jobs(const SceneModel& model, const std::set<const vrml::Node*>& skip) {
+  uint64_t n = 0;
+  for (const auto& s : model.shapes) n += s.group < 0 && !skip.count(s.fshape);
+  for (const auto& g : model.groups) n += g.parent < 0 && !skip.count(g.node);
+  return n;
+}
+
 mesh::Mesh picture(Meshed& m, const vrml::Scene& scene) {
   mesh::Mesh all = merged(m);
   for (const auto& part : fscript::scene::standard_meshes(scene)) all.append(part);

@@ -13,6 +13,7 @@
 #include "runtime/scene/shape_mesh.h"
 #include "runtime/scene/vrml_export.h"
 #include "runtime/support/parallel.h"
+#include "runtime/support/progress.h"
 #include "tools/fvrml-run/run.h"
 #include "runtime/support/files.h"
 
@@ -76,6 +77,7 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
   std::vector<uint8_t> sheet(size_t(tw) * cols * th * rows * 3, 255);
   std::vector<nlohmann::json> per_frame(o.frames);
   int parallel = std::min(o.threads, o.frames), per = std::max(1, o.threads / parallel);
+  fscript::support::progress_expect(static_cast<uint64_t>(o.frames) * mesh_jobs(models[0]), "frames");
   std::atomic<bool> failed{false};
   bool ok = parallel_for(o.frames, parallel, [&](int f) {
     Meshed meshed = mesh_scene(o, l.scene, models[f], true, per);
@@ -126,6 +128,9 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
   std::vector<Track> ts = tracks(o, model);
   std::set<const vrml::Node*> skip;
   for (const auto& t : ts) skip.insert(t.node);
+  uint64_t jobs = mesh_jobs(model, skip);
+  for (const auto& t : ts) jobs += static_cast<uint64_t>(t.frames);
+  fscript::support::progress_expect(jobs, "frames");
   Meshed meshed = mesh_scene(o, l.scene, model, world, o.threads, skip);
   if (meshed.failed && !o.keep_going) return 1;
   failed |= meshed.failed;

@@ -33,6 +33,7 @@
 #include "runtime/scene/vrml_export.h"
 #include "tools/fvrml-run/run.h"
 #include "runtime/support/files.h"
+#include "runtime/support/progress.h"
 #include "runtime/support/version.h"
 #include "tools/budget_flags.h"
 
@@ -212,6 +213,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
   bool write = !o.output.empty() || (!o.stats && o.check.empty());
   Meshed meshed;
   if (!o.check.empty()) {
+    fscript::support::progress_expect(mesh_jobs(model), "meshes");
     meshed = mesh_scene(o, l.scene, model, true, o.threads);
     if (meshed.failed && !o.keep_going) return 1;
     if (!check_against(o.check, merged(meshed))) return 1;
@@ -223,6 +225,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
     return rc;
   }
   if (write) {
+    fscript::support::progress_expect(mesh_jobs(model), "meshes");
     meshed = mesh_scene(o, l.scene, model, o.format != "wrl", o.threads);
     if (meshed.failed && !o.keep_going) return 1;
     st["polygonize_ms"] = ms_since(t2);
@@ -384,7 +387,11 @@ int run(int argc, char** argv) {
     std::cerr << fscript::frontend::render_all(l.diag);
     return 1;
   }
-  int rc = o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
+  int rc;
+  {
+    fscript::support::ProgressLine line("fvrml-run");  // on a terminal, for runs over a second
+    rc = o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
+  }
   if (o.stats && rc == 0) {
     st["prune"] = prune_json();
     if (o.mesher.kind == mesh::Mesher::DualContouring) st["dual_contouring"] = dual_contouring_json();

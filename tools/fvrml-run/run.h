@@ -66,6 +66,9 @@ void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, con
 // them); `threads` per shape.
 Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& model, bool world, int threads,
                   const std::set<const vrml::Node*>& skip = {});
+// How many meshes mesh_scene makes (each a job of the progress line: the callers announce them
+// before they start, so the share done does not jump back as more appear).
+uint64_t mesh_jobs(const SceneModel& model, const std::set<const vrml::Node*>& skip = {});
 
 // All the frame's meshes in one (moved out of `m` when there is only one).
 mesh::Mesh merged(Meshed& m);

@@ -105,8 +105,8 @@ json signature_help(const Document& d, const json& params) {
 }
 
 json folding_ranges(const Document& d) {
+  if (d.scene) return scene_folding(d);
   json list = json::array();
-  if (d.scene) return list;
   auto a = analyze_document(d);
   std::set<std::pair<uint32_t, uint32_t>> seen;
   auto add = [&](uint32_t begin, uint32_t end, const char* kind) {

@@ -37,6 +37,21 @@ json code_actions(const Document& d, const json& params);
 json semantic_tokens(const Document& d);
 json semantic_tokens_legend();
 
+// Semantic tokens before their relative encoding: byte offsets in the document, a type (the
+// index in the legend) and modifier bits.
+enum class SemanticType : uint8_t { Keyword, Function, Parameter, Variable, Number, Comment, Operator, String, Type, Property };
+constexpr int kDeclarationModifier = 1, kDefaultLibraryModifier = 2;
+struct SemanticToken {
+  uint32_t begin, end;
+  SemanticType type;
+  int modifiers;
+};
+std::vector<SemanticToken> script_token_list(const Document& d);  // a .fs document (or a scene's script)
+std::vector<SemanticToken> scene_token_list(const Document& d);   // a .wrl (lsp/features/scene_outline.cpp)
+// The .wrl's outline: nodes, PROTOs and the scripts' functions; and its folding ranges.
+json scene_symbols(const Document& d);
+json scene_folding(const Document& d);
+
 // LSP range of frontend positions (1-based line and byte column, then a byte length).
 json range_of(const std::string& text, uint32_t line, uint32_t col, uint32_t length);
 json range_of_span(const std::string& text, uint32_t begin, uint32_t end);

@@ -22,8 +22,8 @@ json definition(const Document& d, const json& params) {
 }
 
 json document_symbols(const Document& d) {
+  if (d.scene) return scene_symbols(d);
   json list = json::array();
-  if (d.scene) return list;
   auto a = analyze_document(d);
   const auto& sema = a->script.sema;
   constexpr int kFunctionKind = 12, kVariableKind = 13;

@@ -77,6 +77,8 @@ struct Node {
   std::vector<FieldSlot> fields;     // as written, in order
   std::vector<FieldDecl> script_decls;  // a Script node's own interface declarations
   frontend::Span span;
+  const frontend::SourceFile* file = nullptr;  // the file the node was read from (spans index it)
+  std::vector<NodePtr> inlined;  // an Inline of a local file: that file's root nodes (load_inlines)
 
   // The explicit value of `field`, else its default from the interface (nullptr if neither).
   const Value* get(const std::string& field) const;
@@ -103,6 +105,7 @@ struct Scene {
   std::vector<Route> routes;
   std::vector<std::unique_ptr<ProtoDef>> protos;
   std::map<std::string, NodePtr> defs;  // last DEF of each name at the top level
+  std::vector<std::unique_ptr<Scene>> inlines;  // the local files Inline nodes pulled in (load_inlines)
 
   // Top-level statements in file order, for the writer: (kind, index into roots/protos/routes).
   enum class Kind : uint8_t { Node, Proto, Route };

@@ -19,6 +19,7 @@ void for_each_node(const Scene& scene, const std::function<void(const Node&)>& v
     visit(*n);
     for (const auto& f : n->fields)
       for (const auto& child : f.value.nodes) stack.push_back(child.get());
+    for (const auto& child : n->inlined) stack.push_back(child.get());  // an Inline's file
   }
 }
 
@@ -34,7 +35,7 @@ std::vector<SceneScript> scene_scripts(const Scene& scene) {
       s.node = &n;
       s.script.field = f.name;
       s.script.text = f.value.strs[0];
-      frontend::LineCol lc = scene.file->position(f.value.str_spans[0].begin);
+      frontend::LineCol lc = (n.file ? *n.file : *scene.file).position(f.value.str_spans[0].begin);
       s.script.line = lc.line;
       s.script.col = lc.col;
       out.push_back(std::move(s));

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <unordered_map>
 
+#include "frontend/vrml/inline.h"
 #include "frontend/vrml/vrml_lexer.h"
 
 namespace fscript::vrml {
@@ -268,11 +269,12 @@ class Parser {
     auto n = std::make_shared<Node>();
     n->type = type.text;
     n->span = type.span;
+    n->file = &f_;
     n->def_name = def_name;
     resolve_type(sc, *n, type.span);
     node_body(sc, *n, depth);
-    if (n->type == "Inline")
-      if (const Value* url = n->get("url"); url && !url->strs.empty())
+    if (n->type == "Inline")  // a local file is read by load_inlines (fvrml-run), a remote one never
+      if (const Value* url = n->get("url"); url && !url->strs.empty() && is_remote_url(url->strs[0]))
         d_.warning(f_, n->span, "Inline '" + url->strs[0] + "' is not fetched (no network); it stays a reference");
     if (!def_name.empty()) sc.defs[def_name] = n;  // after the body: a node cannot USE itself
     return n;

@@ -3,6 +3,7 @@
 #include "runtime/scene/scene_model.h"
 
 #include <cmath>
+#include <map>
 
 #include "frontend/fscript/embedded.h"
 #include "frontend/fscript/entry.h"
@@ -108,7 +109,6 @@ class Builder {
  public:
   Builder(const vrml::Scene& s, const ModelOptions& o, frontend::DiagnosticSink& d, SceneModel& out)
       : scene_(s), opts_(o), diag_(d), out_(out) {
-    lines_ = frontend::split_lines(s.file->text());
   }
 
   bool run() {
@@ -118,6 +118,14 @@ class Builder {
   }
 
  private:
+  // The file a node was read from (an Inline's, or the scene's).
+  const frontend::SourceFile& file_of(const vrml::Node& n) const { return n.file ? *n.file : *scene_.file; }
+  const std::vector<std::string>& lines_of(const frontend::SourceFile& f) {
+    auto [it, fresh] = lines_.try_emplace(&f);
+    if (fresh) it->second = frontend::split_lines(f.text());
+    return it->second;
+  }
+
   // ---- scripts ----
   // Compiles the script of `field` of `n`; false (with diagnostics) on error or if absent.
   bool compile(const vrml::Node& n, const char* field, Role role, CompiledField& out, bool* implicit = nullptr,
@@ -127,9 +135,10 @@ class Builder {
     if (!v || v->type != vrml::FieldType::SFString || v->strs.empty() ||
         v->strs[0].find_first_not_of(" \t\r\n") == std::string::npos)
       return false;
-    frontend::LineCol lc = slot ? scene_.file->position(v->str_spans[0].begin) : frontend::LineCol{n.span.begin, 1};
-    auto file = std::make_unique<frontend::SourceFile>(scene_.file->path(), v->strs[0], lc.line, lc.col);
-    file->set_outer_lines(lines_);
+    const frontend::SourceFile& from = file_of(n);
+    frontend::LineCol lc = slot ? from.position(v->str_spans[0].begin) : frontend::LineCol{n.span.begin, 1};
+    auto file = std::make_unique<frontend::SourceFile>(from.path(), v->strs[0], lc.line, lc.col);
+    file->set_outer_lines(lines_of(from));
     auto entry = [&](const frontend::SemaResult& sema, frontend::KernelSpec& spec, std::string& err) {
       bool ok = role == Role::Point       ? frontend::point_spec(sema, spec, out.rgb, err)
                 : role == Role::Operation ? frontend::named_inputs_spec(sema, operation_inputs(), spec, err)
@@ -172,30 +181,30 @@ class Builder {
     frontend::EmbeddedScript whole;
     whole.field = field;
     whole.text = v->strs[0];
-    frontend::LineCol lc = scene_.file->position(v->str_spans[0].begin);
+    frontend::LineCol lc = file_of(n).position(v->str_spans[0].begin);
     whole.line = lc.line;
     whole.col = lc.col;
     size_t want = std::string(field).find("otation") != std::string::npos || std::string(field) == "scaleOrientation" ? 4 : 3;
     auto parts = frontend::split_components(whole);
     if (parts.size() != want) {
-      auto file = std::make_unique<frontend::SourceFile>(scene_.file->path(), whole.text, whole.line, whole.col);
-      file->set_outer_lines(lines_);
+      auto file = std::make_unique<frontend::SourceFile>(file_of(n).path(), whole.text, whole.line, whole.col);
+      file->set_outer_lines(lines_of(file_of(n)));
       diag_.error(*file, {0, 1}, "'" + std::string(field) + "' of FTransform needs " + std::to_string(want) +
                                      " components, found " + std::to_string(parts.size()));
       return false;
     }
     for (const auto& p : parts) {
       CompiledField c;
-      if (!compile_text(p, c)) return false;
+      if (!compile_text(n, p, c)) return false;
       set_time(c, n, fraction);
       out.push_back(std::move(c));
     }
     return true;
   }
 
-  bool compile_text(const frontend::EmbeddedScript& e, CompiledField& out) {
-    auto file = std::make_unique<frontend::SourceFile>(scene_.file->path(), e.text, e.line, e.col);
-    file->set_outer_lines(lines_);
+  bool compile_text(const vrml::Node& n, const frontend::EmbeddedScript& e, CompiledField& out) {
+    auto file = std::make_unique<frontend::SourceFile>(file_of(n).path(), e.text, e.line, e.col);
+    file->set_outer_lines(lines_of(file_of(n)));
     auto entry = [&](const frontend::SemaResult& sema, frontend::KernelSpec& spec, std::string& err) {
       return frontend::point_spec(sema, spec, out.rgb, err);
     };
@@ -243,6 +252,7 @@ class Builder {
       return s;
     }
     TimeSensorFields own = time_fields(n);
+    if (&file_of(n) != scene_.file.get()) return evaluate_time_sensor(own, opts_.now);  // an Inline's file: its own names
     for (const auto& r : scene_.routes) {
       if (r.to_node != n.def_name || n.def_name.empty()) continue;
       auto src = scene_.defs.find(r.from_node);
@@ -273,6 +283,10 @@ class Builder {
         expanded_.push_back(std::move(body));  // kept alive: shapes point into it
         walk(first, m, group, depth + 1);
       }
+      return;
+    }
+    if (n->type == "Inline") {  // a local file's nodes (vrml::load_inlines), in the Inline's frame
+      for (const auto& c : n->inlined) walk(c.get(), m, group, depth + 1);
       return;
     }
     Mat4 here = m;
@@ -323,14 +337,14 @@ class Builder {
     s.frames = static_cast<int>(field_number(n, "frames"));
     const vrml::Node* geo = child(n, "geometry");
     if (!geo || geo->type != "FGeometry") {
-      diag_.warning(*scene_.file, n.span, "FShape without an FGeometry: nothing to draw");
+      diag_.warning(file_of(n), n.span, "FShape without an FGeometry: nothing to draw");
       return;
     }
     s.geometry_node = geo;
     bool implicit = true;
     if (!compile(*geo, "definition", Role::Geometry, s.geometry, &implicit)) {
       if (!geo->get("definition") || str(*geo, "definition").find_first_not_of(" \t\r\n") == std::string::npos)
-        diag_.error(*scene_.file, geo->span, "FGeometry has an empty definition");
+        diag_.error(file_of(*geo), geo->span, "FGeometry has an empty definition");
       return;
     }
     set_time(s.geometry, *geo, s.fraction);
@@ -356,7 +370,7 @@ class Builder {
     if (implicit) {
       s.kind = ShapeKind::Implicit;
       if (const vrml::FieldSlot* unused = geo.slot("parameters"); unused && unused->is_ref.empty())
-        diag_.warning(*scene_.file, unused->span,
+        diag_.warning(file_of(geo), unused->span,
                       "'parameters' is not used by an implicit shape (its box is bboxCenter and bboxSize); it "
                       "bounds u, v, w of a parametric one");
       for (int k = 0; k < 3; ++k) {
@@ -413,7 +427,7 @@ class Builder {
   const ModelOptions& opts_;
   frontend::DiagnosticSink& diag_;
   SceneModel& out_;
-  std::vector<std::string> lines_;
+  std::map<const frontend::SourceFile*, std::vector<std::string>> lines_;  // per file, for carets
   std::vector<std::vector<vrml::NodePtr>>& expanded_ = out_.expanded;
 };
 

@@ -205,6 +205,10 @@ void walk(const vrml::Node* n, const Mat4& m, std::vector<mesh::Mesh>& out, int 
     out.push_back(std::move(mesh));
     return;
   }
+  if (n->type == "Inline") {  // a local file's nodes (vrml::load_inlines)
+    for (const auto& c : n->inlined) walk(c.get(), m, out, depth + 1);
+    return;
+  }
   Mat4 here = m;
   if (n->type == "Transform") here = multiply(m, transform_matrix(*n));
   if (n->type == "Switch") {  // only the chosen child is drawn

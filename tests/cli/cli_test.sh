@@ -251,9 +251,9 @@ WRL
   check fvrml-run-proto-error 1 'proto.wrl:6:24: error: unknown name .zz.' -- "$R" "$T/proto.wrl" --stats
   sed -i 's/zz/z/' "$T/proto.wrl"
   check fvrml-run-proto 0 '"transform":\[1\.0,0\.0,0\.0,0\.0,0\.0,1\.0,0\.0,0\.0,0\.0,0\.0,1\.0,0\.0,1\.0,2\.0,3\.0,1\.0\]' -- "$R" "$T/proto.wrl" --stats
-  printf '#VRML V2.0 utf8\nFTransform { translation "0.5*t, sin(t), 0" rotation "0 0 1 t" children [ FShape { geometry FGeometry { definition "1-x*x" } } ] }\nInline { url "o.wrl" }\n' > "$T/ft.wrl"
+  printf '#VRML V2.0 utf8\nFTransform { translation "0.5*t, sin(t), 0" rotation "0 0 1 t" children [ FShape { geometry FGeometry { definition "1-x*x" } } ] }\nInline { url "http://example.com/o.wrl" }\n' > "$T/ft.wrl"
   check fvrml-run-affine 0 '"affine":\{"rotation":4,"translation":3\}' -- "$R" "$T/ft.wrl" --stats
-  check fvrml-run-inline 0 "warning: Inline 'o.wrl' is not fetched" -- "$R" "$T/ft.wrl" --stats
+  check fvrml-run-inline 0 "warning: Inline 'http://example.com/o.wrl' is not fetched" -- "$R" "$T/ft.wrl" --stats
   printf '#VRML V2.0 utf8\nFTransform { translation "1 2" }\n' > "$T/ft2.wrl"
   check fvrml-run-affine-count 1 'ft2.wrl:2:27: error: .translation. of FTransform needs 3 components, found 2' -- "$R" "$T/ft2.wrl" --stats
   printf '#VRML V2.0 utf8\nTransform { translation 1 0 0 children FShape { geometry FGeometry { definition "0.5^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [16] } } }\n' > "$T/ball.wrl"

@@ -21,9 +21,11 @@ void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, con
   static std::mutex lock;  // frames are meshed in parallel
   std::lock_guard<std::mutex> hold(lock);
   namespace fe = fscript::frontend;
-  fe::LineCol at = err.line ? fe::LineCol{err.line, std::max(err.col, 1u)} : scene.file->position(n->span.begin);
+  const fe::SourceFile& file = n->file ? *n->file : *scene.file;  // an Inline's file, or the scene's
+  fe::LineCol at = err.line ? fe::LineCol{err.line, std::max(err.col, 1u)} : file.position(n->span.begin);
   fe::Severity sev = o.keep_going ? fe::Severity::Warning : fe::Severity::Error;
-  std::cerr << fe::render(fe::located(sev, o.path, at, scene.file->line_at(at.line), prefix + err.message));
+  std::string path = n->file && n->file != scene.file.get() ? file.path() : o.path;
+  std::cerr << fe::render(fe::located(sev, path, at, file.line_at(at.line), prefix + err.message));
 }
 
 Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& model, bool world, int threads,
@@ -52,6 +54,10 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
     out.by_node[model.groups[g].node] = std::move(m);
   }
   return out;
+}
+
+uint32_t node_line(const vrml::Scene& scene, const vrml::Node& n) {
+  return (n.file ? *n.file : *scene.file).position(n.span.begin).line;
 }
 
 uint64_t mesh_jobs(const SceneModel& model, const std::set<const vrml::Node*>& skip) {

@@ -158,7 +158,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     }
     double fraction = t.group ? model.groups[t.index].fraction : model.shapes[t.index].fraction;
     int initial = std::clamp(static_cast<int>(std::floor(fraction * t.frames)), 0, t.frames - 1);
-    report_json.push_back({{"line", l.scene.file->position(t.node->span.begin).line}, {"frames", t.frames},
+    report_json.push_back({{"line", node_line(l.scene, *t.node)}, {"frames", t.frames},
                            {"triangles", cache.triangles()}, {"cache_bytes", cache.bytes()},
                            {"bytes_per_triangle", cache.triangles() ? double(cache.bytes()) / cache.triangles() : 0.0},
                            {"constant", cache.all_same()}});
@@ -173,7 +173,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
       continue;
     }
     mesh::GltfAnimation a;
-    a.name = t.node->def_name.empty() ? "line " + std::to_string(l.scene.file->position(t.node->span.begin).line)
+    a.name = t.node->def_name.empty() ? "line " + std::to_string(node_line(l.scene, *t.node))
                                       : t.node->def_name;
     a.cycle_interval = fscript::scene::time_fields(*t.node).cycle_interval;
     a.frames.resize(cache.size());

@@ -18,6 +18,7 @@
 
 #include "backends/backend.h"
 #include "runtime/support/big_stack.h"
+#include "frontend/vrml/inline.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "runtime/mesh/distance.h"
@@ -48,7 +49,7 @@ nlohmann::json stats(const vrml::Scene& scene, const SceneModel& m, const Meshed
   nlohmann::json shapes = nlohmann::json::array();
   for (size_t i = 0; i < m.shapes.size(); ++i) {
     const auto& s = m.shapes[i];
-    nlohmann::json j = {{"line", scene.file->position(s.fshape->span.begin).line},
+    nlohmann::json j = {{"line", node_line(scene, *s.fshape)},
                         {"kind", fscript::scene::kind_name(s.kind)},
                         {"domain", s.domain},
                         {"resolution", s.resolution},
@@ -131,6 +132,7 @@ bool script_scene(const std::string& path, const std::string& text, Loaded& l) {
       f.value.strs[0] = text;
       f.value.str_spans[0] = {0, static_cast<uint32_t>(text.size())};
       l.scene.file = std::make_unique<fscript::frontend::SourceFile>(path, text);
+      for (vrml::Node* n : {l.scene.roots[0].get(), geometry}) n->file = l.scene.file.get();  // not the wrapper's
       return true;
     }
   std::cerr << path << ": error: internal: the FShape wrapper of a script has no definition\n";
@@ -382,6 +384,7 @@ int run(int argc, char** argv) {
   l.from_script = script;
   bool ok = script ? script_scene(o.path, text, l)
                    : vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(o.path, text), l.diag, l.scene);
+  if (ok && !script) ok = vrml::load_inlines(l.scene, l.diag);  // local Inline files, read and parsed
   nlohmann::json st = {{"parse_ms", ms_since(t0)}};
   if (!ok) {
     std::cerr << fscript::frontend::render_all(l.diag);

@@ -69,6 +69,8 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
 // How many meshes mesh_scene makes (each a job of the progress line: the callers announce them
 // before they start, so the share done does not jump back as more appear).
 uint64_t mesh_jobs(const SceneModel& model, const std::set<const vrml::Node*>& skip = {});
+// The line of a node in the file it was read from (the scene's, or an Inline's).
+uint32_t node_line(const vrml::Scene& scene, const vrml::Node& n);
 
 // All the frame's meshes in one (moved out of `m` when there is only one).
 mesh::Mesh merged(Meshed& m);

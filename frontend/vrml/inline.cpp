@@ -1,0 +1,121 @@
+// Reading the local files of Inline nodes into the scene (frontend/vrml/inline.h).
+#include "frontend/vrml/inline.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <memory>
+#include <unordered_set>
+
+#include "frontend/vrml/scene_file.h"
+#include "frontend/vrml/vrml_parser.h"
+
+namespace fscript::vrml {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The scheme of a URL ("http" of "http://..."), or "" when it has none. One letter is a Windows
+// drive, not a scheme.
+std::string scheme_of(const std::string& url) {
+  size_t colon = url.find(':');
+  if (colon == std::string::npos || colon < 2) return "";
+  for (size_t i = 0; i < colon; ++i)
+    if (!std::isalnum(static_cast<unsigned char>(url[i])) && url[i] != '+' && url[i] != '-' && url[i] != '.') return "";
+  return url.substr(0, colon);
+}
+
+// The file a local URL names, relative to `dir`: "file:" and a "#viewpoint" dropped, %XX decoded.
+fs::path local_path(std::string url, const fs::path& dir) {
+  if (scheme_of(url) == "file") url = url.substr(url.rfind("file://", 0) == 0 ? 7 : 5);
+  if (size_t hash = url.find('#'); hash != std::string::npos) url.resize(hash);
+  std::string path;
+  for (size_t i = 0; i < url.size(); ++i) {
+    if (url[i] == '%' && i + 2 < url.size() && std::isxdigit(static_cast<unsigned char>(url[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(url[i + 2]))) {
+      path += static_cast<char>(std::stoi(url.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      path += url[i];
+    }
+  }
+  fs::path p(path);
+  return p.is_absolute() ? p : dir / p;
+}
+
+class Loader {
+ public:
+  Loader(frontend::DiagnosticSink& diag, std::vector<std::string>* files) : diag_(diag), files_(files) {}
+
+  void load(Scene& scene, std::vector<std::string>& stack) {
+    std::unordered_set<const Node*> seen;
+    std::vector<Node*> todo;
+    for (const auto& r : scene.roots) todo.push_back(r.get());
+    while (!todo.empty()) {
+      Node* n = todo.back();
+      todo.pop_back();
+      if (!n || !seen.insert(n).second) continue;
+      if (n->type == "Inline") inline_node(scene, *n, stack);
+      for (auto& f : n->fields)
+        for (auto& child : f.value.nodes) todo.push_back(child.get());
+    }
+  }
+
+ private:
+  // The first local URL of the Inline, read and parsed (VRML97: the first URL that works).
+  void inline_node(Scene& scene, Node& n, std::vector<std::string>& stack) {
+    const Value* url = n.get("url");
+    const frontend::SourceFile& here = n.file ? *n.file : *scene.file;
+    for (size_t k = 0; url && k < url->strs.size(); ++k) {
+      if (is_remote_url(url->strs[k]) || url->strs[k].empty()) continue;
+      frontend::Span at = k < url->str_spans.size() ? url->str_spans[k] : n.span;
+      fs::path path = local_path(url->strs[k], fs::path(here.path()).parent_path());
+      std::error_code ec;
+      fs::path canonical = fs::weakly_canonical(path, ec);
+      std::string key = ec ? path.string() : canonical.string();
+      if (std::find(stack.begin(), stack.end(), key) != stack.end()) {
+        diag_.error(here, at, "Inline '" + url->strs[k] + "' includes a file that includes it (directly or through other Inlines)");
+        return;
+      }
+      if (static_cast<int>(stack.size()) > kMaxInlineDepth) {
+        diag_.error(here, at, "Inline '" + url->strs[k] + "': Inlines nested more than " + std::to_string(kMaxInlineDepth) + " deep");
+        return;
+      }
+      std::string text, error;
+      if (!read_scene_text(path.string(), text, error)) {
+        diag_.error(here, at, "Inline '" + url->strs[k] + "': " + error);
+        return;
+      }
+      if (files_) files_->push_back(path.string());
+      auto child = std::make_unique<Scene>();
+      if (!parse_scene(std::make_unique<frontend::SourceFile>(path.string(), text), diag_, *child)) return;
+      stack.push_back(key);
+      load(*child, stack);
+      stack.pop_back();
+      n.inlined = child->roots;
+      scene.inlines.push_back(std::move(child));
+      return;
+    }
+  }
+
+  frontend::DiagnosticSink& diag_;
+  std::vector<std::string>* files_;
+};
+
+}  // namespace
+
+bool is_remote_url(const std::string& url) {
+  std::string s = scheme_of(url);
+  return !s.empty() && s != "file";
+}
+
+bool load_inlines(Scene& scene, frontend::DiagnosticSink& diag, std::vector<std::string>* files) {
+  size_t before = diag.error_count();
+  std::error_code ec;
+  fs::path self = fs::weakly_canonical(scene.file->path(), ec);
+  std::vector<std::string> stack = {ec ? scene.file->path() : self.string()};
+  Loader(diag, files).load(scene, stack);
+  return diag.error_count() == before;
+}
+
+}  // namespace fscript::vrml

@@ -1,0 +1,23 @@
+#pragma once
+// Inline nodes of local files: each Inline whose URL names a file (relative to the file that holds
+// it, or file:) has that file read, parsed and kept, its root nodes hung under the Inline node
+// (Node::inlined), recursively; remote URLs stay references (the parser warns).
+#include <string>
+#include <vector>
+
+#include "frontend/diagnostics.h"
+#include "frontend/vrml/scene_graph.h"
+
+namespace fscript::vrml {
+
+constexpr int kMaxInlineDepth = 16;  // Inlines within Inlines, deeper is refused with an error
+
+// Whether a URL names something on a network (a scheme other than file:).
+bool is_remote_url(const std::string& url);
+
+// Loads the scene's local Inlines (and theirs), reporting unreadable, broken or circular ones at
+// the URL. `files`, when given, receives the path of every file read. False when an error was
+// reported.
+bool load_inlines(Scene& scene, frontend::DiagnosticSink& diag, std::vector<std::string>* files = nullptr);
+
+}  // namespace fscript::vrml

@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 
-PACKAGES=(cmake ninja-build ccache g++ python3 catch2 nlohmann-json3-dev libcli11-dev libpng-dev libedit-dev llvm-19-dev libeigen3-dev)
+PACKAGES=(cmake ninja-build ccache g++ python3 catch2 nlohmann-json3-dev libcli11-dev libpng-dev libedit-dev llvm-19-dev libeigen3-dev libcpp-httplib-dev libjs-three pkg-config)
 # For the tests only: a real VRML97 browser (view3dscene, run under a virtual X server), Neovim as
 # a real LSP client, objdump (binutils) for the x86 encoder, node for the glTF validator and the
 # LSP client libraries (npm below).

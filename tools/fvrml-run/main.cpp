@@ -204,6 +204,34 @@ std::string written_summary(const Options& o, const nlohmann::json& st, double m
   return "wrote " + o.output + ": " + what + secs;
 }
 
+int single(const Options& o, Loaded& l, nlohmann::json& st);
+
+}  // namespace
+
+int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* files) {
+  auto t0 = Clock::now();
+  std::string text, error;
+  bool script = is_script_path(o.path);
+  if (!(script ? fscript::support::read_file(o.path, text, error) : vrml::read_scene_text(o.path, text, error))) {
+    std::cerr << o.path << ": error: " << error << "\n";
+    return 1;
+  }
+  Loaded l;
+  l.from_script = script;
+  bool ok = script ? script_scene(o.path, text, l)
+                   : vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(o.path, text), l.diag, l.scene);
+  if (ok && !script) ok = vrml::load_inlines(l.scene, l.diag, files);  // local Inline files, read and parsed
+  st = {{"parse_ms", ms_since(t0)}};
+  if (!ok) {
+    std::cerr << fscript::frontend::render_all(l.diag);
+    return 1;
+  }
+  bool animation = o.format == "wrl" || o.format == "glb";
+  return o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
+}
+
+namespace {
+
 // One frame: VRML97 to a file or standard output, a mesh file, or a picture.
 int single(const Options& o, Loaded& l, nlohmann::json& st) {
   auto t1 = Clock::now();
@@ -297,6 +325,13 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(0.0, 10.0).description(""))
       ->type_name("T");
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
+  ServeOptions serve;
+  app.add_flag("--serve", serve.on,
+               "a live preview in the browser: serves a page that shows the scene and updates on every save, "
+               "until Ctrl-C");
+  app.add_option("--port", serve.port, "--serve: the port (default 8800; 0 picks a free one)")->check(CLI::Range(0, 65535));
+  app.add_option("--host", serve.host, "--serve: the address to listen on (default 127.0.0.1: this machine only)");
+  app.add_flag("--open", serve.open, "--serve: open the page in the desktop's browser (xdg-open)");
   app.add_option("--format", o.format, "wrl|glb|ply|obj|stl|png (default: from the output's extension; wrl)");
   app.add_flag("--keep-going", o.keep_going, "write what succeeded when a shape fails");
   app.add_option("--check", o.check, "compare the mesh with the reference mesh REF (ply, obj, stl): distances as JSON");
@@ -349,7 +384,7 @@ int run(int argc, char** argv) {
   }
   // On a terminal, no -o would mean thousands of coordinates on the screen: a picture instead, in
   // the current folder, named after the scene (a pipe still gets VRML97 on standard output).
-  if (o.output.empty() && o.format.empty() && !o.stats && o.check.empty() && o.frames == 0 && isatty(STDOUT_FILENO)) {
+  if (!serve.on && o.output.empty() && o.format.empty() && !o.stats && o.check.empty() && o.frames == 0 && isatty(STDOUT_FILENO)) {
     std::string name = std::filesystem::path(o.path).filename().string();
     for (const char* ext : {".wrl.gz", ".wrz", ".wrl", ".WRL", ".fs"})
       if (name.size() > std::strlen(ext) && name.compare(name.size() - std::strlen(ext), std::string::npos, ext) == 0) {
@@ -373,27 +408,13 @@ int run(int argc, char** argv) {
     std::cerr << "error: --frames with " << o.format << " needs -o (the frames go to numbered files)\n";
     return 2;
   }
+  if (serve.on) return fvrml_run::serve(o, serve);
   auto t0 = Clock::now();
-  std::string text, error;
-  bool script = is_script_path(o.path);
-  if (!(script ? fscript::support::read_file(o.path, text, error) : vrml::read_scene_text(o.path, text, error))) {
-    std::cerr << o.path << ": error: " << error << "\n";
-    return 1;
-  }
-  Loaded l;
-  l.from_script = script;
-  bool ok = script ? script_scene(o.path, text, l)
-                   : vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(o.path, text), l.diag, l.scene);
-  if (ok && !script) ok = vrml::load_inlines(l.scene, l.diag);  // local Inline files, read and parsed
-  nlohmann::json st = {{"parse_ms", ms_since(t0)}};
-  if (!ok) {
-    std::cerr << fscript::frontend::render_all(l.diag);
-    return 1;
-  }
+  nlohmann::json st;
   int rc;
   {
     fscript::support::ProgressLine line("fvrml-run");  // on a terminal, for runs over a second
-    rc = o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
+    rc = run_scene(o, st, nullptr);
   }
   if (o.stats && rc == 0) {
     st["prune"] = prune_json();

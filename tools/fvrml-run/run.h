@@ -11,6 +11,7 @@
 
 #include "frontend/diagnostics.h"
 #include "frontend/vrml/scene_graph.h"
+#include "runtime/mesh/implicit.h"
 #include "runtime/mesh/mesh.h"
 #include "runtime/render/raster.h"
 #include "runtime/scene/scene_model.h"
@@ -69,6 +70,18 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
 // How many meshes mesh_scene makes (each a job of the progress line: the callers announce them
 // before they start, so the share done does not jump back as more appear).
 uint64_t mesh_jobs(const SceneModel& model, const std::set<const vrml::Node*>& skip = {});
+// Reads, parses (with local Inlines, whose paths go to `files` when given) and runs the scene as
+// the options say, writing o.output; diagnostics on standard error; st gets the --stats figures.
+int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* files);
+
+// --serve: the live preview (serve.cpp).
+struct ServeOptions {
+  bool on = false, open = false;
+  std::string host = "127.0.0.1";
+  int port = 8800;  // 0: any free port
+};
+int serve(const Options& o, const ServeOptions& s);
+
 // The line of a node in the file it was read from (the scene's, or an Inline's).
 uint32_t node_line(const vrml::Scene& scene, const vrml::Node& n);
 

@@ -1,0 +1,215 @@
+#!/usr/bin/env python3
+"""fvrml-run --serve without a browser: the page, its scripts and the scene's glTF are served; an edit
+of the scene (or of a file it Inlines) reaches the event stream within 2 s; a broken save keeps the
+last good glTF and sends the diagnostics, a fixed one clears them; nothing outside the served paths
+can be read; bounded requests; Ctrl-C ends it cleanly.
+usage: serve_test.py FVRML_RUN"""
+import http.client
+import json
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import urllib.parse
+
+RUN = sys.argv[1]
+fails = 0
+checks = 0
+
+
+def check(name, ok, detail=""):
+    global fails, checks
+    checks += 1
+    if not ok:
+        fails += 1
+        print(f"FAIL {name} {detail}")
+
+
+BALL = '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "RADIUS^2 - x^2 - y^2 - z^2" bboxSize 2 2 2 resolution [20] } }\nInline { url "part.wrl" }\n'
+PART = '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "0.2^2 - (x-0.8)^2 - y^2 - z^2" bboxSize 2 2 2 resolution [12] } }\n'
+
+
+started = []  # every server, killed at the end whatever happened
+
+
+class Server:
+    def __init__(self, scene, *args):
+        self.proc = subprocess.Popen([RUN, scene, "--serve", "--port", "0", *args], stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, text=True)
+        started.append(self.proc)
+        line = self.proc.stdout.readline()
+        self.url = line.split(" at ")[1].split(" ")[0] if " at " in line else ""
+        parsed = urllib.parse.urlparse(self.url)
+        self.host, self.port = parsed.hostname, parsed.port
+
+    def request(self, method, path, body=None):
+        c = http.client.HTTPConnection(self.host, self.port, timeout=10)
+        c.putrequest(method, path, skip_accept_encoding=True)  # the path as written: no normalising
+        if body is not None:
+            c.putheader("Content-Length", str(len(body)))
+        c.endheaders(body)
+        r = c.getresponse()
+        data = r.read()
+        c.close()
+        return r.status, data
+
+    def state(self):
+        status, data = self.request("GET", "/state.json")
+        return json.loads(data) if status == 200 else {}
+
+    def wait_state(self, pred, seconds):
+        end = time.time() + seconds
+        while time.time() < end:
+            s = self.state()
+            if s and pred(s):
+                return s
+            time.sleep(0.05)
+        return self.state()
+
+    def stop(self):
+        self.proc.send_signal(signal.SIGINT)
+        try:
+            out, err = self.proc.communicate(timeout=10)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            return None, "", "did not stop"
+        return self.proc.returncode, out, err
+
+
+class Events(threading.Thread):
+    """Reads the Server-Sent Events stream, keeping each state event's data."""
+
+    def __init__(self, server):
+        super().__init__(daemon=True)
+        self.conn = http.client.HTTPConnection(server.host, server.port, timeout=30)
+        self.conn.request("GET", "/events")
+        self.response = self.conn.getresponse()
+        self.states = []
+
+    def run(self):
+        event = None
+        try:
+            for raw in self.response:
+                line = raw.decode().rstrip("\n")
+                if line.startswith("event: "):
+                    event = line[7:]
+                elif line.startswith("data: ") and event == "state":
+                    self.states.append(json.loads(line[6:]))
+        except Exception:
+            pass
+
+    def wait(self, pred, seconds):
+        end = time.time() + seconds
+        while time.time() < end:
+            for s in list(self.states):
+                if pred(s):
+                    return s
+            time.sleep(0.05)
+        return None
+
+
+def write(path, text):
+    with open(path + ".tmp", "w") as f:  # as editors save: a new file renamed over the old
+        f.write(text)
+    os.replace(path + ".tmp", path)
+
+
+def main(d):
+    scene, part = os.path.join(d, "scene.wrl"), os.path.join(d, "part.wrl")
+    write(scene, BALL.replace("RADIUS", "0.5"))
+    write(part, PART)
+    os.symlink("/etc/passwd", os.path.join(d, "passwd"))
+    s = Server(scene)
+    check("--serve prints its URL", s.url.startswith("http://127.0.0.1:"), repr(s.url))
+    status, page = s.request("GET", "/")
+    check("the page", status == 200 and b'<script type="module" src="/preview.js">' in page, str(status))
+    status, js = s.request("GET", "/preview.js")
+    check("the page's script", status == 200 and b"EventSource('/events')" in js, str(status))
+    for path in ["/three/build/three.module.js", "/three/examples/jsm/loaders/GLTFLoader.js",
+                 "/three/examples/jsm/controls/OrbitControls.js"]:
+        status, _ = s.request("GET", path)
+        check("three.js from libjs-three: " + path, status == 200, str(status))
+    first = s.wait_state(lambda st: st.get("version", 0) >= 1, 30)
+    check("the first run is good", first.get("ok") is True, json.dumps(first)[:300])
+    check("its stats: backend and resolution", (first.get("stats") or {}).get("backend") == "vm" and first.get("scale") == 1)
+    status, glb1 = s.request("GET", "/scene.glb")
+    check("the scene as glTF", status == 200 and glb1[:4] == b"glTF", str(status))
+    events = Events(s)
+    events.start()
+    check("the event stream starts with the state", events.wait(lambda st: st["version"] == first["version"], 5) is not None)
+
+    # An edit reaches the stream within 2 s, and the glTF changes.
+    t0 = time.time()
+    write(scene, BALL.replace("RADIUS", "0.7"))
+    edited = events.wait(lambda st: st["version"] > first["version"], 2.0)
+    check("an edit reaches the page within 2 s", edited is not None and edited["ok"], f"{time.time() - t0:.2f} s")
+    status, glb2 = s.request("GET", "/scene.glb")
+    check("the edited scene's glTF", status == 200 and glb2[:4] == b"glTF" and glb2 != glb1)
+    v = s.state()["version"]
+    write(part, PART.replace("0.2^2", "0.3^2"))
+    inlined = events.wait(lambda st: st["version"] > v, 2.0)
+    check("an edit of an Inlined file reaches the page within 2 s", inlined is not None and inlined["ok"])
+    status, glb3 = s.request("GET", "/scene.glb")
+
+    # A broken save: the diagnostics, and the last good scene stays.
+    v = s.state()["version"]
+    write(scene, BALL.replace("RADIUS", "0.7 +"))
+    broken = events.wait(lambda st: st["version"] > v, 2.0)
+    check("a broken save sends its diagnostics", broken is not None and not broken["ok"] and
+          "scene.wrl:2:" in broken["diagnostics"] and "error:" in broken["diagnostics"] and "^" in broken["diagnostics"],
+          json.dumps(broken)[:400])
+    status, kept = s.request("GET", "/scene.glb")
+    check("the last good glTF stays", status == 200 and kept == glb3)
+    v = s.state()["version"]
+    write(scene, BALL.replace("RADIUS", "0.6"))
+    fixed = events.wait(lambda st: st["version"] > v, 2.0)
+    check("a fixed save clears the diagnostics", fixed is not None and fixed["ok"] and "error" not in fixed["diagnostics"])
+
+    # The resolution scale from the page.
+    status, _ = s.request("POST", "/settings?scale=0.5", b"")
+    check("settings: a resolution scale", status == 200, str(status))
+    scaled = events.wait(lambda st: st.get("scale") == 0.5 and st["ok"], 5)
+    check("the scene runs again at that scale", scaled is not None and scaled["stats"]["resolution_scale"] == 0.5)
+    status, _ = s.request("POST", "/settings?scale=100", b"")
+    check("settings: a scale out of range", status == 400, str(status))
+    status, _ = s.request("POST", "/settings?scale=1", b"x" * 200000)
+    check("a request body over the bound", status == 413, str(status))
+
+    # Nothing else can be read.
+    for path in ["/../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/three/../../../../etc/passwd",
+                 "/three/build/..%2f..%2f..%2f..%2fetc%2fpasswd", "//etc/passwd", "/etc/passwd", "/passwd",
+                 "/scene.wrl", "/part.wrl", "/" + scene, "/three/build/three.module.jsx", "/scene.glb/../state.json"]:
+        status, data = s.request("GET", path)
+        check("404 for " + path, status == 404 and b"root:" not in data, f"{status} {data[:60]!r}")
+
+    code, out, err = s.stop()
+    check("Ctrl-C ends it cleanly", code == 0 and "stopped" in out, f"{code} {out!r} {err[-300:]!r}")
+    check("the scratch folder is gone", not any(n.startswith("fvrml-serve-") and n.endswith(str(s.proc.pid))
+                                                for n in os.listdir(tempfile.gettempdir())))
+
+    # A scene broken from the start: no glTF yet, the diagnostics, and the server runs on.
+    write(scene, BALL.replace("RADIUS", "0.5 *"))
+    s = Server(scene)
+    st = s.wait_state(lambda st: st.get("version", 0) >= 1, 30)
+    check("a scene broken at the start: its diagnostics", st.get("ok") is False and "error:" in st.get("diagnostics", ""))
+    status, _ = s.request("GET", "/scene.glb")
+    check("a scene broken at the start: no glTF yet", status == 404, str(status))
+    busy = subprocess.run([RUN, scene, "--serve", "--port", str(s.port)], capture_output=True, text=True, timeout=30)
+    check("a port in use: a clear error", busy.returncode == 1 and "cannot listen" in busy.stderr, busy.stderr[-200:])
+    code, out, err = s.stop()
+    check("Ctrl-C ends it cleanly (broken scene)", code == 0, f"{code} {err[-300:]!r}")
+    bad = subprocess.run([RUN, scene, "--serve", "-o", os.path.join(d, "x.glb")], capture_output=True, text=True, timeout=30)
+    check("--serve with -o: refused", bad.returncode == 2 and "--serve writes no file" in bad.stderr, bad.stderr)
+
+with tempfile.TemporaryDirectory() as folder:
+    try:
+        main(folder)
+    finally:
+        for p in started:
+            if p.poll() is None:
+                p.kill()
+print(f"{checks - fails} of {checks} serve checks passed")
+sys.exit(1 if fails else 0)

@@ -1,0 +1,116 @@
+// The preview page's script: shows /scene.glb with three.js, plays its animation (our glTF's STEP
+// animation of frame nodes), and follows /events, the server's stream of states: a new good scene
+// is loaded (the camera kept), a broken one shows its diagnostics over the last good picture.
+import * as THREE from '/three/build/three.module.js';
+import { GLTFLoader } from '/three/examples/jsm/loaders/GLTFLoader.js';
+import { OrbitControls } from '/three/examples/jsm/controls/OrbitControls.js';
+
+const view = document.getElementById('view');
+const overlay = document.getElementById('overlay');
+const status = document.getElementById('status');
+const playButton = document.getElementById('play');
+const slider = document.getElementById('time');
+const clockText = document.getElementById('clock');
+const scaleInput = document.getElementById('scale');
+const statsText = document.getElementById('stats');
+
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio);
+renderer.setClearColor(0xffffff);
+view.appendChild(renderer.domElement);
+const scene = new THREE.Scene();
+scene.add(new THREE.HemisphereLight(0xffffff, 0x444444, 0.6));
+const key = new THREE.DirectionalLight(0xffffff, 0.8);
+key.position.set(3, 5, 4);
+scene.add(key);
+const camera = new THREE.PerspectiveCamera(45, 1, 0.01, 1000);
+camera.position.set(3, 2, 4);
+const controls = new OrbitControls(camera, renderer.domElement);
+
+let content = null, mixer = null, action = null, duration = 0, playing = true, framed = false, shown = -1;
+const clock = new THREE.Clock();
+
+function resize() {
+  const w = view.clientWidth, h = view.clientHeight;
+  renderer.setSize(w, h);
+  camera.aspect = w / Math.max(h, 1);
+  camera.updateProjectionMatrix();
+}
+window.addEventListener('resize', resize);
+resize();
+
+// The first scene frames the camera on its bounds; later ones keep the user's camera.
+function frame(object) {
+  const box = new THREE.Box3().setFromObject(object);
+  if (box.isEmpty()) return;
+  const centre = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3()).length();
+  controls.target.copy(centre);
+  camera.position.copy(centre).add(new THREE.Vector3(0.6, 0.45, 0.8).multiplyScalar(size));
+  camera.near = size / 1000;
+  camera.far = size * 100;
+  camera.updateProjectionMatrix();
+  controls.update();
+  framed = true;
+}
+
+function load(version) {
+  new GLTFLoader().load('/scene.glb?v=' + version, (gltf) => {
+    if (content) scene.remove(content);
+    content = gltf.scene;
+    content.traverse((o) => { if (o.isMesh && o.material) o.material.side = THREE.DoubleSide; });
+    scene.add(content);
+    mixer = null, action = null, duration = 0;
+    if (gltf.animations.length) {
+      mixer = new THREE.AnimationMixer(content);
+      action = mixer.clipAction(gltf.animations[0]);
+      action.play();
+      duration = gltf.animations[0].duration;
+      action.paused = !playing;
+    }
+    slider.disabled = playButton.disabled = !mixer;
+    if (!framed) frame(content);
+    shown = version;
+    document.body.dataset.shown = String(version);
+  }, undefined, (e) => { status.textContent = 'cannot load the scene: ' + e; });
+}
+
+function show(state) {
+  overlay.style.display = state.ok ? 'none' : 'block';
+  overlay.textContent = state.ok ? '' : state.diagnostics;
+  document.body.dataset.state = state.ok ? 'ok' : 'error';
+  const s = state.stats || {};
+  let triangles = 0;
+  for (const shape of s.shapes || []) triangles += shape.triangles || 0;
+  statsText.textContent = `${s.backend || ''} · scale ${state.scale} · ${triangles.toLocaleString()} triangles · ` +
+                          `${Math.round(s.total_ms || 0)} ms`;
+  if (state.ok && state.version !== shown) load(state.version);
+}
+
+const events = new EventSource('/events');
+events.addEventListener('state', (e) => { status.textContent = ''; show(JSON.parse(e.data)); });
+events.onerror = () => { status.textContent = 'disconnected: is fvrml-run --serve still running?'; };
+
+playButton.onclick = () => {
+  playing = !playing;
+  playButton.textContent = playing ? 'Pause' : 'Play';
+  if (action) action.paused = !playing;
+};
+slider.oninput = () => {
+  if (!mixer) return;
+  mixer.setTime(Number(slider.value) * duration);
+};
+scaleInput.onchange = () => {
+  fetch('/settings?scale=' + encodeURIComponent(scaleInput.value), { method: 'POST' });
+};
+
+renderer.setAnimationLoop(() => {
+  const dt = clock.getDelta();
+  if (mixer && playing) mixer.update(dt);
+  if (mixer && duration > 0) {
+    const t = mixer.time % duration;
+    if (playing) slider.value = String(t / duration);
+    clockText.textContent = t.toFixed(2) + ' s';
+  }
+  controls.update();
+  renderer.render(scene, camera);
+});

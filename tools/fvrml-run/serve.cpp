@@ -37,6 +37,7 @@ const char kPreviewJs[] =
     ;
 
 constexpr int kMaxStreams = 4;  // open pages at once (each holds a server thread)
+constexpr int kPreviewFrames = 24;  // frames of an animated shape's cycle, unless --frames says
 int stop_pipe[2] = {-1, -1};    // the signal handler's way to the thread that stops the server
 
 // The served three.js files: URL path to the file under FS_THREE_DIR (the jsm modules import
@@ -81,6 +82,7 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   Options o = base;
   o.output = (fs::path(dir) / "scene.glb").string();
   o.format = "glb";
+  if (o.frames == 0) o.frames = kPreviewFrames;  // time-dependent shapes play as an animation
   o.stats = true;
   {
     std::lock_guard<std::mutex> hold(st.lock);
@@ -128,6 +130,7 @@ void watch(const Options& o, const std::string& dir, State& st, std::atomic<bool
 
 void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
   svr.Get("/", [](const httplib::Request&, httplib::Response& res) { res.set_content(kIndexHtml, "text/html; charset=utf-8"); });
+  svr.Get(R"(/favicon\.ico)", [](const httplib::Request&, httplib::Response& res) { res.status = 204; });
   svr.Get(R"(/preview\.js)", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(kPreviewJs, "text/javascript; charset=utf-8");
   });

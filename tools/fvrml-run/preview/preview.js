@@ -28,6 +28,7 @@ camera.position.set(3, 2, 4);
 const controls = new OrbitControls(camera, renderer.domElement);
 
 let content = null, mixer = null, action = null, duration = 0, playing = true, framed = false, shown = -1;
+let framesOf = [];  // the nodes the animation switches
 const clock = new THREE.Clock();
 
 function resize() {
@@ -60,7 +61,14 @@ function load(version) {
     content.traverse((o) => { if (o.isMesh && o.material) o.material.side = THREE.DoubleSide; });
     scene.add(content);
     mixer = null, action = null, duration = 0;
+    framesOf = [];
     if (gltf.animations.length) {
+      // The frames are switched by scaling them to 0: hidden instead, so three.js draws (and
+      // inverts the matrices of) only the frame shown.
+      for (const track of gltf.animations[0].tracks) {
+        const node = content.getObjectByName(track.name.split('.')[0]);
+        if (node) framesOf.push(node);
+      }
       mixer = new THREE.AnimationMixer(content);
       action = mixer.clipAction(gltf.animations[0]);
       action.play();
@@ -79,10 +87,15 @@ function show(state) {
   overlay.textContent = state.ok ? '' : state.diagnostics;
   document.body.dataset.state = state.ok ? 'ok' : 'error';
   const s = state.stats || {};
-  let triangles = 0;
+  let triangles = 0, frames = 0;
   for (const shape of s.shapes || []) triangles += shape.triangles || 0;
-  statsText.textContent = `${s.backend || ''} · scale ${state.scale} · ${triangles.toLocaleString()} triangles · ` +
-                          `${Math.round(s.total_ms || 0)} ms`;
+  for (const a of s.animations || []) {  // per frame: the animated shapes' triangles over their frames
+    triangles += Math.round(a.triangles / Math.max(1, a.frames));
+    frames = Math.max(frames, a.frames);
+  }
+  const time = frames ? `${Math.round(s.total_ms || 0)} ms for ${frames} frames (${((s.total_ms || 0) / frames).toFixed(1)} ms a frame)`
+                      : `${Math.round(s.total_ms || 0)} ms`;
+  statsText.textContent = `${s.backend || ''} · resolution × ${state.scale} · ${triangles.toLocaleString()} triangles · ${time}`;
   if (state.ok && state.version !== shown) load(state.version);
 }
 
@@ -106,6 +119,7 @@ scaleInput.onchange = () => {
 renderer.setAnimationLoop(() => {
   const dt = clock.getDelta();
   if (mixer && playing) mixer.update(dt);
+  for (const node of framesOf) node.visible = node.scale.x !== 0;
   if (mixer && duration > 0) {
     const t = mixer.time % duration;
     if (playing) slider.value = String(t / duration);

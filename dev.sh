@@ -14,8 +14,8 @@ cd "$(dirname "$0")"
 PACKAGES=(cmake ninja-build ccache g++ python3 catch2 nlohmann-json3-dev libcli11-dev libpng-dev libedit-dev llvm-19-dev libeigen3-dev libcpp-httplib-dev libjs-three pkg-config)
 # For the tests only: a real VRML97 browser (view3dscene, run under a virtual X server), Neovim as
 # a real LSP client, objdump (binutils) for the x86 encoder, node for the glTF validator and the
-# LSP client libraries (npm below).
-TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim nodejs)
+# LSP client libraries (npm below), Chromium for the preview page (with npm's playwright-core).
+TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim nodejs chromium)
 
 install_missing() {
   local missing=()
@@ -49,7 +49,7 @@ install_missing "${PACKAGES[@]}"
 build
 # npm tools for the tests: the Khronos glTF validator and Microsoft's LSP client libraries; the
 # checks that need one that could not be installed are skipped out loud (failures under CI).
-NPM_TOOLS=(gltf-validator@2.0.0-dev.3.10 vscode-jsonrpc@10.0.0 vscode-languageserver-protocol@3.18.5)
+NPM_TOOLS=(gltf-validator@2.0.0-dev.3.10 vscode-jsonrpc@10.0.0 vscode-languageserver-protocol@3.18.5 playwright-core@1.65.1)
 install_npm_tools() {
   command -v npm > /dev/null || install_missing npm || true
   command -v npm > /dev/null || { echo "note: npm could not be installed"; return 0; }

@@ -110,7 +110,10 @@ playButton.onclick = () => {
 };
 slider.oninput = () => {
   if (!mixer) return;
+  action.paused = false;  // a paused action ignores setTime
   mixer.setTime(Number(slider.value) * duration);
+  action.paused = !playing;
+  clockText.textContent = (Number(slider.value) * duration).toFixed(2) + ' s';
 };
 scaleInput.onchange = () => {
   fetch('/settings?scale=' + encodeURIComponent(scaleInput.value), { method: 'POST' });

@@ -1,0 +1,95 @@
+// The preview page in headless Chromium (Debian chromium, driven by playwright-core): the first
+// picture appears, the time slider moves the morph, an edit on disk shows within 2 s, a broken edit
+// shows its diagnostics over the last good picture, a fixed one clears them, and paths outside the
+// page are 404. usage: node preview_browser.mjs URL SCENE_FILE   (fvrml-run --serve already runs)
+import { chromium } from 'playwright-core';
+import fs from 'node:fs';
+import assert from 'node:assert/strict';
+
+const [url, scene] = process.argv.slice(2);
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox'],
+});
+let failures = 0;
+async function check(name, fn) {
+  try {
+    await fn();
+    console.log('ok   ' + name);
+  } catch (e) {
+    failures++;
+    console.log('FAIL ' + name + ': ' + e.message);
+  }
+}
+try {
+  const page = await browser.newPage({ viewport: { width: 640, height: 480 } });
+  // The canvas's pixels that are not the white background, and a digest of them.
+  const picture = () => page.evaluate(() => {
+    const c = document.querySelector('canvas'), copy = document.createElement('canvas');
+    copy.width = c.width, copy.height = c.height;
+    const g = copy.getContext('2d');
+    g.drawImage(c, 0, 0);
+    const d = g.getImageData(0, 0, c.width, c.height).data;
+    let drawn = 0, digest = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      if (d[i] < 250 || d[i + 1] < 250 || d[i + 2] < 250) drawn++;
+      digest = (digest * 31 + d[i] + 7 * d[i + 1] + 13 * d[i + 2]) >>> 0;
+    }
+    return { drawn, total: d.length / 4, digest };
+  });
+  const shown = () => page.evaluate(() => Number(document.body.dataset.shown ?? -1));
+  const until = (fn, ms, arg = null) => page.waitForFunction(fn, arg, { timeout: ms, polling: 50 });
+  const write = (text) => { fs.writeFileSync(scene + '.tmp', text); fs.renameSync(scene + '.tmp', scene); };
+  const original = fs.readFileSync(scene, 'utf8');
+
+  await page.goto(url);
+  await check('the first picture appears', async () => {
+    await until(() => document.body.dataset.shown !== undefined, 30000);
+    await page.waitForTimeout(500);
+    const p = await picture();
+    assert.ok(p.drawn > p.total / 100, `${p.drawn} of ${p.total} pixels drawn`);
+  });
+  await check('the time slider moves the morph', async () => {
+    await page.click('#play');  // pause, then set the time by hand
+    const set = async (v) => {
+      await page.$eval('#time', (el, value) => { el.value = value; el.dispatchEvent(new Event('input')); }, v);
+      await page.waitForTimeout(300);
+      return picture();
+    };
+    const a = await set('0.05'), b = await set('0.55');
+    assert.notEqual(a.digest, b.digest, 'the pictures at 5% and 55% of the cycle are the same');
+  });
+  await check('an edit on disk shows within 2 s', async () => {
+    const before = await shown(), p0 = await picture();
+    const t0 = Date.now();
+    write(original.replace(/diffuseColor "[^"]*"/, 'diffuseColor "r=0;g=0;b=1;"'));
+    await until((v) => Number(document.body.dataset.shown) > v, 2000, before).catch(() => {});
+    const after = await shown();
+    assert.ok(after > before, `still version ${after} after ${Date.now() - t0} ms`);
+    await page.waitForTimeout(300);
+    assert.notEqual((await picture()).digest, p0.digest, 'the picture did not change');
+  });
+  await check('a broken edit shows the diagnostics over the last good picture', async () => {
+    write(original.replace('#VRML V2.0 utf8\n', '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1 - x*" } }\n'));
+    await until(() => document.body.dataset.state === 'error', 2000);
+    const text = await page.$eval('#overlay', (el) => (getComputedStyle(el).display === 'none' ? '' : el.textContent));
+    assert.match(text, /:2:\d+: error: .*\n.*\n\s*\^/, text);
+    const p = await picture();
+    assert.ok(p.drawn > p.total / 100, 'the last good shape is gone');
+  });
+  await check('a fixed edit clears them', async () => {
+    write(original);
+    await until(() => document.body.dataset.state === 'ok', 2000);
+    const display = await page.$eval('#overlay', (el) => getComputedStyle(el).display);
+    assert.equal(display, 'none');
+  });
+  await check('paths outside the page are 404', async () => {
+    for (const path of ['/../../etc/passwd', '/%2e%2e/%2e%2e/etc/passwd', '/three/../../../../etc/passwd', '/etc/passwd']) {
+      const r = await page.request.get(url.replace(/\/$/, '') + path);
+      assert.equal(r.status(), 404, path);
+    }
+  });
+} finally {
+  await browser.close();
+}
+process.exit(failures ? 1 : 0);

@@ -88,7 +88,8 @@ json Server::initialize_result() const {
             {"signatureHelpProvider", {{"triggerCharacters", {"(", ","}}}},
             {"foldingRangeProvider", true},
             {"codeActionProvider", {{"codeActionKinds", {"quickfix"}}}},
-            {"semanticTokensProvider", {{"legend", semantic_tokens_legend()}, {"full", true}}}}},
+            {"semanticTokensProvider", {{"legend", semantic_tokens_legend()}, {"full", true}}},
+            {"executeCommandProvider", {{"commands", {"fscript.preview"}}}}}},
           {"serverInfo", {{"name", "fscript-lsp"}, {"version", "0.1"}}}};
 }
 
@@ -102,6 +103,14 @@ json Server::request(const std::string& method, const json& params, std::vector<
   if (method == "shutdown") {
     shutdown_ = true;
     return nullptr;
+  }
+  if (method == "workspace/executeCommand") {  // fscript.preview [URI]: the live preview's URL
+    if (params.at("command") != "fscript.preview")
+      return {{"__error", kInvalidParams}, {"message", "unknown command " + params.at("command").dump()}};
+    const json& args = params.value("arguments", json::array());
+    if (args.empty() || !(args[0].is_string() || (args[0].is_object() && args[0].contains("uri"))))
+      return {{"__error", kInvalidParams}, {"message", "fscript.preview wants the document's URI as its argument"}};
+    return previews_.start(args[0].is_string() ? args[0].get<std::string>() : args[0].at("uri").get<std::string>());
   }
   static const char* const kDocumentMethods[] = {
       "textDocument/hover", "textDocument/completion", "textDocument/definition", "textDocument/documentSymbol",

@@ -8,6 +8,7 @@
 
 #include "lsp/documents.h"
 #include "lsp/features/features.h"
+#include "lsp/preview.h"
 
 namespace fscript::lsp {
 
@@ -31,6 +32,7 @@ class Server {
   json in_embedded_script(const Document& scene, const std::string& method, const json& params);
 
   Documents docs_;
+  Previews previews_;  // fscript.preview's fvrml-run --serve children
   bool initialized_ = false, shutdown_ = false, exited_ = false;
 };
 

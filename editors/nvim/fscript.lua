@@ -42,3 +42,18 @@ vim.cmd([[
     autocmd FileType fscript setlocal commentstring=//\ %s shiftwidth=2 expandtab
   augroup END
 ]])
+
+-- :FvrmlPreview: the server starts `fvrml-run SCENE --serve` for this buffer (fscript.preview) and
+-- answers with the page's URL, opened in the browser; the page follows every :w.
+vim.api.nvim_create_user_command("FvrmlPreview", function()
+  local bufnr = vim.api.nvim_get_current_buf()
+  local params = { command = "fscript.preview", arguments = { vim.uri_from_bufnr(bufnr) } }
+  vim.lsp.buf_request(bufnr, "workspace/executeCommand", params, function(err, result)
+    if err or not result then
+      vim.notify("FvrmlPreview: " .. (err and err.message or "no answer"), vim.log.levels.ERROR)
+      return
+    end
+    vim.notify("FVRML preview: " .. result.url)
+    if vim.ui.open then vim.ui.open(result.url) else vim.fn.jobstart({ "xdg-open", result.url }, { detach = true }) end
+  end)
+end, { desc = "FVRML: the live preview of this scene in the browser" })

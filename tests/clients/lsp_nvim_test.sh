@@ -61,6 +61,10 @@ want "nvim .wrl diagnostics" "$out" "diagnostic=unknown name 'QQ'"
 want "nvim .wrl hover in a script" "$out" 'textDocument/hover => .*sqrt\(x\)'
 want "nvim .wrl definition in a script" "$out" 'textDocument/definition => .*"start": ?\{"character": ?51, ?"line": ?1\}'
 want "nvim .wrl completion of fields" "$out" 'textDocument/completion => .*"label": ?"geometry"'
+# :FvrmlPreview is defined, and what it asks the server gives the live preview's URL.
+out=$(FVRML_RUN="${FVRML_RUN:-}" with_config bad2.wrl 'preview')
+want "nvim :FvrmlPreview is defined" "$out" '^command FvrmlPreview'
+want "nvim fscript.preview gives the page's URL" "$out" 'fscript.preview => \{"url": ?"http://127\.0\.0\.1:[0-9]+/"\}'
 
 [ "$fails" -eq 0 ] && echo "all Neovim checks passed" || echo "$fails Neovim checks failed"
 exit $((fails > 0))

@@ -7,7 +7,15 @@ local names = {}
 for _, c in pairs(vim.lsp.buf_get_clients(0)) do table.insert(names, c.name) end
 io.stdout:write("filetype=" .. vim.bo.filetype .. " clients=" .. table.concat(names, ",") .. " diagnostic=" ..
                 (ok and vim.diagnostic.get(0)[1].message or "none") .. "\n")
+if vim.fn.exists(":FvrmlPreview") == 2 then io.stdout:write("command FvrmlPreview\n") end
 for query in string.gmatch(os.getenv("QUERIES") or "", "[^;]+") do
+  if query == "preview" then  -- what :FvrmlPreview asks, answered synchronously
+    local params = { command = "fscript.preview", arguments = { vim.uri_from_bufnr(0) } }
+    for _, reply in pairs(vim.lsp.buf_request_sync(0, "workspace/executeCommand", params, 15000) or {}) do
+      io.stdout:write("fscript.preview => " .. vim.fn.json_encode(reply.result or reply.error or vim.NIL) .. "\n")
+    end
+    goto continue
+  end
   local method, line, character = string.match(query, "^([^@]+)@(%d+):(%d+)$")
   local params = { textDocument = vim.lsp.util.make_text_document_params(),
                    position = { line = tonumber(line), character = tonumber(character) } }
@@ -15,5 +23,6 @@ for query in string.gmatch(os.getenv("QUERIES") or "", "[^;]+") do
   for _, reply in pairs(replies) do
     io.stdout:write(method .. " => " .. vim.fn.json_encode(reply.result or reply.error or vim.NIL) .. "\n")
   end
+  ::continue::
 end
 vim.cmd("qa!")

@@ -206,6 +206,18 @@ std::string written_summary(const Options& o, const nlohmann::json& st, double m
 
 int single(const Options& o, Loaded& l, nlohmann::json& st);
 
+// What the preview page takes from the scene: the first Viewpoint, the DirectionalLights (in world
+// coordinates), the headlight and the background colour.
+nlohmann::json view_json(const fscript::render::RenderOptions& ro) {
+  nlohmann::json v = {{"headlight", ro.headlight}, {"background", ro.background}, {"lights", nlohmann::json::array()}};
+  if (ro.camera)
+    v["camera"] = {{"position", ro.camera->position}, {"orientation", ro.camera->orientation},
+                   {"fieldOfView", ro.camera->field_of_view}};
+  for (const auto& l : ro.lights)
+    v["lights"].push_back({{"direction", l.direction}, {"colour", l.colour}, {"intensity", l.intensity}, {"ambient", l.ambient}});
+  return v;
+}
+
 }  // namespace
 
 int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* files) {
@@ -226,6 +238,7 @@ int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* fi
     std::cerr << fscript::frontend::render_all(l.diag);
     return 1;
   }
+  if (o.view_json) st["view"] = view_json(render_options(o, l.scene, o.width, o.height));
   bool animation = o.format == "wrl" || o.format == "glb";
   return o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
 }

@@ -40,6 +40,7 @@ struct Options {
   uint32_t width = 800, height = 600;
   double azimuth = 30, elevation = 20, zoom = 1;  // the picture's automatic camera (raster.h)
   bool view_given = false;
+  bool view_json = false;  // --serve: the scene's Viewpoint, lights and background in the stats' "view"
 };
 
 struct Loaded {

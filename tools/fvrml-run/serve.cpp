@@ -84,6 +84,7 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   o.format = "glb";
   if (o.frames == 0) o.frames = kPreviewFrames;  // time-dependent shapes play as an animation
   o.stats = true;
+  o.view_json = true;
   {
     std::lock_guard<std::mutex> hold(st.lock);
     o.model.resolution_scale = base.model.resolution_scale * st.scale;

@@ -19,13 +19,54 @@ renderer.setPixelRatio(window.devicePixelRatio);
 renderer.setClearColor(0xffffff);
 view.appendChild(renderer.domElement);
 const scene = new THREE.Scene();
-scene.add(new THREE.HemisphereLight(0xffffff, 0x444444, 0.6));
-const key = new THREE.DirectionalLight(0xffffff, 0.8);
-key.position.set(3, 5, 4);
-scene.add(key);
 const camera = new THREE.PerspectiveCamera(45, 1, 0.01, 1000);
 camera.position.set(3, 2, 4);
+scene.add(camera);  // the headlight rides on it
 const controls = new OrbitControls(camera, renderer.domElement);
+let lights = [];
+
+// The scene's lights (VRML97 DirectionalLights and the headlight), or a key light and a soft fill
+// when it has none, as our pictures do; its background colour.
+function light(view) {
+  for (const l of lights) l.parent.remove(l);
+  lights = [];
+  const add = (object, parent) => { parent.add(object); lights.push(object); };
+  if (!view || view.lights.length === 0) {
+    add(new THREE.HemisphereLight(0xffffff, 0x444444, 0.6), scene);
+    const key = new THREE.DirectionalLight(0xffffff, 0.8);
+    key.position.set(3, 5, 4);
+    add(key, scene);
+  } else {
+    for (const l of view.lights) {
+      const d = new THREE.DirectionalLight(new THREE.Color(...l.colour), l.intensity);
+      d.position.set(-l.direction[0], -l.direction[1], -l.direction[2]);  // toward the light
+      add(d, scene);
+      if (l.ambient > 0) add(new THREE.AmbientLight(new THREE.Color(...l.colour), l.ambient * l.intensity), scene);
+    }
+  }
+  if (!view || view.headlight) {
+    const head = new THREE.DirectionalLight(0xffffff, view && view.lights.length ? 1 : 0.5);
+    head.position.set(0, 0, 1);  // from the eye, in the camera's frame
+    add(head, camera);
+  }
+  if (view) renderer.setClearColor(new THREE.Color(...view.background));
+}
+
+// The scene's Viewpoint as the start camera (VRML97: position, then orientation as axis and angle).
+function viewpoint(view) {
+  if (!view || !view.camera) return false;
+  const c = view.camera;
+  camera.position.set(...c.position);
+  const axis = new THREE.Vector3(c.orientation[0], c.orientation[1], c.orientation[2]);
+  camera.quaternion.setFromAxisAngle(axis.lengthSq() > 0 ? axis.normalize() : new THREE.Vector3(0, 0, 1), c.orientation[3]);
+  camera.fov = THREE.Math.radToDeg(c.fieldOfView);
+  camera.updateProjectionMatrix();
+  // Orbit about the point the viewpoint looks at, as far ahead as the origin is.
+  const ahead = new THREE.Vector3(0, 0, -1).applyQuaternion(camera.quaternion);
+  controls.target.copy(camera.position).addScaledVector(ahead, Math.max(1, camera.position.length()));
+  controls.update();
+  return true;
+}
 
 let content = null, mixer = null, action = null, duration = 0, playing = true, framed = false, shown = -1;
 let framesOf = [];  // the nodes the animation switches
@@ -76,13 +117,20 @@ function load(version) {
       action.paused = !playing;
     }
     slider.disabled = playButton.disabled = !mixer;
-    if (!framed) frame(content);
+    light(currentView);
+    if (!framed) {
+      if (viewpoint(currentView)) framed = true;
+      else frame(content);
+    }
     shown = version;
     document.body.dataset.shown = String(version);
   }, undefined, (e) => { status.textContent = 'cannot load the scene: ' + e; });
 }
 
+let currentView = null;
+
 function show(state) {
+  if (state.ok && state.stats && state.stats.view) currentView = state.stats.view;
   overlay.style.display = state.ok ? 'none' : 'block';
   overlay.textContent = state.ok ? '' : state.diagnostics;
   document.body.dataset.state = state.ok ? 'ok' : 'error';

@@ -3,7 +3,7 @@
 of the scene (or of a file it Inlines) reaches the event stream within 2 s; a broken save keeps the
 last good glTF and sends the diagnostics, a fixed one clears them; nothing outside the served paths
 can be read; bounded requests; Ctrl-C ends it cleanly.
-usage: serve_test.py FVRML_RUN"""
+usage: serve_test.py FVRML_RUN SOURCE_DIR"""
 import http.client
 import json
 import os
@@ -15,7 +15,7 @@ import threading
 import time
 import urllib.parse
 
-RUN = sys.argv[1]
+RUN, SRC = sys.argv[1], sys.argv[2]
 fails = 0
 checks = 0
 
@@ -87,7 +87,7 @@ class Events(threading.Thread):
         self.conn = http.client.HTTPConnection(server.host, server.port, timeout=30)
         self.conn.request("GET", "/events")
         self.response = self.conn.getresponse()
-        self.states = []
+        self.states, self.progress = [], []
 
     def run(self):
         event = None
@@ -98,6 +98,8 @@ class Events(threading.Thread):
                     event = line[7:]
                 elif line.startswith("data: ") and event == "state":
                     self.states.append(json.loads(line[6:]))
+                elif line.startswith("data: ") and event == "progress":
+                    self.progress.append(json.loads(line[6:]))
         except Exception:
             pass
 
@@ -189,6 +191,29 @@ def main(d):
     check("Ctrl-C ends it cleanly", code == 0 and "stopped" in out, f"{code} {out!r} {err[-300:]!r}")
     check("the scratch folder is gone", not any(n.startswith("fvrml-serve-") and n.endswith(str(s.proc.pid))
                                                 for n in os.listdir(tempfile.gettempdir())))
+
+    # A longer run sends its progress while it goes; every example of the repository previews.
+    big = os.path.join(d, "gyroid.wrl")
+    write(big, open(os.path.join(SRC, "bench/scenes/gyroid-sphere256.wrl")).read())
+    s = Server(big)
+    first = s.wait_state(lambda st: st.get("version", 0) >= 1, 60)
+    events = Events(s)
+    events.start()
+    events.wait(lambda st: st["version"] == first["version"], 5)
+    os.utime(big)
+    done = events.wait(lambda st: st["version"] > first["version"], 30)
+    check("a run sends its progress", done is not None and len(events.progress) > 0 and
+          all(0 <= p["fraction"] <= 1 and p["what"] for p in events.progress), str(events.progress[:3]))
+    s.stop()
+    examples = [os.path.join(SRC, "examples/paper", f) for f in sorted(os.listdir(os.path.join(SRC, "examples/paper")))]
+    examples += [os.path.join(SRC, "examples", f) for f in sorted(os.listdir(os.path.join(SRC, "examples"))) if f.endswith(".fs")]
+    for example in examples:
+        s = Server(example)
+        st = s.wait_state(lambda st: st.get("version", 0) >= 1, 60)
+        status, glb = s.request("GET", "/scene.glb")
+        check("previews " + os.path.relpath(example, SRC), st.get("ok") is True and status == 200 and glb[:4] == b"glTF",
+              (st.get("diagnostics") or "")[:200])
+        s.stop()
 
     # A scene broken from the start: no glTF yet, the diagnostics, and the server runs on.
     write(scene, BALL.replace("RADIUS", "0.5 *"))

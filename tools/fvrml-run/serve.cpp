@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "runtime/support/files.h"
+#include "runtime/support/progress.h"
 #include "tools/fvrml-run/run.h"
 
 extern char** environ;
@@ -59,6 +60,7 @@ struct State {
   nlohmann::json stats;     // of the last good run
   double scale = 1;         // the resolution scale the page asked for
   int streams = 0;
+  bool running = false;     // a run is under way (its progress goes to the pages)
 };
 
 nlohmann::json state_json(const State& s) {
@@ -91,6 +93,12 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   }
   std::vector<std::string> files = {o.path};
   nlohmann::json stats;
+  fscript::support::progress_reset();
+  {
+    std::lock_guard<std::mutex> hold(st.lock);
+    st.running = true;
+  }
+  st.changed.notify_all();  // the streams switch to sending progress
   std::ostringstream captured;
   std::streambuf* saved = std::cerr.rdbuf(captured.rdbuf());
   auto t0 = Clock::now();
@@ -107,6 +115,7 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
     st.diagnostics = captured.str() + (rc == 0 && !ok ? "error: " + error + "\n" : "");
     if (ok) st.glb = std::move(glb), st.stats = stats;
     ++st.version;
+    st.running = false;
   }
   st.changed.notify_all();
   return files;
@@ -196,11 +205,19 @@ void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
           std::string out;
           {
             std::unique_lock<std::mutex> hold(st.lock);
-            st.changed.wait_for(hold, std::chrono::seconds(15), [&] { return st.stopping || st.version != *sent; });
+            // While a run is under way, its progress four times a second; else wait for the next state.
+            if (st.running)
+              st.changed.wait_for(hold, std::chrono::milliseconds(250), [&] { return st.stopping || st.version != *sent; });
+            else  // idle: until a state, a run starting, or the keep-alive
+              st.changed.wait_for(hold, std::chrono::seconds(15), [&] { return st.stopping || st.version != *sent || st.running; });
             if (st.stopping) return false;
             if (st.version != *sent) {
               *sent = st.version;
               out = "event: state\ndata: " + state_json(st).dump() + "\n\n";
+            } else if (st.running) {
+              fscript::support::ProgressState p = fscript::support::progress_state();
+              nlohmann::json j = {{"fraction", p.fraction}, {"done", p.done}, {"jobs", p.jobs}, {"what", p.what}};
+              out = "event: progress\ndata: " + j.dump() + "\n\n";
             } else {
               out = ": keep-alive\n\n";
             }

@@ -149,6 +149,10 @@ function show(state) {
 
 const events = new EventSource('/events');
 events.addEventListener('state', (e) => { status.textContent = ''; show(JSON.parse(e.data)); });
+events.addEventListener('progress', (e) => {  // while the scene runs again: frames done of N, share
+  const p = JSON.parse(e.data);
+  status.textContent = `running: ${p.done}/${p.jobs} ${p.what}, ${Math.floor(p.fraction * 100)}%`;
+});
 events.onerror = () => { status.textContent = 'disconnected: is fvrml-run --serve still running?'; };
 
 playButton.onclick = () => {

@@ -8,10 +8,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <cctype>
 #include <filesystem>
 
 #include "lsp/features/features.h"
+#include "runtime/support/files.h"
 
 extern char** environ;
 
@@ -49,18 +49,7 @@ json failure(const std::string& message) { return {{"__error", kRequestFailed}, 
 }  // namespace
 
 std::string path_of_uri(const std::string& uri) {
-  if (uri.rfind("file://", 0) != 0) return "";
-  std::string path;
-  for (size_t i = 7; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      path += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      path += uri[i];
-    }
-  }
-  return path;
+  return uri.rfind("file://", 0) == 0 ? support::percent_decoded(uri.substr(7)) : "";
 }
 
 json Previews::start(const std::string& uri) {

@@ -9,6 +9,7 @@
 
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
+#include "runtime/support/files.h"
 
 namespace fscript::vrml {
 namespace {
@@ -29,17 +30,7 @@ std::string scheme_of(const std::string& url) {
 fs::path local_path(std::string url, const fs::path& dir) {
   if (scheme_of(url) == "file") url = url.substr(url.rfind("file://", 0) == 0 ? 7 : 5);
   if (size_t hash = url.find('#'); hash != std::string::npos) url.resize(hash);
-  std::string path;
-  for (size_t i = 0; i < url.size(); ++i) {
-    if (url[i] == '%' && i + 2 < url.size() && std::isxdigit(static_cast<unsigned char>(url[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(url[i + 2]))) {
-      path += static_cast<char>(std::stoi(url.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      path += url[i];
-    }
-  }
-  fs::path p(path);
+  fs::path p(support::percent_decoded(url));
   return p.is_absolute() ? p : dir / p;
 }
 

@@ -1,6 +1,8 @@
 // Whole-file reading and all-or-nothing writing, for every layer that touches files.
 #include "runtime/support/files.h"
 
+#include <cctype>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -39,6 +41,20 @@ bool write_file_atomic(const std::string& path, const std::string& bytes, std::s
     std::remove(tmp.c_str());
   }
   return ok;
+}
+
+std::string percent_decoded(const std::string& s) {
+  auto hex = [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; };
+  std::string out;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '%' && i + 2 < s.size() && hex(s[i + 1]) && hex(s[i + 2])) {
+      out += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
 }
 
 }  // namespace fscript::support

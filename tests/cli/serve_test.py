@@ -195,7 +195,7 @@ def main(d):
     # A longer run sends its progress while it goes; every example of the repository previews.
     big = os.path.join(d, "gyroid.wrl")
     write(big, open(os.path.join(SRC, "bench/scenes/gyroid-sphere256.wrl")).read())
-    s = Server(big)
+    s = Server(big, "--resolution-scale", "1.5")  # a second or more per run: progress is sent meanwhile
     first = s.wait_state(lambda st: st.get("version", 0) >= 1, 60)
     events = Events(s)
     events.start()

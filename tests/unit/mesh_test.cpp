@@ -8,7 +8,8 @@
 
 using namespace fscript;
 
-static mesh::Mesh polygonize(const std::string& src, std::array<double, 6> box, int n, float t = 0) {
+static mesh::Mesh polygonize(const std::string& src, std::array<double, 6> box, int n, float t = 0,
+                             mesh::Mesher kind = mesh::Mesher::MarchingTetrahedra) {
   auto b = test::build(src);
   REQUIRE(b->ok);
   mesh::KernelField field(*b->kernel, t);
@@ -16,9 +17,10 @@ static mesh::Mesh polygonize(const std::string& src, std::array<double, 6> box, 
   job.field = &field;
   job.box = box;
   job.cells = {n, n, n};
+  job.mesher.kind = kind;
   mesh::Mesh m;
   backends::RuntimeError err;
-  REQUIRE(mesh::polygonize_implicit(job, m, err));
+  REQUIRE(mesh::polygonize(job, m, err));
   return m;
 }
 
@@ -320,16 +322,8 @@ TEST_CASE("crease normals: a cube's corners keep their faces' normals; a sphere'
   CHECK(std::fabs(soft[0][0]) > 0.1);
   CHECK(std::fabs(soft[0][1]) > 0.1);
   // A sphere meshed by dual contouring: every corner's normal within a few degrees of radial.
-  auto b = test::build("function FRep(x,y,z,t){ return 0.7*0.7 - x*x - y*y - z*z; }");
-  REQUIRE(b->ok);
-  mesh::KernelField field(*b->kernel, 0);
-  mesh::ImplicitJob job;
-  job.field = &field;
-  job.box = {-1, 1, -1, 1, -1, 1};
-  job.cells = {32, 32, 32};
-  mesh::Mesh ball;
-  backends::RuntimeError err;
-  REQUIRE(mesh::polygonize(job, ball, err));
+  mesh::Mesh ball = polygonize("function FRep(x,y,z,t){ return 0.7*0.7 - x*x - y*y - z*z; }", {-1, 1, -1, 1, -1, 1}, 32,
+                                0, mesh::Mesher::DualContouring);
   REQUIRE(ball.normals.empty());
   auto r = mesh::crease_normals(ball, mesh::kCreaseAngle);
   double worst = 1;

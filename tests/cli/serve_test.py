@@ -195,21 +195,21 @@ def main(d):
     # A longer run sends its progress while it goes; every example of the repository previews.
     big = os.path.join(d, "gyroid.wrl")
     write(big, open(os.path.join(SRC, "bench/scenes/gyroid-sphere256.wrl")).read())
-    s = Server(big, "--resolution-scale", "1.5")  # a second or more per run: progress is sent meanwhile
-    first = s.wait_state(lambda st: st.get("version", 0) >= 1, 60)
+    s = Server(big, "--frames", "4")  # about a second per run (slower under sanitizers): progress meanwhile
+    first = s.wait_state(lambda st: st.get("version", 0) >= 1, 120)
     events = Events(s)
     events.start()
     events.wait(lambda st: st["version"] == first["version"], 5)
     os.utime(big)
-    done = events.wait(lambda st: st["version"] > first["version"], 30)
+    done = events.wait(lambda st: st["version"] > first["version"], 120)
     check("a run sends its progress", done is not None and len(events.progress) > 0 and
           all(0 <= p["fraction"] <= 1 and p["what"] for p in events.progress), str(events.progress[:3]))
     s.stop()
     examples = [os.path.join(SRC, "examples/paper", f) for f in sorted(os.listdir(os.path.join(SRC, "examples/paper")))]
     examples += [os.path.join(SRC, "examples", f) for f in sorted(os.listdir(os.path.join(SRC, "examples"))) if f.endswith(".fs")]
-    for example in examples:
-        s = Server(example)
-        st = s.wait_state(lambda st: st.get("version", 0) >= 1, 60)
+    for example in examples:  # two frames at half resolution: the same path, quick even under sanitizers
+        s = Server(example, "--frames", "2", "--resolution-scale", "0.5")
+        st = s.wait_state(lambda st: st.get("version", 0) >= 1, 120)
         status, glb = s.request("GET", "/scene.glb")
         check("previews " + os.path.relpath(example, SRC), st.get("ok") is True and status == 200 and glb[:4] == b"glTF",
               (st.get("diagnostics") or "")[:200])

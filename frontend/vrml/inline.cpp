@@ -56,7 +56,7 @@ class Loader {
   // The first local URL of the Inline, read and parsed (VRML97: the first URL that works).
   void inline_node(Scene& scene, Node& n, std::vector<std::string>& stack) {
     const Value* url = n.get("url");
-    const frontend::SourceFile& here = n.file ? *n.file : *scene.file;
+    const frontend::SourceFile& here = file_of(scene, n);
     for (size_t k = 0; url && k < url->strs.size(); ++k) {
       if (is_remote_url(url->strs[k]) || url->strs[k].empty()) continue;
       frontend::Span at = k < url->str_spans.size() ? url->str_spans[k] : n.span;

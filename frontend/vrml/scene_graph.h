@@ -112,6 +112,9 @@ struct Scene {
   std::vector<std::pair<Kind, size_t>> order;
 };
 
+// The file a node was read from: an Inline's (vrml::load_inlines), else the scene's.
+inline const frontend::SourceFile& file_of(const Scene& scene, const Node& n) { return n.file ? *n.file : *scene.file; }
+
 // The standard node interfaces (VRML97 and FVRML), parsed once from nodes_vrml97.wrl.
 const Interface* standard_interface(const std::string& node_type);
 // A declaration as the standard writes it: "exposedField SFVec3f bboxSize 10 10 10".

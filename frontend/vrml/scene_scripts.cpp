@@ -35,7 +35,7 @@ std::vector<SceneScript> scene_scripts(const Scene& scene) {
       s.node = &n;
       s.script.field = f.name;
       s.script.text = f.value.strs[0];
-      frontend::LineCol lc = (n.file ? *n.file : *scene.file).position(f.value.str_spans[0].begin);
+      frontend::LineCol lc = file_of(scene, n).position(f.value.str_spans[0].begin);
       s.script.line = lc.line;
       s.script.col = lc.col;
       out.push_back(std::move(s));

@@ -119,7 +119,7 @@ class Builder {
 
  private:
   // The file a node was read from (an Inline's, or the scene's).
-  const frontend::SourceFile& file_of(const vrml::Node& n) const { return n.file ? *n.file : *scene_.file; }
+  const frontend::SourceFile& file_of(const vrml::Node& n) const { return vrml::file_of(scene_, n); }
   const std::vector<std::string>& lines_of(const frontend::SourceFile& f) {
     auto [it, fresh] = lines_.try_emplace(&f);
     if (fresh) it->second = frontend::split_lines(f.text());

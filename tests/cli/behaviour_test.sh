@@ -314,6 +314,11 @@ check "Inline: a missing file, at its URL" 1 'lost.wrl:2:15: error: Inline .miss
 printf '#VRML V2.0 utf8\nInline { url "b.wrl" }\n' > "$T/inl/a.wrl"
 printf '#VRML V2.0 utf8\nInline { url "a.wrl" }\n' > "$T/inl/b.wrl"
 check "Inline: a file that includes itself through another" 1 "b.wrl:2:15: error: Inline 'a.wrl' includes a file that includes it" -- "$R" "$T/inl/a.wrl" -o "$T/inl/a.ply"
+for i in $(seq 0 17); do printf '#VRML V2.0 utf8\nInline { url "deep%d.wrl" }\n' $((i + 1)) > "$T/inl/deep$i.wrl"; done
+printf '#VRML V2.0 utf8\n' > "$T/inl/deep18.wrl"
+check "Inline: nesting past 16 levels is refused at the URL" 1 "deep16.wrl:2:15: error: Inline 'deep17.wrl': Inlines nested more than 16 deep" \
+  -- "$R" "$T/inl/deep0.wrl" -o "$T/inl/deep.ply"
+[ -e "$T/inl/deep.ply" ] && fail "Inline: too deep a nesting still wrote deep.ply"
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "function FRep(x,y,z,t) { while (1) { x = x + 1; } return x; }" } }\n' > "$T/inl/parts/loop.wrl"
 printf '#VRML V2.0 utf8\nInline { url "parts/loop.wrl" }\n' > "$T/inl/runerr.wrl"
 check "Inline: a runtime error in the inlined file's script, at its own line" 1 'parts/loop.wrl:2:68: error: loop iteration budget' \

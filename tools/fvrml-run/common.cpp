@@ -21,12 +21,25 @@ void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, con
   static std::mutex lock;  // frames are meshed in parallel
   std::lock_guard<std::mutex> hold(lock);
   namespace fe = fscript::frontend;
-  const fe::SourceFile& file = n->file ? *n->file : *scene.file;  // an Inline's file, or the scene's
+  const fe::SourceFile& file = vrml::file_of(scene, *n);
   fe::LineCol at = err.line ? fe::LineCol{err.line, std::max(err.col, 1u)} : file.position(n->span.begin);
   fe::Severity sev = o.keep_going ? fe::Severity::Warning : fe::Severity::Error;
   std::string path = n->file && n->file != scene.file.get() ? file.path() : o.path;
   std::cerr << fe::render(fe::located(sev, path, at, file.line_at(at.line), prefix + err.message));
 }
+
+namespace {
+
+// What mesh_scene meshes on its own: shapes outside any FTransform and top-level FTransforms, but
+// not those in `skip` (animated ones, meshed frame by frame).
+bool own_shape(const fscript::scene::Shape& s, const std::set<const vrml::Node*>& skip) {
+  return s.group < 0 && !skip.count(s.fshape);
+}
+bool own_group(const fscript::scene::Group& g, const std::set<const vrml::Node*>& skip) {
+  return g.parent < 0 && !skip.count(g.node);
+}
+
+}  // namespace
 
 Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& model, bool world, int threads,
                   const std::set<const vrml::Node*>& skip) {
@@ -34,7 +47,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
   for (const auto& s : model.shapes) {
     mesh::Mesh m;
     fscript::backends::RuntimeError err;
-    bool mine = s.group < 0 && !skip.count(s.fshape);
+    bool mine = own_shape(s, skip);
     if (mine && !fscript::scene::mesh_shape(s, m, err, world, threads, o.prune, o.mesher)) {
       report(o, scene, s.fshape, err);
       out.failed = true;
@@ -43,7 +56,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
     if (mine) out.by_node[s.fshape] = std::move(m);
   }
   for (size_t g = 0; g < model.groups.size(); ++g) {
-    if (model.groups[g].parent >= 0 || skip.count(model.groups[g].node)) continue;
+    if (!own_group(model.groups[g], skip)) continue;
     mesh::Mesh m;
     fscript::backends::RuntimeError err;
     if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, world, threads, o.prune, o.mesher)) {
@@ -57,13 +70,13 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
 }
 
 uint32_t node_line(const vrml::Scene& scene, const vrml::Node& n) {
-  return (n.file ? *n.file : *scene.file).position(n.span.begin).line;
+  return vrml::file_of(scene, n).position(n.span.begin).line;
 }
 
 uint64_t mesh_jobs(const SceneModel& model, const std::set<const vrml::Node*>& skip) {
   uint64_t n = 0;
-  for (const auto& s : model.shapes) n += s.group < 0 && !skip.count(s.fshape);
-  for (const auto& g : model.groups) n += g.parent < 0 && !skip.count(g.node);
+  for (const auto& s : model.shapes) n += own_shape(s, skip);
+  for (const auto& g : model.groups) n += own_group(g, skip);
   return n;
 }
 

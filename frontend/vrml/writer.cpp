@@ -44,6 +44,13 @@ class Writer {
     return out_;
   }
 
+  std::string one(const Node& n, bool protos) {
+    if (protos)
+      for (const auto& p : s_.protos) proto(*p);
+    node(&n, 0);
+    return out_;
+  }
+
  private:
   void indent(int d) { out_.append(static_cast<size_t>(d) * 2, ' '); }
 
@@ -200,6 +207,8 @@ class Comparer {
 }  // namespace
 
 std::string write_scene(const Scene& scene) { return Writer(scene).run(); }
+
+std::string write_node(const Scene& scene, const Node& n, bool protos) { return Writer(scene).one(n, protos); }
 
 std::string compare_scenes(const Scene& a, const Scene& b) {
   if (a.roots.size() != b.roots.size()) return "number of top-level nodes differs";

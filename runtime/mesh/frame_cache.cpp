@@ -148,16 +148,48 @@ bool FrameCache::get(size_t i, Mesh& out, backends::RuntimeError& err) {
   return true;
 }
 
-bool FrameCache::fill(int threads, backends::RuntimeError& err) {
+std::vector<size_t> FrameCache::progressive_order(size_t n) {
+  size_t bits = 0;
+  while ((size_t{1} << bits) < n) ++bits;
+  std::vector<size_t> order;
+  std::vector<char> taken(n, 0);
+  for (size_t p = 0; p < (size_t{1} << bits); ++p) {
+    size_t r = 0;
+    for (size_t b = 0; b < bits; ++b) r |= ((p >> b) & 1) << (bits - 1 - b);
+    size_t i = (r * n) >> bits;  // the bit-reversed position scaled to n (collisions skipped)
+    if (!taken[i]) taken[i] = 1, order.push_back(i);
+  }
+  for (size_t i = 0; i < n; ++i)
+    if (!taken[i]) order.push_back(i);
+  return order;
+}
+
+bool FrameCache::fill(int threads, backends::RuntimeError& err, const std::function<void(size_t)>& made) {
   std::vector<size_t> missing;
-  for (size_t i = 0; i < frames_; ++i)
+  for (size_t i : progressive_order(frames_))
     if (!has(i)) missing.push_back(i);
   int n = std::max(1, std::min<int>(threads, static_cast<int>(missing.size())));
-  return support::run_parts(n, [&](int w, backends::RuntimeError& e) {  // frames w, w + n, ...
-    for (size_t k = static_cast<size_t>(w); k < missing.size(); k += static_cast<size_t>(n))
+  std::mutex report;
+  return support::run_parts(n, [&](int w, backends::RuntimeError& e) {  // frames w, w + n, ... of the order
+    for (size_t k = static_cast<size_t>(w); k < missing.size(); k += static_cast<size_t>(n)) {
       if (!make(missing[k], e)) return false;
+      if (made) {
+        std::lock_guard<std::mutex> hold(report);
+        made(cached());
+      }
+    }
     return true;
   }, err);
+}
+
+void FrameCache::put(size_t i, CompactMesh c) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (i < frames_) slots_[i] = std::move(c);
+}
+
+std::optional<CompactMesh> FrameCache::compact(size_t i) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return i < frames_ ? slots_[i] : std::nullopt;
 }
 
 bool FrameCache::peek(size_t i, Mesh& out) const {

@@ -37,14 +37,23 @@ Mesh expand(const CompactMesh& c);
 // Frames 0 .. n-1 of one animation, made on demand by `make(i, mesh, err)`.
 class FrameCache {
  public:
+  // 0 .. n-1 coarse to fine: 0, n/2, n/4, 3n/4, ... (bit-reversed), each index once.
+  static std::vector<size_t> progressive_order(size_t n);
+
   using Maker = std::function<bool(size_t frame, Mesh& out, backends::RuntimeError& err)>;
   FrameCache(size_t frames, Maker make) : frames_(frames), make_(std::move(make)), slots_(frames) {}
 
   // The mesh of frame i: made and cached when missing; when it was cached, the next missing frame
   // is made as well, so repeated playback fills the cache progressively.
   bool get(size_t i, Mesh& out, backends::RuntimeError& err);
-  // Makes every missing frame, `threads` frames at a time.
-  bool fill(int threads, backends::RuntimeError& err);
+  // Makes every missing frame, `threads` frames at a time, coarse to fine in time (the order of
+  // progressive_order), so the frames made so far always span the cycle. `made(cached)`, when
+  // given, is called after each frame is stored, one call at a time.
+  bool fill(int threads, backends::RuntimeError& err, const std::function<void(size_t cached)>& made = {});
+
+  // A frame made elsewhere (a preview's meshes of the last run), and a cached frame as stored.
+  void put(size_t i, CompactMesh c);
+  std::optional<CompactMesh> compact(size_t i) const;
 
   // A cached frame, expanded; false when frame i is not cached (nothing is made).
   bool peek(size_t i, Mesh& out) const;

@@ -103,14 +103,15 @@ int float_accessor(const std::vector<float>& data, const char* type, bool with_b
 }
 
 // Frames as sibling nodes under one parent; a STEP animation of their scales shows frame k during
-// [k T / N, (k + 1) T / N) and hides the others (scale 0). A last key at T repeats the first, so
-// the animation lasts exactly one cycle.
+// [k T / N, (k + 1) T / N) (or from its given start to the next) and hides the others (scale 0). A
+// last key at T repeats the first, so the animation lasts exactly one cycle.
 void add_animation(const GltfAnimation& a, std::string& bin, nlohmann::json& j) {
   size_t n = a.frames.size();
   if (n == 0) return;
   nlohmann::json parent = {{"name", a.name.empty() ? "animation" : a.name}, {"children", nlohmann::json::array()}};
   std::vector<float> times;
-  for (size_t k = 0; k <= n; ++k) times.push_back(static_cast<float>(a.cycle_interval * k / n));
+  for (size_t k = 0; k <= n; ++k)
+    times.push_back(static_cast<float>(a.starts.size() == n && k < n ? a.starts[k] : a.cycle_interval * k / n));
   int input = float_accessor(times, "SCALAR", true, bin, j);
   nlohmann::json samplers = nlohmann::json::array(), channels = nlohmann::json::array();
   for (size_t f = 0; f < n; ++f) {

@@ -13,6 +13,9 @@ struct GltfAnimation {
   std::string name;
   std::vector<Mesh> frames;    // frame k shown during [k T / N, (k + 1) T / N)
   double cycle_interval = 1;   // T, seconds
+  // When given (one per frame, rising from 0): frame k shown from starts[k] to the next start, the
+  // last until T. The live preview's animation while only some frames exist.
+  std::vector<double> starts;
 };
 
 std::string encode_glb(const Mesh& m, const std::vector<GltfAnimation>& animations = {});

@@ -2,6 +2,7 @@
 // the enclosing FTransform, compiling each FVRML node's scripts and evaluating its time.
 #include "runtime/scene/scene_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -161,8 +162,27 @@ class Builder {
     return true;
   }
 
+  // Whether the optimised module reads input `name`: the kernel's parameter, or a global it sets.
+  static bool reads_input(const driver::Compiled& c, const char* name) {
+    const auto& names = c.spec.input_names;
+    size_t k = static_cast<size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+    if (k == names.size()) return false;
+    if (!c.module) return true;
+    const auto& slots = k < c.spec.input_globals.size() ? c.spec.input_globals[k] : std::vector<int>{};
+    for (const auto& fn : c.module->functions)
+      for (const auto& b : fn->blocks)
+        for (const ir::Inst* i : b->insts) {
+          if (i->op == ir::Op::GLoad && std::find(slots.begin(), slots.end(), i->aux) != slots.end()) return true;
+          if (fn.get() == &c.module->kernel_function())
+            for (const ir::Inst* a : i->args)
+              if (a->op == ir::Op::Param && a->aux == static_cast<int32_t>(k)) return true;
+        }
+    return false;
+  }
+
   // The kernel, and its interval tape for the polygonizer's octree.
   static void keep(driver::Compiled& c, CompiledField& out) {
+    out.reads_t = reads_input(c, "t");
     out.kernel = std::move(c.kernel);
     if (c.module && ir::interval_evaluable(c.module->kernel_function()))
       out.intervals = std::make_shared<const ir::IntervalTape>(c.module->kernel_function());

@@ -42,6 +42,7 @@ struct CompiledField {
   bool rgb = false;  // colour: the script sets r, g, b (else its value goes through the pattern)
   double span0 = 0, span1 = 1;  // the node's timeSpan
   double t = 0;                 // the node's t at the evaluated time
+  bool reads_t = true;          // the optimised kernel uses t (false: the same at every time)
 };
 
 struct Shape {

@@ -1,10 +1,16 @@
 // The frame cache: compact frames round-trip within their quantisation step, the cache fills
-// progressively as the paper describes, and filling in parallel gives the same frames.
+// progressively as the paper describes (coarse to fine in time), filling in parallel gives the same
+// frames, and a glTF animation of some of the frames shows each until the next.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 #include <mutex>
+#include <nlohmann/json.hpp>
+#include <numeric>
 
 #include "runtime/mesh/frame_cache.h"
+#include "runtime/mesh/gltf.h"
 #include "runtime/mesh/implicit.h"
 #include "tests/unit/helpers.h"
 
@@ -137,4 +143,67 @@ TEST_CASE("frames: a failing frame reports its error and caches nothing") {
   CHECK(!cache.fill(2, err));
   CHECK(err.message == "loop budget exceeded");
   CHECK(!cache.has(1));
+}
+
+TEST_CASE("frames: the progressive order is coarse to fine and takes each frame once") {
+  using mesh::FrameCache;
+  CHECK(FrameCache::progressive_order(1) == std::vector<size_t>{0});
+  CHECK(FrameCache::progressive_order(4) == std::vector<size_t>{0, 2, 1, 3});
+  for (size_t n : {2, 3, 5, 7, 24, 100}) {
+    std::vector<size_t> order = FrameCache::progressive_order(n), sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<size_t> all(n);
+    std::iota(all.begin(), all.end(), size_t{0});
+    CHECK(sorted == all);
+    CHECK(order[0] == 0);
+    if (n >= 4) {  // the first two frames after 0 split the cycle in half, then in quarters
+      CHECK(order[1] == n / 2);
+      CHECK(std::max(order[2], order[3]) >= n / 2);
+      CHECK(std::min(order[2], order[3]) < n / 2);
+    }
+  }
+}
+
+TEST_CASE("frames: fill makes frames coarse to fine and reports each one; put and compact") {
+  GrowingSphere s(8);
+  REQUIRE(s.b->ok);
+  mesh::FrameCache cache(8, s.maker());
+  backends::RuntimeError err;
+  std::vector<size_t> counts;
+  REQUIRE(cache.fill(1, err, [&](size_t cached) { counts.push_back(cached); }));
+  CHECK(counts == std::vector<size_t>{1, 2, 3, 4, 5, 6, 7, 8});
+  CHECK(s.made == std::vector<int>{0, 4, 2, 6, 1, 5, 3, 7});
+  GrowingSphere t(8);
+  mesh::FrameCache copy(8, t.maker());
+  for (size_t i = 0; i < 8; i += 2) copy.put(i, *cache.compact(i));  // from elsewhere: not made again
+  REQUIRE(copy.fill(2, err));
+  std::sort(t.made.begin(), t.made.end());
+  CHECK(t.made == std::vector<int>{1, 3, 5, 7});
+  for (size_t i = 0; i < 8; ++i) CHECK(*copy.compact(i) == *cache.compact(i));
+  CHECK(!cache.compact(8));
+}
+
+// The key times of a glb's first animation sampler (its input accessor, in the binary chunk).
+static std::vector<float> key_times(const std::string& glb) {
+  uint32_t json_len = 0;
+  std::memcpy(&json_len, glb.data() + 12, 4);
+  auto j = nlohmann::json::parse(glb.substr(20, json_len));
+  const auto& acc = j["accessors"][j["animations"][0]["samplers"][0]["input"].get<size_t>()];
+  const auto& view = j["bufferViews"][acc["bufferView"].get<size_t>()];
+  size_t at = 20 + json_len + 8 + view.value("byteOffset", size_t{0}) + acc.value("byteOffset", size_t{0});
+  std::vector<float> out(acc["count"].get<size_t>());
+  std::memcpy(out.data(), glb.data() + at, out.size() * 4);
+  return out;
+}
+
+TEST_CASE("frames: a glTF animation of some frames shows each from its start to the next") {
+  mesh::Mesh tri;
+  tri.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  tri.triangles = {{0, 1, 2}};
+  mesh::GltfAnimation a;
+  a.cycle_interval = 2;
+  a.frames = {tri, tri, tri};
+  CHECK(key_times(mesh::encode_glb(tri, {a})) == std::vector<float>{0, 2.0f / 3, 4.0f / 3, 2});
+  a.starts = {0, 0.5, 1.5};  // frames 0, 1 and 3 of 4 made so far
+  CHECK(key_times(mesh::encode_glb(tri, {a})) == std::vector<float>{0, 0.5, 1.5, 2});
 }

@@ -10,6 +10,8 @@
 #include "runtime/mesh/mesh_io.h"
 #include "runtime/scene/shape_mesh.h"
 #include "runtime/scene/standard_geometry.h"
+#include "runtime/support/progress.h"
+#include "tools/fvrml-run/memo.h"
 #include "tools/fvrml-run/run.h"
 
 namespace fvrml_run {
@@ -41,14 +43,34 @@ bool own_group(const fscript::scene::Group& g, const std::set<const vrml::Node*>
 
 }  // namespace
 
+namespace {
+
+// One shape or top-level FTransform, from the memo when it has it (then stored there when made).
+template <class Make>
+bool memo_mesh(const Options& o, const std::string& key, mesh::Mesh& m, Make make) {
+  if (o.memo)
+    if (auto hit = o.memo->find(key)) {
+      fscript::support::ProgressJob done;  // the run's progress counts it as made
+      m = std::move(*hit);
+      return true;
+    }
+  if (!make()) return false;
+  if (o.memo) o.memo->store(key, m);
+  return true;
+}
+
+}  // namespace
+
 Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& model, bool world, int threads,
                   const std::set<const vrml::Node*>& skip) {
   Meshed out;
-  for (const auto& s : model.shapes) {
+  for (size_t i = 0; i < model.shapes.size(); ++i) {
+    const auto& s = model.shapes[i];
     mesh::Mesh m;
     fscript::backends::RuntimeError err;
     bool mine = own_shape(s, skip);
-    if (mine && !fscript::scene::mesh_shape(s, m, err, world, threads, o.prune, o.mesher)) {
+    std::string key = mine && o.memo ? shape_key(o, scene, model, i, world) : "";
+    if (mine && !memo_mesh(o, key, m, [&] { return fscript::scene::mesh_shape(s, m, err, world, threads, o.prune, o.mesher); })) {
       report(o, scene, s.fshape, err);
       out.failed = true;
     }
@@ -59,7 +81,10 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
     if (!own_group(model.groups[g], skip)) continue;
     mesh::Mesh m;
     fscript::backends::RuntimeError err;
-    if (!fscript::scene::mesh_group(model, static_cast<int>(g), m, err, world, threads, o.prune, o.mesher)) {
+    std::string key = o.memo ? group_key(o, scene, model, g, world) : "";
+    if (!memo_mesh(o, key, m, [&] {
+          return fscript::scene::mesh_group(model, static_cast<int>(g), m, err, world, threads, o.prune, o.mesher);
+        })) {
       report(o, scene, model.groups[g].node, err, "FTransform: ");
       out.failed = true;
     }

@@ -14,8 +14,9 @@
 #include "runtime/scene/vrml_export.h"
 #include "runtime/support/parallel.h"
 #include "runtime/support/progress.h"
-#include "tools/fvrml-run/run.h"
 #include "runtime/support/files.h"
+#include "tools/fvrml-run/memo.h"
+#include "tools/fvrml-run/run.h"
 
 namespace fvrml_run {
 namespace {
@@ -63,6 +64,62 @@ bool write_text(const Options& o, const std::string& text) {
   if (fscript::support::write_file_atomic(o.output, text, error)) return true;
   std::cerr << "error: " << error << "\n";
   return false;
+}
+
+// The glTF animation of a track's cached frames: all of them, or (partial) those made so far, each
+// shown until the next one made.
+mesh::GltfAnimation gltf_animation(const vrml::Scene& scene, const Track& t, const mesh::FrameCache& cache, bool partial) {
+  mesh::GltfAnimation a;
+  a.name = t.node->def_name.empty() ? "line " + std::to_string(node_line(scene, *t.node)) : t.node->def_name;
+  a.cycle_interval = fscript::scene::time_fields(*t.node).cycle_interval;
+  for (size_t i = 0; i < cache.size(); ++i) {
+    mesh::Mesh m;
+    if (!cache.peek(i, m)) continue;
+    a.frames.push_back(std::move(m));
+    if (partial) a.starts.push_back(a.cycle_interval * static_cast<double>(i) / static_cast<double>(cache.size()));
+  }
+  return a;
+}
+
+// Whether a track's frames differ: some script it runs reads t.
+bool moves(const SceneModel& m, const Track& t) {
+  auto shape_moves = [](const fscript::scene::Shape& s) {
+    bool r = s.geometry.reads_t || (s.texture && s.texture->reads_t) || (s.colour && s.colour->reads_t);
+    for (const auto& f : s.material) r = r || f.reads_t;
+    return r;
+  };
+  if (!t.group) return shape_moves(m.shapes[static_cast<size_t>(t.index)]);
+  for (size_t g = 0; g < m.groups.size(); ++g) {
+    bool inside = false;
+    for (int k = static_cast<int>(g); k >= 0 && !inside; k = m.groups[static_cast<size_t>(k)].parent) inside = k == t.index;
+    if (!inside) continue;
+    const auto& grp = m.groups[g];
+    if (grp.op_kernel && grp.op_kernel->reads_t) return true;
+    for (const auto& [field, parts] : grp.affine)
+      for (const auto& f : parts)
+        if (f.reads_t) return true;
+    for (int s : grp.shapes)
+      if (shape_moves(m.shapes[static_cast<size_t>(s)])) return true;
+  }
+  return false;
+}
+
+// The frame keys of a track in the memo; frames found there go into the cache. Returns the keys of
+// the frames still to make (empty strings for those found). A still track has one key, frame 0's.
+std::vector<std::string> from_memo(const Options& o, const vrml::Scene& scene, const Track& t,
+                                   const std::vector<SceneModel>& ms, bool world, bool still, mesh::FrameCache& cache) {
+  std::vector<std::string> keys(still ? 1 : ms.size());
+  if (!o.memo) return keys;
+  for (size_t i = 0; i < keys.size(); ++i) {
+    size_t k = static_cast<size_t>(t.index);
+    keys[i] = t.group ? group_key(o, scene, ms[i], k, world) : shape_key(o, scene, ms[i], k, world);
+    if (auto hit = o.memo->find_frame(keys[i])) {
+      fscript::support::ProgressJob done;
+      for (size_t f = i; f < (still ? ms.size() : i + 1); ++f) cache.put(f, *hit);
+      keys[i].clear();
+    }
+  }
+  return keys;
 }
 
 }  // namespace
@@ -129,7 +186,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
   std::set<const vrml::Node*> skip;
   for (const auto& t : ts) skip.insert(t.node);
   uint64_t jobs = mesh_jobs(model, skip);
-  for (const auto& t : ts) jobs += static_cast<uint64_t>(t.frames);
+  for (const auto& t : ts) jobs += moves(model, t) ? static_cast<uint64_t>(t.frames) : 1;  // a still one is made once
   fscript::support::progress_expect(jobs, "frames");
   Meshed meshed = mesh_scene(o, l.scene, model, world, o.threads, skip);
   if (meshed.failed && !o.keep_going) return 1;
@@ -149,13 +206,33 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
                          : fscript::scene::mesh_shape(ms[i].shapes[t.index], out, err, world, per, prune, mesher);
         }));
     mesh::FrameCache& cache = *caches.back();
+    bool still = !moves(model, t), made = true;
+    std::vector<std::string> keys = from_memo(o, l.scene, t, ms, world, still, cache);
     fscript::backends::RuntimeError err;
-    if (!cache.fill(parallel, err)) {
+    if (still && !cache.has(0)) {  // every frame as the first: made once
+      mesh::Mesh first;
+      made = cache.get(0, first, err);
+      for (size_t i = 1; made && i < cache.size(); ++i) cache.put(i, *cache.compact(0));
+    }
+    // The live preview sees the scene after 1, 2, 4, ... frames: the static shapes, the animations
+    // done and this one's frames so far (made coarse to fine, so they span the cycle).
+    auto publish = [&](size_t cached) {
+      if (!o.on_partial || !world || cached >= cache.size() || (cached & (cached - 1)) != 0) return;
+      mesh::Mesh all;
+      for (const auto& [node, part] : meshed.by_node) all.append(part);
+      std::vector<mesh::GltfAnimation> now = gltf;
+      now.push_back(gltf_animation(l.scene, t, cache, true));
+      size_t frames = now.back().frames.size();  // other threads may have added some meanwhile
+      o.on_partial(mesh::encode_glb(all, now), frames, cache.size());
+    };
+    if (!made || !cache.fill(parallel, err, publish)) {
       report(o, l.scene, t.node, err);
       if (!o.keep_going) return 1;
       failed = true;
       continue;
     }
+    for (size_t i = 0; i < keys.size(); ++i)
+      if (!keys[i].empty()) o.memo->store_frame(keys[i], *cache.compact(i));
     double fraction = t.group ? model.groups[t.index].fraction : model.shapes[t.index].fraction;
     int initial = std::clamp(static_cast<int>(std::floor(fraction * t.frames)), 0, t.frames - 1);
     report_json.push_back({{"line", node_line(l.scene, *t.node)}, {"frames", t.frames},
@@ -172,13 +249,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
       animations[t.node] = {&cache, fscript::scene::time_fields(*t.node), externally_driven(l.scene, *t.node), initial};
       continue;
     }
-    mesh::GltfAnimation a;
-    a.name = t.node->def_name.empty() ? "line " + std::to_string(node_line(l.scene, *t.node))
-                                      : t.node->def_name;
-    a.cycle_interval = fscript::scene::time_fields(*t.node).cycle_interval;
-    a.frames.resize(cache.size());
-    for (size_t i = 0; i < cache.size(); ++i) cache.peek(i, a.frames[i]);
-    gltf.push_back(std::move(a));
+    gltf.push_back(gltf_animation(l.scene, t, cache, false));
   }
   st["polygonize_ms"] = ms_since(t2);
   st["evaluation_ms"] = evaluation_ms_since(e0);

@@ -4,81 +4,27 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
-#include <map>
-#include <optional>
 #include <set>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "backends/backend.h"
-#include "runtime/support/big_stack.h"
-#include "frontend/vrml/inline.h"
-#include "frontend/vrml/scene_file.h"
-#include "frontend/vrml/vrml_parser.h"
-#include "runtime/mesh/distance.h"
 #include "runtime/mesh/dual_contour.h"
-#include "runtime/mesh/field.h"
-#include "runtime/mesh/mesh_io.h"
-#include "runtime/mesh/mesh_read.h"
 #include "runtime/mesh/octree.h"
-#include "runtime/render/png.h"
-#include "runtime/render/raster.h"
-#include "runtime/scene/scene_model.h"
-#include "runtime/scene/shape_mesh.h"
-#include "runtime/scene/vrml_export.h"
-#include "tools/fvrml-run/run.h"
-#include "runtime/support/files.h"
+#include "runtime/support/big_stack.h"
 #include "runtime/support/progress.h"
 #include "runtime/support/version.h"
 #include "tools/budget_flags.h"
+#include "tools/fvrml-run/run.h"
+#include "tools/fvrml-run/serve.h"
 
 namespace fvrml_run {
 namespace {
-
-nlohmann::json field_json(const fscript::scene::CompiledField& f) {
-  return {{"field", f.field}, {"timeSpan", {f.span0, f.span1}}, {"t", f.t}};
-}
-
-nlohmann::json stats(const vrml::Scene& scene, const SceneModel& m, const Meshed* meshed) {
-  nlohmann::json shapes = nlohmann::json::array();
-  for (size_t i = 0; i < m.shapes.size(); ++i) {
-    const auto& s = m.shapes[i];
-    nlohmann::json j = {{"line", node_line(scene, *s.fshape)},
-                        {"kind", fscript::scene::kind_name(s.kind)},
-                        {"domain", s.domain},
-                        {"resolution", s.resolution},
-                        {"fraction", s.fraction},
-                        {"active", s.time.active},
-                        {"frames", s.frames},
-                        {"geometry", field_json(s.geometry)},
-                        {"transform", s.transform}};
-    if (!s.fshape->def_name.empty()) j["def"] = s.fshape->def_name;
-    if (s.group >= 0) j["ftransform"] = s.group;
-    if (s.colour) j["colour"] = field_json(*s.colour), j["colour"]["rgb"] = s.colour->rgb;
-    if (s.texture) j["texture"] = field_json(*s.texture);
-    if (meshed && i < meshed->counts.size())
-      j["vertices"] = meshed->counts[i].first, j["triangles"] = meshed->counts[i].second;
-    shapes.push_back(j);
-  }
-  nlohmann::json groups = nlohmann::json::array();
-  for (size_t i = 0; i < m.groups.size(); ++i) {
-    const auto& g = m.groups[i];
-    nlohmann::json affine = nlohmann::json::object();
-    for (const auto& [field, parts] : g.affine) affine[field] = parts.size();
-    nlohmann::json j = {{"operation", g.operation}, {"type", g.type}, {"fraction", g.fraction}, {"shapes", g.shapes},
-                        {"ftransforms", g.groups}, {"parent", g.parent}, {"affine", affine}};
-    if (meshed && meshed->group_counts.count(i))
-      j["vertices"] = meshed->group_counts.at(i).first, j["triangles"] = meshed->group_counts.at(i).second;
-    groups.push_back(j);
-  }
-  return {{"shapes", shapes}, {"ftransforms", groups}};
-}
 
 // "640x480" or "512" (a square), each side in [16, 8192].
 bool parse_size(const std::string& s, uint32_t& w, uint32_t& h) {
@@ -113,49 +59,6 @@ bool parse_view(const std::string& s, double& az, double& el) {
   } catch (const std::exception&) {
     return false;
   }
-  return true;
-}
-
-bool is_script_path(const std::string& path) { return path.size() > 3 && path.compare(path.size() - 3, 3, ".fs") == 0; }
-
-// fvrml-run shape.fs: the script as the definition of one FShape with every other field at its
-// FVRML default. The scene's file is the script itself, the definition starting at its first
-// character, so diagnostics and runtime errors name the .fs file's own lines and columns.
-bool script_scene(const std::string& path, const std::string& text, Loaded& l) {
-  const std::string wrapper = "#VRML V2.0 utf8\nFShape { geometry FGeometry { definition \"0\" } }\n";
-  if (!vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(path, wrapper), l.diag, l.scene)) return false;
-  const vrml::Value* g = l.scene.roots.empty() ? nullptr : l.scene.roots[0]->get("geometry");
-  vrml::Node* geometry = g && !g->nodes.empty() ? g->nodes[0].get() : nullptr;
-  if (geometry)
-    for (vrml::FieldSlot& f : geometry->fields) {
-      if (f.name != "definition" || f.value.strs.empty() || f.value.str_spans.empty()) continue;
-      f.value.strs[0] = text;
-      f.value.str_spans[0] = {0, static_cast<uint32_t>(text.size())};
-      l.scene.file = std::make_unique<fscript::frontend::SourceFile>(path, text);
-      for (vrml::Node* n : {l.scene.roots[0].get(), geometry}) n->file = l.scene.file.get();  // not the wrapper's
-      return true;
-    }
-  std::cerr << path << ": error: internal: the FShape wrapper of a script has no definition\n";
-  return false;
-}
-
-// --check REF: distances between the frame's mesh and a reference mesh, as JSON on standard output.
-bool check_against(const std::string& ref, const mesh::Mesh& all) {
-  mesh::Mesh reference;
-  std::string error;
-  if (!mesh::read_mesh(ref, reference, error)) {
-    std::cerr << ref << ": error: " << error << "\n";
-    return false;
-  }
-  auto d = mesh::mesh_distances(all, reference);
-  double diag = mesh::bbox_diagonal(all);
-  auto t = mesh::topology(all);
-  nlohmann::json j = {{"hausdorff", d.hausdorff}, {"chamfer", d.chamfer},
-                      {"hausdorff_relative", diag > 0 ? d.hausdorff / diag : 0.0},
-                      {"chamfer_relative", diag > 0 ? d.chamfer / diag : 0.0},
-                      {"vertices", all.positions.size()}, {"triangles", all.triangles.size()},
-                      {"watertight", t.watertight}, {"manifold", t.manifold}, {"euler", t.euler}};
-  std::cout << j.dump() << "\n";
   return true;
 }
 
@@ -202,97 +105,6 @@ std::string written_summary(const Options& o, const nlohmann::json& st, double m
   char secs[32];
   std::snprintf(secs, sizeof secs, ", %.2f s", ms / 1000.0);
   return "wrote " + o.output + ": " + what + secs;
-}
-
-int single(const Options& o, Loaded& l, nlohmann::json& st);
-
-// What the preview page takes from the scene: the first Viewpoint, the DirectionalLights (in world
-// coordinates), the headlight and the background colour.
-nlohmann::json view_json(const fscript::render::RenderOptions& ro) {
-  nlohmann::json v = {{"headlight", ro.headlight}, {"background", ro.background}, {"lights", nlohmann::json::array()}};
-  if (ro.camera)
-    v["camera"] = {{"position", ro.camera->position}, {"orientation", ro.camera->orientation},
-                   {"fieldOfView", ro.camera->field_of_view}};
-  for (const auto& l : ro.lights)
-    v["lights"].push_back({{"direction", l.direction}, {"colour", l.colour}, {"intensity", l.intensity}, {"ambient", l.ambient}});
-  return v;
-}
-
-}  // namespace
-
-int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* files) {
-  auto t0 = Clock::now();
-  std::string text, error;
-  bool script = is_script_path(o.path);
-  if (!(script ? fscript::support::read_file(o.path, text, error) : vrml::read_scene_text(o.path, text, error))) {
-    std::cerr << o.path << ": error: " << error << "\n";
-    return 1;
-  }
-  Loaded l;
-  l.from_script = script;
-  bool ok = script ? script_scene(o.path, text, l)
-                   : vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(o.path, text), l.diag, l.scene);
-  if (ok && !script) ok = vrml::load_inlines(l.scene, l.diag, files);  // local Inline files, read and parsed
-  st = {{"parse_ms", ms_since(t0)}};
-  if (!ok) {
-    std::cerr << fscript::frontend::render_all(l.diag);
-    return 1;
-  }
-  if (o.view_json) st["view"] = view_json(render_options(o, l.scene, o.width, o.height));
-  bool animation = o.format == "wrl" || o.format == "glb";
-  return o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
-}
-
-namespace {
-
-// One frame: VRML97 to a file or standard output, a mesh file, or a picture.
-int single(const Options& o, Loaded& l, nlohmann::json& st) {
-  auto t1 = Clock::now();
-  SceneModel model;
-  if (!build(l, model, o.model, true)) return 1;
-  st["compile_ms"] = ms_since(t1);
-  auto t2 = Clock::now();
-  uint64_t e0 = mesh::evaluation_ns().load();
-  bool write = !o.output.empty() || (!o.stats && o.check.empty());
-  Meshed meshed;
-  if (!o.check.empty()) {
-    fscript::support::progress_expect(mesh_jobs(model), "meshes");
-    meshed = mesh_scene(o, l.scene, model, true, o.threads);
-    if (meshed.failed && !o.keep_going) return 1;
-    if (!check_against(o.check, merged(meshed))) return 1;
-  }
-  if (write && !tracks(o, model).empty()) {
-    int rc = animated(o, l, model, st);
-    nlohmann::json s = stats(l.scene, model, nullptr);
-    st["shapes"] = s["shapes"], st["ftransforms"] = s["ftransforms"];
-    return rc;
-  }
-  if (write) {
-    fscript::support::progress_expect(mesh_jobs(model), "meshes");
-    meshed = mesh_scene(o, l.scene, model, o.format != "wrl", o.threads);
-    if (meshed.failed && !o.keep_going) return 1;
-    st["polygonize_ms"] = ms_since(t2);
-    st["evaluation_ms"] = evaluation_ms_since(e0);
-    t2 = Clock::now();
-    std::string error;
-    if (o.format == "wrl") {
-      std::string text = fscript::scene::export_vrml(l.scene, meshed.by_node);
-      if (o.output.empty() || o.output == "-") std::cout << text;
-      else if (!fscript::support::write_file_atomic(o.output, text, error)) return std::cerr << "error: " << error << "\n", 1;
-    } else if (o.format == "png") {
-      fscript::render::RenderOptions ro = render_options(o, l.scene, o.width, o.height);
-      if (!fscript::render::write_png(o.output, ro.width, ro.height, 3, fscript::render::render(picture(meshed, l.scene), ro), error))
-        return std::cerr << "error: " << error << "\n", 1;
-    } else if (!write_frame(o, o.output, merged(meshed))) {
-      return 1;
-    }
-    st["write_ms"] = ms_since(t2);
-  } else {
-    st["polygonize_ms"] = ms_since(t2);
-  }
-  nlohmann::json s = stats(l.scene, model, write ? &meshed : nullptr);
-  st["shapes"] = s["shapes"], st["ftransforms"] = s["ftransforms"];
-  return meshed.failed ? 1 : 0;
 }
 
 int run(int argc, char** argv) {

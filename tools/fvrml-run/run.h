@@ -2,6 +2,7 @@
 // What the parts of fvrml-run share: the options, the loaded scene, the meshes of one frame, and
 // the steps every output goes through.
 #include <chrono>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -30,6 +31,8 @@ inline double ms_since(Clock::time_point t0) {
 // Milliseconds of function evaluation since `ns0` (summed over threads).
 double evaluation_ms_since(uint64_t ns0);
 
+class MeshMemo;
+
 struct Options {
   std::string path, output, format, check;
   fscript::scene::ModelOptions model;
@@ -41,6 +44,10 @@ struct Options {
   double azimuth = 30, elevation = 20, zoom = 1;  // the picture's automatic camera (raster.h)
   bool view_given = false;
   bool view_json = false;  // --serve: the scene's Viewpoint, lights and background in the stats' "view"
+  MeshMemo* memo = nullptr;  // --serve: the meshes of the last run, reused where nothing changed
+  // --serve, glTF: the scene so far while animations are polygonized (its static shapes and the
+  // frames made: `frames` of `of` of the animation under way).
+  std::function<void(const std::string& glb, size_t frames, size_t of)> on_partial;
 };
 
 struct Loaded {
@@ -75,12 +82,8 @@ uint64_t mesh_jobs(const SceneModel& model, const std::set<const vrml::Node*>& s
 // the options say, writing o.output; diagnostics on standard error; st gets the --stats figures.
 int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* files);
 
-// --serve: the live preview (serve.cpp).
-struct ServeOptions {
-  bool on = false, open = false;
-  std::string host = "127.0.0.1";
-  int port = 8800;  // 0: any free port
-};
+// --serve: the live preview (serve.h).
+struct ServeOptions;
 int serve(const Options& o, const ServeOptions& s);
 
 // The line of a node in the file it was read from (the scene's, or an Inline's).

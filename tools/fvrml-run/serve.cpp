@@ -1,8 +1,9 @@
 // fvrml-run --serve: the live preview. An HTTP server (Debian's cpp-httplib) on 127.0.0.1 serves one
 // page (preview/index.html and preview.js, compiled in), three.js from Debian's libjs-three, and the
 // scene as our own glTF; a watcher re-runs the scene when the scene or a file it pulls in changes and
-// pushes the new state to every open page as a Server-Sent Event. A save that breaks the scene keeps
-// the last good glTF and sends the diagnostics instead. Only those paths exist: anything else is 404.
+// pushes the new state to every open page as a Server-Sent Event, with the scene so far while an
+// animation's frames are made. A save that breaks the scene keeps the last good glTF and sends the
+// diagnostics instead. Only those paths exist: anything else is 404.
 #include <httplib.h>
 #include <signal.h>
 #include <spawn.h>
@@ -11,6 +12,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <condition_variable>
 #include <filesystem>
@@ -21,7 +23,8 @@
 
 #include "runtime/support/files.h"
 #include "runtime/support/progress.h"
-#include "tools/fvrml-run/run.h"
+#include "tools/fvrml-run/memo.h"
+#include "tools/fvrml-run/serve.h"
 
 extern char** environ;
 
@@ -55,7 +58,9 @@ struct State {
   std::condition_variable changed;
   uint64_t version = 0;
   bool ok = false, stopping = false;
-  std::string glb;          // the last good scene
+  std::string glb;          // what the page shows: the last good scene, or the scene so far
+  std::string good;         // the last good scene (a run that fails after partial scenes goes back to it)
+  nlohmann::json partial;   // null, or the frames so far of the animation being made: {frames, of}
   std::string diagnostics;  // of the last run, as a compiler prints them (warnings too)
   nlohmann::json stats;     // of the last good run
   double scale = 1;         // the resolution scale the page asked for
@@ -64,7 +69,8 @@ struct State {
 };
 
 nlohmann::json state_json(const State& s) {
-  return {{"version", s.version}, {"ok", s.ok}, {"diagnostics", s.diagnostics}, {"stats", s.stats}, {"scale", s.scale}};
+  return {{"version", s.version}, {"ok", s.ok}, {"diagnostics", s.diagnostics}, {"stats", s.stats},
+          {"scale", s.scale}, {"partial", s.partial}};
 }
 
 // The files a run read, with their modification times: a change of any is a reason to run again.
@@ -80,13 +86,23 @@ Stamps stamp(const std::vector<std::string>& files) {
 }
 
 // Runs the scene into a glTF in `dir`, its diagnostics captured; returns the files it read.
-std::vector<std::string> run_into(const Options& base, const std::string& dir, State& st) {
+std::vector<std::string> run_into(const Options& base, const std::string& dir, State& st, MeshMemo& memo) {
   Options o = base;
   o.output = (fs::path(dir) / "scene.glb").string();
   o.format = "glb";
   if (o.frames == 0) o.frames = kPreviewFrames;  // time-dependent shapes play as an animation
   o.stats = true;
   o.view_json = true;
+  o.memo = &memo;
+  o.on_partial = [&st](const std::string& glb, size_t frames, size_t of) {
+    {
+      std::lock_guard<std::mutex> hold(st.lock);
+      st.glb = glb, st.ok = true, st.diagnostics.clear();
+      st.partial = {{"frames", frames}, {"of", of}};
+      ++st.version;
+    }
+    st.changed.notify_all();
+  };
   {
     std::lock_guard<std::mutex> hold(st.lock);
     o.model.resolution_scale = base.model.resolution_scale * st.scale;
@@ -94,6 +110,7 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   std::vector<std::string> files = {o.path};
   nlohmann::json stats;
   fscript::support::progress_reset();
+  memo.reset_counts();
   {
     std::lock_guard<std::mutex> hold(st.lock);
     st.running = true;
@@ -107,13 +124,18 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   stats["total_ms"] = ms_since(t0);
   stats["backend"] = o.model.compile.backend;
   stats["resolution_scale"] = o.model.resolution_scale;
+  MeshMemo::Counts counts = memo.counts();
+  stats["memo"] = {{"reused", counts.reused}, {"made", counts.made}};
   std::string glb, error;
   bool ok = rc == 0 && fscript::support::read_file(o.output, glb, error);
+  if (ok) memo.sweep();
   {
     std::lock_guard<std::mutex> hold(st.lock);
     st.ok = ok;
     st.diagnostics = captured.str() + (rc == 0 && !ok ? "error: " + error + "\n" : "");
-    if (ok) st.glb = std::move(glb), st.stats = stats;
+    if (ok) st.good = std::move(glb), st.stats = stats;
+    st.glb = st.good;
+    st.partial = nullptr;
     ++st.version;
     st.running = false;
   }
@@ -123,18 +145,30 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
 
 // Re-runs the scene whenever a file it read changes (polled four times a second: editors save by
 // rename as often as in place, which file-system events see differently), or the page asks.
-void watch(const Options& o, const std::string& dir, State& st, std::atomic<bool>& rerun) {
-  Stamps seen = stamp(run_into(o, dir, st));
+// Runs the scene and stamps the files it read. A file saved while the run went on may have been
+// read before the save: it is stamped as unseen, so the next look runs the scene again. (File
+// times come from a coarse kernel clock, hence the slack: a save just before the run costs at
+// most one run more, never a missed save.)
+Stamps run_and_stamp(const Options& o, const std::string& dir, State& st, MeshMemo& memo) {
+  auto start = fs::file_time_type::clock::now() - std::chrono::milliseconds(50);
+  Stamps seen = stamp(run_into(o, dir, st, memo));
+  for (auto& [file, time] : seen)
+    if (time >= start) time = fs::file_time_type::min();
+  return seen;
+}
+
+void watch(const Options& o, int poll_ms, const std::string& dir, State& st, std::atomic<bool>& rerun, MeshMemo& memo) {
+  Stamps seen = run_and_stamp(o, dir, st, memo);
   for (;;) {
     {
       std::unique_lock<std::mutex> hold(st.lock);
-      st.changed.wait_for(hold, std::chrono::milliseconds(250), [&] { return st.stopping; });
+      st.changed.wait_for(hold, std::chrono::milliseconds(poll_ms), [&] { return st.stopping; });
       if (st.stopping) return;
     }
     std::vector<std::string> files;
     for (const auto& [f, t] : seen) files.push_back(f);
     if (stamp(files) == seen && !rerun.exchange(false)) continue;
-    seen = stamp(run_into(o, dir, st));
+    seen = run_and_stamp(o, dir, st, memo);
   }
 }
 
@@ -235,25 +269,108 @@ void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
 void open_page(const std::string& url) {
   pid_t pid;
   const char* argv[] = {"xdg-open", url.c_str(), nullptr};
+  // Through stdio, not std::cerr: the watcher's run has std::cerr captured for the page meanwhile.
   if (posix_spawnp(&pid, "xdg-open", nullptr, nullptr, const_cast<char* const*>(argv), environ) != 0)
-    std::cerr << "fvrml-run: --open: no xdg-open here; open " << url << " yourself\n";
+    std::fprintf(stderr, "fvrml-run: --open: no xdg-open here; open %s yourself\n", url.c_str());
 }
 
 }  // namespace
+
+struct Preview::Impl {
+  Options o;
+  ServeOptions s;
+  State st;
+  std::atomic<bool> rerun{false};
+  MeshMemo memo;
+  httplib::Server svr;
+  fs::path dir;
+  int port = -1;
+  std::thread watcher, listener;
+  std::atomic<bool> listened{true};
+  bool started = false;
+
+  void mark_stopping() {
+    {
+      std::lock_guard<std::mutex> hold(st.lock);
+      st.stopping = true;
+    }
+    st.changed.notify_all();
+  }
+};
+
+Preview::Preview(const Options& o, const ServeOptions& s) : impl_(std::make_unique<Impl>()) {
+  impl_->o = o;
+  impl_->s = s;
+}
+
+Preview::~Preview() { stop(); }
+
+int Preview::port() const { return impl_->port; }
+
+std::string Preview::url() const {
+  const std::string& host = impl_->s.host;
+  return "http://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(impl_->port) + "/";
+}
+
+bool Preview::start(std::string& error, std::function<void()> ended) {
+  Impl& p = *impl_;
+  std::error_code ec;
+  static std::atomic<int> previews{0};  // tests run several in one process
+  p.dir = fs::temp_directory_path(ec) / ("fvrml-serve-" + std::to_string(getpid()) + "-" + std::to_string(previews++));
+  if (ec || !fs::create_directories(p.dir, ec) || ec) {
+    error = "cannot make a scratch folder in " + fs::temp_directory_path(ec).string();
+    return false;
+  }
+  // SO_REUSEADDR only: the library's default adds SO_REUSEPORT, which lets a second server take a
+  // port already in use without an error.
+  p.svr.set_socket_options([](int sock) {
+    int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
+  p.svr.set_payload_max_length(64 * 1024);
+  p.svr.set_read_timeout(5, 0);
+  p.svr.set_keep_alive_max_count(100);
+  routes(p.svr, p.st, p.rerun);
+  p.port = p.s.port == 0 ? p.svr.bind_to_any_port(p.s.host) : (p.svr.bind_to_port(p.s.host, p.s.port) ? p.s.port : -1);
+  if (p.port < 0) {
+    error = "cannot listen on " + p.s.host + ":" + std::to_string(p.s.port) + " (in use? --port N picks another)";
+    fs::remove_all(p.dir, ec);
+    return false;
+  }
+  p.started = true;
+  p.watcher = std::thread([&p] { watch(p.o, p.s.poll_ms, p.dir.string(), p.st, p.rerun, p.memo); });
+  p.listener = std::thread([&p, ended] {
+    p.listened = p.svr.listen_after_bind();
+    bool stopping;
+    {
+      std::lock_guard<std::mutex> hold(p.st.lock);
+      stopping = p.st.stopping;
+    }
+    if (!stopping && ended) ended();
+  });
+  return true;
+}
+
+bool Preview::stop() {
+  Impl& p = *impl_;
+  if (!p.started) return true;
+  p.started = false;
+  p.mark_stopping();
+  p.svr.stop();
+  p.watcher.join();
+  p.listener.join();
+  std::error_code ec;
+  fs::remove_all(p.dir, ec);
+  return p.listened;
+}
 
 int serve(const Options& o, const ServeOptions& s) {
   if (!o.output.empty()) {
     std::cerr << "error: --serve writes no file: leave out -o\n";
     return 2;
   }
-  std::error_code ec;
-  fs::path dir = fs::temp_directory_path(ec) / ("fvrml-serve-" + std::to_string(getpid()));
-  if (ec || !fs::create_directories(dir, ec) || ec) {
-    std::cerr << "error: --serve: cannot make a scratch folder in " << fs::temp_directory_path(ec) << "\n";
-    return 1;
-  }
   // Ctrl-C and SIGTERM: the handler (on whichever thread the signal lands) writes a byte that wakes
-  // the thread that stops the server, which the handler itself could not do safely.
+  // this thread, which stops the server: the handler itself could not do that safely.
   if (pipe(stop_pipe) != 0) {
     std::cerr << "error: --serve: " << std::strerror(errno) << "\n";
     return 1;
@@ -263,52 +380,19 @@ int serve(const Options& o, const ServeOptions& s) {
   sigemptyset(&on_stop.sa_mask);
   sigaction(SIGINT, &on_stop, nullptr);
   sigaction(SIGTERM, &on_stop, nullptr);
-  State st;
-  std::atomic<bool> rerun{false};
-  httplib::Server svr;
-  // SO_REUSEADDR only: the library's default adds SO_REUSEPORT, which lets a second server take a
-  // port already in use without an error.
-  svr.set_socket_options([](int sock) {
-    int yes = 1;
-    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
-  });
-  svr.set_payload_max_length(64 * 1024);
-  svr.set_read_timeout(5, 0);
-  svr.set_keep_alive_max_count(100);
-  routes(svr, st, rerun);
-  int port = s.port == 0 ? svr.bind_to_any_port(s.host) : (svr.bind_to_port(s.host, s.port) ? s.port : -1);
-  if (port < 0) {
-    std::cerr << "error: --serve: cannot listen on " << s.host << ":" << s.port << " (in use? --port N picks another)\n";
-    fs::remove_all(dir, ec);
+  Preview preview(o, s);
+  std::string error;
+  if (!preview.start(error, [] { [[maybe_unused]] ssize_t k = write(stop_pipe[1], "e", 1); })) {
+    std::cerr << "error: --serve: " << error << "\n";
     return 1;
   }
-  std::string url = "http://" + (s.host.find(':') != std::string::npos ? "[" + s.host + "]" : s.host) + ":" +
-                    std::to_string(port) + "/";
-  std::cout << "fvrml-run: serving " << o.path << " at " << url << " (Ctrl-C stops)" << std::endl;
-  std::thread watcher([&] { watch(o, dir.string(), st, rerun); });
-  std::thread stopper([&] {
-    char byte;
-    while (read(stop_pipe[0], &byte, 1) < 0 && errno == EINTR) {
-    }
-    {
-      std::lock_guard<std::mutex> hold(st.lock);
-      st.stopping = true;
-    }
-    st.changed.notify_all();
-    svr.stop();
-  });
-  if (s.open) open_page(url);
-  bool listened = svr.listen_after_bind();
-  {
-    std::lock_guard<std::mutex> hold(st.lock);
-    st.stopping = true;
+  std::cout << "fvrml-run: serving " << o.path << " at " << preview.url() << " (Ctrl-C stops)" << std::endl;
+  if (s.open) open_page(preview.url());
+  char byte;
+  while (read(stop_pipe[0], &byte, 1) < 0 && errno == EINTR) {
   }
-  st.changed.notify_all();
-  watcher.join();
-  [[maybe_unused]] ssize_t k = write(stop_pipe[1], "e", 1);  // when listen ended by itself
-  stopper.join();
+  bool listened = preview.stop();
   signal(SIGINT, SIG_DFL), signal(SIGTERM, SIG_DFL);
-  fs::remove_all(dir, ec);
   std::cout << "fvrml-run: stopped" << std::endl;
   return listened ? 0 : 1;
 }

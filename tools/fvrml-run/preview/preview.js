@@ -1,6 +1,7 @@
 // The preview page's script: shows /scene.glb with three.js, plays its animation (our glTF's STEP
 // animation of frame nodes), and follows /events, the server's stream of states: a new good scene
-// is loaded (the camera kept), a broken one shows its diagnostics over the last good picture.
+// is loaded (the camera and the animation's time kept), a broken one shows its diagnostics over the
+// last good picture; while an animation is made, the frames so far play.
 import * as THREE from '/three/build/three.module.js';
 import { GLTFLoader } from '/three/examples/jsm/loaders/GLTFLoader.js';
 import { OrbitControls } from '/three/examples/jsm/controls/OrbitControls.js';
@@ -97,6 +98,8 @@ function frame(object) {
 
 function load(version) {
   new GLTFLoader().load('/scene.glb?v=' + version, (gltf) => {
+    if (version < shown) return;  // a later scene arrived first
+    const time = mixer ? mixer.time : 0;  // the animation goes on where it was
     if (content) scene.remove(content);
     content = gltf.scene;
     content.traverse((o) => { if (o.isMesh && o.material) o.material.side = THREE.DoubleSide; });
@@ -114,6 +117,8 @@ function load(version) {
       action = mixer.clipAction(gltf.animations[0]);
       action.play();
       duration = gltf.animations[0].duration;
+      action.paused = false;  // a paused action ignores setTime
+      mixer.setTime(duration > 0 ? time % duration : 0);
       action.paused = !playing;
     }
     slider.disabled = playButton.disabled = !mixer;
@@ -144,6 +149,9 @@ function show(state) {
   const time = frames ? `${Math.round(s.total_ms || 0)} ms for ${frames} frames (${((s.total_ms || 0) / frames).toFixed(1)} ms a frame)`
                       : `${Math.round(s.total_ms || 0)} ms`;
   statsText.textContent = `${s.backend || ''} · resolution × ${state.scale} · ${triangles.toLocaleString()} triangles · ${time}`;
+  // While an animation is made, the page shows (and plays) the frames so far.
+  document.body.dataset.partial = state.partial ? `${state.partial.frames}/${state.partial.of}` : '';
+  if (state.partial) status.textContent = `frames so far: ${state.partial.frames} of ${state.partial.of}`;
   if (state.ok && state.version !== shown) load(state.version);
 }
 

@@ -304,3 +304,20 @@ TEST_CASE("scene: a looping shape at several clock values follows its TimeSensor
   CHECK(radius_at(1.5) == Approx(0.6).epsilon(0.01));   // fraction 0.75
   CHECK(radius_at(2.5) == Approx(0.4).epsilon(0.01));   // the second cycle
 }
+
+TEST_CASE("scene: a field knows whether it reads t, through helper functions too") {
+  auto l = load(R"(FShape { geometry FGeometry { definition "1 - x*x - y*y - z*z" } }
+FShape { geometry FGeometry { definition "t - x*x - y*y - z*z" } }
+FShape { geometry FGeometry { definition "
+function grow(a) { return a * t; }
+function FRep(x, y, z, t) { return grow(1) - x*x - y*y - z*z; }" } }
+FShape { geometry FGeometry { definition "1 - x*x - y*y - z*z + 0 * t" }
+         appearance FAppearance { material FMaterial { diffuseColor "x + t" } } })");
+  REQUIRE(l->ok);
+  REQUIRE(l->model.shapes.size() == 4);
+  CHECK(!l->model.shapes[0].geometry.reads_t);
+  CHECK(l->model.shapes[1].geometry.reads_t);
+  CHECK(l->model.shapes[2].geometry.reads_t);
+  REQUIRE(l->model.shapes[3].colour);
+  CHECK(l->model.shapes[3].colour->reads_t);
+}

@@ -50,6 +50,8 @@ class Loader {
       for (auto& f : n->fields)
         for (auto& child : f.value.nodes) todo.push_back(child.get());
     }
+    for (auto& p : scene.protos)
+      if (p->external && !is_fvrml_node(p->iface.name)) extern_proto(scene, *p, stack);
   }
 
  private:
@@ -61,32 +63,73 @@ class Loader {
       if (is_remote_url(url->strs[k]) || url->strs[k].empty()) continue;
       frontend::Span at = k < url->str_spans.size() ? url->str_spans[k] : n.span;
       fs::path path = local_path(url->strs[k], fs::path(here.path()).parent_path());
-      std::error_code ec;
-      fs::path canonical = fs::weakly_canonical(path, ec);
-      std::string key = ec ? path.string() : canonical.string();
-      if (std::find(stack.begin(), stack.end(), key) != stack.end()) {
-        diag_.error(here, at, "Inline '" + url->strs[k] + "' includes a file that includes it (directly or through other Inlines)");
-        return;
-      }
-      if (static_cast<int>(stack.size()) > kMaxInlineDepth) {
-        diag_.error(here, at, "Inline '" + url->strs[k] + "': Inlines nested more than " + std::to_string(kMaxInlineDepth) + " deep");
-        return;
-      }
-      std::string text, error;
-      if (!read_scene_text(path.string(), text, error)) {
-        diag_.error(here, at, "Inline '" + url->strs[k] + "': " + error);
-        return;
-      }
-      if (files_) files_->push_back(path.string());
-      auto child = std::make_unique<Scene>();
-      if (!parse_scene(std::make_unique<frontend::SourceFile>(path.string(), text), diag_, *child)) return;
-      stack.push_back(key);
-      load(*child, stack);
-      stack.pop_back();
-      n.inlined = child->roots;
-      scene.inlines.push_back(std::move(child));
+      if (Scene* file = read(here, at, "Inline '" + url->strs[k] + "'", path, scene, stack)) n.inlined = file->roots;
       return;
     }
+  }
+
+  // The first local URL of an EXTERNPROTO: its file read, and the PROTO the URL's #fragment names
+  // (else the file's first) becomes the definition, its interface checked against the declaration.
+  void extern_proto(Scene& scene, ProtoDef& p, std::vector<std::string>& stack) {
+    const frontend::SourceFile& here = *scene.file;
+    for (const std::string& url : p.urls) {
+      if (is_remote_url(url) || url.empty()) continue;
+      std::string what = "EXTERNPROTO " + p.iface.name + " '" + url + "'";
+      size_t hash = url.find('#');
+      std::string name = hash == std::string::npos ? "" : url.substr(hash + 1);
+      Scene* file = read(here, p.span, what, local_path(url, fs::path(here.path()).parent_path()), scene, stack);
+      if (!file) return;
+      const ProtoDef* found = nullptr;
+      for (const auto& q : file->protos)
+        if (!q->external && (name.empty() || q->iface.name == name)) {
+          found = q.get();
+          break;
+        }
+      if (!found) {
+        diag_.error(here, p.span, what + ": " + (name.empty() ? "the file has no PROTO" : "the file has no PROTO " + name));
+        return;
+      }
+      for (const FieldDecl& f : p.iface.fields) {
+        const FieldDecl* d = found->iface.find(f.name);
+        if (!d || d->type != f.type || d->access != f.access) {
+          diag_.error(here, f.span, what + ": " + (d ? "field '" + f.name + "' is " + access_name(d->access) + " " + type_name(d->type) + " in the PROTO"
+                                                     : "the PROTO has no field '" + f.name + "'"));
+          return;
+        }
+      }
+      p.definition = found;
+      return;
+    }
+  }
+
+  // A local file read and parsed (its own Inlines and EXTERNPROTOs too), kept in `scene`; nullptr
+  // after an error reported at `at`.
+  Scene* read(const frontend::SourceFile& here, frontend::Span at, const std::string& what, const fs::path& path,
+              Scene& scene, std::vector<std::string>& stack) {
+    std::error_code ec;
+    fs::path canonical = fs::weakly_canonical(path, ec);
+    std::string key = ec ? path.string() : canonical.string();
+    if (std::find(stack.begin(), stack.end(), key) != stack.end()) {
+      diag_.error(here, at, what + " includes a file that includes it (directly or through other Inlines or EXTERNPROTOs)");
+      return nullptr;
+    }
+    if (static_cast<int>(stack.size()) > kMaxInlineDepth) {
+      diag_.error(here, at, what + ": files nested more than " + std::to_string(kMaxInlineDepth) + " deep");
+      return nullptr;
+    }
+    std::string text, error;
+    if (!read_scene_text(path.string(), text, error)) {
+      diag_.error(here, at, what + ": " + error);
+      return nullptr;
+    }
+    if (files_) files_->push_back(path.string());
+    auto child = std::make_unique<Scene>();
+    if (!parse_scene(std::make_unique<frontend::SourceFile>(path.string(), text), diag_, *child)) return nullptr;
+    stack.push_back(key);
+    load(*child, stack);
+    stack.pop_back();
+    scene.inlines.push_back(std::move(child));
+    return scene.inlines.back().get();
   }
 
   frontend::DiagnosticSink& diag_;

@@ -19,7 +19,7 @@ class Copier {
     done_[n.get()] = c;
     for (auto& f : c->fields) {
       if (!f.is_ref.empty()) {
-        if (const Value* v = inst_.get(f.is_ref)) f.value = *v;
+        if (const Value* v = value(f.is_ref)) f.value = *v;
         f.is_ref.clear();
         continue;
       }
@@ -31,6 +31,14 @@ class Copier {
   }
 
  private:
+  // The instance's value, else the default of the PROTO an EXTERNPROTO was read from.
+  const Value* value(const std::string& field) const {
+    if (const Value* v = inst_.get(field)) return v;
+    if (const ProtoDef* d = inst_.proto ? inst_.proto->definition : nullptr)
+      if (const FieldDecl* decl = d->iface.find(field); decl && decl->has_default) return &decl->default_value;
+    return nullptr;
+  }
+
   const Node& inst_;
   std::unordered_map<const Node*, NodePtr> done_;
 };
@@ -39,9 +47,10 @@ class Copier {
 
 std::vector<NodePtr> instantiate(const Node& instance) {
   std::vector<NodePtr> out;
-  if (!instance.proto || instance.proto->external) return out;
+  if (!instance.proto) return out;
+  const ProtoDef& p = instance.proto->definition ? *instance.proto->definition : *instance.proto;  // an EXTERNPROTO not read has no body
   Copier c(instance);
-  for (const auto& n : instance.proto->body) out.push_back(c.copy(n));
+  for (const auto& n : p.body) out.push_back(c.copy(n));
   return out;
 }
 

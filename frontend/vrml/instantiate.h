@@ -8,7 +8,8 @@
 
 namespace fscript::vrml {
 
-// The body of the user PROTO that `instance` instantiates (empty for EXTERNPROTOs and built-ins).
+// The body of the user PROTO that `instance` instantiates (for an EXTERNPROTO, the PROTO read from
+// its file by load_inlines; empty when it was not read, and for built-ins).
 std::vector<NodePtr> instantiate(const Node& instance);
 
 }  // namespace fscript::vrml

@@ -94,6 +94,7 @@ struct ProtoDef {
   Interface iface;
   bool external = false;
   std::vector<std::string> urls;  // EXTERNPROTO
+  const ProtoDef* definition = nullptr;  // EXTERNPROTO of a local file: the PROTO read (load_inlines)
   std::vector<NodePtr> body;      // PROTO
   std::vector<Route> routes;
   frontend::Span span;
@@ -105,7 +106,7 @@ struct Scene {
   std::vector<Route> routes;
   std::vector<std::unique_ptr<ProtoDef>> protos;
   std::map<std::string, NodePtr> defs;  // last DEF of each name at the top level
-  std::vector<std::unique_ptr<Scene>> inlines;  // the local files Inline nodes pulled in (load_inlines)
+  std::vector<std::unique_ptr<Scene>> inlines;  // the local files Inlines and EXTERNPROTOs pulled in (load_inlines)
 
   // Top-level statements in file order, for the writer: (kind, index into roots/protos/routes).
   enum class Kind : uint8_t { Node, Proto, Route };

@@ -6,6 +6,7 @@
 // PROTO cannot instantiate itself and a node cannot USE itself.
 #include "frontend/vrml/vrml_parser.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <unordered_map>
 
@@ -214,7 +215,8 @@ class Parser {
     Span start = def->span;
     Value urls;
     if (value(sc, FieldType::MFString, urls, 1)) def->urls = urls.strs;
-    if (!is_fvrml_node(def->iface.name))
+    bool local = std::any_of(def->urls.begin(), def->urls.end(), [](const std::string& u) { return !u.empty() && !is_remote_url(u); });
+    if (!is_fvrml_node(def->iface.name) && !local)  // a local file is read by load_inlines (fvrml-run)
       d_.warning(f_, start, "EXTERNPROTO '" + def->iface.name + "' is not fetched (no network); its instances keep "
                             "their fields but have no body");
     sc.protos[def->iface.name] = def.get();

@@ -197,6 +197,30 @@ TEST_CASE("preview: saves reach the event stream; a broken save keeps the last g
   CHECK(ev.ended_within(5));  // the stream ends with the server
 }
 
+TEST_CASE("preview: the watcher follows the files of EXTERNPROTOs") {
+  Folder f;
+  auto lib = [&](const std::string& radius) {
+    f.write("lib.wrl", "#VRML V2.0 utf8\nPROTO Ball [ ] { FShape { geometry FGeometry { definition \"" + radius +
+                           "^2 - x^2 - y^2 - z^2\" bboxSize 2 2 2 resolution [16] } } }\n");
+  };
+  lib("0.5");
+  std::string scene = f.write("scene.wrl", "#VRML V2.0 utf8\nEXTERNPROTO Ball [ ] \"lib.wrl#Ball\"\nBall { }\n");
+  auto p = started(options(scene));
+  Events ev(p->port());
+  Json first = ev.wait(done, 30);
+  REQUIRE(!first.is_null());
+  std::string glb1 = get(p->port(), "/scene.glb");
+  lib("0.6");
+  Json edited = ev.wait([&](const Json& s) { return s["version"] > first["version"] && done(s); }, 10);
+  REQUIRE(!edited.is_null());
+  CHECK(get(p->port(), "/scene.glb") != glb1);
+  lib("0.6 +");  // a broken PROTO file: its diagnostics, in its own file
+  Json broken = ev.wait([&](const Json& s) { return s["version"] > edited["version"]; }, 10);
+  REQUIRE(!broken.is_null());
+  CHECK(broken["ok"] == false);
+  CHECK(broken["diagnostics"].get<std::string>().find("lib.wrl:2:") != std::string::npos);
+}
+
 TEST_CASE("preview: a save polygonizes only the shapes it changed") {
   Folder f;
   auto two = [](const std::string& second, const std::string& extra = "") {

@@ -11,8 +11,10 @@
 #include <fstream>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 
+#include "tests/support/skip.h"
 #include "tools/fvrml-run/serve.h"
 
 namespace fs = std::filesystem;
@@ -332,4 +334,44 @@ TEST_CASE("preview: a port in use is a clear error") {
   std::string error;
   CHECK(!second.start(error));
   CHECK(error.find("cannot listen") != std::string::npos);
+}
+
+// The preview runs every corpus file that fvrml-run runs (at a fifth of the resolution: the same
+// code, quicker), and its glTF is the scene's.
+TEST_CASE("preview: every corpus file that runs previews") {
+  if (!fs::exists(FS_CORPUS_DIR)) {
+    fscript::test::skip(fscript::test::SkipKind::Missing, "the shared corpus folder is absent: " FS_CORPUS_DIR);
+    return;
+  }
+  Folder f;
+  size_t files = 0, previewed = 0;
+  for (const auto& e : fs::recursive_directory_iterator(FS_CORPUS_DIR)) {
+    if (e.path().extension() != ".wrl") continue;
+    std::ifstream in(e.path());
+    char head[8] = {};
+    in.read(head, 7);
+    if (std::string(head) == "BSCRYPT") continue;  // the encrypted course file
+    ++files;
+    fvrml_run::Options plain = options(e.path().string());
+    plain.model.resolution_scale = 0.2;
+    plain.output = (f.dir / "plain.glb").string();
+    plain.format = "glb";
+    Json stats;
+    std::ostringstream quiet;
+    std::streambuf* saved = std::cerr.rdbuf(quiet.rdbuf());
+    int plain_rc = fvrml_run::run_scene(plain, stats, nullptr);
+    fvrml_run::Options o = fvrml_run::preview_run_options(plain, (f.dir / "preview.glb").string());
+    int rc = fvrml_run::run_scene(o, stats, nullptr);
+    std::cerr.rdbuf(saved);
+    INFO(e.path().string() << "\n" << quiet.str());
+    CHECK(rc == plain_rc);
+    if (plain_rc != 0) continue;
+    std::ifstream glb(o.output, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(glb)), std::istreambuf_iterator<char>());
+    CHECK(glb_json(bytes)["asset"]["version"] == "2.0");
+    CHECK(stats.contains("view"));
+    ++previewed;
+  }
+  CHECK(files > 50);
+  CHECK(previewed > files / 2);
 }

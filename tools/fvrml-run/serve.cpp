@@ -87,12 +87,7 @@ Stamps stamp(const std::vector<std::string>& files) {
 
 // Runs the scene into a glTF in `dir`, its diagnostics captured; returns the files it read.
 std::vector<std::string> run_into(const Options& base, const std::string& dir, State& st, MeshMemo& memo) {
-  Options o = base;
-  o.output = (fs::path(dir) / "scene.glb").string();
-  o.format = "glb";
-  if (o.frames == 0) o.frames = kPreviewFrames;  // time-dependent shapes play as an animation
-  o.stats = true;
-  o.view_json = true;
+  Options o = preview_run_options(base, (fs::path(dir) / "scene.glb").string());
   o.memo = &memo;
   o.on_partial = [&st](const std::string& glb, size_t frames, size_t of) {
     {
@@ -275,6 +270,16 @@ void open_page(const std::string& url) {
 }
 
 }  // namespace
+
+Options preview_run_options(const Options& base, const std::string& output) {
+  Options o = base;
+  o.output = output;
+  o.format = "glb";
+  if (o.frames == 0) o.frames = kPreviewFrames;  // time-dependent shapes play as an animation
+  o.stats = true;
+  o.view_json = true;
+  return o;
+}
 
 struct Preview::Impl {
   Options o;

@@ -17,6 +17,10 @@ struct ServeOptions {
   int poll_ms = 250;  // how often the watcher looks at the files' modification times
 };
 
+// The options of the preview's runs: a glTF to `output`, time-dependent shapes as an animation of
+// 24 frames (unless --frames says), the stats with the scene's view.
+Options preview_run_options(const Options& base, const std::string& output);
+
 class Preview {
  public:
   Preview(const Options& o, const ServeOptions& s);

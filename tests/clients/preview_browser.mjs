@@ -1,7 +1,7 @@
 // The preview page in headless Chromium (Debian chromium, driven by playwright-core): the first
 // picture appears, the time slider moves the morph, an edit on disk shows within 2 s, a broken edit
-// shows its diagnostics over the last good picture, a fixed one clears them, and paths outside the
-// page are 404. usage: node preview_browser.mjs URL SCENE_FILE   (fvrml-run --serve already runs)
+// shows its diagnostics over the last good picture, a fixed one clears them, an animation plays the
+// frames made so far before the last exists, and paths outside the page are 404. usage: node preview_browser.mjs URL SCENE_FILE   (fvrml-run --serve already runs)
 import { chromium } from 'playwright-core';
 import fs from 'node:fs';
 import assert from 'node:assert/strict';
@@ -82,6 +82,19 @@ try {
     await until(() => document.body.dataset.state === 'ok', 2000);
     const display = await page.$eval('#overlay', (el) => getComputedStyle(el).display);
     assert.equal(display, 'none');
+  });
+  await check('an animation plays its frames so far before the last one is made', async () => {
+    // The benchmark gyroid at half resolution: about 0.1 s a frame, 24 frames.
+    await page.request.post(url + 'settings?scale=0.5');
+    await until(() => document.body.dataset.state === 'ok' && document.body.dataset.shownFrames === 'all', 20000);
+    const gyroid = fs.readFileSync(`${process.env.FS_SOURCE_DIR}/bench/scenes/gyroid-sphere256.wrl`, 'utf8');
+    write(gyroid);
+    await until(() => /^\d+\/24$/.test(document.body.dataset.shownFrames || ''), 30000);
+    const p = await picture();
+    assert.ok(p.drawn > p.total / 100, `${p.drawn} of ${p.total} pixels drawn from the frames so far`);
+    await until(() => document.body.dataset.shownFrames === 'all', 120000);
+    write(original);
+    await page.request.post(url + 'settings?scale=1');
   });
   await check('paths outside the page are 404', async () => {
     for (const path of ['/../../etc/passwd', '/%2e%2e/%2e%2e/etc/passwd', '/three/../../../../etc/passwd', '/etc/passwd']) {

@@ -26,4 +26,4 @@ if ! NODE_PATH="$NPM/node_modules" node -e "
   exit 1
 fi
 cp "$SRC/tests/clients/preview_browser.mjs" "$NPM/preview_browser.mjs"  # beside node_modules, for its imports
-node "$NPM/preview_browser.mjs" "$URL" "$T/scene.wrl"
+FS_SOURCE_DIR="$SRC" node "$NPM/preview_browser.mjs" "$URL" "$T/scene.wrl"

@@ -324,6 +324,41 @@ TEST_CASE("preview: a run hands over the scene after 1, 2, 4 ... frames of an an
   }
 }
 
+TEST_CASE("preview: a save during a long run cancels it; so does stopping") {
+  Folder f;
+  std::ifstream in(FS_SOURCE_DIR "/bench/scenes/gyroid-sphere256.wrl");
+  std::string gyroid((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string scene = f.write("scene.wrl", gyroid);  // 8 frames of about half a second each
+  auto since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  auto t0 = std::chrono::steady_clock::now();
+  auto p = started(options(scene, 8));
+  Events ev(p->port());
+  size_t at = 0;
+  Json partial = ev.wait([](const Json& s) { return !s["partial"].is_null(); }, 120, 0, &at);
+  REQUIRE(!partial.is_null());
+  // The first frame (two at once, on two threads) took this long: the whole run takes about 4x.
+  // Cancelled, it ends with the frames under way, whatever the build's speed.
+  double frame = since(t0);
+  t0 = std::chrono::steady_clock::now();
+  f.write("scene.wrl", ball("0.5"));
+  size_t ball_at = 0;
+  Json next = ev.wait(done, 60, at, &ball_at);
+  REQUIRE(!next.is_null());
+  CHECK(next["stats"]["shapes"].size() == 1);  // the ball's run, not the gyroid's end
+  CHECK(since(t0) < 2.5 * frame);
+  auto events = ev.all();
+  for (size_t i = at + 1; i < ball_at; ++i)  // nothing of the gyroid's run after the save but partials
+    CHECK((events[i].first != "state" || !events[i].second["partial"].is_null()));
+
+  f.write("scene.wrl", gyroid);
+  REQUIRE(!ev.wait([](const Json& s) { return !s["partial"].is_null(); }, 120, ball_at).is_null());
+  t0 = std::chrono::steady_clock::now();
+  p->stop();  // Ctrl-C in the middle of a long run
+  CHECK(since(t0) < 2.5 * frame);
+}
+
 TEST_CASE("preview: a port in use is a clear error") {
   Folder f;
   std::string scene = f.write("scene.wrl", ball("0.5"));

@@ -66,6 +66,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
   Meshed out;
   for (size_t i = 0; i < model.shapes.size(); ++i) {
     const auto& s = model.shapes[i];
+    if (cancelled(o)) return out.failed = true, out;
     mesh::Mesh m;
     fscript::backends::RuntimeError err;
     bool mine = own_shape(s, skip);
@@ -79,6 +80,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
   }
   for (size_t g = 0; g < model.groups.size(); ++g) {
     if (!own_group(model.groups[g], skip)) continue;
+    if (cancelled(o)) return out.failed = true, out;
     mesh::Mesh m;
     fscript::backends::RuntimeError err;
     std::string key = o.memo ? group_key(o, scene, model, g, world) : "";

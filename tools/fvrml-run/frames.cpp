@@ -201,7 +201,8 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     const auto& ms = models[t.frames];
     int parallel = std::min(o.threads, t.frames), per = std::max(1, o.threads / parallel);
     caches.push_back(std::make_unique<mesh::FrameCache>(
-        t.frames, [&ms, t, per, world, prune = o.prune, mesher = o.mesher](size_t i, mesh::Mesh& out, fscript::backends::RuntimeError& err) {
+        t.frames, [&o, &ms, t, per, world, prune = o.prune, mesher = o.mesher](size_t i, mesh::Mesh& out, fscript::backends::RuntimeError& err) {
+          if (cancelled(o)) return err.message = "cancelled", false;
           return t.group ? fscript::scene::mesh_group(ms[i], t.index, out, err, world, per, prune, mesher)
                          : fscript::scene::mesh_shape(ms[i].shapes[t.index], out, err, world, per, prune, mesher);
         }));
@@ -226,6 +227,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
       o.on_partial(mesh::encode_glb(all, now), frames, cache.size());
     };
     if (!made || !cache.fill(parallel, err, publish)) {
+      if (cancelled(o)) return 1;
       report(o, l.scene, t.node, err);
       if (!o.keep_going) return 1;
       failed = true;

@@ -1,6 +1,7 @@
 #pragma once
 // What the parts of fvrml-run share: the options, the loaded scene, the meshes of one frame, and
 // the steps every output goes through.
+#include <atomic>
 #include <chrono>
 #include <functional>
 #include <map>
@@ -48,7 +49,11 @@ struct Options {
   // --serve, glTF: the scene so far while animations are polygonized (its static shapes and the
   // frames made: `frames` of `of` of the animation under way).
   std::function<void(const std::string& glb, size_t frames, size_t of)> on_partial;
+  // --serve: set when a newer save makes the run moot; it stops between shapes and frames.
+  const std::atomic<bool>* cancel = nullptr;
 };
+
+inline bool cancelled(const Options& o) { return o.cancel && o.cancel->load(); }
 
 struct Loaded {
   fscript::frontend::DiagnosticSink diag;

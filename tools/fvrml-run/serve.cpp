@@ -86,9 +86,12 @@ Stamps stamp(const std::vector<std::string>& files) {
 }
 
 // Runs the scene into a glTF in `dir`, its diagnostics captured; returns the files it read.
-std::vector<std::string> run_into(const Options& base, const std::string& dir, State& st, MeshMemo& memo) {
+// A cancelled run changes nothing the page sees but the scenes so far it was sent.
+std::vector<std::string> run_into(const Options& base, const std::string& dir, State& st, MeshMemo& memo,
+                                  const std::atomic<bool>& cancel) {
   Options o = preview_run_options(base, (fs::path(dir) / "scene.glb").string());
   o.memo = &memo;
+  o.cancel = &cancel;
   o.on_partial = [&st](const std::string& glb, size_t frames, size_t of) {
     {
       std::lock_guard<std::mutex> hold(st.lock);
@@ -121,6 +124,16 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   stats["resolution_scale"] = o.model.resolution_scale;
   MeshMemo::Counts counts = memo.counts();
   stats["memo"] = {{"reused", counts.reused}, {"made", counts.made}};
+  if (cancel) {
+    {
+      std::lock_guard<std::mutex> hold(st.lock);
+      st.glb = st.good;
+      st.partial = nullptr;
+      st.running = false;
+    }
+    st.changed.notify_all();
+    return files;
+  }
   std::string glb, error;
   bool ok = rc == 0 && fscript::support::read_file(o.output, glb, error);
   if (ok) memo.sweep();
@@ -138,22 +151,43 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   return files;
 }
 
-// Re-runs the scene whenever a file it read changes (polled four times a second: editors save by
-// rename as often as in place, which file-system events see differently), or the page asks.
-// Runs the scene and stamps the files it read. A file saved while the run went on may have been
-// read before the save: it is stamped as unseen, so the next look runs the scene again. (File
-// times come from a coarse kernel clock, hence the slack: a save just before the run costs at
-// most one run more, never a missed save.)
-Stamps run_and_stamp(const Options& o, const std::string& dir, State& st, MeshMemo& memo) {
+// Runs the scene on a thread of its own while watching the files the last run read: a save of one
+// of them, a new setting from the page or the server stopping makes the run moot, and it is
+// cancelled. Returns the stamps of the files the run read, or after a cancel stamps no file has,
+// so the next look runs the scene again. A file saved while the run went on may have been read
+// before the save: it is stamped as unseen too. (File times come from a coarse kernel clock, hence
+// the slack: a save just before the run costs at most one run more, never a missed save.)
+Stamps run_and_stamp(const Options& o, int poll_ms, const std::string& dir, State& st, MeshMemo& memo,
+                     const std::vector<std::string>& watched, std::atomic<bool>& rerun) {
   auto start = fs::file_time_type::clock::now() - std::chrono::milliseconds(50);
-  Stamps seen = stamp(run_into(o, dir, st, memo));
+  Stamps at_start = stamp(watched);
+  std::atomic<bool> cancel{false}, finished{false};
+  std::vector<std::string> files;
+  std::thread worker([&] {
+    files = run_into(o, dir, st, memo, cancel);
+    finished = true;
+    st.changed.notify_all();
+  });
+  while (!finished) {
+    bool stopping;
+    {
+      std::unique_lock<std::mutex> hold(st.lock);
+      st.changed.wait_for(hold, std::chrono::milliseconds(poll_ms), [&] { return st.stopping || finished; });
+      stopping = st.stopping;
+    }
+    if (!finished && (stopping || rerun.load() || stamp(watched) != at_start)) cancel = true;
+  }
+  worker.join();
+  Stamps seen = stamp(cancel ? watched : files);
   for (auto& [file, time] : seen)
-    if (time >= start) time = fs::file_time_type::min();
+    if (cancel || time >= start) time = fs::file_time_type::min();
   return seen;
 }
 
+// Re-runs the scene whenever a file it read changes (polled four times a second: editors save by
+// rename as often as in place, which file-system events see differently), or the page asks.
 void watch(const Options& o, int poll_ms, const std::string& dir, State& st, std::atomic<bool>& rerun, MeshMemo& memo) {
-  Stamps seen = run_and_stamp(o, dir, st, memo);
+  Stamps seen = run_and_stamp(o, poll_ms, dir, st, memo, {o.path}, rerun);
   for (;;) {
     {
       std::unique_lock<std::mutex> hold(st.lock);
@@ -163,7 +197,8 @@ void watch(const Options& o, int poll_ms, const std::string& dir, State& st, std
     std::vector<std::string> files;
     for (const auto& [f, t] : seen) files.push_back(f);
     if (stamp(files) == seen && !rerun.exchange(false)) continue;
-    seen = run_and_stamp(o, dir, st, memo);
+    rerun = false;
+    seen = run_and_stamp(o, poll_ms, dir, st, memo, files, rerun);
   }
 }
 

@@ -96,7 +96,7 @@ function frame(object) {
   framed = true;
 }
 
-function load(version) {
+function load(version, partial) {
   new GLTFLoader().load('/scene.glb?v=' + version, (gltf) => {
     if (version < shown) return;  // a later scene arrived first
     const time = mixer ? mixer.time : 0;  // the animation goes on where it was
@@ -129,6 +129,7 @@ function load(version) {
     }
     shown = version;
     document.body.dataset.shown = String(version);
+    document.body.dataset.shownFrames = partial ? `${partial.frames}/${partial.of}` : 'all';
   }, undefined, (e) => { status.textContent = 'cannot load the scene: ' + e; });
 }
 
@@ -152,7 +153,7 @@ function show(state) {
   // While an animation is made, the page shows (and plays) the frames so far.
   document.body.dataset.partial = state.partial ? `${state.partial.frames}/${state.partial.of}` : '';
   if (state.partial) status.textContent = `frames so far: ${state.partial.frames} of ${state.partial.of}`;
-  if (state.ok && state.version !== shown) load(state.version);
+  if (state.ok && state.version !== shown) load(state.version, state.partial);
 }
 
 const events = new EventSource('/events');

@@ -1,6 +1,7 @@
 // Which backends this binary has, and how to make one by name.
 #include "backends/backend.h"
 #include "backends/sse/sse_backend.h"
+#include "backends/tiered/tiered.h"
 #include "backends/vm/vm_backend.h"
 #ifdef FS_HAVE_LLVM
 #include "backends/llvm/llvm_backend.h"
@@ -21,6 +22,7 @@ std::vector<std::string> available_backends() {
 std::unique_ptr<Backend> make_backend(const std::string& name) {
   if (name == "vm") return std::make_unique<vm::VmBackend>();
   if (name == "sse") return std::make_unique<sse::SseBackend>();
+  if (name == "auto") return std::make_unique<TieredBackend>();
 #ifdef FS_HAVE_LLVM
   if (name == "llvm") return std::make_unique<llvmjit::LlvmBackend>();
 #endif
@@ -32,7 +34,7 @@ std::string missing_backend_message(const std::string& name) {
   for (const auto& a : available_backends()) avail += (avail.empty() ? "" : ", ") + a;
   if (name == "llvm")
     return "backend 'llvm' is not built in this binary (it needs llvm-19-dev when building; available: " + avail + ")";
-  return "unknown backend '" + name + "' (available: " + avail + ")";
+  return "unknown backend '" + name + "' (available: auto, " + avail + ")";
 }
 
 bool enable_llvm_disk_cache(std::string& message) {

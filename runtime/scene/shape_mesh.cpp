@@ -1,11 +1,11 @@
 // Shapes to meshes.
 #include "runtime/scene/shape_mesh.h"
 
-#include "runtime/support/progress.h"
-
 #include <algorithm>
 #include <cmath>
 
+#include "backends/tiered/tiered.h"
+#include "runtime/support/progress.h"
 #include "runtime/mesh/implicit.h"
 #include "runtime/mesh/parametric.h"
 #include "runtime/scene/shape_field.h"
@@ -148,12 +148,23 @@ void transform_mesh(const Mat4& t, mesh::Mesh& m) {
     for (auto& tri : m.triangles) std::swap(tri[1], tri[2]);
 }
 
+// Tells the shape's kernels how many points are ahead (the auto backend compiles natively at once
+// when that pays): a dense grid's, or a quarter of it where interval pruning skips most cells.
+void expect_work(const Shape& s, bool prune) {
+  uint64_t points = 1;
+  for (int r : s.resolution) points *= static_cast<uint64_t>(std::max(r, 1) + 1);
+  if (s.kind == ShapeKind::Implicit && prune) points /= 4;
+  for (const CompiledField* f : {&s.geometry, s.texture ? &*s.texture : nullptr, s.colour ? &*s.colour : nullptr})
+    if (f && f->kernel) backends::expect_points(*f->kernel, points);
+}
+
 bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bool world, int threads, bool prune,
                 const mesh::MesherOptions& mesher) {
   if (!s.geometry.kernel) {
     err.message = "the shape has no compiled geometry";
     return false;
   }
+  expect_work(s, prune);
   bool ok;
   support::ProgressJob progress;  // one job of the run's progress line
   if (s.kind == ShapeKind::Implicit) {
@@ -235,6 +246,9 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::Runti
                 int threads, bool prune, const mesh::MesherOptions& mesher) {
   out = mesh::Mesh{};
   support::ProgressJob progress;
+  for (const Shape& s : m.shapes)
+    for (int g = s.group; g >= 0; g = m.groups[static_cast<size_t>(g)].parent)
+      if (g == group) expect_work(s, prune);
   if (parametric_group(m, group)) {
     if (!mesh_parametric_group(m, group, out, err, threads, prune)) return false;
     const Shape* first = first_shape_below(m, group);

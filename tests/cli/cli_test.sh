@@ -89,7 +89,7 @@ if [ -n "$LLVM" ]; then
 else
   check emit-ir-llvm-missing 2 'built without the llvm backend' -- "$F" emit-ir --llvm "$T/sphere.fs"
 fi
-check backend-unknown 2 "unknown backend 'gpu' \\(available: vm, sse" -- "$F" run "$T/sphere.fs" --backend gpu 0 0 0
+check backend-unknown 2 "unknown backend 'gpu' \\(available: auto, vm, sse" -- "$F" run "$T/sphere.fs" --backend gpu 0 0 0
 check usage-unknown-command 2 '' -- "$F" frobnicate
 check usage-render-size 2 'size' -- "$F" render2d "$T/sphere.fs" --size 0x5 --bounds -1,1,-1,1
 check usage-render-bounds 2 'bounds' -- "$F" render2d "$T/sphere.fs" --size 4 --bounds -1,1,1
@@ -362,10 +362,24 @@ PY
     "$R" "$w" -o "$T/vm.ply" --resolution-scale 0.3 --backend vm 2> /dev/null
     check "fvrml-run-sse $(basename "$w")" 0 '' -- "$R" "$w" -o "$T/sse.ply" --resolution-scale 0.3 --backend sse
     cmp -s "$T/vm.ply" "$T/sse.ply" || { echo "FAIL sse mesh differs from vm: $w"; fails=$((fails + 1)); }
+    # auto, made to switch tiers after 2,000 points of each kernel: some batches on each.
+    check "fvrml-run-auto $(basename "$w")" 0 '' -- env FSCRIPT_AUTO_SWITCH_AFTER=2000 "$R" "$w" -o "$T/auto.ply" --resolution-scale 0.3 --backend auto
+    cmp -s "$T/vm.ply" "$T/auto.ply" || { echo "FAIL auto (switched mid-job) mesh differs from vm: $w"; fails=$((fails + 1)); }
     [ -z "$LLVM" ] && continue
     check "fvrml-run-llvm $(basename "$w")" 0 '' -- "$R" "$w" -o "$T/llvm.ply" --resolution-scale 0.3 --backend llvm
     cmp -s "$T/vm.ply" "$T/llvm.ply" || { echo "FAIL llvm mesh differs from vm: $w"; fails=$((fails + 1)); }
   done < <(find "$SRC/examples" "$SHARED/corpus" -name '*.wrl' -print0 2> /dev/null)
+fi
+
+# auto: the switch is visible in --stats, and a forced one in the middle of a big job changes no byte.
+if [ -n "$R" ]; then
+  printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "sin(x*7)*cos(y*5)+sin(z*6) - 0.2" bboxSize 2 2 2 resolution [40] } }\n' > "$T/tier.wrl"
+  "$R" "$T/tier.wrl" -o "$T/tier-vm.ply" --backend vm
+  FSCRIPT_AUTO_SWITCH_AFTER=10000 "$R" "$T/tier.wrl" -o "$T/tier-auto.ply" --backend auto --stats 2> "$T/tier.json"
+  jcheck "fvrml-run auto: a forced switch, both tiers used" out "
+j['tiers']['switched'] >= 1 and j['tiers']['vm_points'] >= 10000 and j['tiers']['native_points'] > 0 and j['tiers']['first_switch_ms'] >= 0
+" -- cat "$T/tier.json"
+  cmp -s "$T/tier-vm.ply" "$T/tier-auto.ply" || { echo "FAIL auto (switched mid-job) mesh differs from vm"; fails=$((fails + 1)); }
 fi
 
 # fvrml-meshdiff: known answers, formats, bad input.

@@ -4,9 +4,11 @@
 // evaluator, and the shared program bodies against the VM, bit for bit.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 
 #include "backends/sse/sse_backend.h"
+#include "backends/tiered/tiered.h"
 #include "ir/eval.h"
 #include "ir/text.h"
 #include "tests/unit/backend_cases.h"
@@ -42,6 +44,14 @@ std::vector<Variant> variants() {
                      return backends::make_backend(name)->compile(m, b, e);
                    }});
   }
+  // The auto backend, made to switch from the VM to native code after 5 points: in the middle of
+  // the first batch (so one batch runs on both tiers).
+  out.push_back({"auto", [](const ir::Module& m, const backends::Budgets& b, std::string& e) {
+                   setenv("FSCRIPT_AUTO_SWITCH_AFTER", "5", 1);
+                   auto k = backends::make_backend("auto")->compile(m, b, e);
+                   unsetenv("FSCRIPT_AUTO_SWITCH_AFTER");
+                   return k;
+                 }});
   return out;
 }
 
@@ -294,4 +304,32 @@ TEST_CASE("backends: the call depth budget, not the caller's stack, decides how 
       CHECK(got.find("call depth budget exceeded: more than 1000 nested calls") == 0);
     }
   }
+}
+
+TEST_CASE("backends: auto runs the VM first and native code after the switch, with the VM's bits") {
+  auto vm = test::build("function FRep(x, y, z, t) { return sin(x * 3) * cos(y * 2) + z * z - 0.5; }", "", true, {}, "vm");
+  REQUIRE(vm->ok);
+  std::vector<std::vector<float>> cols(4, std::vector<float>(1000));
+  for (size_t i = 0; i < 1000; ++i) cols[0][i] = 0.01f * i, cols[1][i] = 1 - 0.002f * i, cols[2][i] = 0.5f, cols[3][i] = 0;
+  backends::TierStats before = backends::tier_stats();
+  setenv("FSCRIPT_AUTO_SWITCH_AFTER", "300", 1);
+  std::string error;
+  auto k = backends::make_backend("auto")->compile(*vm->module, {}, error);
+  unsetenv("FSCRIPT_AUTO_SWITCH_AFTER");
+  REQUIRE(k);
+  std::vector<float> want = run(*vm->kernel, cols), got = run(*k, cols);
+  for (size_t i = 0; i < want.size(); ++i) CHECK(same(want[i], got[i]));
+  backends::TierStats after = backends::tier_stats();
+  CHECK(after.vm_points - before.vm_points == 300);  // one batch of 1,000: 300 on the VM, then native
+  CHECK(after.native_points - before.native_points == 700);
+  CHECK(after.switched == before.switched + 1);
+  CHECK(after.first_switch_ms >= 0);
+  // Without the forced switch, a small job stays on the VM and starts no compile.
+  auto small = backends::make_backend("auto")->compile(*vm->module, {}, error);
+  REQUIRE(small);
+  run(*small, cols);
+  CHECK(backends::tier_stats().compiles == after.compiles);
+  // A caller that announces a big job gets the compile at once.
+  backends::expect_points(*small, uint64_t{1} << 34);
+  CHECK(backends::tier_stats().compiles == after.compiles + 1);
 }

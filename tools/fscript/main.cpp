@@ -30,7 +30,7 @@ void add_budget_flags(CLI::App& app, Args& a) { tools::add_budget_flags(app, a.o
 CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args& a) {
   CLI::App* c = app.add_subcommand(name, help);
   c->add_option("FILE", a.file, "the .fs script ('-' for standard input)")->required();
-  c->add_option("--backend,-b", a.opts.backend, "evaluation backend: vm, sse or llvm (default: vm)");
+  c->add_option("--backend,-b", a.opts.backend, "evaluation backend: auto (the VM at once, native code from a background compile when the job is big enough), vm, sse or llvm (default: vm)");
   c->add_flag("--llvm-disk-cache", a.disk_cache,
               "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
   c->add_option("--entry,-e", a.entry, "function to call (default: the script's entry point)");

@@ -12,6 +12,7 @@
 #ifdef FS_HAVE_LLVM
 #include "backends/llvm/llvm_jit.h"
 #endif
+#include "backends/tiered/tiered.h"
 #include "runtime/render/png.h"
 #include "runtime/render/quadtree.h"
 #include "runtime/support/parallel.h"
@@ -114,6 +115,13 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
     return kExitInput;
   }
   std::printf("%.6g evals/s\n%.4g ns/eval\n", static_cast<double>(points) / secs, secs * 1e9 / static_cast<double>(points));
+  if (name == "auto") {
+    backends::TierStats t = backends::tier_stats();
+    std::printf("tiers: %llu of %llu points on %s", static_cast<unsigned long long>(t.native_points),
+                static_cast<unsigned long long>(t.native_points + t.vm_points), t.native.c_str());
+    if (t.first_switch_ms >= 0) std::printf(", switched at %.3g ms", t.first_switch_ms);
+    std::printf("\n");
+  }
   return kExitOk;
 }
 

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "backends/backend.h"
+#include "backends/tiered/tiered.h"
 #include "runtime/mesh/dual_contour.h"
 #include "runtime/mesh/octree.h"
 #include "runtime/support/big_stack.h"
@@ -79,6 +80,15 @@ nlohmann::json dual_contouring_json() {
           {"max_qef_error_cells", d.max_error}};
 }
 
+// What the auto backend did: native compiles, the switch, the points on each tier.
+nlohmann::json tiers_json() {
+  fscript::backends::TierStats t = fscript::backends::tier_stats();
+  return {{"native", t.native}, {"kernels", t.kernels}, {"compiles", t.compiles}, {"switched", t.switched},
+          {"failed", t.failed}, {"first_switch_ms", t.first_switch_ms}, {"vm_points", t.vm_points},
+          {"native_points", t.native_points},
+          {"native_share", t.vm_points + t.native_points ? double(t.native_points) / double(t.vm_points + t.native_points) : 0.0}};
+}
+
 // 590776 -> "590,776".
 std::string thousands(uint64_t n) {
   std::string s = std::to_string(n);
@@ -115,7 +125,7 @@ int run(int argc, char** argv) {
   o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   app.add_option("SCENE", o.path, "the .wrl scene (plain or gzip), or an .fs script: one FShape with its definition")
       ->required();
-  app.add_option("--backend", o.model.compile.backend, "evaluation backend: vm, sse or llvm (default: vm)");
+  app.add_option("--backend", o.model.compile.backend, "evaluation backend: auto (the VM at once, native code from a background compile when the job is big enough), vm, sse or llvm (default: vm)");
   bool disk_cache = false;
   app.add_flag("--llvm-disk-cache", disk_cache,
                "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
@@ -244,6 +254,7 @@ int run(int argc, char** argv) {
   if (o.stats && rc == 0) {
     st["prune"] = prune_json();
     if (o.mesher.kind == mesh::Mesher::DualContouring) st["dual_contouring"] = dual_contouring_json();
+    if (o.model.compile.backend == "auto") st["tiers"] = tiers_json();
     std::cerr << st.dump() << "\n";
   }
   if (!o.stats && rc == 0 && !o.output.empty() && o.output != "-") std::cerr << written_summary(o, st, ms_since(t0)) << "\n";

@@ -1,0 +1,274 @@
+// Tiered execution (backends/tiered/tiered.h): the VM at once, native code from a background
+// compile once the work done says it pays.
+#include "backends/tiered/tiered.h"
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdlib>
+#include <deque>
+#include <vector>
+#include <algorithm>
+#include <mutex>
+#include <thread>
+
+#include "ir/ir.h"
+
+namespace fscript::backends {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The VM starts the native compile once it has spent this share of the compile's estimated time:
+// a job that ends sooner never waits for a compile, and one that goes on pays at most this much
+// more than if it had known its size (the ski-rental bound, the compile itself running on another
+// core).
+constexpr double kStartShare = 0.25;
+constexpr double kVmNsPerOpPoint = 0.5;  // before the kernel has timed itself
+constexpr size_t kChunk = 16384;         // points per VM call: timed, and a chance to switch
+
+std::string native_backend() {
+#ifdef FS_HAVE_LLVM
+  return "llvm";
+#else
+  return "sse";
+#endif
+}
+
+size_t count_ops(const ir::Module& m) {
+  size_t n = 0;
+  for (const auto& f : m.functions)
+    for (const auto& b : f->blocks) n += b->insts.size();
+  return n;
+}
+
+// FSCRIPT_AUTO_SWITCH_AFTER=N (tests): compile at once, and run every batch after the N-th point
+// natively, waiting for the compile if need be: a switch in the middle of a job, on purpose.
+uint64_t forced_switch() {
+  const char* v = std::getenv("FSCRIPT_AUTO_SWITCH_AFTER");
+  return v && *v ? std::strtoull(v, nullptr, 10) : 0;
+}
+
+struct Totals {
+  std::atomic<uint64_t> kernels{0}, compiles{0}, switched{0}, failed{0}, vm_points{0}, native_points{0};
+  std::atomic<int64_t> first_switch_ns{-1};
+  std::atomic<int64_t> start_ns{-1};
+};
+Totals& totals() {
+  static Totals t;
+  return t;
+}
+int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+}
+
+// One tiered kernel's state, shared with the compile thread.
+struct Shared {
+  std::unique_ptr<ir::Module> module;
+  Budgets budgets;
+  size_t ops = 0;
+  std::unique_ptr<Kernel> native;  // written by the compile thread before `ready`
+  std::atomic<const Kernel*> ready{nullptr};
+  std::atomic<bool> started{false}, abandoned{false};
+  std::mutex lock;  // with `done`: the end of the compile, for a kernel that waits for it
+  std::condition_variable done_cv;
+  bool done = false, running = false;
+  std::atomic<uint64_t> vm_ns{0}, vm_points{0};
+};
+
+// The one background compile thread: compiles run one at a time (the VM keeps the other cores),
+// in the order asked.
+class Compiler {
+ public:
+  void submit(std::shared_ptr<Shared> s) {
+    std::lock_guard<std::mutex> hold(lock_);
+    if (!thread_.joinable()) thread_ = std::thread([this] { loop(); });
+    queue_.push_back(std::move(s));
+    wake_.notify_one();
+  }
+  ~Compiler() {
+    {
+      std::lock_guard<std::mutex> hold(lock_);
+      stop_ = true;
+    }
+    wake_.notify_one();
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  void loop() {
+    for (;;) {
+      std::shared_ptr<Shared> s;
+      {
+        std::unique_lock<std::mutex> hold(lock_);
+        wake_.wait(hold, [&] { return stop_ || !queue_.empty(); });
+        if (stop_) return;
+        s = std::move(queue_.front());
+        queue_.pop_front();
+      }
+      {
+        std::lock_guard<std::mutex> hold(s->lock);
+        if (s->abandoned) {  // the kernel went away before its turn
+          s->done = true;
+          s->done_cv.notify_all();
+          continue;
+        }
+        s->running = true;
+      }
+      compile(*s);
+    }
+  }
+
+  static void compile(Shared& s) {
+    std::string error;
+    std::unique_ptr<Kernel> k;
+    if (auto be = make_backend(native_backend())) k = be->compile(*s.module, s.budgets, error);
+    std::lock_guard<std::mutex> hold(s.lock);
+    if (k) {
+      s.native = std::move(k);
+      s.ready.store(s.native.get(), std::memory_order_release);
+    } else {
+      ++totals().failed;
+    }
+    s.done = true, s.running = false;
+    s.done_cv.notify_all();
+  }
+
+  std::mutex lock_;
+  std::condition_variable wake_;
+  std::deque<std::shared_ptr<Shared>> queue_;
+  std::thread thread_;
+  bool stop_ = false;
+};
+
+Compiler& compiler() {
+  static Compiler c;
+  return c;
+}
+
+class TieredKernel : public Kernel {
+ public:
+  TieredKernel(std::unique_ptr<Kernel> vm, std::shared_ptr<Shared> s) : vm_(std::move(vm)), s_(std::move(s)) {
+    ++totals().kernels;
+    int64_t expected = -1;
+    totals().start_ns.compare_exchange_strong(expected, now_ns());
+    if (force_after_) start();
+  }
+  // A compile under way for this kernel is waited for (it uses the module); one still queued is
+  // dropped.
+  ~TieredKernel() override {
+    std::unique_lock<std::mutex> hold(s_->lock);
+    s_->abandoned = true;
+    s_->done_cv.wait(hold, [&] { return !s_->running; });
+  }
+
+  size_t num_inputs() const override { return vm_->num_inputs(); }
+  size_t num_outputs() const override { return vm_->num_outputs(); }
+
+  // On the VM a batch goes in chunks, so the native code can take over in the middle of a big one.
+  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, RuntimeError& err) const override {
+    std::vector<const float*> in(inputs, inputs + num_inputs());
+    std::vector<float*> out(outputs, outputs + num_outputs());
+    for (size_t done = 0; done < n;) {
+      size_t m = std::min(kChunk, n - done);
+      if (uint64_t vm = s_->vm_points.load(); force_after_ > vm) m = std::min<size_t>(m, force_after_ - vm);
+      if (const Kernel* k = native(n - done)) return k->eval_batch(in.data(), out.data(), n - done, err);
+      auto t0 = Clock::now();
+      if (!vm_->eval_batch(in.data(), out.data(), m, err)) return false;
+      account(m, static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count()));
+      for (auto& p : in) p += m;
+      for (auto& p : out) p += m;
+      done += m;
+    }
+    return true;
+  }
+
+  bool eval(const float* inputs, float* outputs, RuntimeError& err) const override {
+    if (const Kernel* k = native(1)) return k->eval(inputs, outputs, err);
+    bool ok = vm_->eval(inputs, outputs, err);
+    account(1, static_cast<uint64_t>(vm_ns_per_point()));  // one point is too short to time
+    return ok;
+  }
+
+  void expect(uint64_t points) const {
+    if (points * vm_ns_per_point() > native_compile_ns(s_->ops)) start();
+  }
+
+ private:
+  double vm_ns_per_point() const {
+    uint64_t p = s_->vm_points.load();
+    return p >= 1024 ? double(s_->vm_ns.load()) / double(p) : double(s_->ops) * kVmNsPerOpPoint;
+  }
+
+  // The native kernel when it is ready (after a forced switch point, waited for).
+  const Kernel* native(size_t n) const {
+    const Kernel* k = s_->ready.load(std::memory_order_acquire);
+    if (!k && force_after_ && s_->vm_points.load() >= force_after_) {
+      std::unique_lock<std::mutex> hold(s_->lock);
+      s_->done_cv.wait(hold, [&] { return s_->done; });
+      k = s_->ready.load(std::memory_order_acquire);
+    }
+    if (k) {
+      if (!switched_.exchange(true)) {
+        ++totals().switched;
+        int64_t expected = -1;
+        totals().first_switch_ns.compare_exchange_strong(expected, now_ns() - totals().start_ns.load());
+      }
+      totals().native_points += n;
+    }
+    return k;
+  }
+
+  void account(size_t n, uint64_t ns) const {
+    s_->vm_points += n;
+    totals().vm_points += n;
+    if (s_->vm_ns.fetch_add(ns) + ns >= kStartShare * native_compile_ns(s_->ops)) start();
+  }
+
+  void start() const {
+    if (s_->started.exchange(true)) return;
+    ++totals().compiles;
+    compiler().submit(s_);
+  }
+
+  std::unique_ptr<Kernel> vm_;
+  std::shared_ptr<Shared> s_;
+  uint64_t force_after_ = forced_switch();
+  mutable std::atomic<bool> switched_{false};
+};
+
+}  // namespace
+
+double native_compile_ns(size_t ops) {
+#ifdef FS_HAVE_LLVM
+  return 4e6 + 50e3 * static_cast<double>(ops);
+#else
+  return 0.2e6 + 1e3 * static_cast<double>(ops);
+#endif
+}
+
+std::unique_ptr<Kernel> TieredBackend::compile(const ir::Module& m, const Budgets& budgets, std::string& error) const {
+  auto vm = make_backend("vm")->compile(m, budgets, error);
+  if (!vm) return nullptr;
+  auto s = std::make_shared<Shared>();
+  s->module = m.clone();
+  s->budgets = budgets;
+  s->ops = count_ops(m);
+  return std::make_unique<TieredKernel>(std::move(vm), std::move(s));
+}
+
+void expect_points(const Kernel& k, uint64_t points) {
+  if (auto* t = dynamic_cast<const TieredKernel*>(&k)) t->expect(points);
+}
+
+TierStats tier_stats() {
+  const Totals& t = totals();
+  TierStats s;
+  s.kernels = t.kernels, s.compiles = t.compiles, s.switched = t.switched, s.failed = t.failed;
+  s.vm_points = t.vm_points, s.native_points = t.native_points;
+  int64_t first = t.first_switch_ns.load();
+  s.first_switch_ms = first < 0 ? -1 : double(first) / 1e6;
+  s.native = native_backend();
+  return s;
+}
+
+}  // namespace fscript::backends

@@ -2,7 +2,7 @@
 // The "auto" backend: tiered execution. A kernel starts on the VM at once (no compile time); when
 // the VM has spent a share of what compiling would cost (or a caller says a big job is ahead), the
 // same module is compiled natively (LLVM, else the SSE emitter) on a background thread, and every
-// batch after it is ready runs native. The backends agree bit for bit (docs/semantics.md), so the
+// batch after it is ready runs native. The backends agree bit for bit (docs/language.md), so the
 // results do not depend on which tier ran which batch.
 #include <atomic>
 #include <cstdint>

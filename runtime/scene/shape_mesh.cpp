@@ -149,10 +149,12 @@ void transform_mesh(const Mat4& t, mesh::Mesh& m) {
 }
 
 // Tells the shape's kernels how many points are ahead (the auto backend compiles natively at once
-// when that pays): a dense grid's, or a quarter of it where interval pruning skips most cells.
+// when that pays): a dense grid's (of the shape's own dimensions), or a quarter of it where
+// interval pruning skips most cells.
 void expect_work(const Shape& s, bool prune) {
   uint64_t points = 1;
-  for (int r : s.resolution) points *= static_cast<uint64_t>(std::max(r, 1) + 1);
+  int dims = s.kind == ShapeKind::Curve ? 1 : s.kind == ShapeKind::Surface ? 2 : 3;
+  for (int k = 0; k < dims; ++k) points *= static_cast<uint64_t>(std::max(s.resolution[static_cast<size_t>(k)], 1) + 1);
   if (s.kind == ShapeKind::Implicit && prune) points /= 4;
   for (const CompiledField* f : {&s.geometry, s.texture ? &*s.texture : nullptr, s.colour ? &*s.colour : nullptr})
     if (f && f->kernel) backends::expect_points(*f->kernel, points);

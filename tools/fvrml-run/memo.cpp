@@ -73,35 +73,27 @@ std::string group_key(const Options& o, const vrml::Scene& scene, const SceneMod
   return out + vrml::write_node(scene, *g.node, true);
 }
 
-std::optional<mesh::Mesh> MeshMemo::find(const std::string& key) {
+template <class T>
+std::optional<T> MeshMemo::take(std::map<std::string, Entry<T>>& entries, const std::string& key) {
   std::lock_guard<std::mutex> hold(lock_);
-  auto it = meshes_.find(key);
-  if (it == meshes_.end()) return std::nullopt;
+  auto it = entries.find(key);
+  if (it == entries.end()) return std::nullopt;
   it->second.used = true;
   ++counts_.reused;
   return it->second.mesh;
 }
 
-void MeshMemo::store(const std::string& key, const mesh::Mesh& m) {
+template <class T>
+void MeshMemo::keep(std::map<std::string, Entry<T>>& entries, const std::string& key, const T& m) {
   std::lock_guard<std::mutex> hold(lock_);
-  meshes_[key] = {m, true};
+  entries[key] = {m, true};
   ++counts_.made;
 }
 
-std::optional<mesh::CompactMesh> MeshMemo::find_frame(const std::string& key) {
-  std::lock_guard<std::mutex> hold(lock_);
-  auto it = frames_.find(key);
-  if (it == frames_.end()) return std::nullopt;
-  it->second.used = true;
-  ++counts_.reused;
-  return it->second.mesh;
-}
-
-void MeshMemo::store_frame(const std::string& key, const mesh::CompactMesh& m) {
-  std::lock_guard<std::mutex> hold(lock_);
-  frames_[key] = {m, true};
-  ++counts_.made;
-}
+std::optional<mesh::Mesh> MeshMemo::find(const std::string& key) { return take(meshes_, key); }
+void MeshMemo::store(const std::string& key, const mesh::Mesh& m) { keep(meshes_, key, m); }
+std::optional<mesh::CompactMesh> MeshMemo::find_frame(const std::string& key) { return take(frames_, key); }
+void MeshMemo::store_frame(const std::string& key, const mesh::CompactMesh& m) { keep(frames_, key, m); }
 
 void MeshMemo::sweep() {
   std::lock_guard<std::mutex> hold(lock_);

@@ -39,6 +39,11 @@ class MeshMemo {
     T mesh;
     bool used = true;
   };
+  template <class T>
+  std::optional<T> take(std::map<std::string, Entry<T>>& entries, const std::string& key);
+  template <class T>
+  void keep(std::map<std::string, Entry<T>>& entries, const std::string& key, const T& m);
+
   std::mutex lock_;
   std::map<std::string, Entry<mesh::Mesh>> meshes_;
   std::map<std::string, Entry<mesh::CompactMesh>> frames_;

@@ -359,6 +359,15 @@ TEST_CASE("preview: a save during a long run cancels it; so does stopping") {
   CHECK(since(t0) < 2.5 * frame);
 }
 
+TEST_CASE("preview: stopped right after it started, it ends") {
+  Folder f;
+  std::string scene = f.write("scene.wrl", ball("0.5"));
+  for (int k = 0; k < 20; ++k) {  // once hung: httplib ignores a stop before its listen() has begun
+    auto p = started(options(scene));
+    CHECK(p->stop());
+  }
+}
+
 TEST_CASE("preview: a port in use is a clear error") {
   Folder f;
   std::string scene = f.write("scene.wrl", ball("0.5"));

@@ -326,7 +326,7 @@ struct Preview::Impl {
   fs::path dir;
   int port = -1;
   std::thread watcher, listener;
-  std::atomic<bool> listened{true};
+  std::atomic<bool> listened{true}, listening_ended{false};
   bool started = false;
 
   void mark_stopping() {
@@ -381,6 +381,7 @@ bool Preview::start(std::string& error, std::function<void()> ended) {
   p.watcher = std::thread([&p] { watch(p.o, p.s.poll_ms, p.dir.string(), p.st, p.rerun, p.memo); });
   p.listener = std::thread([&p, ended] {
     p.listened = p.svr.listen_after_bind();
+    p.listening_ended = true;
     bool stopping;
     {
       std::lock_guard<std::mutex> hold(p.st.lock);
@@ -388,6 +389,8 @@ bool Preview::start(std::string& error, std::function<void()> ended) {
     }
     if (!stopping && ended) ended();
   });
+  while (!p.svr.is_running() && !p.listening_ended)  // the URL printed next is live
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   return true;
 }
 
@@ -396,7 +399,12 @@ bool Preview::stop() {
   if (!p.started) return true;
   p.started = false;
   p.mark_stopping();
-  p.svr.stop();
+  // httplib's stop() does nothing before the listener thread is inside listen(): asked again
+  // until that thread has ended (a stop right after start would otherwise wait forever).
+  while (!p.listening_ended) {
+    p.svr.stop();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
   p.watcher.join();
   p.listener.join();
   std::error_code ec;

@@ -275,10 +275,10 @@ TEST_CASE("preview: an animation's frames stream as they are made, coarse to fin
       partial_frames.push_back(s["partial"]["frames"]);
     }
   // The stream sends the newest state when it wakes: some of the scenes after about 1, 2, 4 of 8
-  // frames (two threads may have made one more meanwhile), in order.
+  // frames, in order (the other thread may have made more meanwhile, so two can hold as many).
   for (size_t k = 0; k < partial_frames.size(); ++k) {
     CHECK((partial_frames[k] >= 1 && partial_frames[k] < 8));
-    if (k) CHECK(partial_frames[k] > partial_frames[k - 1]);
+    if (k) CHECK(partial_frames[k] >= partial_frames[k - 1]);
   }
   Json anims = glb_json(get(p->port(), "/scene.glb"))["animations"];
   REQUIRE(anims.size() == 1);

@@ -108,6 +108,13 @@ int Module::find_function(const std::string& name) const {
   return -1;
 }
 
+size_t Module::instruction_count() const {
+  size_t n = 0;
+  for (const auto& f : functions)
+    for (const auto& b : f->blocks) n += b->insts.size();
+  return n;
+}
+
 int Module::global_slot(const std::string& name) {
   for (size_t i = 0; i < globals.size(); ++i)
     if (globals[i] == name) return static_cast<int>(i);

@@ -96,6 +96,7 @@ struct Module {
   int find_function(const std::string& name) const;
   const Function& kernel_function() const;  // the entry (the first function if none is marked)
   int global_slot(const std::string& name);  // find or add
+  size_t instruction_count() const;  // over every function: the size that compile costs scale with
   std::unique_ptr<Module> clone() const;
 };
 

@@ -34,13 +34,6 @@ std::string native_backend() {
 #endif
 }
 
-size_t count_ops(const ir::Module& m) {
-  size_t n = 0;
-  for (const auto& f : m.functions)
-    for (const auto& b : f->blocks) n += b->insts.size();
-  return n;
-}
-
 // FSCRIPT_AUTO_SWITCH_AFTER=N (tests): compile at once, and run every batch after the N-th point
 // natively, waiting for the compile if need be: a switch in the middle of a job, on purpose.
 uint64_t forced_switch() {
@@ -261,7 +254,7 @@ std::unique_ptr<Kernel> TieredBackend::compile(const ir::Module& m, const Budget
   auto s = std::make_shared<Shared>();
   s->module = m.clone();
   s->budgets = budgets;
-  s->ops = count_ops(m);
+  s->ops = m.instruction_count();
   return std::make_unique<TieredKernel>(std::move(vm), std::move(s));
 }
 

@@ -458,4 +458,10 @@ bool build_scene_model(const vrml::Scene& scene, const ModelOptions& opts, front
   return Builder(scene, opts, diag, out).run();
 }
 
+bool inside_group(const SceneModel& m, int group, int top) {
+  for (int g = group; g >= 0; g = m.groups[static_cast<size_t>(g)].parent)
+    if (g == top) return true;
+  return false;
+}
+
 }  // namespace fscript::scene

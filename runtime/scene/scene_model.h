@@ -98,6 +98,9 @@ struct SceneModel {
   std::vector<std::vector<vrml::NodePtr>> expanded;  // PROTO instances' bodies the shapes live in
 };
 
+// Whether FTransform `group` is `top` or lies under it (-1: a shape outside every FTransform).
+bool inside_group(const SceneModel& m, int group, int top);
+
 // Builds the model. Every script is compiled with diagnostics at .wrl positions; returns false
 // when there was any error.
 bool build_scene_model(const vrml::Scene& scene, const ModelOptions& opts, frontend::DiagnosticSink& diag,

@@ -249,8 +249,7 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::Runti
   out = mesh::Mesh{};
   support::ProgressJob progress;
   for (const Shape& s : m.shapes)
-    for (int g = s.group; g >= 0; g = m.groups[static_cast<size_t>(g)].parent)
-      if (g == group) expect_work(s, prune);
+    if (inside_group(m, s.group, group)) expect_work(s, prune);
   if (parametric_group(m, group)) {
     if (!mesh_parametric_group(m, group, out, err, threads, prune)) return false;
     const Shape* first = first_shape_below(m, group);

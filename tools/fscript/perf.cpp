@@ -61,9 +61,7 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
   Compiled c;
   if (int rc = compile_file(file, entry, o, c); rc != kExitOk) return rc;
   // The backend's own compile time (IR to a kernel), best of three, per 1,000 IR operations.
-  size_t ops = 0;
-  for (const auto& f : c.module->functions)
-    for (const auto& blk : f->blocks) ops += blk->insts.size();
+  size_t ops = c.module->instruction_count();
   std::string name = o.backend.empty() ? backends::available_backends().front() : o.backend;
   auto best_compile = [&] {
     double ms = 1e30;

@@ -90,9 +90,7 @@ bool moves(const SceneModel& m, const Track& t) {
   };
   if (!t.group) return shape_moves(m.shapes[static_cast<size_t>(t.index)]);
   for (size_t g = 0; g < m.groups.size(); ++g) {
-    bool inside = false;
-    for (int k = static_cast<int>(g); k >= 0 && !inside; k = m.groups[static_cast<size_t>(k)].parent) inside = k == t.index;
-    if (!inside) continue;
+    if (!fscript::scene::inside_group(m, static_cast<int>(g), t.index)) continue;
     const auto& grp = m.groups[g];
     if (grp.op_kernel && grp.op_kernel->reads_t) return true;
     for (const auto& [field, parts] : grp.affine)

@@ -43,12 +43,6 @@ std::string options_text(const Options& o, bool world) {
   return out + "\n";
 }
 
-bool under(const SceneModel& model, int group, size_t top) {
-  for (int g = group; g >= 0; g = model.groups[static_cast<size_t>(g)].parent)
-    if (static_cast<size_t>(g) == top) return true;
-  return false;
-}
-
 }  // namespace
 
 std::string shape_key(const Options& o, const vrml::Scene& scene, const SceneModel& model, size_t i, bool world) {
@@ -60,7 +54,7 @@ std::string group_key(const Options& o, const vrml::Scene& scene, const SceneMod
   const auto& g = model.groups[i];
   std::string out = "group\n" + options_text(o, world);
   for (size_t k = 0; k < model.groups.size(); ++k)
-    if (under(model, static_cast<int>(k), i)) {
+    if (fscript::scene::inside_group(model, static_cast<int>(k), static_cast<int>(i))) {
       const auto& inner = model.groups[k];
       add(out, inner.fraction);
       if (inner.op_kernel) add(out, *inner.op_kernel);
@@ -69,7 +63,7 @@ std::string group_key(const Options& o, const vrml::Scene& scene, const SceneMod
       out += "\n";
     }
   for (const auto& s : model.shapes)
-    if (under(model, s.group, i)) out += shape_numbers(s, world);
+    if (fscript::scene::inside_group(model, s.group, static_cast<int>(i))) out += shape_numbers(s, world);
   return out + vrml::write_node(scene, *g.node, true);
 }
 

@@ -46,6 +46,15 @@ class Kernel {
   virtual bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, RuntimeError& err) const = 0;
   // One point; the same results as a batch of one.
   virtual bool eval(const float* inputs, float* outputs, RuntimeError& err) const = 0;
+  // Rows of a grid: row r is the points (first[i], rest[0][r], rest[1][r], ...) for i < count, and
+  // its results go to outputs[o][r * count + i]. The same results as eval_batch over those points;
+  // kernels with a row split (backends/row_kernel.h) compute what does not depend on the first
+  // input once per row.
+  virtual bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows,
+                         float* const* outputs, RuntimeError& err) const;
+  // A caller that knows its job says `points` evaluations are ahead: a tiered kernel compiles
+  // natively at once when that pays; others ignore it.
+  virtual void expect_points(uint64_t points) const { (void)points; }
 };
 
 class Backend {
@@ -57,8 +66,11 @@ class Backend {
   virtual std::unique_ptr<Kernel> compile(const ir::Module& m, const Budgets& budgets, std::string& error) const = 0;
 };
 
-// Backends built into this binary, fastest first.
+// Backends built into this binary that a user may force, the VM first. "auto" (tiered execution)
+// is not among them: it runs them.
 std::vector<std::string> available_backends();
+// The backend used when none is named: "auto".
+std::string default_backend();
 // nullptr if `name` is unknown or not built.
 std::unique_ptr<Backend> make_backend(const std::string& name);
 // Why make_backend(name) gave nullptr, for the user.
@@ -66,5 +78,8 @@ std::string missing_backend_message(const std::string& name);
 // Turns on the llvm backend's on-disk cache of compiled code (the user's cache directory).
 // Returns false with a message when this binary has no llvm backend or no cache directory.
 bool enable_llvm_disk_cache(std::string& message);
+// Whether the native backend of tiered execution can load this kernel's machine code without
+// compiling it (the llvm backend's in-memory or on-disk cache has it).
+bool native_code_cached(const ir::Module& m, const Budgets& budgets);
 
 }  // namespace fscript::backends

@@ -9,8 +9,8 @@
 
 namespace fscript::backends {
 
-// The first is the default: the VM, which needs no compile time and with AVX-512 beats the SSE
-// backend on most kernels (docs/performance.md).
+std::string default_backend() { return "auto"; }
+
 std::vector<std::string> available_backends() {
 #ifdef FS_HAVE_LLVM
   return {"vm", "sse", "llvm"};
@@ -46,6 +46,15 @@ bool enable_llvm_disk_cache(std::string& message) {
   message = "--llvm-disk-cache: this binary has no llvm backend";
 #endif
   return false;
+}
+
+bool native_code_cached(const ir::Module& m, const Budgets& budgets) {
+#ifdef FS_HAVE_LLVM
+  return llvmjit::code_cached(m, llvmjit::host_width(), budgets);
+#else
+  (void)m, (void)budgets;
+  return false;
+#endif
 }
 
 }  // namespace fscript::backends

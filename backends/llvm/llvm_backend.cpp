@@ -6,13 +6,23 @@
 
 namespace fscript::llvmjit {
 
+namespace {
+// The cache key: everything the code depends on.
+std::string cache_key(const ir::Module& m, uint32_t width, const backends::Budgets& budgets, bool bounded) {
+  return ir::print(m) + "\nwidth " + std::to_string(width) + " bounded " + std::to_string(bounded) + " loops " +
+         std::to_string(budgets.max_loop_iterations) + " depth " + std::to_string(budgets.max_call_depth) +
+         " elements " + std::to_string(budgets.max_array_elements);
+}
+}  // namespace
+
+bool code_cached(const ir::Module& m, uint32_t width, const backends::Budgets& budgets) {
+  return has_code(cache_key(m, width, budgets, true));
+}
+
 std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, const backends::Budgets& budgets,
                                         bool bounded, Lowered& lowered, double& compile_ms, std::string& error) {
   compile_ms = 0;
-  // The cache key: everything the code depends on.
-  std::string key = ir::print(m) + "\nwidth " + std::to_string(width) + " bounded " + std::to_string(bounded) +
-                    " loops " + std::to_string(budgets.max_loop_iterations) + " depth " +
-                    std::to_string(budgets.max_call_depth) + " elements " + std::to_string(budgets.max_array_elements);
+  std::string key = cache_key(m, width, budgets, bounded);
   if (std::shared_ptr<Program> hit = cached(key)) return hit;
   if (!lower_to_llvm(m, width, budgets, bounded, lowered, error)) return nullptr;
   return llvmjit::compile(std::move(lowered), key, compile_ms, error);

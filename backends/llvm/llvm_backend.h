@@ -54,6 +54,9 @@ class LlvmBackend : public backends::Backend {
 std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, const backends::Budgets& budgets,
                                         bool bounded, Lowered& lowered, double& compile_ms, std::string& error);
 
+// Whether compile_module(m, width, budgets, true, ...) would find the code in a cache (in memory or
+// on disk) instead of compiling it.
+bool code_cached(const ir::Module& m, uint32_t width, const backends::Budgets& budgets);
 // The module's kernel as optimised LLVM IR (`fscript emit-ir --llvm`) or as the host's assembly
 // (`fscript emit-asm --backend llvm`), at the host's width; empty with a message on failure.
 std::string kernel_text(const ir::Module& m, const backends::Budgets& budgets, bool assembly, std::string& error);

@@ -232,6 +232,16 @@ std::shared_ptr<Program> cached(const std::string& key) {
   return hit;
 }
 
+bool has_code(const std::string& key) {
+  State& s = state();
+  std::lock_guard<std::mutex> lock(s.mutex);
+  if (s.cache_on) {
+    auto it = s.cache.find(key);
+    if (it != s.cache.end() && !it->second.expired()) return true;
+  }
+  return disk_has(s.disk, key);
+}
+
 namespace {
 // `use` on the optimised module, under the JIT's lock (the target machine is shared).
 template <typename Use>

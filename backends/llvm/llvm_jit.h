@@ -33,6 +33,8 @@ uint32_t host_width();
 // The compiled program for `key` (the source program's IR text, width, budgets), if the cache
 // has it alive.
 std::shared_ptr<Program> cached(const std::string& key);
+// Whether the program for `key` is alive in the cache or its object is in the disk cache.
+bool has_code(const std::string& key);
 // Compiles the lowered program and caches it under `key`; nullptr with a message on failure.
 // compile_ms says how long LLVM took.
 std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, double& compile_ms, std::string& error);

@@ -17,6 +17,7 @@ namespace fscript::backends {
 struct TierStats {
   uint64_t kernels = 0;     // tiered kernels made
   uint64_t compiles = 0;    // native compiles started
+  uint64_t cached = 0;      // kernels native from their first batch: the code was in a cache
   uint64_t switched = 0;    // kernels whose native code arrived and was used
   uint64_t failed = 0;      // native compiles that failed (the VM went on)
   uint64_t vm_points = 0, native_points = 0;
@@ -34,10 +35,5 @@ class TieredBackend : public Backend {
   std::string name() const override { return "auto"; }
   std::unique_ptr<Kernel> compile(const ir::Module& m, const Budgets& budgets, std::string& error) const override;
 };
-
-// A hint from a caller that knows its job: `points` evaluations are ahead. A tiered kernel starts
-// its native compile at once when they would take the VM longer than the compile; other kernels
-// ignore it.
-void expect_points(const Kernel& k, uint64_t points);
 
 }  // namespace fscript::backends

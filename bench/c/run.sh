@@ -7,7 +7,9 @@ cd "$(dirname "$0")"
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 gcc -O3 -march=x86-64-v2 -fno-math-errno -o "$OUT/gcc" baseline.c -lm
+gcc -O3 -march=x86-64-v2 -fno-math-errno -o "$OUT/gcc-rows" shapes.c -lm
 for f in gyroid csg8; do echo "gcc -O3 -march=x86-64-v2 $f: $("$OUT/gcc" "$f" "${1:-2000000}")"; done
+for f in gyroid csg8; do echo "gcc -O3 -march=x86-64-v2 $f row by row: $("$OUT/gcc-rows" "$f" "${1:-2000000}")"; done
 P=../../../shared/data/prospero.fs
 if [ -f "$P" ]; then
   sed -E -f prospero.sed "$P" > "$OUT/prospero_body.h"
@@ -20,5 +22,7 @@ if [ -f "$P" ]; then
 fi
 if command -v clang > /dev/null; then
   clang -O3 -march=native -fno-math-errno -o "$OUT/clang" baseline.c -lm
+  clang -O3 -march=native -fno-math-errno -o "$OUT/clang-rows" shapes.c -lm
   for f in gyroid csg8; do echo "clang -O3 -march=native $f: $("$OUT/clang" "$f" "${1:-2000000}")"; done
+  for f in gyroid csg8; do echo "clang -O3 -march=native $f row by row: $("$OUT/clang-rows" "$f" "${1:-2000000}")"; done
 fi

@@ -4,6 +4,7 @@
 #include "frontend/fscript/lower.h"
 #include "ir/passes/passes.h"
 #include "ir/verifier.h"
+#include "backends/row_kernel.h"
 
 namespace fscript::driver {
 
@@ -37,12 +38,13 @@ std::unique_ptr<ir::Module> build_module(const frontend::Script& s, const fronte
 
 Outcome compile_kernel(const ir::Module& m, const std::string& name, const backends::Budgets& budgets,
                        std::unique_ptr<backends::Kernel>& out) {
-  std::string n = name.empty() ? backends::available_backends().front() : name;
+  std::string n = name.empty() ? backends::default_backend() : name;
   auto be = backends::make_backend(n);
   if (!be) return {Stage::NoBackend, backends::missing_backend_message(n)};
   Outcome o;
   out = be->compile(m, budgets, o.error);
   if (!out) o.stage = Stage::Backend;
+  else out = backends::with_row_split(std::move(out), n, m, budgets);
   return o;
 }
 

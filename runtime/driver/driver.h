@@ -68,7 +68,7 @@ Outcome compile(std::unique_ptr<frontend::SourceFile> file, const EntryChoice& e
 std::unique_ptr<ir::Module> build_module(const frontend::Script& s, const frontend::KernelSpec& spec,
                                          frontend::DiagnosticSink& diag, const BuildOptions& opts, std::string& error);
 
-// The end of the chain: the kernel of `m` on backend `name` ("" = the fastest built).
+// The end of the chain: the kernel of `m` on backend `name` ("" = backends::default_backend()).
 Outcome compile_kernel(const ir::Module& m, const std::string& name, const backends::Budgets& budgets,
                        std::unique_ptr<backends::Kernel>& out);
 

@@ -23,11 +23,18 @@ constexpr size_t kSamples = static_cast<size_t>(kBlockSamples) * kBlockSamples *
 constexpr size_t kCells = static_cast<size_t>(kBlock) * kBlock * kBlock;
 
 // Scratch arrays for one batch of points, reused per thread: they only grow, and `n` says how many
-// points the batch holds (shrinking and growing them again zero-filled them at every step).
+// points the batch holds (shrinking and growing them again zero-filled them at every step). A batch
+// is either points (add) or grid rows (add_row), which run through Field::eval_rows.
 struct Batch {
+  struct Row {
+    const float* xs;
+    size_t count;
+    float y, z;
+  };
   std::vector<float> x, y, z, out;
+  std::vector<Row> rows;
   size_t n = 0;
-  void clear() { n = 0; }
+  void clear() { n = 0, rows.clear(); }
   void resize(size_t m) {
     if (x.size() < m) x.resize(m), y.resize(m), z.resize(m);
     n = m;
@@ -37,17 +44,35 @@ struct Batch {
     if (n == x.size()) x.resize(2 * n + 64), y.resize(2 * n + 64), z.resize(2 * n + 64);
     set(n++, px, py, pz);
   }
-  // `count` points of one row: x from xs, y and z fixed.
+  // `count` points of one row: x from xs (alive until run()), y and z fixed.
   void add_row(const float* xs, size_t count, float py, float pz) {
-    size_t at = n;
-    resize(n + count);
-    float *px = x.data() + at, *yy = y.data() + at, *zz = z.data() + at;
-    for (size_t i = 0; i < count; ++i) px[i] = xs[i], yy[i] = py, zz[i] = pz;  // plain loops vectorize; fill_n's did not
+    rows.push_back({xs, count, py, pz});
+    n += count;
   }
   bool run(const Field& f, backends::RuntimeError& err) {
-    if (out.size() < n) out.resize(x.size());
+    if (out.size() < n) out.resize(std::max(n, x.size()));
     EvalTimer timed;
-    return n == 0 || f.eval(x.data(), y.data(), z.data(), n, out.data(), err);
+    if (rows.empty()) return n == 0 || f.eval(x.data(), y.data(), z.data(), n, out.data(), err);
+    // Rows over the same run of x values go as one eval_rows call (a block's bricks cut its rows
+    // into a few distinct runs), their results copied back to each row's place.
+    thread_local std::vector<size_t> at, members;
+    thread_local std::vector<float> group_out;
+    at.resize(rows.size());
+    for (size_t r = 0, o = 0; r < rows.size(); o += rows[r].count, ++r) at[r] = o;
+    std::vector<char> done(rows.size(), 0);
+    for (size_t r = 0; r < rows.size(); ++r) {
+      if (done[r]) continue;
+      members.clear();
+      for (size_t q = r; q < rows.size(); ++q)
+        if (!done[q] && rows[q].xs == rows[r].xs && rows[q].count == rows[r].count) members.push_back(q), done[q] = 1;
+      size_t m = members.size(), count = rows[r].count;
+      if (y.size() < m) y.resize(m), z.resize(m);
+      for (size_t i = 0; i < m; ++i) y[i] = rows[members[i]].y, z[i] = rows[members[i]].z;
+      group_out.resize(m * count);
+      if (!f.eval_rows(rows[r].xs, count, y.data(), z.data(), m, group_out.data(), err)) return false;
+      for (size_t i = 0; i < m; ++i) std::copy_n(group_out.data() + i * count, count, out.data() + at[members[i]]);
+    }
+    return true;
   }
 };
 

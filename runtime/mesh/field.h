@@ -43,6 +43,10 @@ class Field {
   // out[i] = f(x[i], y[i], z[i]) for i < n; false on a runtime error.
   virtual bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
                     backends::RuntimeError& err) const = 0;
+  // Rows of a grid: out[r * count + i] = f(x[i], y[r], z[r]). The same values as eval over those
+  // points; a kernel field computes what does not depend on x once per row (Kernel::eval_rows).
+  virtual bool eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
+                         backends::RuntimeError& err) const;
   // Holds eval's result, rounding included, at every point of the box (NaN flagged). A field that
   // cannot bound itself says "anything", and the polygonizer then samples the region point by point.
   virtual math::Interval bound(const Box3&) const { return math::Interval::everything(); }
@@ -61,6 +65,8 @@ class KernelField : public Field {
       : k_(k), t_(t), intervals_(intervals) {}
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
             backends::RuntimeError& err) const override;
+  bool eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
+                 backends::RuntimeError& err) const override;
   math::Interval bound(const Box3& b) const override;
   bool can_bound() const override { return intervals_ != nullptr; }
 

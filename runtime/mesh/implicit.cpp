@@ -205,7 +205,7 @@ class Slab {
     float z = static_cast<float>(g_.coord(2, k));
     if (!bricks_ || bricks_->layer_open(k / BrickMap::kBrick)) {
       std::fill(zs_.begin(), zs_.end(), z);
-      if (!evaluate(f_, xs_.data(), ys_.data(), zs_.data(), xs_.size(), f_out_.data(), err)) return false;
+      if (!evaluate_rows(z, err)) return false;
       evaluated += xs_.size();
       for (int j = 0; j < g_.ny; ++j)
         std::copy_n(f_out_.data() + static_cast<size_t>(j) * g_.nx, g_.nx, plane.data() + g_.in_plane(0, j));
@@ -230,6 +230,20 @@ class Slab {
         }
       }
     return evaluate_points(plane, z, err);
+  }
+
+  // f_out_ = f on the plane at height z, as rows (the plane's xs_ and ys_ are row by row).
+  bool evaluate_rows(float z, backends::RuntimeError& err) {
+    EvalTimer timer;
+    size_t nx = static_cast<size_t>(g_.nx), per = std::max<size_t>(1, kBatch / nx);
+    row_y_.resize(static_cast<size_t>(g_.ny)), row_z_.assign(static_cast<size_t>(g_.ny), z);
+    for (size_t j = 0; j < row_y_.size(); ++j) row_y_[j] = ys_[j * nx];
+    for (size_t j = 0; j < row_y_.size(); j += per) {
+      size_t rows = std::min(per, row_y_.size() - j);
+      if (!f_.eval_rows(xs_.data(), nx, row_y_.data() + j, row_z_.data() + j, rows, f_out_.data() + j * nx, err))
+        return false;
+    }
+    return true;
   }
 
   // plane[p] = f at the runs of points todo_ lists (padded plane indices) on the plane at height z.
@@ -370,7 +384,7 @@ class Slab {
   int k0_, k1_, z_ = 0;
   std::vector<uint32_t> cache_lo_, cache_hi_;
   std::vector<size_t> dirty_lo_, dirty_hi_;
-  std::vector<float> values_lo_, values_hi_, xs_, ys_, zs_, f_out_, gx_, gy_, gz_, gout_;
+  std::vector<float> values_lo_, values_hi_, xs_, ys_, zs_, f_out_, gx_, gy_, gz_, gout_, row_y_, row_z_;
   std::vector<uint8_t> inside_, exact_lo_, exact_hi_;
   size_t inexact_lo_ = 0, inexact_hi_ = 0;
   struct Run {
@@ -592,6 +606,29 @@ bool KernelField::eval(const float* x, const float* y, const float* z, size_t n,
   outs[0] = out;
   for (size_t o = 1; o < outs.size(); ++o) outs[o] = extra.data() + (o - 1) * n;
   return k_.eval_batch(in, outs.data(), n, err);
+}
+
+bool Field::eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
+                      backends::RuntimeError& err) const {
+  thread_local std::vector<float> xs, ys, zs;
+  size_t n = count * rows;
+  xs.resize(n), ys.resize(n), zs.resize(n);
+  for (size_t r = 0; r < rows; ++r)
+    for (size_t i = 0; i < count; ++i) xs[r * count + i] = x[i], ys[r * count + i] = y[r], zs[r * count + i] = z[r];
+  return eval(xs.data(), ys.data(), zs.data(), n, out, err);
+}
+
+bool KernelField::eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
+                            backends::RuntimeError& err) const {
+  thread_local std::vector<float> ts, extra;
+  ts.assign(rows, t_);
+  size_t n = count * rows;
+  extra.resize(k_.num_outputs() > 1 ? n * (k_.num_outputs() - 1) : 0);
+  const float* rest[3] = {y, z, ts.data()};
+  std::vector<float*> outs(k_.num_outputs());
+  outs[0] = out;
+  for (size_t o = 1; o < outs.size(); ++o) outs[o] = extra.data() + (o - 1) * n;
+  return k_.eval_rows(x, count, rest, rows, outs.data(), err);
 }
 
 }  // namespace fscript::mesh

@@ -120,6 +120,7 @@ class Renderer {
 
   // Every pixel of the rects, in one batch on the tape's kernel.
   bool dense(Tape& tape, const std::vector<Rect>& rects) {
+    if (rects.size() == 1 && tape.compiled && tape.compiled->kernel == &dense_) return dense_rows(rects[0]);
     size_t n = 0;
     for (const Rect& r : rects) n += size_t(r.c1 - r.c0) * (r.r1 - r.r0);
     cols_.resize(dense_.num_inputs());
@@ -148,6 +149,25 @@ class Renderer {
       if (!tape.compiled->kernel->eval_batch(in.data(), out.data(), n, err_)) return false;
     }
     for (size_t k = 0; k < n; ++k) px_[where_[k]] = outs_[0][k] >= 0.0f ? 255 : 0;
+    stats_.points += n;
+    return true;
+  }
+
+  // One rect on the full kernel, as grid rows (Kernel::eval_rows: what depends only on y once a row).
+  bool dense_rows(const Rect& r) {
+    size_t count = r.c1 - r.c0, rows = r.r1 - r.r0, n = count * rows;
+    cols_.resize(dense_.num_inputs());
+    cols_[0].assign(ys_.begin() + r.r0, ys_.begin() + r.r1);
+    for (size_t k = 1; k < cols_.size(); ++k) cols_[k].assign(rows, 0.0f);
+    std::vector<const float*> rest;
+    for (auto& c : cols_) rest.push_back(c.data());
+    outs_.resize(dense_.num_outputs());
+    std::vector<float*> out;
+    for (auto& v : outs_) v.resize(n), out.push_back(v.data());
+    if (!dense_.eval_rows(xs_.data() + r.c0, count, rest.data(), rows, out.data(), err_)) return false;
+    for (size_t row = 0; row < rows; ++row)
+      for (size_t col = 0; col < count; ++col)
+        px_[(r.r0 + row) * g_.w + r.c0 + col] = outs_[0][row * count + col] >= 0.0f ? 255 : 0;
     stats_.points += n;
     return true;
   }

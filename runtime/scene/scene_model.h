@@ -81,12 +81,9 @@ struct Group {
 };
 
 struct ModelOptions {
-  // Every script of the scene compiles with these (the VM unless the caller says otherwise).
-  driver::CompileOptions compile = [] {
-    driver::CompileOptions o;
-    o.backend = "vm";
-    return o;
-  }();
+  // Every script of the scene compiles with these (tiered execution unless the caller says
+  // otherwise).
+  driver::CompileOptions compile;
   double now = 0;                   // --time
   std::optional<double> fraction;   // --fraction: every node as if set_fraction had been received
   double resolution_scale = 1;

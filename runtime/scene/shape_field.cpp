@@ -27,6 +27,13 @@ bool ShapeField::eval(const float* x, const float* y, const float* z, size_t n, 
   return true;
 }
 
+bool ShapeField::eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
+                           backends::RuntimeError& err) const {
+  if (s_.texture) return Field::eval_rows(x, count, y, z, rows, out, err);  // the texture takes points
+  mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(s_.geometry.t));
+  return geometry.eval_rows(x, count, y, z, rows, out, err);
+}
+
 math::Interval ShapeField::bound(const mesh::Box3& b) const {
   if (!can_bound()) return math::Interval::everything();
   math::Interval f = mesh::kernel_bound(*s_.geometry.intervals, b, {math::Interval::point(static_cast<float>(s_.geometry.t))});
@@ -222,6 +229,24 @@ bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, 
   auto vals = [&](size_t k) { return k == 0 ? out : rest.get() + n * (k - 1); };
   for (size_t k = 0; k < kids_.size(); ++k)
     if (!kids_[k]->eval(x, y, z, n, vals(k), err)) return false;
+  fold(out, rest.get(), n);
+  return true;
+}
+
+// Rows stay rows for the children unless the FTransform moves them (then they are points).
+bool GroupField::eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
+                           backends::RuntimeError& err) const {
+  if (moved_ || kids_.empty() || g_.op_kernel) return Field::eval_rows(x, count, y, z, rows, out, err);
+  size_t n = count * rows;
+  std::unique_ptr<float[]> rest(new float[n * (kids_.size() - 1)]);
+  for (size_t k = 0; k < kids_.size(); ++k)
+    if (!kids_[k]->eval_rows(x, count, y, z, rows, k == 0 ? out : rest.get() + n * (k - 1), err)) return false;
+  fold(out, rest.get(), n);
+  return true;
+}
+
+void GroupField::fold(float* out, const float* rest, size_t n) const {
+  auto vals = [&](size_t k) { return rest + n * (k - 1); };
   std::string op = g_.operation.empty() ? "union" : g_.operation;
   const vrml::Value* p = g_.node->get("parameters");
   double a0 = p && p->nums.size() > 0 ? p->nums[0] : 0, a1 = p && p->nums.size() > 1 ? p->nums[1] : 1,
@@ -244,7 +269,6 @@ bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, 
       for (size_t i = 0; i < n; ++i) out[i] = math::max(out[i], g[i]);  // union (and any unknown name, reported)
     }
   }
-  return true;
 }
 
 bool GroupField::eval_operator(const float* x, const float* y, const float* z, size_t n, float* out,

@@ -23,6 +23,8 @@ class ShapeField : public mesh::Field {
   explicit ShapeField(const Shape& s) : s_(s) {}
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
             backends::RuntimeError& err) const override;
+  bool eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
+                 backends::RuntimeError& err) const override;
   math::Interval bound(const mesh::Box3& b) const override;
   bool can_bound() const override;
 
@@ -35,6 +37,8 @@ class GroupField : public mesh::Field {
   GroupField(const SceneModel& m, int group);
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
             backends::RuntimeError& err) const override;
+  bool eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
+                 backends::RuntimeError& err) const override;
   math::Interval bound(const mesh::Box3& b) const override;
   bool can_bound() const override;
   // False (with a message) when a child cannot be part of an implicit field (a parametric shape).
@@ -46,6 +50,8 @@ class GroupField : public mesh::Field {
  private:
   // An analytical operation (the FTransform's operation as a script) over the children's values.
   bool eval_operator(const float* x, const float* y, const float* z, size_t n, float* out, backends::RuntimeError& err) const;
+  // The set operation folded over the children's values: the first in out, the others in rest.
+  void fold(float* out, const float* rest, size_t n) const;
   const SceneModel& m_;
   const Group& g_;
   std::vector<std::unique_ptr<mesh::Field>> kids_;

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "backends/tiered/tiered.h"
 #include "runtime/support/progress.h"
 #include "runtime/mesh/implicit.h"
 #include "runtime/mesh/parametric.h"
@@ -157,7 +156,7 @@ void expect_work(const Shape& s, bool prune) {
   for (int k = 0; k < dims; ++k) points *= static_cast<uint64_t>(std::max(s.resolution[static_cast<size_t>(k)], 1) + 1);
   if (s.kind == ShapeKind::Implicit && prune) points /= 4;
   for (const CompiledField* f : {&s.geometry, s.texture ? &*s.texture : nullptr, s.colour ? &*s.colour : nullptr})
-    if (f && f->kernel) backends::expect_points(*f->kernel, points);
+    if (f && f->kernel) f->kernel->expect_points(points);
 }
 
 bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bool world, int threads, bool prune,

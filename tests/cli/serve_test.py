@@ -136,7 +136,7 @@ def main(d):
         check("three.js from libjs-three: " + path, status == 200, str(status))
     first = s.wait_state(lambda st: st.get("version", 0) >= 1, 30)
     check("the first run is good", first.get("ok") is True, json.dumps(first)[:300])
-    check("its stats: backend and resolution", (first.get("stats") or {}).get("backend") == "vm" and first.get("scale") == 1)
+    check("its stats: backend and resolution", (first.get("stats") or {}).get("backend") == "auto" and first.get("scale") == 1)
     status, glb1 = s.request("GET", "/scene.glb")
     check("the scene as glTF", status == 200 and glb1[:4] == b"glTF", str(status))
     events = Events(s)

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <functional>
 
+#include "backends/row_kernel.h"
 #include "backends/sse/sse_backend.h"
 #include "backends/tiered/tiered.h"
 #include "ir/eval.h"
@@ -324,12 +325,74 @@ TEST_CASE("backends: auto runs the VM first and native code after the switch, wi
   CHECK(after.native_points - before.native_points == 700);
   CHECK(after.switched == before.switched + 1);
   CHECK(after.first_switch_ms >= 0);
-  // Without the forced switch, a small job stays on the VM and starts no compile.
-  auto small = backends::make_backend("auto")->compile(*vm->module, {}, error);
+  // The same module again: its native code is alive in the cache, so it runs native at once.
+  auto again = backends::make_backend("auto")->compile(*vm->module, {}, error);
+  REQUIRE(again);
+  std::vector<float> again_got = run(*again, cols);
+  for (size_t i = 0; i < want.size(); ++i) CHECK(same(want[i], again_got[i]));
+  backends::TierStats cached = backends::tier_stats();
+  CHECK(cached.vm_points == after.vm_points);
+  CHECK(cached.cached == after.cached + (backends::available_backends().back() == "llvm" ? 1 : 0));
+  // Another module, without the forced switch: a small job stays on the VM and starts no compile.
+  auto other = test::build("function FRep(x, y, z, t) { return sin(x * 3) * cos(y * 2) + z * z - 0.25; }", "", true, {}, "vm");
+  REQUIRE(other->ok);
+  auto small = backends::make_backend("auto")->compile(*other->module, {}, error);
   REQUIRE(small);
   run(*small, cols);
-  CHECK(backends::tier_stats().compiles == after.compiles);
+  CHECK(backends::tier_stats().compiles == cached.compiles);
   // A caller that announces a big job gets the compile at once.
-  backends::expect_points(*small, uint64_t{1} << 34);
-  CHECK(backends::tier_stats().compiles == after.compiles + 1);
+  small->expect_points(uint64_t{1} << 34);
+  CHECK(backends::tier_stats().compiles == cached.compiles + 1);
+}
+
+// Grid rows (Kernel::eval_rows) through the row split give the bits the same points give as a
+// batch, on every backend, with special values in the row inputs and along the rows.
+TEST_CASE("backends: grid rows through the row split agree with the points, bit for bit") {
+  const std::vector<std::string> bodies = {
+      "var k = 12.566370614359172; return sin(x * k + t) * cos(y * k) + sin(y * k) * cos(z * k) + sin(z * k) * cos(x * k);",
+      "return x * exp(y) * log(z * z + 1) - sqrt(abs(y)) * atan2(z, y) + min(x, pow(y, 2));",
+      "return sin(y) * cos(z) * exp(t) + tanh(y - z);",  // nothing depends on x
+  };
+  std::vector<float> xs;
+  for (float v : test::kSpecial) xs.push_back(v);
+  while (xs.size() < 61) xs.push_back(-1.0f + 0.037f * static_cast<float>(xs.size()));
+  const size_t rows = 23, count = xs.size();
+  std::vector<std::vector<float>> rest(3, std::vector<float>(rows));
+  for (size_t r = 0; r < rows; ++r) {
+    rest[0][r] = test::kSpecial[(r * 5) % test::kSpecial.size()];
+    rest[1][r] = -0.9f + 0.08f * static_cast<float>(r);
+    rest[2][r] = r % 3 ? 0.25f : 0.0f;
+  }
+  // The same points as one batch, for the reference (the VM without the split).
+  std::vector<std::vector<float>> cols(4, std::vector<float>(rows * count));
+  for (size_t r = 0; r < rows; ++r)
+    for (size_t i = 0; i < count; ++i) {
+      cols[0][r * count + i] = xs[i];
+      for (size_t k = 0; k < 3; ++k) cols[1 + k][r * count + i] = rest[k][r];
+    }
+  for (const std::string& body : bodies) {
+    auto vm = test::build("function FRep(x, y, z, t) { " + body + " }", "", true, {}, "vm");
+    REQUIRE(vm->ok);
+    std::vector<float> want = run(*vm->kernel, cols);
+    std::vector<std::string> names = backends::available_backends();
+    names.push_back("auto");
+    for (const std::string& name : names) {
+      INFO(name << ": " << body);
+      std::string error;
+      auto k = backends::with_row_split(backends::make_backend(name)->compile(*vm->module, {}, error), name,
+                                        *vm->module, {});
+      REQUIRE(k);
+      uint64_t rows_before = backends::row_stats().rows;
+      std::vector<float> got(rows * count);
+      float* outs[] = {got.data()};
+      const float* in_rest[] = {rest[0].data(), rest[1].data(), rest[2].data()};
+      backends::RuntimeError err;
+      REQUIRE(k->eval_rows(xs.data(), count, in_rest, rows, outs, err));
+      CHECK(backends::row_stats().rows == rows_before + rows);  // the split ran, not the points
+      for (size_t i = 0; i < want.size(); ++i) {
+        INFO("point " << i);
+        CHECK(same(want[i], got[i]));
+      }
+    }
+  }
 }

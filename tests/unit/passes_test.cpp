@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include "ir/passes/passes.h"
+#include "ir/passes/row_split.h"
+#include "ir/verifier.h"
 #include "ir/ranges.h"
 #include "ir/text.h"
 #include "tests/unit/helpers.h"
@@ -106,4 +108,39 @@ TEST_CASE("ranges: intervals and the NaN bit under bounded parameters") {
   CHECK(r.hi >= 10 + 10 * 10);
   CHECK_FALSE(returned_range("return sin(x * 3) + (x < y);", 10).nan);
   CHECK(returned_range("var s = 0; for (var i = 0; i < x; i++) s += y; return s;", 10).nan);  // a loop phi
+}
+
+// The row split (ir/passes/row_split.h): what moves to the prologue, and when it does not pay.
+TEST_CASE("row split: the gyroid's y and z work goes to the prologue; both parts verify") {
+  auto b = test::build(
+      "function FRep(x, y, z, t) { var k = 12.566370614359172; var X = x * k + t; var Y = y * k; var Z = z * k;"
+      " return sin(X) * cos(Y) + sin(Y) * cos(Z) + sin(Z) * cos(X); }");
+  REQUIRE(b->ok);
+  ir::RowSplit s;
+  REQUIRE(ir::split_rows(*b->module, s));
+  CHECK(ir::verify(*s.prologue) == "");
+  CHECK(ir::verify(*s.body) == "");
+  // Once per row: y*k, z*k, sin and cos of each, sin(Y)*cos(Z). Per point: x*k+t, sin, cos, 2 *, 2 +
+  // and the product with cos(Y). Row values: cos(Y), sin(Y)*cos(Z), sin(Z) and t.
+  CHECK(s.hoisted == 7);
+  CHECK(s.row_values == 4);
+  CHECK(s.per_point == 8);
+  CHECK(s.prologue->kernel_function().num_params == 4);
+  CHECK(s.prologue->kernel_function().num_results == 4);
+  CHECK(s.body->kernel_function().num_params == 5);
+  CHECK(s.body->kernel_function().num_results == 1);
+}
+
+TEST_CASE("row split: refused where it cannot or would not pay") {
+  auto refused = [](const std::string& text) {
+    auto b = test::build(text);
+    REQUIRE(b->ok);
+    ir::RowSplit s;
+    return !ir::split_rows(*b->module, s) && !s.prologue && !s.body;
+  };
+  CHECK(refused("function FRep(x, y, z, t) { return x * 2 - 1; }"));              // nothing to hoist
+  CHECK(refused("function FRep(x, y, z, t) { return x + y * y - z; }"));          // 2 operations for 2 values
+  CHECK(refused("function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < y * 9; i++) s += sin(x + i); return s; }"));
+  CHECK(refused("function f(x) { return x < 1 ? x : f(x - 1) + 1; } function FRep(x, y, z, t) { return f(y) + x; }"));
+  CHECK_FALSE(refused("function FRep(x, y, z, t) { return x - exp(y) * log(z + 2); }"));
 }

@@ -206,8 +206,10 @@ std::string backend_listing(const std::string& name, const ir::Module& m, const 
   return "";
 }
 
-int cmd_emit_asm(const Options& o, const std::string& file, const std::string& entry) {
-  std::string name = o.backend.empty() ? backends::available_backends().front() : o.backend;
+int cmd_emit_asm(const Options& given, const std::string& file, const std::string& entry) {
+  Options o = given;  // auto (the default) lists the VM bytecode: the code every job starts on
+  if (o.backend.empty() || o.backend == "auto") o.backend = "vm";
+  const std::string& name = o.backend;
   if (!backends::make_backend(name)) {  // a usage error before any compile
     std::cerr << "error: " << backends::missing_backend_message(name) << "\n";
     return kExitUsage;

@@ -14,8 +14,10 @@ int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, con
 int cmd_emit_asm(const Options& o, const std::string& file, const std::string& entry);
 // Prints the canonical formatting; -i rewrites the file (only if it changes), --check only says.
 int cmd_fmt(const std::string& file, bool in_place, bool check_only);
+// How bench calls the kernel: batches of points, one point per call, or rows of the grid.
+enum class BenchPath { Batch, OnePoint, Grid };
 int cmd_bench(const Options& o, const std::string& file, const std::string& entry, size_t points, unsigned threads,
-              bool one_point);
+              BenchPath path);
 int cmd_render2d(const Options& o, const std::string& file, const std::string& entry, const std::string& size,
                  const std::string& bounds, const std::string& out_path, unsigned threads, bool prune, bool stats,
                  unsigned repeat);

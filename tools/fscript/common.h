@@ -15,7 +15,7 @@ constexpr int kExitOk = 0;
 constexpr int kExitInput = 1;
 constexpr int kExitUsage = 2;
 
-// The command line's choices are the compile driver's options (backend "" = the fastest built).
+// The command line's choices are the compile driver's options (backend "" = backends::default_backend()).
 using Options = driver::CompileOptions;
 using Compiled = driver::Compiled;
 

@@ -20,7 +20,7 @@ struct Args {
   std::vector<std::string> files, values;
   size_t points = 1'000'000;
   unsigned threads = 1, repeat = 1;
-  bool opt = false, one_point = false, llvm = false, disk_cache = false, no_prune = false, stats = false;
+  bool opt = false, one_point = false, grid = false, llvm = false, disk_cache = false, no_prune = false, stats = false;
   bool in_place = false, check_only = false;
   uint32_t max_depth = 1000;
 };
@@ -30,7 +30,7 @@ void add_budget_flags(CLI::App& app, Args& a) { tools::add_budget_flags(app, a.o
 CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args& a) {
   CLI::App* c = app.add_subcommand(name, help);
   c->add_option("FILE", a.file, "the .fs script ('-' for standard input)")->required();
-  c->add_option("--backend,-b", a.opts.backend, "evaluation backend: auto (the VM at once, native code from a background compile when the job is big enough), vm, sse or llvm (default: vm)");
+  c->add_option("--backend,-b", a.opts.backend, "evaluation backend: auto (the VM at once, native code from a background compile when the job is big enough), vm, sse or llvm (default: auto)");
   c->add_flag("--llvm-disk-cache", a.disk_cache,
               "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
   c->add_option("--entry,-e", a.entry, "function to call (default: the script's entry point)");
@@ -54,7 +54,8 @@ int dispatch(CLI::App& app, Args& a) {
   if (app.got_subcommand("emit-asm")) return cmd_emit_asm(a.opts, a.file, a.entry);
   if (app.got_subcommand("fmt")) return cmd_fmt(a.file, a.in_place, a.check_only);
   if (app.got_subcommand("repl")) return run_repl(a.opts);
-  if (app.got_subcommand("bench")) return cmd_bench(a.opts, a.file, a.entry, a.points, a.threads, a.one_point);
+  if (app.got_subcommand("bench")) return cmd_bench(a.opts, a.file, a.entry, a.points, a.threads,
+                                                     a.one_point ? BenchPath::OnePoint : a.grid ? BenchPath::Grid : BenchPath::Batch);
   if (app.got_subcommand("render2d"))
     return cmd_render2d(a.opts, a.file, a.entry, a.size, a.bounds, a.out, a.threads, !a.no_prune, a.stats, a.repeat);
   // No subcommand: the REPL on a terminal; otherwise the program on standard input runs once.
@@ -105,6 +106,8 @@ int real_main(int argc, char** argv) {
       ->check(CLI::Range(1u, 1024u).description(""))
       ->type_name("N");
   bench->add_flag("--one-point", a.one_point, "call the kernel one point at a time instead of in batches");
+  bench->add_flag("--grid", a.grid, "evaluate the grid row by row (Kernel::eval_rows: what does not depend on x once per row)")
+      ->excludes("--one-point");
 
   CLI::App* r2d = add_compiling(app, "render2d", "picture of f(x, y, 0, 0) >= 0 as a PNG", a);
   r2d->add_option("--size,-s", a.size, "W or WxH pixels")->required();

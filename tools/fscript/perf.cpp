@@ -12,6 +12,7 @@
 #ifdef FS_HAVE_LLVM
 #include "backends/llvm/llvm_jit.h"
 #endif
+#include "backends/row_kernel.h"
 #include "backends/tiered/tiered.h"
 #include "runtime/render/png.h"
 #include "runtime/render/quadtree.h"
@@ -42,9 +43,13 @@ bool parallel_slices(size_t n, unsigned threads, Work work, backends::RuntimeErr
   }, err);
 }
 
+size_t grid_side(size_t n) {
+  return std::max<size_t>(2, static_cast<size_t>(std::ceil(std::cbrt(static_cast<double>(n)))));
+}
+
 // Varied inputs: a 3D grid over [-1, 1]^3 (the shared benchmarks' dense grid), t = 0.
 std::vector<std::vector<float>> grid_inputs(size_t n, size_t n_in) {
-  size_t side = std::max<size_t>(2, static_cast<size_t>(std::ceil(std::cbrt(static_cast<double>(n)))));
+  size_t side = grid_side(n);
   std::vector<std::vector<float>> cols(n_in, std::vector<float>(n, 0.0f));
   for (size_t i = 0; i < n; ++i) {
     size_t idx[3] = {i % side, (i / side) % side, (i / side / side) % side};
@@ -56,13 +61,51 @@ std::vector<std::vector<float>> grid_inputs(size_t n, size_t n_in) {
 
 }  // namespace
 
+// The same grid as rows for Kernel::eval_rows: the x of one row, and per row the other inputs.
+struct GridRows {
+  std::vector<float> x;
+  std::vector<std::vector<float>> rest;
+  size_t rows = 0;
+};
+GridRows grid_rows(size_t n, size_t n_in) {
+  GridRows g;
+  size_t side = grid_side(n);
+  g.rows = (n + side - 1) / side;
+  auto cols = grid_inputs(g.rows * side, n_in);
+  g.x.assign(cols[0].begin(), cols[0].begin() + static_cast<std::ptrdiff_t>(side));
+  for (size_t k = 1; k < n_in; ++k) {
+    g.rest.emplace_back(g.rows);
+    for (size_t r = 0; r < g.rows; ++r) g.rest.back()[r] = cols[k][r * side];
+  }
+  return g;
+}
+
+// The grid row by row, `threads` threads taking slices of rows.
+bool bench_rows(const backends::Kernel& k, const GridRows& g, std::vector<std::vector<float>>& outs, unsigned threads,
+                backends::RuntimeError& err) {
+  size_t side = g.x.size();
+  size_t per_slice = std::max<size_t>(1, kBatch / side);
+  return parallel_slices(g.rows, std::max(1u, threads), [&](size_t b, size_t e, backends::RuntimeError& er) {
+    for (size_t r = b; r < e; r += per_slice) {
+      size_t n = std::min(per_slice, e - r);
+      std::vector<const float*> rest(g.rest.size());
+      std::vector<float*> out(outs.size());
+      for (size_t i = 0; i < rest.size(); ++i) rest[i] = g.rest[i].data() + r;
+      for (size_t i = 0; i < out.size(); ++i) out[i] = outs[i].data() + r * side;
+      if (!k.eval_rows(g.x.data(), side, rest.data(), n, out.data(), er)) return false;
+    }
+    return true;
+  }, err);
+}
+
 int cmd_bench(const Options& o, const std::string& file, const std::string& entry, size_t points, unsigned threads,
-              bool one_point) {
+              BenchPath path) {
+  bool one_point = path == BenchPath::OnePoint;
   Compiled c;
   if (int rc = compile_file(file, entry, o, c); rc != kExitOk) return rc;
   // The backend's own compile time (IR to a kernel), best of three, per 1,000 IR operations.
   size_t ops = c.module->instruction_count();
-  std::string name = o.backend.empty() ? backends::available_backends().front() : o.backend;
+  std::string name = o.backend.empty() ? backends::default_backend() : o.backend;
   auto best_compile = [&] {
     double ms = 1e30;
     for (int k = 0; k < 3; ++k) {
@@ -88,11 +131,23 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
 #endif
   std::printf("\n");
   size_t n_in = c.kernel->num_inputs(), n_out = c.kernel->num_outputs();
-  auto cols = grid_inputs(points, n_in);
+  bool rows = path == BenchPath::Grid && n_in >= 2;  // one input: a row is all there is
+  auto cols = rows ? std::vector<std::vector<float>>() : grid_inputs(points, n_in);
+  GridRows g = rows ? grid_rows(points, n_in) : GridRows{};
+  if (rows) points = g.rows * g.x.size();
   std::vector<std::vector<float>> outs(n_out, std::vector<float>(points));
   backends::RuntimeError err;
+  if (rows) {  // the row split's kernels are compiled on the first rows: compile time is not timed
+    GridRows few = g;
+    few.rows = 1;
+    if (!bench_rows(*c.kernel, few, outs, 1, err)) {
+      print_runtime_error(*c.script.file, err);
+      return kExitInput;
+    }
+  }
   auto t0 = Clock::now();
-  bool ok = parallel_slices(points, std::max(1u, threads), [&](size_t b, size_t e, backends::RuntimeError& er) {
+  bool ok = rows ? bench_rows(*c.kernel, g, outs, threads, err)
+                                                 : parallel_slices(points, std::max(1u, threads), [&](size_t b, size_t e, backends::RuntimeError& er) {
     if (one_point) {
       std::vector<float> in(n_in), out(n_out);
       for (size_t i = b; i < e; ++i) {
@@ -113,6 +168,15 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
     return kExitInput;
   }
   std::printf("%.6g evals/s\n%.4g ns/eval\n", static_cast<double>(points) / secs, secs * 1e9 / static_cast<double>(points));
+  if (path == BenchPath::Grid) {
+    backends::RowStats r = backends::row_stats();
+    if (r.rows)
+      std::printf("row split: %llu operations once per row, %llu per point, %llu values per row\n",
+                  static_cast<unsigned long long>(r.hoisted), static_cast<unsigned long long>(r.per_point),
+                  static_cast<unsigned long long>(r.row_values));
+    else
+      std::printf("row split: none (no work to hoist out of the rows, or the kernel is not straight-line)\n");
+  }
   if (name == "auto") {
     backends::TierStats t = backends::tier_stats();
     std::printf("tiers: %llu of %llu points on %s", static_cast<unsigned long long>(t.native_points),

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "backends/backend.h"
+#include "backends/row_kernel.h"
 #include "backends/tiered/tiered.h"
 #include "runtime/mesh/dual_contour.h"
 #include "runtime/mesh/octree.h"
@@ -83,7 +84,7 @@ nlohmann::json dual_contouring_json() {
 // What the auto backend did: native compiles, the switch, the points on each tier.
 nlohmann::json tiers_json() {
   fscript::backends::TierStats t = fscript::backends::tier_stats();
-  return {{"native", t.native}, {"kernels", t.kernels}, {"compiles", t.compiles}, {"switched", t.switched},
+  return {{"native", t.native}, {"kernels", t.kernels}, {"compiles", t.compiles}, {"cached", t.cached}, {"switched", t.switched},
           {"failed", t.failed}, {"first_switch_ms", t.first_switch_ms}, {"vm_points", t.vm_points},
           {"native_points", t.native_points},
           {"native_share", t.vm_points + t.native_points ? double(t.native_points) / double(t.vm_points + t.native_points) : 0.0}};
@@ -121,11 +122,11 @@ int run(int argc, char** argv) {
   CLI::App app{"fvrml-run: FVRML scenes (VRML97 with function-defined shapes)"};
   app.set_version_flag("--version", fscript::support::version_line("fvrml-run"));
   Options o;
-  o.model.compile.backend = fscript::backends::available_backends().front();
+  o.model.compile.backend = fscript::backends::default_backend();
   o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   app.add_option("SCENE", o.path, "the .wrl scene (plain or gzip), or an .fs script: one FShape with its definition")
       ->required();
-  app.add_option("--backend", o.model.compile.backend, "evaluation backend: auto (the VM at once, native code from a background compile when the job is big enough), vm, sse or llvm (default: vm)");
+  app.add_option("--backend", o.model.compile.backend, "evaluation backend: auto (the VM at once, native code from a background compile when the job is big enough), vm, sse or llvm (default: auto)");
   bool disk_cache = false;
   app.add_flag("--llvm-disk-cache", disk_cache,
                "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
@@ -255,6 +256,8 @@ int run(int argc, char** argv) {
     st["prune"] = prune_json();
     if (o.mesher.kind == mesh::Mesher::DualContouring) st["dual_contouring"] = dual_contouring_json();
     if (o.model.compile.backend == "auto") st["tiers"] = tiers_json();
+    fscript::backends::RowStats rs = fscript::backends::row_stats();
+    st["row_split"] = {{"kernels", rs.kernels}, {"rows", rs.rows}, {"points", rs.points}};
     std::cerr << st.dump() << "\n";
   }
   if (!o.stats && rc == 0 && !o.output.empty() && o.output != "-") std::cerr << written_summary(o, st, ms_since(t0)) << "\n";

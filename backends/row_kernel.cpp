@@ -1,0 +1,178 @@
+// Grid rows (backends/row_kernel.h): the default eval_rows (points expanded into batches) and the
+// row-split kernel.
+#include "backends/row_kernel.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <mutex>
+#include <vector>
+
+#include "ir/passes/row_split.h"
+
+namespace fscript::backends {
+namespace {
+
+constexpr size_t kRowBatch = 4096;  // points per batch a row job is cut into: in L1/L2, big for the VM
+// Smaller jobs go through the full kernel: the prologue's own call (a whole 512-lane chunk on the
+// VM, however few rows) would cost more than the split saves.
+constexpr size_t kMinRowPoints = 256, kMinRowLength = 4;
+
+struct Totals {
+  std::atomic<uint64_t> kernels{0}, rows{0}, points{0}, hoisted{0}, per_point{0}, row_values{0};
+};
+Totals& totals() {
+  static Totals t;
+  return t;
+}
+
+// Rows [r0, r0 + n) of a row job as plain points: the first input tiled, the others repeated.
+// Buffers per thread, grown and never cleared: the fill writes every point it hands on.
+struct Expanded {
+  std::vector<std::unique_ptr<float[]>> cols;
+  std::vector<size_t> size;
+  std::vector<const float*> in;
+  const float* tiled_from = nullptr;  // the first input already tiled in cols[0]
+  size_t tiled_count = 0, tiled_rows = 0;
+
+  float* column(size_t k, size_t points) {
+    if (cols.size() <= k) cols.resize(k + 1), size.resize(k + 1, 0);
+    if (size[k] < points) {
+      cols[k].reset(new float[points]);
+      size[k] = points;
+      if (k == 0) tiled_from = nullptr;
+    }
+    return cols[k].get();
+  }
+  void fill(const float* first, size_t count, const float* const* rest, size_t num_rest, size_t r0, size_t n) {
+    in.resize(1 + num_rest);
+    float* x = column(0, n * count);
+    if (tiled_from != first || tiled_count != count || tiled_rows < n) {  // x repeats from call to call
+      for (size_t r = 0; r < n; ++r) std::copy_n(first, count, x + r * count);
+      tiled_from = first, tiled_count = count, tiled_rows = n;
+    }
+    in[0] = x;
+    for (size_t k = 0; k < num_rest; ++k) {
+      float* c = column(1 + k, n * count);
+      for (size_t r = 0; r < n; ++r) {
+        float v = rest[k][r0 + r];
+        float* row = c + r * count;
+        for (size_t i = 0; i < count; ++i) row[i] = v;
+      }
+      in[1 + k] = c;
+    }
+  }
+};
+
+size_t rows_per_batch(size_t count) { return std::max<size_t>(1, kRowBatch / std::max<size_t>(count, 1)); }
+
+bool expand_rows(const Kernel& k, const float* first, size_t count, const float* const* rest, size_t rows,
+                 float* const* outputs, RuntimeError& err) {
+  thread_local Expanded e;
+  e.tiled_from = nullptr;  // the caller's x array may have changed since its last call
+  std::vector<float*> out(k.num_outputs());
+  for (size_t r0 = 0, step = rows_per_batch(count); r0 < rows; r0 += step) {
+    size_t n = std::min(step, rows - r0);
+    e.fill(first, count, rest, k.num_inputs() - 1, r0, n);
+    for (size_t o = 0; o < out.size(); ++o) out[o] = outputs[o] + r0 * count;
+    if (!k.eval_batch(e.in.data(), out.data(), n * count, err)) return false;
+  }
+  return true;
+}
+
+class RowSplitKernel : public Kernel {
+ public:
+  RowSplitKernel(std::unique_ptr<Kernel> full, std::string backend, ir::RowSplit split, const Budgets& budgets)
+      : full_(std::move(full)), backend_(std::move(backend)), split_(std::move(split)), budgets_(budgets) {}
+
+  size_t num_inputs() const override { return full_->num_inputs(); }
+  size_t num_outputs() const override { return full_->num_outputs(); }
+  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, RuntimeError& err) const override {
+    return full_->eval_batch(inputs, outputs, n, err);
+  }
+  bool eval(const float* inputs, float* outputs, RuntimeError& err) const override {
+    return full_->eval(inputs, outputs, err);
+  }
+  // A caller with a grid ahead (the polygonizer) gets the body compiled first: it takes the rows.
+  void expect_points(uint64_t points) const override {
+    if (parts()) body_->expect_points(points);
+    full_->expect_points(points);
+  }
+
+  bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
+                 RuntimeError& err) const override {
+    if (count * rows < kMinRowPoints || count < kMinRowLength || !parts())
+      return expand_rows(*full_, first, count, rest, rows, outputs, err);
+    totals().rows += rows, totals().points += rows * count;
+    // The prologue over the rows (its first input is not read: any value), then the body in batches.
+    size_t k = split_.row_values;
+    std::vector<float> unused(rows, 0.0f);
+    std::vector<const float*> pin(num_inputs());
+    pin[0] = unused.data();
+    for (size_t i = 1; i < pin.size(); ++i) pin[i] = rest[i - 1];
+    std::vector<std::vector<float>> row_values(k, std::vector<float>(rows));
+    std::vector<float*> pout(k);
+    for (size_t i = 0; i < k; ++i) pout[i] = row_values[i].data();
+    if (!prologue_->eval_batch(pin.data(), pout.data(), rows, err)) return false;
+    std::vector<const float*> values(k);
+    for (size_t i = 0; i < k; ++i) values[i] = row_values[i].data();
+    return expand_rows(*body_, first, count, values.data(), rows, outputs, err);
+  }
+
+ private:
+  // The split's kernels, compiled once; false (rows then go through the full kernel) if that failed.
+  bool parts() const {
+    std::call_once(once_, [this] {
+      std::string error;
+      auto be = make_backend(backend_);
+      if (!be) return;
+      auto pro = be->compile(*split_.prologue, budgets_, error);
+      auto body = pro ? be->compile(*split_.body, budgets_, error) : nullptr;
+      if (!body) return;
+      prologue_ = std::move(pro), body_ = std::move(body);
+    });
+    return body_ != nullptr;
+  }
+
+  std::unique_ptr<Kernel> full_;
+  std::string backend_;
+  ir::RowSplit split_;
+  Budgets budgets_;
+  mutable std::once_flag once_;
+  mutable std::unique_ptr<Kernel> prologue_, body_;
+};
+
+}  // namespace
+
+bool Kernel::eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
+                       RuntimeError& err) const {
+  return expand_rows(*this, first, count, rest, rows, outputs, err);
+}
+
+bool row_split_enabled() {
+  static const bool on = [] {
+    const char* v = std::getenv("FSCRIPT_ROW_SPLIT");
+    return !(v && v[0] == '0' && !v[1]);
+  }();
+  return on;
+}
+
+std::unique_ptr<Kernel> with_row_split(std::unique_ptr<Kernel> full, const std::string& backend, const ir::Module& m,
+                                       const Budgets& budgets) {
+  ir::RowSplit split;
+  if (!full || !row_split_enabled() || !ir::split_rows(m, split)) return full;
+  Totals& t = totals();
+  ++t.kernels;
+  t.hoisted = split.hoisted, t.per_point = split.per_point, t.row_values = split.row_values;
+  return std::make_unique<RowSplitKernel>(std::move(full), backend, std::move(split), budgets);
+}
+
+RowStats row_stats() {
+  const Totals& t = totals();
+  RowStats s;
+  s.kernels = t.kernels, s.rows = t.rows, s.points = t.points;
+  s.hoisted = t.hoisted, s.per_point = t.per_point, s.row_values = t.row_values;
+  return s;
+}
+
+}  // namespace fscript::backends

@@ -25,6 +25,10 @@ using Clock = std::chrono::steady_clock;
 constexpr double kStartShare = 1.0;
 constexpr double kVmNsPerOpPoint = 0.5;  // before the kernel has timed itself
 constexpr size_t kChunk = 16384;         // points per VM call: timed, and a chance to switch
+// A kernel whose LLVM compile is estimated past this gets the SSE emitter's code first (about 1 ms
+// per 1,000 operations) to run while LLVM works: prospero's dense picture, 0.4 s of LLVM compile,
+// would otherwise spend it on the VM (docs/performance.md, "Tiered execution").
+constexpr double kMiddleTierNs = 50e6;
 
 std::string native_backend() {
 #ifdef FS_HAVE_LLVM
@@ -59,13 +63,24 @@ struct Shared {
   std::unique_ptr<ir::Module> module;
   Budgets budgets;
   size_t ops = 0;
-  std::unique_ptr<Kernel> native;  // written by the compile thread before `ready`
+  std::unique_ptr<Kernel> middle, native;  // written by the compile thread before `ready`
   std::atomic<const Kernel*> ready{nullptr};
   std::atomic<bool> started{false}, abandoned{false};
   std::mutex lock;  // with `done`: the end of the compile, for a kernel that waits for it
   std::condition_variable done_cv;
   bool done = false, running = false;
   std::atomic<uint64_t> vm_ns{0}, vm_points{0};
+  std::atomic<uint64_t> announced{0};  // the points the caller said the job has (0: unknown)
+  double vm_ns_per_point() const {
+    uint64_t p = vm_points.load();
+    return p >= 1024 ? double(vm_ns.load()) / double(p) : double(ops) * kVmNsPerOpPoint;
+  }
+  // With the middle tier running, whether the announced job ends before LLVM's code could arrive
+  // (the SSE code taken as twice the VM's speed on such big kernels: prospero 428 against 760 ms).
+  bool ends_before_native() const {
+    uint64_t ahead = announced.load(), done = vm_points.load();
+    return ahead > done && double(ahead - done) * vm_ns_per_point() * 0.5 < native_compile_ns(ops);
+  }
 };
 
 // The one background compile thread: compiles run one at a time (the VM keeps the other cores),
@@ -113,7 +128,22 @@ class Compiler {
 
   static void compile(Shared& s) {
     std::string error;
+    if (native_backend() != "sse" && native_compile_ns(s.ops) > kMiddleTierNs) {
+      if (auto m = make_backend("sse")->compile(*s.module, s.budgets, error)) {
+        std::lock_guard<std::mutex> hold(s.lock);
+        s.middle = std::move(m);
+        s.ready.store(s.middle.get(), std::memory_order_release);
+      }
+    }
     std::unique_ptr<Kernel> k;
+    // The kernel went away while the middle tier compiled, or its job ends first: no LLVM (a compile
+    // under way cannot be stopped, and the kernel's end waits for it).
+    if (s.abandoned || (s.middle && s.ends_before_native())) {
+      std::lock_guard<std::mutex> hold(s.lock);
+      s.done = true, s.running = false;
+      s.done_cv.notify_all();
+      return;
+    }
     if (auto be = make_backend(native_backend())) k = be->compile(*s.module, s.budgets, error);
     std::lock_guard<std::mutex> hold(s.lock);
     if (k) {
@@ -183,15 +213,12 @@ class TieredKernel : public Kernel {
   }
 
   void expect_points(uint64_t points) const override {
-    announced_ = s_->vm_points.load() + points;
+    s_->announced = s_->vm_points.load() + points;
     if (double(points) * vm_ns_per_point() > native_compile_ns(s_->ops)) start();
   }
 
  private:
-  double vm_ns_per_point() const {
-    uint64_t p = s_->vm_points.load();
-    return p >= 1024 ? double(s_->vm_ns.load()) / double(p) : double(s_->ops) * kVmNsPerOpPoint;
-  }
+  double vm_ns_per_point() const { return s_->vm_ns_per_point(); }
 
   // The native kernel when it is ready (after a forced switch point, waited for).
   const Kernel* native(size_t n) const {
@@ -220,7 +247,7 @@ class TieredKernel : public Kernel {
     totals().vm_points += n;
     double estimate = native_compile_ns(s_->ops);
     if (s_->vm_ns.fetch_add(ns) + ns < kStartShare * estimate) return;
-    uint64_t ahead = announced_.load();
+    uint64_t ahead = s_->announced.load();
     if (ahead > points && double(ahead - points) * vm_ns_per_point() < estimate) return;
     start();
   }
@@ -235,7 +262,6 @@ class TieredKernel : public Kernel {
   std::shared_ptr<Shared> s_;
   uint64_t force_after_ = forced_switch();
   mutable std::atomic<bool> switched_{false};
-  mutable std::atomic<uint64_t> announced_{0};  // the points the caller said the job has (0: unknown)
 };
 
 }  // namespace

@@ -236,6 +236,7 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   stats = {};
   stats.full_tape_ops = ir::tape_length(fn);
   bool prune = o.prune && dense.num_inputs() >= 2 && dense.num_outputs() >= 1 && ir::interval_evaluable(fn);
+  if (!prune) dense.expect_points(uint64_t(g.w) * g.h);  // every pixel ahead: a tiered kernel compiles at once
   std::vector<Rect> tiles;  // the top level's regions, shared out to the threads by index
   uint32_t s = prune ? kSizes[0] : 64;
   for (uint32_t row = 0; row < g.h; row += s)

@@ -139,7 +139,7 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
   backends::RuntimeError err;
   if (rows) {  // the row split's kernels are compiled on the first rows: compile time is not timed
     GridRows few = g;
-    few.rows = 1;
+    few.rows = std::min<size_t>(g.rows, 64);  // enough points that the split runs (row_kernel.cpp)
     if (!bench_rows(*c.kernel, few, outs, 1, err)) {
       print_runtime_error(*c.script.file, err);
       return kExitInput;

@@ -118,11 +118,11 @@ extern "C" uint32_t fs_ticks_carry(int32_t* counters, uint64_t budget) {
 }
 
 // No early exit, so the loop vectorises.
-bool inputs_in_range(const float* const* inputs, size_t num_inputs, size_t n, double bound) {
+bool inputs_in_range(const float* const* inputs, size_t num_inputs, size_t n, double bound, uint32_t row_from) {
   float b = static_cast<float>(bound);
   bool ok = true;
   for (size_t k = 0; k < num_inputs; ++k)
-    for (size_t i = 0; i < n; ++i) ok &= std::fabs(inputs[k][i]) <= b;
+    for (size_t i = 0, e = row_from && k >= row_from ? 1 : n; i < e; ++i) ok &= std::fabs(inputs[k][i]) <= b;
   return ok;
 }
 

@@ -68,7 +68,8 @@ uint64_t call_generated(const Call& call) {
 extern "C" uint32_t fs_ticks_carry(int32_t* counters, uint64_t budget);
 
 // Every input of the batch finite with |x| <= bound (NaN fails too).
-bool inputs_in_range(const float* const* inputs, size_t num_inputs, size_t n, double bound);
+// Inputs from `row_from` on (when not 0) are one value each: a row parameter (ir::Function).
+bool inputs_in_range(const float* const* inputs, size_t num_inputs, size_t n, double bound, uint32_t row_from = 0);
 
 // Small lists live on the stack: the one-point path must not allocate.
 template <typename T, size_t N = 64>
@@ -83,7 +84,7 @@ struct Scratch {
 // last points copied into one padded group (the unused lanes repeat the last point).
 template <typename GroupFn>
 bool run_padded(uint32_t width, size_t num_inputs, size_t num_outputs, const float* const* inputs,
-                float* const* outputs, size_t n, GroupFn group_fn) {
+                float* const* outputs, size_t n, GroupFn group_fn, uint32_t row_from = 0) {
   size_t whole = n - n % width;
   if (whole && !group_fn(inputs, outputs, whole)) return false;
   if (whole == n) return true;
@@ -93,6 +94,10 @@ bool run_padded(uint32_t width, size_t num_inputs, size_t num_outputs, const flo
   // The padding lanes repeat the last point: a lane of made-up inputs (zeros) could raise a runtime
   // error no real point raises (an index out of a zero-length array, a loop that never ends).
   for (size_t k = 0; k < num_inputs; ++k) {
+    if (row_from && k >= row_from) {  // a row parameter: its one value
+      ip.data[k] = inputs[k];
+      continue;
+    }
     std::copy(inputs[k] + whole, inputs[k] + n, in.data + width * k);
     std::fill(in.data + width * k + (n - whole), in.data + width * (k + 1), inputs[k][n - 1]);
     ip.data[k] = in.data + width * k;
@@ -100,6 +105,22 @@ bool run_padded(uint32_t width, size_t num_inputs, size_t num_outputs, const flo
   for (size_t k = 0; k < num_outputs; ++k) op.data[k] = out.data + width * k;
   if (!group_fn(ip.data, op.data, width)) return false;
   for (size_t k = 0; k < num_outputs; ++k) std::copy_n(out.data + width * k, n - whole, outputs[k] + whole);
+  return true;
+}
+
+// Rows of a kernel with row parameters (from `row_from` on) as one batch per row: the compiled
+// code reads a row parameter's one value (`batch(inputs, outputs, n)` is the kernel's eval_batch).
+template <typename Batch>
+bool run_rows(size_t num_inputs, size_t num_outputs, const float* first, size_t count, const float* const* rest,
+              size_t rows, float* const* outputs, Batch batch) {
+  Scratch<const float*> in(num_inputs);
+  Scratch<float*> out(num_outputs);
+  in.data[0] = first;
+  for (size_t r = 0; r < rows; ++r) {
+    for (size_t k = 1; k < num_inputs; ++k) in.data[k] = rest[k - 1] + r;
+    for (size_t o = 0; o < num_outputs; ++o) out.data[o] = outputs[o] + r * count;
+    if (!batch(in.data, out.data, count)) return false;
+  }
   return true;
 }
 

@@ -116,7 +116,7 @@ class RowSplitKernel : public Kernel {
     if (!prologue_->eval_batch(pin.data(), pout.data(), rows, err)) return false;
     std::vector<const float*> values(k);
     for (size_t i = 0; i < k; ++i) values[i] = row_values[i].data();
-    return expand_rows(*body_, first, count, values.data(), rows, outputs, err);
+    return body_->eval_rows(first, count, values.data(), rows, outputs, err);  // row parameters: native rows
   }
 
  private:

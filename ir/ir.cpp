@@ -129,6 +129,7 @@ static std::unique_ptr<Function> clone_function(const Function& src) {
   fn->num_results = src.num_results;
   fn->recursive = src.recursive;
   fn->kernel = src.kernel;
+  fn->row_params_from = src.row_params_from;
   fn->arrays = src.arrays;
   std::unordered_map<const Block*, Block*> bmap;
   std::unordered_map<const Inst*, Inst*> imap;

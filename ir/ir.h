@@ -75,6 +75,10 @@ struct Function {
   uint32_t num_results = 1;
   bool recursive = false;           // part of a call-graph cycle: never inlined
   bool kernel = false;              // the entry: globals start as NaN and die at its return
+  // A kernel's parameters from this index on are per row, not per point (the body of a row split,
+  // ir/passes/row_split.h): a batch holds rows of one length, and param k of point i is
+  // inputs[k][i / row length] (Kernel::eval_rows). 0: every parameter is per point.
+  uint32_t row_params_from = 0;
   std::vector<std::string> arrays;  // local array slots
   std::vector<std::unique_ptr<Block>> blocks;  // blocks[0] is the entry
   std::vector<std::unique_ptr<Inst>> pool;

@@ -94,6 +94,7 @@ class Reader {
     fn->num_results = static_cast<uint32_t>(std::strtoul(c.word().c_str(), nullptr, 10));
     fn->recursive = c.eat("recursive");
     fn->kernel = c.eat("kernel");
+    if (c.eat("rows")) fn->row_params_from = static_cast<uint32_t>(std::strtoul(c.word().c_str(), nullptr, 10));
     if (!c.eat("{")) return fail("expected '{'");
     Function* f = fn.get();
     mod_->functions.push_back(std::move(fn));

@@ -129,8 +129,11 @@ class Verifier {
 }  // namespace
 
 std::string verify(const Module& m) {
-  for (auto& f : m.functions)
+  for (auto& f : m.functions) {
+    if (f->row_params_from && (!f->kernel || f->row_params_from >= f->num_params))
+      return "@" + f->name + ": row parameters on a function that is not a kernel, or past its parameters";
     if (std::string e = Verifier(m, *f).run(); !e.empty()) return e;
+  }
   return "";
 }
 

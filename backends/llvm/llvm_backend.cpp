@@ -35,14 +35,15 @@ std::unique_ptr<backends::Kernel> LlvmBackend::compile(const ir::Module& m, cons
   if (!code) return nullptr;
   const Program& p = *code;
   return std::make_unique<LlvmKernel>(std::move(code), width_, p.num_inputs, p.num_outputs, budgets, p.array_names,
-                                      p.param_bound, p.param_bound > 0 ? m.clone() : nullptr);
+                                      p.param_bound, p.param_bound > 0 ? m.clone() : nullptr,
+                                      m.kernel_function().row_params_from);
 }
 
 LlvmKernel::LlvmKernel(std::shared_ptr<Program> code, uint32_t width, size_t inputs, size_t outputs,
                        const backends::Budgets& budgets, std::vector<std::string> array_names, double param_bound,
-                       std::unique_ptr<ir::Module> module)
+                       std::unique_ptr<ir::Module> module, uint32_t row_from)
     : code_(std::move(code)), width_(width), inputs_(inputs), outputs_(outputs), budgets_(budgets),
-      arrays_(std::move(array_names)), param_bound_(param_bound), module_(std::move(module)) {}
+      arrays_(std::move(array_names)), param_bound_(param_bound), module_(std::move(module)), row_from_(row_from) {}
 
 KernelFn LlvmKernel::general(backends::RuntimeError& err) const {
   std::call_once(general_once_, [this] {
@@ -59,7 +60,7 @@ KernelFn LlvmKernel::general(backends::RuntimeError& err) const {
 bool LlvmKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n,
                             backends::RuntimeError& err) const {
   KernelFn f = code_->entry();
-  if (param_bound_ > 0 && !backends::inputs_in_range(inputs, inputs_, n, param_bound_) && !(f = general(err)))
+  if (param_bound_ > 0 && !backends::inputs_in_range(inputs, inputs_, n, param_bound_, row_from_) && !(f = general(err)))
     return false;
   // Per call: batches may run on several threads at once. Only kernels with arrays need it.
   backends::LaneArrays arrays;
@@ -67,7 +68,14 @@ bool LlvmKernel::eval_batch(const float* const* inputs, float* const* outputs, s
   return backends::run_padded(width_, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
     uint64_t code = backends::call_generated([&] { return f(in, out, 0, count, &arrays, backends::stack_limit()); });
     return backends::jit_status(code, arrays, budgets_, err);
-  });
+  }, row_from_);
+}
+
+bool LlvmKernel::eval_rows(const float* first, size_t count, const float* const* rest, size_t rows,
+                           float* const* outputs, backends::RuntimeError& err) const {
+  if (!row_from_) return Kernel::eval_rows(first, count, rest, rows, outputs, err);
+  return backends::run_rows(inputs_, outputs_, first, count, rest, rows, outputs,
+                            [&](const float* const* in, float* const* out, size_t n) { return eval_batch(in, out, n, err); });
 }
 
 bool LlvmKernel::eval(const float* inputs, float* outputs, backends::RuntimeError& err) const {

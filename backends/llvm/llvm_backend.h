@@ -17,11 +17,13 @@ class LlvmKernel : public backends::Kernel {
  public:
   LlvmKernel(std::shared_ptr<Program> code, uint32_t width, size_t inputs, size_t outputs,
              const backends::Budgets& budgets, std::vector<std::string> array_names, double param_bound,
-             std::unique_ptr<ir::Module> module);
+             std::unique_ptr<ir::Module> module, uint32_t row_from);
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
   bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const override;
   bool eval(const float* inputs, float* outputs, backends::RuntimeError& err) const override;
+  bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
+                 backends::RuntimeError& err) const override;
 
  private:
   KernelFn general(backends::RuntimeError& err) const;
@@ -32,6 +34,7 @@ class LlvmKernel : public backends::Kernel {
   std::vector<std::string> arrays_;
   double param_bound_;
   std::unique_ptr<ir::Module> module_;  // for the general code, when param_bound_ > 0
+  uint32_t row_from_;                   // the kernel's row parameters (ir::Function::row_params_from)
   mutable std::once_flag general_once_;
   mutable std::shared_ptr<Program> general_;
   mutable std::string general_error_;

@@ -21,7 +21,7 @@ std::unique_ptr<backends::Kernel> SseBackend::compile(const ir::Module& m, const
   for (const auto& f : m.functions)
     if (f->kernel) fn = f.get();
   return std::make_unique<SseKernel>(std::move(memory), fn->num_params, fn->num_results, budgets, std::move(arrays),
-                                     bound, bound > 0 ? m.clone() : nullptr);
+                                     bound, bound > 0 ? m.clone() : nullptr, fn->row_params_from);
 }
 
 KernelFn SseKernel::general(backends::RuntimeError& err) const {
@@ -36,7 +36,7 @@ KernelFn SseKernel::general(backends::RuntimeError& err) const {
 }
 
 bool SseKernel::in_range(const float* const* inputs, size_t n) const {
-  return backends::inputs_in_range(inputs, inputs_, n, param_bound_);
+  return backends::inputs_in_range(inputs, inputs_, n, param_bound_, row_from_);
 }
 
 backends::LaneArrays SseKernel::fresh_arrays() const {
@@ -59,7 +59,14 @@ bool SseKernel::run(KernelFn f, const float* const* inputs, float* const* output
   return backends::run_padded(4, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
     uint64_t code = backends::call_generated([&] { return f(in, out, 0, count, &arrays, backends::stack_limit()); });
     return backends::jit_status(code, arrays, budgets_, err);
-  });
+  }, row_from_);
+}
+
+bool SseKernel::eval_rows(const float* first, size_t count, const float* const* rest, size_t rows,
+                          float* const* outputs, backends::RuntimeError& err) const {
+  if (!row_from_) return Kernel::eval_rows(first, count, rest, rows, outputs, err);
+  return backends::run_rows(inputs_, outputs_, first, count, rest, rows, outputs,
+                            [&](const float* const* in, float* const* out, size_t n) { return eval_batch(in, out, n, err); });
 }
 
 bool SseKernel::eval(const float* inputs, float* outputs, backends::RuntimeError& err) const {

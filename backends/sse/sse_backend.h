@@ -25,13 +25,16 @@ using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs,
 class SseKernel : public backends::Kernel {
  public:
   SseKernel(std::unique_ptr<CodeMemory> code, size_t inputs, size_t outputs, const backends::Budgets& budgets,
-            std::vector<std::string> array_names, double param_bound, std::unique_ptr<ir::Module> module)
+            std::vector<std::string> array_names, double param_bound, std::unique_ptr<ir::Module> module,
+            uint32_t row_from)
       : code_(std::move(code)), inputs_(inputs), outputs_(outputs), budgets_(budgets), arrays_(std::move(array_names)),
-        param_bound_(param_bound), module_(std::move(module)) {}
+        param_bound_(param_bound), module_(std::move(module)), row_from_(row_from) {}
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
   bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const override;
   bool eval(const float* inputs, float* outputs, backends::RuntimeError& err) const override;
+  bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
+                 backends::RuntimeError& err) const override;
   const CodeMemory& code() const { return *code_; }
 
  private:
@@ -46,6 +49,7 @@ class SseKernel : public backends::Kernel {
   std::vector<std::string> arrays_;  // names by slot
   double param_bound_;
   std::unique_ptr<ir::Module> module_;
+  uint32_t row_from_;  // the kernel's row parameters (ir::Function::row_params_from)
   mutable std::once_flag general_once_;
   mutable std::unique_ptr<CodeMemory> general_;
   mutable std::string general_error_;

@@ -368,6 +368,10 @@ class Codegen : public detail::LaneCode {
     Xmm d = alloc(pos);
     if (callee_) {
       a_.movaps(d, Mem::at(Gp::rbx, 16 * in.aux));
+    } else if (fn_.row_params_from && static_cast<uint32_t>(in.aux) >= fn_.row_params_from) {
+      a_.mov(Gp::rax, Mem::at(Gp::rbx, 8 * in.aux));  // a row parameter: one value for the call
+      a_.movss(d, Mem::at(Gp::rax, 0));
+      a_.shufps(d, d, 0);
     } else {
       a_.mov(Gp::rax, Mem::at(Gp::rbx, 8 * in.aux));
       a_.movups(d, Mem::at(Gp::rax, Gp::r13, 1));

@@ -189,6 +189,7 @@ class TieredKernel : public Kernel {
 
   // On the VM a batch goes in chunks, so the native code can take over in the middle of a big one.
   bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, RuntimeError& err) const override {
+    if (row_from_) return eval_rows(inputs[0], n, inputs + 1, 1, outputs, err);  // one row
     std::vector<const float*> in(inputs, inputs + num_inputs());
     std::vector<float*> out(outputs, outputs + num_outputs());
     for (size_t done = 0; done < n;) {
@@ -200,6 +201,27 @@ class TieredKernel : public Kernel {
       account(m, static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count()));
       for (auto& p : in) p += m;
       for (auto& p : out) p += m;
+      done += m;
+    }
+    return true;
+  }
+
+  // A kernel with row parameters (a row split's body) goes by whole rows, as many as make a chunk.
+  bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
+                 RuntimeError& err) const override {
+    if (!row_from_) return Kernel::eval_rows(first, count, rest, rows, outputs, err);
+    std::vector<const float*> r(rest, rest + num_inputs() - 1);
+    std::vector<float*> out(outputs, outputs + num_outputs());
+    size_t per = std::max<size_t>(1, kChunk / std::max<size_t>(count, 1));
+    for (size_t done = 0; done < rows;) {
+      size_t m = std::min(per, rows - done);
+      if (uint64_t vm = s_->vm_points.load(); force_after_ > vm) m = std::min<size_t>(m, (force_after_ - vm + count - 1) / count);
+      if (const Kernel* k = native((rows - done) * count)) return k->eval_rows(first, count, r.data(), rows - done, out.data(), err);
+      auto t0 = Clock::now();
+      if (!vm_->eval_rows(first, count, r.data(), m, out.data(), err)) return false;
+      account(m * count, static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count()));
+      for (auto& p : r) p += m;
+      for (auto& p : out) p += m * count;
       done += m;
     }
     return true;
@@ -261,6 +283,7 @@ class TieredKernel : public Kernel {
   std::unique_ptr<Kernel> vm_;
   std::shared_ptr<Shared> s_;
   uint64_t force_after_ = forced_switch();
+  uint32_t row_from_ = s_->module->kernel_function().row_params_from;
   mutable std::atomic<bool> switched_{false};
 };
 

@@ -71,6 +71,7 @@ struct VmProgram {
   uint32_t num_globals = 0;
   uint32_t num_global_arrays = 0;
   bool needs_lane_state = false;  // some function ticks, calls, or touches globals or arrays
+  uint32_t row_params_from = 0;   // the kernel's ir::Function::row_params_from
   std::vector<std::string> global_names;
   std::vector<std::string> global_array_names;
 };

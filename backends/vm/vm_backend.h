@@ -12,6 +12,8 @@ class VmKernel : public backends::Kernel {
   size_t num_inputs() const override { return prog_.functions[prog_.kernel].num_params; }
   size_t num_outputs() const override { return prog_.functions[prog_.kernel].num_results; }
   bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const override;
+  bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
+                 backends::RuntimeError& err) const override;
   bool eval(const float* inputs, float* outputs, backends::RuntimeError& err) const override;
   const VmProgram& program() const { return prog_; }
 

@@ -132,6 +132,7 @@ bool compile_program(const ir::Module& m, VmProgram& out, std::string& error) {
     FunctionCompiler(*m.functions[k], out.functions.back()).run();
     if (m.functions[k]->kernel) {
       out.kernel = static_cast<uint32_t>(k);
+      out.row_params_from = m.functions[k]->row_params_from;
       found = true;
     }
   }

@@ -183,7 +183,8 @@ struct AlignedFloats {
 
 class Executor {
  public:
-  Executor(const VmProgram& p, const Budgets& b) : p_(p), budgets_(b), arrays_(thread_arrays()) {
+  Executor(const VmProgram& p, const Budgets& b, size_t row_length)
+      : p_(p), budgets_(b), row_length_(row_length), arrays_(thread_arrays()) {
     if (!p.needs_lane_state) return;
     // Array slots: the module's global arrays, then each function's own (as the JITs number them).
     std::vector<std::string> names = p.global_array_names;
@@ -214,12 +215,28 @@ class Executor {
     const VmFunction& f = *fr.f;
     for (auto [r, v] : f.consts) std::fill_n(fr.regs + size_t(r) * fr.stride, fr.stride, v);
   }
+  // Parameter p's lanes for points [base, base + L): the points' own values, or with row parameters
+  // the run of x values below them and one value per row from them on.
+  void load_param(uint32_t p, const float* in, size_t base, uint32_t L, float* lanes) const {
+    if (!p_.row_params_from) {
+      std::memcpy(lanes, in + base, L * sizeof(float));
+      return;
+    }
+    size_t row = base / row_length_, at = base % row_length_;
+    for (uint32_t l = 0; l < L;) {
+      uint32_t run = static_cast<uint32_t>(std::min<size_t>(L - l, row_length_ - at));
+      if (p < p_.row_params_from) std::memcpy(lanes + l, in + at, run * sizeof(float));
+      else std::fill_n(lanes + l, run, in[row]);
+      l += run, at = 0, ++row;
+    }
+  }
   uint32_t slot_of(const Frame& fr, const VInst& v) const {
     return v.array_global ? v.aux : slot_base_[static_cast<size_t>(fr.f - p_.functions.data())] + v.aux;
   }
 
   const VmProgram& p_;
   const Budgets& budgets_;
+  size_t row_length_;                 // points per row, for a kernel with row parameters
   std::vector<uint32_t> slot_base_;  // per function: its first array slot
   backends::LaneArrays& arrays_;      // the thread's, so storage is reused from batch to batch
 
@@ -253,7 +270,7 @@ bool Executor::run_chunk(const float* const* in, float* const* out, size_t base,
   Frame fr{&k, regs.get(size_t(std::max<uint32_t>(k.num_regs, 1)) * S), L, S, env_ptrs.data(), gmem.data(), L, 0};
   init_frame(fr);
   for (uint32_t p = 0; p < k.num_params; ++p)
-    if (k.param_regs[p] != kNoReg) std::memcpy(fr.regs + size_t(k.param_regs[p]) * S, in[p] + base, L * sizeof(float));
+    if (k.param_regs[p] != kNoReg) load_param(p, in[p], base, L, fr.regs + size_t(k.param_regs[p]) * S);
   start.assign(S, 0);
   std::fill_n(start.begin(), L, ~Mask{0});
   if (k.blocks.size() == 1) {  // straight-line kernel: one pass over the code, all lanes present
@@ -475,8 +492,8 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
 }  // namespace
 
 bool run_batch(const VmProgram& p, const Budgets& budgets, const float* const* inputs, float* const* outputs,
-               size_t n, RuntimeError& err, bool& out_of_stack) {
-  Executor ex(p, budgets);
+               size_t n, size_t row_length, RuntimeError& err, bool& out_of_stack) {
+  Executor ex(p, budgets, row_length);
   for (size_t base = 0; base < n; base += kChunkLanes) {
     uint32_t L = static_cast<uint32_t>(std::min<size_t>(kChunkLanes, n - base));
     if (ex.run_chunk(inputs, outputs, base, L, err)) continue;

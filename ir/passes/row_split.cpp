@@ -75,6 +75,7 @@ bool split_rows(const Module& m, RowSplit& out) {
 
   uint32_t k = static_cast<uint32_t>(row_values.size());
   auto pro = kernel_shell(fn, fn.num_params, k), body = kernel_shell(fn, 1 + k, fn.num_results);
+  body->row_params_from = 1;
   std::vector<Inst*> in_pro(fn.next_value, nullptr), in_body(fn.next_value, nullptr);
   for (uint32_t r = 0; r < k; ++r) {
     Inst* p = body->make(Op::Param);

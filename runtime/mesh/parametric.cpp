@@ -10,6 +10,8 @@
 namespace fscript::mesh {
 namespace {
 
+float lerp(double a, double b, int i, int n) { return static_cast<float>(n > 0 ? a + (b - a) * i / n : a); }
+
 bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>& uvw, std::vector<Vec3>& xyz,
               backends::RuntimeError& err) {
   size_t n = uvw.size();
@@ -19,6 +21,21 @@ bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>&
   if (!job.field->eval(u.data(), v.data(), w.data(), n, x.data(), y.data(), z.data(), err)) return false;
   xyz.resize(n);
   for (size_t i = 0; i < n; ++i) xyz[i] = {x[i], y[i], z[i]};
+  return true;
+}
+
+// A surface's grid (as patch() lays it out: v by rows, u along each) as rows of u.
+bool evaluate_surface(const ParametricJob& job, std::vector<Vec3>& xyz, backends::RuntimeError& err) {
+  int na = job.intervals[0], nb = job.intervals[1];
+  size_t count = static_cast<size_t>(na) + 1, rows = static_cast<size_t>(nb) + 1;
+  std::vector<float> u(count), v(rows), w(rows, static_cast<float>(job.domain[4])), x(count * rows), y(x.size()),
+      z(x.size());
+  for (int i = 0; i <= na; ++i) u[static_cast<size_t>(i)] = lerp(job.domain[0], job.domain[1], i, na);
+  for (int j = 0; j <= nb; ++j) v[static_cast<size_t>(j)] = lerp(job.domain[2], job.domain[3], j, nb);
+  EvalTimer timer;
+  if (!job.field->eval_rows(u.data(), count, v.data(), w.data(), rows, x.data(), y.data(), z.data(), err)) return false;
+  xyz.resize(x.size());
+  for (size_t i = 0; i < x.size(); ++i) xyz[i] = {x[i], y[i], z[i]};
   return true;
 }
 
@@ -60,7 +77,6 @@ void keep_params(const std::vector<std::array<float, 3>>& uvw, Mesh& m) {
   for (const auto& p : uvw) m.params.push_back({p[0], p[1], p[2]});
 }
 
-float lerp(double a, double b, int i, int n) { return static_cast<float>(n > 0 ? a + (b - a) * i / n : a); }
 
 // One grid patch: axis a varies along rows, axis b along columns, the third fixed at `fixed`.
 void patch(const ParametricJob& job, int a, int b, int c, double fixed, bool flip, std::vector<std::array<float, 3>>& uvw,
@@ -98,6 +114,23 @@ bool KernelParametric::eval(const float* u, const float* v, const float* w, size
   return k_.eval_batch(in, out, n, err);
 }
 
+bool KernelParametric::eval_rows(const float* u, size_t count, const float* v, const float* w, size_t rows, float* x,
+                                 float* y, float* z, backends::RuntimeError& err) const {
+  std::vector<float> t(rows, t_);
+  const float* rest[3] = {v, w, t.data()};
+  float* out[3] = {x, y, z};
+  return k_.eval_rows(u, count, rest, rows, out, err);
+}
+
+bool ParametricField::eval_rows(const float* u, size_t count, const float* v, const float* w, size_t rows, float* x,
+                                float* y, float* z, backends::RuntimeError& err) const {
+  size_t n = count * rows;
+  std::vector<float> us(n), vs(n), ws(n);
+  for (size_t r = 0; r < rows; ++r)
+    for (size_t i = 0; i < count; ++i) us[r * count + i] = u[i], vs[r * count + i] = v[r], ws[r * count + i] = w[r];
+  return eval(us.data(), vs.data(), ws.data(), n, x, y, z, err);
+}
+
 bool polygonize_parametric(const ParametricJob& job, Mesh& out, backends::RuntimeError& err) {
   out = Mesh{};
   if (!job.field) {
@@ -125,7 +158,9 @@ bool polygonize_parametric(const ParametricJob& job, Mesh& out, backends::Runtim
       patch(job, a, b, c, job.domain[2 * c + 1], false, uvw, out.triangles);
     }
   }
-  if (!evaluate(job, uvw, out.positions, err)) return false;
+  if (!(job.kind == ParametricKind::Surface ? evaluate_surface(job, out.positions, err)
+                                            : evaluate(job, uvw, out.positions, err)))
+    return false;
   keep_params(uvw, out);
   float size = 0;
   for (const auto& p : out.positions)

@@ -374,10 +374,14 @@ TEST_CASE("backends: grid rows through the row split agree with the points, bit 
     auto vm = test::build("function FRep(x, y, z, t) { " + body + " }", "", true, {}, "vm");
     REQUIRE(vm->ok);
     std::vector<float> want = run(*vm->kernel, cols);
-    std::vector<std::string> names = backends::available_backends();
+    // The forced switch first: once llvm has compiled the body, auto finds it in the cache.
+    std::vector<std::string> names = {"auto, switched after 300 points"};
+    for (const std::string& name : backends::available_backends()) names.push_back(name);
     names.push_back("auto");
-    for (const std::string& name : names) {
-      INFO(name << ": " << body);
+    for (const std::string& label : names) {
+      INFO(label << ": " << body);
+      std::string name = label.substr(0, label.find(','));
+      if (name != label) setenv("FSCRIPT_AUTO_SWITCH_AFTER", "300", 1);  // in the middle of the rows
       std::string error;
       auto k = backends::with_row_split(backends::make_backend(name)->compile(*vm->module, {}, error), name,
                                         *vm->module, {});
@@ -387,8 +391,14 @@ TEST_CASE("backends: grid rows through the row split agree with the points, bit 
       float* outs[] = {got.data()};
       const float* in_rest[] = {rest[0].data(), rest[1].data(), rest[2].data()};
       backends::RuntimeError err;
+      backends::TierStats tiers = backends::tier_stats();
       REQUIRE(k->eval_rows(xs.data(), count, in_rest, rows, outs, err));
       CHECK(backends::row_stats().rows == rows_before + rows);  // the split ran, not the points
+      if (name != label) {
+        unsetenv("FSCRIPT_AUTO_SWITCH_AFTER");
+        CHECK(backends::tier_stats().native_points > tiers.native_points);  // both tiers ran rows
+        CHECK(backends::tier_stats().vm_points > tiers.vm_points);
+      }
       for (size_t i = 0; i < want.size(); ++i) {
         INFO("point " << i);
         CHECK(same(want[i], got[i]));

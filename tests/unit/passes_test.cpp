@@ -129,6 +129,17 @@ TEST_CASE("row split: the gyroid's y and z work goes to the prologue; both parts
   CHECK(s.prologue->kernel_function().num_results == 4);
   CHECK(s.body->kernel_function().num_params == 5);
   CHECK(s.body->kernel_function().num_results == 1);
+  // The body's row parameters are part of its text (the llvm cache keys by it) and read back.
+  std::string text = ir::print(*s.body), error;
+  CHECK(text.find(") -> 1 kernel rows 1 {") != std::string::npos);
+  auto again = ir::read(text, error);
+  REQUIRE(again);
+  CHECK(again->kernel_function().row_params_from == 1);
+  CHECK(ir::print(*again) == text);
+  CHECK(s.prologue->kernel_function().row_params_from == 0);
+  // Row parameters only on a kernel, and before its last parameter.
+  again->functions[0]->row_params_from = 5;
+  CHECK(ir::verify(*again).find("row parameters") != std::string::npos);
 }
 
 TEST_CASE("row split: refused where it cannot or would not pay") {

@@ -1,6 +1,8 @@
 // Runtime errors, the stack limit and the input guard of the JIT backends.
 #include "backends/jit_support.h"
 
+#include "ir/ranges.h"
+
 #include <pthread.h>
 
 #include <algorithm>
@@ -118,11 +120,27 @@ extern "C" uint32_t fs_ticks_carry(int32_t* counters, uint64_t budget) {
 }
 
 // No early exit, so the loop vectorises.
-bool inputs_in_range(const float* const* inputs, size_t num_inputs, size_t n, double bound, uint32_t row_from) {
+std::vector<ir::ParamRange> row_ranges_for(const ir::Function& fn, double bound) {
+  std::vector<ir::ParamRange> out;
+  for (uint32_t k = fn.row_params_from; fn.row_params_from && k < fn.num_params; ++k)
+    if (const ir::ParamRange* r = ir::row_param_range(fn, bound, k)) out.push_back(*r);
+  if (out.size() != (fn.row_params_from ? fn.num_params - fn.row_params_from : 0)) out.clear();
+  return out;
+}
+
+bool inputs_in_range(const float* const* inputs, size_t num_inputs, size_t n, double bound, uint32_t row_from,
+                     const ir::ParamRange* row_ranges) {
   float b = static_cast<float>(bound);
   bool ok = true;
-  for (size_t k = 0; k < num_inputs; ++k)
+  for (size_t k = 0; k < num_inputs; ++k) {
+    if (row_from && k >= row_from && row_ranges) {
+      const ir::ParamRange& r = row_ranges[k - row_from];
+      float v = inputs[k][0];
+      ok &= (v >= r.lo && v <= r.hi) || (v != v && r.nan);
+      continue;
+    }
     for (size_t i = 0, e = row_from && k >= row_from ? 1 : n; i < e; ++i) ok &= std::fabs(inputs[k][i]) <= b;
+  }
   return ok;
 }
 

@@ -68,8 +68,12 @@ uint64_t call_generated(const Call& call) {
 extern "C" uint32_t fs_ticks_carry(int32_t* counters, uint64_t budget);
 
 // Every input of the batch finite with |x| <= bound (NaN fails too).
-// Inputs from `row_from` on (when not 0) are one value each: a row parameter (ir::Function).
-bool inputs_in_range(const float* const* inputs, size_t num_inputs, size_t n, double bound, uint32_t row_from = 0);
+// Inputs from `row_from` on (when not 0) are one value each: a row parameter (ir::Function), held
+// to its range in `row_ranges` (one per row parameter) when given, else to the bound.
+bool inputs_in_range(const float* const* inputs, size_t num_inputs, size_t n, double bound, uint32_t row_from = 0,
+                     const ir::ParamRange* row_ranges = nullptr);
+// The ranges the bounded code for `bound` assumes of the kernel's row parameters (empty: none known).
+std::vector<ir::ParamRange> row_ranges_for(const ir::Function& fn, double bound);
 
 // Small lists live on the stack: the one-point path must not allocate.
 template <typename T, size_t N = 64>

@@ -130,6 +130,7 @@ static std::unique_ptr<Function> clone_function(const Function& src) {
   fn->recursive = src.recursive;
   fn->kernel = src.kernel;
   fn->row_params_from = src.row_params_from;
+  fn->row_param_ranges = src.row_param_ranges;
   fn->arrays = src.arrays;
   std::unordered_map<const Block*, Block*> bmap;
   std::unordered_map<const Inst*, Inst*> imap;

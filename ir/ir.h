@@ -42,6 +42,16 @@ inline const char* mnemonic(Op op) { return op_info(op).mnemonic; }
 struct Block;
 struct Function;
 
+// The parameter bounds the value-range analysis tries (ir/ranges.h): the backends' bounded code
+// assumes every parameter finite with |p| <= one of these.
+constexpr double kParamBounds[] = {65536.0, 1024.0, 16.0};
+constexpr size_t kNumParamBounds = 3;
+// What a row parameter is known to hold: floats in [lo, hi], NaN only if `nan`.
+struct ParamRange {
+  float lo, hi;
+  bool nan;
+};
+
 // One instruction; it defines value v<id> unless it is a store, tick or terminator.
 struct Inst {
   Op op = Op::Const;
@@ -79,6 +89,10 @@ struct Function {
   // ir/passes/row_split.h): a batch holds rows of one length, and param k of point i is
   // inputs[k][i / row length] (Kernel::eval_rows). 0: every parameter is per point.
   uint32_t row_params_from = 0;
+  // For each of kParamBounds, the range of each row parameter when the inputs it was computed from
+  // lie within that bound ([bound * K + k], K row parameters; empty: nothing known). The backends'
+  // bounded code assumes it, and checks it on each row's values at run time.
+  std::vector<ParamRange> row_param_ranges;
   std::vector<std::string> arrays;  // local array slots
   std::vector<std::unique_ptr<Block>> blocks;  // blocks[0] is the entry
   std::vector<std::unique_ptr<Inst>> pool;

@@ -64,7 +64,13 @@ static std::string operands(const Module& m, const Function& fn, const Inst& i) 
 std::string print(const Module& m, const Function& fn) {
   std::string out = "fn @" + fn.name + "(" + std::to_string(fn.num_params) + ") -> " +
                     std::to_string(fn.num_results) + (fn.recursive ? " recursive" : "") + (fn.kernel ? " kernel" : "") +
-                    (fn.row_params_from ? " rows " + std::to_string(fn.row_params_from) : "") + " {\n";
+                    (fn.row_params_from ? " rows " + std::to_string(fn.row_params_from) : "");
+  if (!fn.row_param_ranges.empty()) {
+    out += " ranges";
+    for (const ParamRange& r : fn.row_param_ranges)
+      out += " " + format_float(r.lo) + " " + format_float(r.hi) + (r.nan ? " nan" : " num");
+  }
+  out += " {\n";
   for (const auto& a : fn.arrays) out += "  array %" + a + "\n";
   for (const auto& b : fn.blocks) {
     out += blk(b.get()) + ":\n";

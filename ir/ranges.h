@@ -22,8 +22,11 @@ bool may_be_nan(const Inst* v, const std::vector<Range>& ranges);
 // How many operations need a NaN test: min/max/clamp on a bound operand that may be NaN (the
 // first operand's NaN comes out of minps/maxps by itself), truthiness of one that may be NaN.
 int nan_tests(const Function& fn, const std::vector<Range>& ranges);
-// The largest parameter bound (65536, 1024 or 16) that leaves the fewest NaN tests; 0 when no
+// The largest parameter bound (of kParamBounds) that leaves the fewest NaN tests; 0 when no
 // bound removes any, so code need not assume one.
 double best_param_bound(const Function& fn);
+// What the bounded code for `param_bound` assumes of a row parameter (ir::Function::
+// row_param_ranges); nullptr: |p| <= param_bound, as for any parameter.
+const ParamRange* row_param_range(const Function& fn, double param_bound, uint32_t param);
 
 }  // namespace fscript::ir

@@ -95,6 +95,16 @@ class Reader {
     fn->recursive = c.eat("recursive");
     fn->kernel = c.eat("kernel");
     if (c.eat("rows")) fn->row_params_from = static_cast<uint32_t>(std::strtoul(c.word().c_str(), nullptr, 10));
+    if (c.eat("ranges")) {
+      size_t k = fn->num_params > fn->row_params_from ? fn->num_params - fn->row_params_from : 0;
+      for (size_t i = 0; i < kNumParamBounds * k; ++i) {
+        ParamRange r;
+        r.lo = std::strtof(c.word().c_str(), nullptr);
+        r.hi = std::strtof(c.word().c_str(), nullptr);
+        r.nan = c.word() == "nan";
+        fn->row_param_ranges.push_back(r);
+      }
+    }
     if (!c.eat("{")) return fail("expected '{'");
     Function* f = fn.get();
     mod_->functions.push_back(std::move(fn));

@@ -132,6 +132,10 @@ std::string verify(const Module& m) {
   for (auto& f : m.functions) {
     if (f->row_params_from && (!f->kernel || f->row_params_from >= f->num_params))
       return "@" + f->name + ": row parameters on a function that is not a kernel, or past its parameters";
+    if (!f->row_param_ranges.empty() && (!f->row_params_from ||
+        f->row_param_ranges.size() != kNumParamBounds * (f->num_params - std::min(f->row_params_from, f->num_params))))
+      return "@" + f->name + ": row parameter ranges for " + std::to_string(f->row_param_ranges.size()) +
+             " values, not one per row parameter and bound";
     if (std::string e = Verifier(m, *f).run(); !e.empty()) return e;
   }
   return "";

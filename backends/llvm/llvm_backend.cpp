@@ -43,7 +43,9 @@ LlvmKernel::LlvmKernel(std::shared_ptr<Program> code, uint32_t width, size_t inp
                        const backends::Budgets& budgets, std::vector<std::string> array_names, double param_bound,
                        std::unique_ptr<ir::Module> module, uint32_t row_from)
     : code_(std::move(code)), width_(width), inputs_(inputs), outputs_(outputs), budgets_(budgets),
-      arrays_(std::move(array_names)), param_bound_(param_bound), module_(std::move(module)), row_from_(row_from) {}
+      arrays_(std::move(array_names)), param_bound_(param_bound), module_(std::move(module)), row_from_(row_from) {
+  if (module_ && param_bound_ > 0) row_ranges_ = backends::row_ranges_for(module_->kernel_function(), param_bound_);
+}
 
 KernelFn LlvmKernel::general(backends::RuntimeError& err) const {
   std::call_once(general_once_, [this] {
@@ -60,7 +62,8 @@ KernelFn LlvmKernel::general(backends::RuntimeError& err) const {
 bool LlvmKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n,
                             backends::RuntimeError& err) const {
   KernelFn f = code_->entry();
-  if (param_bound_ > 0 && !backends::inputs_in_range(inputs, inputs_, n, param_bound_, row_from_) && !(f = general(err)))
+  if (param_bound_ > 0 && !backends::inputs_in_range(inputs, inputs_, n, param_bound_, row_from_,
+                                                              row_ranges_.empty() ? nullptr : row_ranges_.data()) && !(f = general(err)))
     return false;
   // Per call: batches may run on several threads at once. Only kernels with arrays need it.
   backends::LaneArrays arrays;

@@ -35,6 +35,7 @@ class LlvmKernel : public backends::Kernel {
   double param_bound_;
   std::unique_ptr<ir::Module> module_;  // for the general code, when param_bound_ > 0
   uint32_t row_from_;                   // the kernel's row parameters (ir::Function::row_params_from)
+  std::vector<ir::ParamRange> row_ranges_;  // what the bounded code assumes of them
   mutable std::once_flag general_once_;
   mutable std::shared_ptr<Program> general_;
   mutable std::string general_error_;

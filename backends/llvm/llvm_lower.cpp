@@ -112,12 +112,6 @@ class LlvmFunctionLowering {
       b_.CreateStore(b_.getInt64(0), b_.CreateStructGEP(s_.ctx, ctx_, kDepth));
       b_.CreateStore(f_->getArg(5), b_.CreateStructGEP(s_.ctx, ctx_, kStackLimit));
     }
-    // Row parameters hold one value for the whole call: loaded and splat once, before the loop.
-    for (uint32_t k = fn_.row_params_from; fn_.row_params_from && k < fn_.num_params; ++k) {
-      llvm::Value* base = b_.CreateLoad(s_.ptr, b_.CreateConstGEP1_64(s_.ptr, inputs, k));
-      row_param_.resize(fn_.num_params, nullptr);
-      row_param_[k] = b_.CreateVectorSplat(s_.width, b_.CreateAlignedLoad(s_.f32, base, llvm::Align(4)));
-    }
     llvm::BasicBlock* pre = b_.GetInsertBlock();
     llvm::BasicBlock* loop = llvm::BasicBlock::Create(s_.c, "loop", f_);
     llvm::BasicBlock* group = llvm::BasicBlock::Create(s_.c, "group", f_);
@@ -351,7 +345,10 @@ class LlvmFunctionLowering {
       case Op::Const: case Op::Phi: return;  // constants inline; a phi's home is written on edges
       case Op::Param:
         if (callee_) return define(in, f_->getArg(3 + static_cast<unsigned>(in.aux)));
-        if (static_cast<size_t>(in.aux) < row_param_.size() && row_param_[in.aux]) return define(in, row_param_[in.aux]);
+        if (fn_.row_params_from && static_cast<uint32_t>(in.aux) >= fn_.row_params_from) {  // one value per call
+          llvm::Value* base = b_.CreateLoad(s_.ptr, b_.CreateConstGEP1_64(s_.ptr, inputs_, static_cast<uint32_t>(in.aux)));
+          return define(in, b_.CreateVectorSplat(s_.width, b_.CreateAlignedLoad(s_.f32, base, llvm::Align(4))));
+        }
         return define(in, b_.CreateAlignedLoad(s_.vf, lane_ptr(inputs_, static_cast<uint32_t>(in.aux)), llvm::Align(4)));
       case Op::Add: return define(in, b_.CreateFAdd(a(0), a(1)));
       case Op::Sub: return define(in, b_.CreateFSub(a(0), a(1)));
@@ -513,7 +510,6 @@ class LlvmFunctionLowering {
 
   Shared& s_;
   const ir::Function& fn_;
-  std::vector<llvm::Value*> row_param_;  // the splat row parameters (kernel entry), by index
   llvm::Function* f_;
   llvm::IRBuilder<> b_;
   bool callee_, straight_ = true;

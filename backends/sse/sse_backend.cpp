@@ -36,7 +36,8 @@ KernelFn SseKernel::general(backends::RuntimeError& err) const {
 }
 
 bool SseKernel::in_range(const float* const* inputs, size_t n) const {
-  return backends::inputs_in_range(inputs, inputs_, n, param_bound_, row_from_);
+  return backends::inputs_in_range(inputs, inputs_, n, param_bound_, row_from_,
+                                   row_ranges_.empty() ? nullptr : row_ranges_.data());
 }
 
 backends::LaneArrays SseKernel::fresh_arrays() const {

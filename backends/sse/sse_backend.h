@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "backends/backend.h"
+#include "backends/jit_support.h"
 #include "backends/sse/code_memory.h"
 #include "backends/lane_arrays.h"
 
@@ -28,7 +29,9 @@ class SseKernel : public backends::Kernel {
             std::vector<std::string> array_names, double param_bound, std::unique_ptr<ir::Module> module,
             uint32_t row_from)
       : code_(std::move(code)), inputs_(inputs), outputs_(outputs), budgets_(budgets), arrays_(std::move(array_names)),
-        param_bound_(param_bound), module_(std::move(module)), row_from_(row_from) {}
+        param_bound_(param_bound), module_(std::move(module)), row_from_(row_from) {
+    if (module_ && param_bound_ > 0) row_ranges_ = backends::row_ranges_for(module_->kernel_function(), param_bound_);
+  }
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
   bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const override;
@@ -50,6 +53,7 @@ class SseKernel : public backends::Kernel {
   double param_bound_;
   std::unique_ptr<ir::Module> module_;
   uint32_t row_from_;  // the kernel's row parameters (ir::Function::row_params_from)
+  std::vector<ir::ParamRange> row_ranges_;  // what the bounded code assumes of them
   mutable std::once_flag general_once_;
   mutable std::unique_ptr<CodeMemory> general_;
   mutable std::string general_error_;

@@ -24,6 +24,11 @@ class FunctionCompiler {
     out_.num_arrays = static_cast<uint32_t>(fn_.arrays.size());
     out_.array_names = fn_.arrays;
     lo_ = backends::compute_intervals(fn_);
+    // The executor fills parameter registers before the first instruction, wherever the Param sits
+    // (a row split's body places them at their first use).
+    for (const auto& b : fn_.blocks)
+      for (const Inst* i : b->insts)
+        if (i->op == Op::Param) lo_.interval[i->id].start = 0;
     reg_ = backends::linear_scan(fn_, lo_, [&](const Inst* i) { return i->op == Op::Const; }, out_.num_regs);
     out_.param_regs.assign(fn_.num_params, kNoReg);
     for (size_t k = 0; k < lo_.blocks.size(); ++k) block_index_[lo_.blocks[k]] = static_cast<uint32_t>(k);

@@ -3,6 +3,7 @@
 #include "ir/passes/row_split.h"
 
 #include "ir/passes/passes.h"
+#include "ir/ranges.h"
 
 #include <vector>
 
@@ -71,19 +72,25 @@ bool split_rows(const Module& m, RowSplit& out) {
         row_values.push_back(a);
       }
   }
-  if (row_values.empty() || hoisted_weight <= kRowValueCost * row_values.size()) return false;
+  if (row_values.empty() || double(hoisted_weight) <= kRowValueCost * double(row_values.size())) return false;
 
   uint32_t k = static_cast<uint32_t>(row_values.size());
   auto pro = kernel_shell(fn, fn.num_params, k), body = kernel_shell(fn, 1 + k, fn.num_results);
   body->row_params_from = 1;
   std::vector<Inst*> in_pro(fn.next_value, nullptr), in_body(fn.next_value, nullptr);
-  for (uint32_t r = 0; r < k; ++r) {
-    Inst* p = body->make(Op::Param);
-    p->aux = static_cast<int32_t>(1 + r);
-    append(body->entry(), p);
-    in_body[row_values[r]->id] = p;
-  }
+  // A row parameter's instruction goes just before its first use: backends load it there, so
+  // hundreds of them (prospero) are not all live from the top.
+  auto row_params_of = [&](const Inst* i) {
+    for (const Inst* a : i->args)
+      if (int r = row_index[a->id]; r >= 0 && !in_body[a->id]) {
+        Inst* p = body->make(Op::Param);
+        p->aux = 1 + r;
+        append(body->entry(), p);
+        in_body[a->id] = p;
+      }
+  };
   for (const Inst* i : insts) {
+    if (i->op == Op::Ret || varying[i->id]) row_params_of(i);
     if (i->op == Op::Ret) {
       Inst* r = copy_of(*body, i, in_body);
       append(body->entry(), r);
@@ -103,6 +110,13 @@ bool split_rows(const Module& m, RowSplit& out) {
   Inst* ret = pro->make(Op::Ret);
   for (const Inst* v : row_values) ret->args.push_back(in_pro[v->id]);
   append(pro->entry(), ret);
+  // What the body's bounded code may assume of each row value: its range in the whole kernel under
+  // each parameter bound (checked on every row's values when the body runs).
+  for (double bound : kParamBounds) {
+    std::vector<Range> r = value_ranges(fn, bound);
+    for (const Inst* v : row_values)
+      body->row_param_ranges.push_back({static_cast<float>(r[v->id].lo), static_cast<float>(r[v->id].hi), r[v->id].nan});
+  }
   run_dce(*body);  // constants only the prologue reads
   out.prologue = std::make_unique<Module>();
   out.prologue->functions.push_back(std::move(pro));

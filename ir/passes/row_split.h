@@ -21,12 +21,12 @@ struct RowSplit {
 
 // Splits a straight-line kernel (one block, no calls, no memory, no traps). Returns false, with
 // `out` untouched, when the kernel has another shape or when the split would not pay: the work
-// hoisted (a runtime call counted as kCallWeight operations) must exceed kRowValueCost per value
-// the body reads back per point (each is written per point and read back: measured,
-// docs/performance.md "Grid rows": csg8's 25 operations for 12 values lose, gyroid's 3 operations
-// and 4 sin/cos for 4 values win).
+// hoisted (a runtime call counted as kCallWeight operations) must exceed kRowValueCost operations
+// per row value the body takes (a load or broadcast per group, and a register; measured,
+// docs/performance.md "Grid rows": csg8's 25 operations for 12 values win, prospero's 734 for 571
+// lose).
 bool split_rows(const Module& m, RowSplit& out);
 constexpr size_t kCallWeight = 8;
-constexpr size_t kRowValueCost = 4;
+constexpr double kRowValueCost = 1.5;
 
 }  // namespace fscript::ir

@@ -131,7 +131,7 @@ TEST_CASE("row split: the gyroid's y and z work goes to the prologue; both parts
   CHECK(s.body->kernel_function().num_results == 1);
   // The body's row parameters are part of its text (the llvm cache keys by it) and read back.
   std::string text = ir::print(*s.body), error;
-  CHECK(text.find(") -> 1 kernel rows 1 {") != std::string::npos);
+  CHECK(text.find(") -> 1 kernel rows 1 ranges ") != std::string::npos);
   auto again = ir::read(text, error);
   REQUIRE(again);
   CHECK(again->kernel_function().row_params_from == 1);
@@ -150,7 +150,8 @@ TEST_CASE("row split: refused where it cannot or would not pay") {
     return !ir::split_rows(*b->module, s) && !s.prologue && !s.body;
   };
   CHECK(refused("function FRep(x, y, z, t) { return x * 2 - 1; }"));              // nothing to hoist
-  CHECK(refused("function FRep(x, y, z, t) { return x + y * y - z; }"));          // 2 operations for 2 values
+  CHECK(refused("function FRep(x, y, z, t) { return x + y * y - z; }"));          // 1 operation for 2 values
+  CHECK_FALSE(refused("function FRep(x, y, z, t) { return x + (y * y + z * z) * 0.5 - 2; }"));  // 3 for 1
   CHECK(refused("function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < y * 9; i++) s += sin(x + i); return s; }"));
   CHECK(refused("function f(x) { return x < 1 ? x : f(x - 1) + 1; } function FRep(x, y, z, t) { return f(y) + x; }"));
   CHECK_FALSE(refused("function FRep(x, y, z, t) { return x - exp(y) * log(z + 2); }"));

@@ -35,8 +35,7 @@ std::unique_ptr<backends::Kernel> LlvmBackend::compile(const ir::Module& m, cons
   if (!code) return nullptr;
   const Program& p = *code;
   return std::make_unique<LlvmKernel>(std::move(code), width_, p.num_inputs, p.num_outputs, budgets, p.array_names,
-                                      p.param_bound, p.param_bound > 0 ? m.clone() : nullptr,
-                                      m.kernel_function().row_params_from);
+                                      p.param_bound, m.clone(), m.kernel_function().row_params_from);
 }
 
 LlvmKernel::LlvmKernel(std::shared_ptr<Program> code, uint32_t width, size_t inputs, size_t outputs,
@@ -81,8 +80,31 @@ bool LlvmKernel::eval_rows(const float* first, size_t count, const float* const*
                             [&](const float* const* in, float* const* out, size_t n) { return eval_batch(in, out, n, err); });
 }
 
+// One point: the kernel compiled again at one lane (on the first call), so a call costs one point's
+// work, not a padded group's. Its code is general (no bounded-input assumptions): no range check.
+KernelFn LlvmKernel::scalar(backends::RuntimeError& err) const {
+  std::call_once(scalar_once_, [this] {
+    Lowered lowered;
+    double ms = 0;
+    std::string error;
+    scalar_ = compile_module(*module_, 1, budgets_, false, lowered, ms, error);
+    if (!scalar_) scalar_error_ = "the llvm backend could not compile the kernel's one-point code: " + error;
+  });
+  if (!scalar_) err.message = scalar_error_;
+  return scalar_ ? scalar_->entry() : nullptr;
+}
+
 bool LlvmKernel::eval(const float* inputs, float* outputs, backends::RuntimeError& err) const {
-  return backends::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
+  KernelFn f = scalar(err);
+  if (!f) return false;
+  backends::Scratch<const float*> in(inputs_);
+  backends::Scratch<float*> out(outputs_);
+  for (size_t k = 0; k < inputs_; ++k) in.data[k] = inputs + k;
+  for (size_t k = 0; k < outputs_; ++k) out.data[k] = outputs + k;
+  backends::LaneArrays arrays;
+  if (!arrays_.empty()) arrays.init(1, budgets_.max_array_elements, arrays_);
+  uint64_t code = backends::call_generated([&] { return f(in.data, out.data, 0, 1, &arrays, backends::stack_limit()); });
+  return backends::jit_status(code, arrays, budgets_, err);
 }
 
 std::string kernel_text(const ir::Module& m, const backends::Budgets& budgets, bool assembly, std::string& error) {

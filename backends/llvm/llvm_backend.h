@@ -27,18 +27,22 @@ class LlvmKernel : public backends::Kernel {
 
  private:
   KernelFn general(backends::RuntimeError& err) const;
+  KernelFn scalar(backends::RuntimeError& err) const;
   std::shared_ptr<Program> code_;
   uint32_t width_;
   size_t inputs_, outputs_;
   backends::Budgets budgets_;
   std::vector<std::string> arrays_;
   double param_bound_;
-  std::unique_ptr<ir::Module> module_;  // for the general code, when param_bound_ > 0
+  std::unique_ptr<ir::Module> module_;  // for the general and the one-point code
   uint32_t row_from_;                   // the kernel's row parameters (ir::Function::row_params_from)
   std::vector<ir::ParamRange> row_ranges_;  // what the bounded code assumes of them
   mutable std::once_flag general_once_;
   mutable std::shared_ptr<Program> general_;
   mutable std::string general_error_;
+  mutable std::once_flag scalar_once_;
+  mutable std::shared_ptr<Program> scalar_;
+  mutable std::string scalar_error_;
 };
 
 class LlvmBackend : public backends::Backend {

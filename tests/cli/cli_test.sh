@@ -381,6 +381,15 @@ if [ -n "$R" ]; then
 j['tiers']['switched'] >= 1 and j['tiers']['vm_points'] >= 10000 and j['tiers']['native_points'] > 0 and j['tiers']['first_switch_ms'] >= 0
 " -- cat "$T/tier.json"
   cmp -s "$T/tier-vm.ply" "$T/tier-auto.ply" || { echo "FAIL auto (switched mid-job) mesh differs from vm"; fails=$((fails + 1)); }
+  if [ -n "$LLVM" ]; then
+    # With the llvm disk cache, a second run of the same scene is native from its first batch.
+    env XDG_CACHE_HOME="$T/xdg-auto" FSCRIPT_AUTO_SWITCH_AFTER=1 "$R" "$T/tier.wrl" -o "$T/tier-d1.ply" --llvm-disk-cache 2> /dev/null
+    env XDG_CACHE_HOME="$T/xdg-auto" "$R" "$T/tier.wrl" -o "$T/tier-d2.ply" --llvm-disk-cache --stats 2> "$T/tier-d2.json"
+    jcheck "fvrml-run auto: the second run with the disk cache starts native" out "
+j['tiers']['cached'] >= 1 and j['tiers']['vm_points'] == 0 and j['tiers']['native_points'] > 0 and j['tiers']['compiles'] == 0
+" -- cat "$T/tier-d2.json"
+    cmp -s "$T/tier-vm.ply" "$T/tier-d2.ply" || { echo "FAIL auto from the disk cache: mesh differs from vm"; fails=$((fails + 1)); }
+  fi
 fi
 
 # fvrml-meshdiff: known answers, formats, bad input.

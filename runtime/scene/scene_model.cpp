@@ -2,6 +2,7 @@
 // the enclosing FTransform, compiling each FVRML node's scripts and evaluating its time.
 #include "runtime/scene/scene_model.h"
 
+#include <cstdio>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -95,6 +96,13 @@ TimeSensorFields time_fields(const vrml::Node& n) {
 }
 
 namespace {
+
+// A field's number as a message shows it.
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
 std::string str(const vrml::Node& n, const char* field) {
   const vrml::Value* v = n.get(field);
   return v && !v->strs.empty() ? v->strs[0] : "";
@@ -383,9 +391,20 @@ class Builder {
   void resolve_domain(Shape& s, const vrml::Node& geo, bool implicit) {
     const vrml::Value* res = geo.get("resolution");
     size_t dims = res ? res->nums.size() : 3;
+    bool refused = false;
     for (int k = 0; k < 3; ++k) {
       double r = res && !res->nums.empty() ? res->nums[std::min<size_t>(k, res->nums.size() - 1)] : 50;
-      s.resolution[k] = std::max(1, static_cast<int>(std::lround(r * opts_.resolution_scale)));
+      double scaled = r * opts_.resolution_scale;
+      if (!(scaled <= kMaxResolution) && !refused) {  // also NaN: refused before any work, not an out-of-memory abort
+        refused = true;
+        const vrml::FieldSlot* at = geo.slot("resolution");
+        std::string why = "resolution " + number_text(r) +
+                          (opts_.resolution_scale != 1 ? " (times --resolution-scale " + number_text(opts_.resolution_scale) + ")" : "") +
+                          " is over the limit of " + std::to_string(kMaxResolution) + " samples per axis";
+        diag_.error(file_of(geo), at ? at->span : geo.span, why);
+      }
+      if (!(scaled <= kMaxResolution)) scaled = 1;
+      s.resolution[k] = std::max(1, static_cast<int>(std::lround(scaled)));
     }
     if (implicit) {
       s.kind = ShapeKind::Implicit;

@@ -80,6 +80,11 @@ struct Group {
   double fraction = 0;
 };
 
+// The most samples a shape's resolution may ask for per axis (implicit and parametric), after
+// --resolution-scale: more is refused before any work (docs/scenes.md, "Limits"). 4096^3 cells are
+// meshed in slabs and blocks; a plane of 4096^2 samples takes 64 MB per value array.
+constexpr int kMaxResolution = 4096;
+
 struct ModelOptions {
   // Every script of the scene compiles with these (tiered execution unless the caller says
   // otherwise).

@@ -112,18 +112,19 @@ bool run_padded(uint32_t width, size_t num_inputs, size_t num_outputs, const flo
   return true;
 }
 
-// Rows of a kernel with row parameters (from `row_from` on) as one batch per row: the compiled
-// code reads a row parameter's one value (`batch(inputs, outputs, n)` is the kernel's eval_batch).
-template <typename Batch>
-bool run_rows(size_t num_inputs, size_t num_outputs, const float* first, size_t count, const float* const* rest,
-              size_t rows, float* const* outputs, Batch batch) {
-  Scratch<const float*> in(num_inputs);
-  Scratch<float*> out(num_outputs);
+// A JIT kernel's eval_rows: with row parameters (from `row_from` on, not 0) one eval_batch per
+// row, whose compiled code reads each row parameter's one value; without, the points expanded.
+template <typename JitKernel>
+bool jit_eval_rows(const JitKernel& k, uint32_t row_from, const float* first, size_t count, const float* const* rest,
+                   size_t rows, float* const* outputs, RuntimeError& err) {
+  if (!row_from) return k.Kernel::eval_rows(first, count, rest, rows, outputs, err);
+  Scratch<const float*> in(k.num_inputs());
+  Scratch<float*> out(k.num_outputs());
   in.data[0] = first;
   for (size_t r = 0; r < rows; ++r) {
-    for (size_t k = 1; k < num_inputs; ++k) in.data[k] = rest[k - 1] + r;
-    for (size_t o = 0; o < num_outputs; ++o) out.data[o] = outputs[o] + r * count;
-    if (!batch(in.data, out.data, count)) return false;
+    for (size_t i = 1; i < k.num_inputs(); ++i) in.data[i] = rest[i - 1] + r;
+    for (size_t o = 0; o < k.num_outputs(); ++o) out.data[o] = outputs[o] + r * count;
+    if (!k.eval_batch(in.data, out.data, count, err)) return false;
   }
   return true;
 }

@@ -75,9 +75,7 @@ bool LlvmKernel::eval_batch(const float* const* inputs, float* const* outputs, s
 
 bool LlvmKernel::eval_rows(const float* first, size_t count, const float* const* rest, size_t rows,
                            float* const* outputs, backends::RuntimeError& err) const {
-  if (!row_from_) return Kernel::eval_rows(first, count, rest, rows, outputs, err);
-  return backends::run_rows(inputs_, outputs_, first, count, rest, rows, outputs,
-                            [&](const float* const* in, float* const* out, size_t n) { return eval_batch(in, out, n, err); });
+  return backends::jit_eval_rows(*this, row_from_, first, count, rest, rows, outputs, err);
 }
 
 // One point: the kernel compiled again at one lane (on the first call), so a call costs one point's

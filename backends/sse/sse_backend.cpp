@@ -65,9 +65,7 @@ bool SseKernel::run(KernelFn f, const float* const* inputs, float* const* output
 
 bool SseKernel::eval_rows(const float* first, size_t count, const float* const* rest, size_t rows,
                           float* const* outputs, backends::RuntimeError& err) const {
-  if (!row_from_) return Kernel::eval_rows(first, count, rest, rows, outputs, err);
-  return backends::run_rows(inputs_, outputs_, first, count, rest, rows, outputs,
-                            [&](const float* const* in, float* const* out, size_t n) { return eval_batch(in, out, n, err); });
+  return backends::jit_eval_rows(*this, row_from_, first, count, rest, rows, outputs, err);
 }
 
 bool SseKernel::eval(const float* inputs, float* outputs, backends::RuntimeError& err) const {

@@ -47,7 +47,7 @@ struct Expanded {
   void fill(const float* first, size_t count, const float* const* rest, size_t num_rest, size_t r0, size_t n) {
     in.resize(1 + num_rest);
     float* x = column(0, n * count);
-    if (tiled_from != first || tiled_count != count || tiled_rows < n) {  // x repeats from call to call
+    if (tiled_from != first || tiled_count != count || tiled_rows < n) {  // the batches of one call share it
       for (size_t r = 0; r < n; ++r) std::copy_n(first, count, x + r * count);
       tiled_from = first, tiled_count = count, tiled_rows = n;
     }

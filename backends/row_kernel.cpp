@@ -26,31 +26,25 @@ Totals& totals() {
   return t;
 }
 
-// Rows [r0, r0 + n) of a row job as plain points: the first input tiled, the others repeated.
-// Buffers per thread, grown and never cleared: the fill writes every point it hands on.
+// Rows [r0, r0 + n) of a row job as plain points: the first input tiled (once per call: every batch
+// of a call has the same x and at most the first batch's rows), the others repeated. Buffers per
+// thread, grown and never cleared: the fill writes every point it hands on.
 struct Expanded {
   std::vector<std::unique_ptr<float[]>> cols;
   std::vector<size_t> size;
   std::vector<const float*> in;
-  const float* tiled_from = nullptr;  // the first input already tiled in cols[0]
-  size_t tiled_count = 0, tiled_rows = 0;
 
   float* column(size_t k, size_t points) {
     if (cols.size() <= k) cols.resize(k + 1), size.resize(k + 1, 0);
-    if (size[k] < points) {
-      cols[k].reset(new float[points]);
-      size[k] = points;
-      if (k == 0) tiled_from = nullptr;
-    }
+    if (size[k] < points) cols[k].reset(new float[points]), size[k] = points;
     return cols[k].get();
   }
-  void fill(const float* first, size_t count, const float* const* rest, size_t num_rest, size_t r0, size_t n) {
+  void fill(const float* first, size_t count, const float* const* rest, size_t num_rest, size_t r0, size_t n,
+            bool tile) {
     in.resize(1 + num_rest);
     float* x = column(0, n * count);
-    if (tiled_from != first || tiled_count != count || tiled_rows < n) {  // the batches of one call share it
+    if (tile)
       for (size_t r = 0; r < n; ++r) std::copy_n(first, count, x + r * count);
-      tiled_from = first, tiled_count = count, tiled_rows = n;
-    }
     in[0] = x;
     for (size_t k = 0; k < num_rest; ++k) {
       float* c = column(1 + k, n * count);
@@ -69,11 +63,10 @@ size_t rows_per_batch(size_t count) { return std::max<size_t>(1, kRowBatch / std
 bool expand_rows(const Kernel& k, const float* first, size_t count, const float* const* rest, size_t rows,
                  float* const* outputs, RuntimeError& err) {
   thread_local Expanded e;
-  e.tiled_from = nullptr;  // the caller's x array may have changed since its last call
   std::vector<float*> out(k.num_outputs());
   for (size_t r0 = 0, step = rows_per_batch(count); r0 < rows; r0 += step) {
     size_t n = std::min(step, rows - r0);
-    e.fill(first, count, rest, k.num_inputs() - 1, r0, n);
+    e.fill(first, count, rest, k.num_inputs() - 1, r0, n, r0 == 0);
     for (size_t o = 0; o < out.size(); ++o) out[o] = outputs[o] + r0 * count;
     if (!k.eval_batch(e.in.data(), out.data(), n * count, err)) return false;
   }

@@ -395,15 +395,16 @@ class Builder {
     for (int k = 0; k < 3; ++k) {
       double r = res && !res->nums.empty() ? res->nums[std::min<size_t>(k, res->nums.size() - 1)] : 50;
       double scaled = r * opts_.resolution_scale;
-      if (!(scaled <= kMaxResolution) && !refused) {  // also NaN: refused before any work, not an out-of-memory abort
-        refused = true;
-        const vrml::FieldSlot* at = geo.slot("resolution");
-        std::string why = "resolution " + number_text(r) +
-                          (opts_.resolution_scale != 1 ? " (times --resolution-scale " + number_text(opts_.resolution_scale) + ")" : "") +
-                          " is over the limit of " + std::to_string(kMaxResolution) + " samples per axis";
-        diag_.error(file_of(geo), at ? at->span : geo.span, why);
+      if (!(scaled <= kMaxResolution)) {  // also NaN: refused before any work, not an out-of-memory abort
+        if (!refused) {
+          const vrml::FieldSlot* at = geo.slot("resolution");
+          std::string scale = opts_.resolution_scale != 1 ? " (times --resolution-scale " + number_text(opts_.resolution_scale) + ")" : "";
+          diag_.error(file_of(geo), at ? at->span : geo.span,
+                      "resolution " + number_text(r) + scale + " is over the limit of " +
+                          std::to_string(kMaxResolution) + " samples per axis");
+        }
+        refused = true, scaled = 1;
       }
-      if (!(scaled <= kMaxResolution)) scaled = 1;
       s.resolution[k] = std::max(1, static_cast<int>(std::lround(scaled)));
     }
     if (implicit) {

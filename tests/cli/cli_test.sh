@@ -131,6 +131,16 @@ sys.exit(0 if ok else 1)"
 "$F" bench "$T/sphere.fs" --entry FRep --points 10000 --threads 2 2>&1 | bench_ok || fail "bench: figures"
 "$F" bench "$T/sphere.fs" --entry FRep --points 1000 --one-point 2>&1 | bench_ok || fail "bench --one-point: figures"
 n=$((n + 2))
+# bench --grid: the same figures by rows, and what the row split hoisted (the gyroid: y and z work).
+printf 'function FRep(x, y, z, t) { var k = 12.566370614359172; var X = x * k + t; var Y = y * k; var Z = z * k;\n  return sin(X) * cos(Y) + sin(Y) * cos(Z) + sin(Z) * cos(X); }\n' > "$T/gyroid.fs"
+for b in vm sse ${LLVM:+llvm} auto; do
+  "$F" bench "$T/gyroid.fs" --entry FRep --points 20000 --grid --backend $b > "$T/grid.txt" 2>&1
+  bench_ok < "$T/grid.txt" || fail "bench --grid $b: figures"
+  grep -q '^row split: 7 operations once per row, 8 per point, 4 values per row$' "$T/grid.txt" || fail "bench --grid $b: the split"
+  n=$((n + 1))
+done
+check bench-grid-unsplit 0 '^row split: none' -- "$F" bench "$T/sphere.fs" --entry FRep --points 1000 --grid
+check bench-grid-one-point 2 'excludes' -- "$F" bench "$T/gyroid.fs" --entry FRep --grid --one-point
 
 # render2d: a disc of radius 1 sampled on 101x101 over [-1.5, 1.5]^2; the count is computed
 # independently here (float arithmetic as the tool samples it).

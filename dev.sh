@@ -6,6 +6,8 @@
 #   ./dev.sh build   build only
 #   ./dev.sh install PREFIX   build, then put the tools in PREFIX/bin (cmake --install; e.g. ~/.local)
 #   ./dev.sh mutation [--only ID,...]   mutation testing (tests/mutation/run.sh; docs/testing.md)
+#   ./dev.sh fuzz [TARGET|all] [SECONDS]   coverage-guided fuzzing with clang-19's libFuzzer
+#                    (tests/fuzz; docs/reliability.md); ./dev.sh test runs every target briefly
 # With CI set (CI=true ./dev.sh test), a test skipped because something is missing fails instead.
 # FVRML_SHARED=DIR names the shared folder (corpus, paper data) when it is not ../shared.
 set -euo pipefail
@@ -16,6 +18,9 @@ PACKAGES=(cmake ninja-build ccache g++ python3 catch2 nlohmann-json3-dev libcli1
 # a real LSP client, objdump (binutils) for the x86 encoder, node for the glTF validator and the
 # LSP client libraries (npm below), Chromium for the preview page (with npm's playwright-core).
 TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim nodejs chromium)
+# The fuzz build (build-fuzz) and the replay of the fuzz corpora in the normal build.
+FUZZ_PACKAGES=(clang-19 libfuzzer-19-dev)
+FUZZ_TARGETS=(fscript_frontend ir_reader vrml_reader lsp_server backend_diff interval_sound)
 
 install_missing() {
   local missing=()
@@ -46,7 +51,29 @@ build() {
 
 cmd="${1:-demo}"
 install_missing "${PACKAGES[@]}"
+case "$cmd" in
+  test | fuzz) install_missing "${FUZZ_PACKAGES[@]}" || echo "note: could not install ${FUZZ_PACKAGES[*]}; fuzzing will be skipped" ;;
+esac
 build
+SHARED_DIR="${FVRML_SHARED:-../shared}"
+
+# build-fuzz: every library instrumented for libFuzzer + ASan + UBSan (clang-19), the targets only.
+have_fuzz_toolchain() {
+  command -v clang++-19 > /dev/null && [ -n "$(find /usr/lib/llvm-19 -name libclang_rt.fuzzer-x86_64.a 2>/dev/null)" ]
+}
+build_fuzz() {
+  CC=clang-19 CXX=clang++-19 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFS_FUZZ=ON > /dev/null
+  ninja -C build-fuzz >&2
+}
+# Fuzzing's part of ./dev.sh test: every target for 60 s, two at a time (3 minutes on 2 cores).
+fuzz_briefly() {
+  . tests/support/skip.sh
+  if ! have_fuzz_toolchain; then
+    fs_skip missing fuzz "clang-19 with libFuzzer (${FUZZ_PACKAGES[*]}) is not installed"
+    return
+  fi
+  build_fuzz && tests/fuzz/run.sh build-fuzz "$SHARED_DIR" 60 2 "${FUZZ_TARGETS[@]}"
+}
 # npm tools for the tests: the Khronos glTF validator and Microsoft's LSP client libraries; the
 # checks that need one that could not be installed are skipped out loud (failures under CI).
 NPM_TOOLS=(gltf-validator@2.0.0-dev.3.10 vscode-jsonrpc@10.0.0 vscode-languageserver-protocol@3.18.5 playwright-core@1.65.1)
@@ -71,6 +98,7 @@ case "$cmd" in
     rm -f "$BUILD_DIR/skipped.txt"
     status=0
     (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)") || status=$?
+    FS_SKIP_LOG="$PWD/$BUILD_DIR/skipped.txt" fuzz_briefly || status=1
     # Every skip, in CI or not, shows here (tests/support/skip.*).
     if [ -s "$BUILD_DIR/skipped.txt" ]; then
       echo "---- skipped checks ($(wc -l < "$BUILD_DIR/skipped.txt")):"
@@ -88,6 +116,13 @@ case "$cmd" in
     echo "wrote out/figure1.png (the paper's Figure 1 halfway through the morph) and out/figure1.wrl"
     echo "(VRML97: the morph as 8 frames under a Switch driven by a TimeSensor; open it in any VRML97 browser)"
     ;;
+  fuzz)
+    targets=("${FUZZ_TARGETS[@]}")
+    [ -n "${2:-}" ] && [ "$2" != all ] && targets=("$2")
+    have_fuzz_toolchain || { echo "fuzz: clang-19 with libFuzzer (${FUZZ_PACKAGES[*]}) is not installed" >&2; exit 1; }
+    build_fuzz
+    exec tests/fuzz/run.sh build-fuzz "$SHARED_DIR" "${3:-300}" "$(nproc)" "${targets[@]}"
+    ;;
   mutation)
     shift
     exec tests/mutation/run.sh "$@"
@@ -98,5 +133,5 @@ case "$cmd" in
     echo "installed fscript, fvrml-run, fvrml-meshdiff and fscript-lsp in $2/bin"
     case ":$PATH:" in *":$2/bin:"*) ;; *) echo "note: $2/bin is not on PATH; add it for editors to find fscript-lsp" ;; esac
     ;;
-  *) echo "usage: ./dev.sh demo|test|build|install PREFIX|mutation" >&2; exit 2 ;;
+  *) echo "usage: ./dev.sh demo|test|build|install PREFIX|mutation|fuzz [TARGET|all] [SECONDS]" >&2; exit 2 ;;
 esac

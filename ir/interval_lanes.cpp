@@ -86,7 +86,7 @@ void square(const Lanes& la, Lanes& out) {
   V a = load(la);
   F x = a.lo * a.lo, y = a.hi * a.hi;
   V r;
-  r.lo = (a.lo <= 0) & (a.hi >= 0) ? F{} : (x < y ? x : y);
+  r.lo = ((a.lo <= 0) & (a.hi >= 0)) ? F{} : (x < y ? x : y);
   r.hi = x > y ? x : y;
   r.nan = a.nan;
   store(r, a.lo > a.hi, out);

@@ -82,22 +82,40 @@ class Reader {
       return 0;
     }
     ++c.i;
-    return static_cast<uint32_t>(std::strtoul(c.word().c_str(), nullptr, 10));
+    return count(c.word(), prefix == 'v' ? "value number" : "block number");
+  }
+
+  // A count or an id: digits only, at most kMaxCount, so that a hostile "v99999999999" cannot make
+  // the reader allocate gigabytes for its value table (found by the ir_reader fuzz target).
+  static constexpr uint32_t kMaxCount = 1u << 22;
+  uint32_t count(const std::string& w, const char* what) {
+    if (w.empty() || w.size() > 8 || w.find_first_not_of("0123456789") != std::string::npos) {
+      fail(std::string("bad ") + what + " '" + w + "'");
+      return 0;
+    }
+    uint32_t n = static_cast<uint32_t>(std::strtoul(w.c_str(), nullptr, 10));
+    if (n > kMaxCount) {
+      fail(std::string(what) + " " + w + " is over the reader's limit of " + std::to_string(kMaxCount));
+      return 0;
+    }
+    return n;
   }
 
   void function(Cursor& c) {
     auto fn = std::make_unique<Function>();
     fn->name = c.word();
     if (!c.eat("(")) return fail("expected '('");
-    fn->num_params = static_cast<uint32_t>(std::strtoul(c.word().c_str(), nullptr, 10));
+    fn->num_params = count(c.word(), "parameter count");
     if (!c.eat(")") || !c.eat("->")) return fail("expected ') ->'");
-    fn->num_results = static_cast<uint32_t>(std::strtoul(c.word().c_str(), nullptr, 10));
+    fn->num_results = count(c.word(), "result count");
     fn->recursive = c.eat("recursive");
     fn->kernel = c.eat("kernel");
-    if (c.eat("rows")) fn->row_params_from = static_cast<uint32_t>(std::strtoul(c.word().c_str(), nullptr, 10));
+    if (c.eat("rows")) fn->row_params_from = count(c.word(), "row parameter");
+    if (!err_.empty()) return;
     if (c.eat("ranges")) {
       size_t k = fn->num_params > fn->row_params_from ? fn->num_params - fn->row_params_from : 0;
       for (size_t i = 0; i < kNumParamBounds * k; ++i) {
+        if (c.done()) return fail("expected " + std::to_string(kNumParamBounds * k) + " parameter ranges");
         ParamRange r;
         r.lo = std::strtof(c.word().c_str(), nullptr);
         r.hi = std::strtof(c.word().c_str(), nullptr);
@@ -201,7 +219,7 @@ class Reader {
     Inst* i = p.inst;
     switch (i->op) {
       case Op::Const: i->imm = std::strtof(c.word().c_str(), nullptr); return;
-      case Op::Param: i->aux = std::atoi(c.word().c_str()); return;
+      case Op::Param: i->aux = static_cast<int>(count(c.word(), "parameter index")); return;
       case Op::GLoad: case Op::GStore: {
         if (!c.eat("@")) return fail("expected '@global'");
         std::string g = c.word();

@@ -7,9 +7,13 @@
 namespace fscript::llvmjit {
 
 namespace {
+// Changed whenever llvm_lower.cpp changes the code it makes, so the disk cache never hands back an
+// object from an older lowering (2: the lanes' mask crosses calls as an integer).
+constexpr int kLoweringRevision = 2;
+
 // The cache key: everything the code depends on.
 std::string cache_key(const ir::Module& m, uint32_t width, const backends::Budgets& budgets, bool bounded) {
-  return ir::print(m) + "\nwidth " + std::to_string(width) + " bounded " + std::to_string(bounded) + " loops " +
+  return ir::print(m) + "\nlowering " + std::to_string(kLoweringRevision) + " width " + std::to_string(width) + " bounded " + std::to_string(bounded) + " loops " +
          std::to_string(budgets.max_loop_iterations) + " depth " + std::to_string(budgets.max_call_depth) +
          " elements " + std::to_string(budgets.max_array_elements);
 }

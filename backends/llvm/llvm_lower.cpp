@@ -36,6 +36,7 @@ struct Shared {
   llvm::StructType* ctx;
   std::vector<llvm::Function*> fns;  // by function index (nullptr: not compiled)
   int num_globals = 0;
+  llvm::IntegerType* mask_bits;  // iW: the lanes' mask as a call argument
 };
 
 enum CtxField : unsigned { kGlobals, kCounters, kArrays, kDepth, kStackLimit };
@@ -154,7 +155,7 @@ class LlvmFunctionLowering {
     llvm::Value* frame = b_.CreatePtrToInt(
         b_.CreateIntrinsic(llvm::Intrinsic::frameaddress, {s_.ptr}, {b_.getInt32(0)}), s_.i64);
     trap_if(b_.CreateICmpULT(frame, limit), 4, backends::first_located(fn_));
-    b_.CreateStore(f_->getArg(2), pending_[0]);
+    b_.CreateStore(b_.CreateBitCast(f_->getArg(2), s_.vb), pending_[0]);
     for (size_t b = 1; b < pending_.size(); ++b) b_.CreateStore(zero_mask(), pending_[b]);
     for (auto* o : out_) b_.CreateStore(splat(0), o);
     if (!fn_.arrays.empty()) local_arrays("fs_lanes_enter");
@@ -448,7 +449,7 @@ class LlvmFunctionLowering {
       b_.CreateStore(b_.CreateAdd(depth, b_.getInt64(1)), depth_at);
     }
     llvm::Value* result = b_.CreateConstGEP1_64(s_.f32, scratch(), 3 * s_.width);
-    std::vector<llvm::Value*> args{ctx_, result, active_};
+    std::vector<llvm::Value*> args{ctx_, result, b_.CreateBitCast(active_, s_.mask_bits)};
     for (const ir::Inst* a : in.args) args.push_back(val(a));
     llvm::CallInst* status = b_.CreateCall(s_.fns[static_cast<size_t>(in.aux)], args);
     llvm::BasicBlock* fail = llvm::BasicBlock::Create(s_.c, "callee_error", f_);
@@ -544,10 +545,11 @@ bool lower_to_llvm(const ir::Module& module, uint32_t width, const backends::Bud
   out.module = std::make_unique<llvm::Module>("fscript", *out.context);
   llvm::LLVMContext& c = *out.context;
   Shared s{c, *out.module, m, width, budgets, llvm::Type::getFloatTy(c), llvm::Type::getInt32Ty(c),
-           llvm::Type::getInt64Ty(c), llvm::PointerType::get(c, 0), nullptr, nullptr, nullptr, nullptr, {}, 0};
+           llvm::Type::getInt64Ty(c), llvm::PointerType::get(c, 0), nullptr, nullptr, nullptr, nullptr, {}, 0, nullptr};
   s.vf = llvm::FixedVectorType::get(s.f32, width);
   s.vi = llvm::FixedVectorType::get(s.i32, width);
   s.vb = llvm::FixedVectorType::get(llvm::Type::getInt1Ty(c), width);
+  s.mask_bits = llvm::IntegerType::get(c, static_cast<unsigned>(width));
   s.ctx = llvm::StructType::create(c, {s.ptr, s.ptr, s.ptr, s.i64, s.i64}, "fs_ctx");
   const std::vector<int>& fns = jp.functions;
   s.num_globals = jp.num_globals;
@@ -559,7 +561,9 @@ bool lower_to_llvm(const ir::Module& module, uint32_t width, const backends::Bud
       s.fns[static_cast<size_t>(f)] = llvm::Function::Create(t, llvm::Function::ExternalLinkage, kKernelSymbol, s.m);
       continue;
     }
-    std::vector<llvm::Type*> params{s.ptr, s.ptr, s.vb};
+    // The lanes' mask crosses calls as an integer: LLVM 19 with AVX-512 cannot copy an <N x i1>
+    // argument between mask registers at a call ("Cannot emit physreg copy instruction").
+    std::vector<llvm::Type*> params{s.ptr, s.ptr, s.mask_bits};
     params.insert(params.end(), fn.num_params, s.vf);
     auto* t = llvm::FunctionType::get(s.i64, params, false);
     s.fns[static_cast<size_t>(f)] =

@@ -3,6 +3,8 @@
 
 #include <zlib.h>
 
+#include <string>
+
 #include "frontend/source.h"
 #include "runtime/support/files.h"
 
@@ -29,6 +31,18 @@ bool gunzip(const std::string& data, std::string& out, std::string& error) {
       return false;
     }
     out.append(buf, sizeof buf - z.avail_out);
+    if (out.size() > support::kMaxInputBytes) {
+      inflateEnd(&z);
+      error = "the gzip data inflates to more than " + std::to_string(support::kMaxInputBytes >> 20) +
+              " MiB, the limit for one scene";
+      return false;
+    }
+    if (out.size() > kGzipRatioFloor && out.size() / kMaxGzipRatio > z.total_in) {
+      inflateEnd(&z);
+      error = "the gzip data inflates more than " + std::to_string(kMaxGzipRatio) +
+              " times (a compression bomb?); scenes are refused past that ratio";
+      return false;
+    }
   } while (rc != Z_STREAM_END);
   inflateEnd(&z);
   return true;
@@ -36,7 +50,7 @@ bool gunzip(const std::string& data, std::string& out, std::string& error) {
 
 bool read_scene_text(const std::string& path, std::string& text, std::string& error) {
   std::string raw;
-  if (!support::read_file(path, raw, error)) {
+  if (!support::read_file(path, raw, error, support::kMaxInputBytes)) {
     error = "cannot read the file: " + error;
     return false;
   }

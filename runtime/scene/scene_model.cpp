@@ -299,9 +299,29 @@ class Builder {
     f.t = node_time(fraction, f.span0, f.span1);
   }
 
+  // A node's `frames` (how many an animation of it is made of), refused over kMaxFrames.
+  int frames_of(const vrml::Node& n) {
+    double f = field_number(n, "frames");
+    if (f <= kMaxFrames) return static_cast<int>(f);
+    const vrml::FieldSlot* at = n.slot("frames");
+    diag_.error(file_of(n), at ? at->span : n.span,
+                "frames " + number_text(f) + " is over the limit of " + std::to_string(kMaxFrames) + " for one node");
+    return 0;
+  }
+
   // ---- walk ----
   void walk(const vrml::Node* n, const Mat4& m, int group, int depth) {
-    if (!n || depth > 10000) return;
+    if (!n || too_large_) return;
+    if (++walked_ > kMaxExpandedNodes || depth > kMaxExpandedDepth) {
+      too_large_ = true;
+      diag_.error(file_of(*n), n->span,
+                  walked_ > kMaxExpandedNodes
+                      ? "the scene expands to more than " + std::to_string(kMaxExpandedNodes) +
+                            " nodes (every PROTO instance and every USE counted again); refused"
+                      : "nodes nested more than " + std::to_string(kMaxExpandedDepth) +
+                            " deep through PROTO instances (a PROTO that contains itself?); refused");
+      return;
+    }
     if (n->type == "FShape") return shape(*n, m, group);
     if (n->type == "FTransform") return ftransform(*n, m, group, depth);
     if (n->proto) {  // a user PROTO: its first body node is what the instance is (VRML97 4.8.3)
@@ -332,6 +352,7 @@ class Builder {
     g.type = str(n, "type");
     TimeSensorState ts = time_of(n);
     g.fraction = ts.fraction;
+    frames_of(n);  // checked here; fvrml-run reads it when it animates the group
     int index = static_cast<int>(out_.groups.size());
     if (g.type == "analytical") {
       CompiledField f;
@@ -362,7 +383,7 @@ class Builder {
     s.transform = m;
     s.time = time_of(n);
     s.fraction = s.time.fraction;
-    s.frames = static_cast<int>(field_number(n, "frames"));
+    s.frames = frames_of(n);
     const vrml::Node* geo = child(n, "geometry");
     if (!geo || geo->type != "FGeometry") {
       diag_.warning(file_of(n), n.span, "FShape without an FGeometry: nothing to draw");
@@ -469,9 +490,23 @@ class Builder {
   SceneModel& out_;
   std::map<const frontend::SourceFile*, std::vector<std::string>> lines_;  // per file, for carets
   std::vector<std::vector<vrml::NodePtr>>& expanded_ = out_.expanded;
+  size_t walked_ = 0;  // nodes visited, PROTO bodies and USEs included (kMaxExpandedNodes)
+  bool too_large_ = false;
 };
 
 }  // namespace
+
+uint64_t shape_samples(const Shape& s) {
+  uint64_t n[3];
+  for (size_t k = 0; k < 3; ++k) n[k] = static_cast<uint64_t>(std::max(s.resolution[k], 1)) + 1;
+  switch (s.kind) {
+    case ShapeKind::Implicit: return n[0] * n[1] * n[2];
+    case ShapeKind::Curve: return n[0];
+    case ShapeKind::Surface: return n[0] * n[1];
+    case ShapeKind::Solid: return 2 * (n[0] * n[1] + n[1] * n[2] + n[2] * n[0]);
+  }
+  return 0;
+}
 
 bool build_scene_model(const vrml::Scene& scene, const ModelOptions& opts, frontend::DiagnosticSink& diag,
                        SceneModel& out) {

@@ -6,15 +6,27 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <set>
 #include <sstream>
+
+#include <unistd.h>
 
 namespace fscript::support {
 
-bool read_file(const std::string& path, std::string& out, std::string& error) {
+bool read_file(const std::string& path, std::string& out, std::string& error, size_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     error = std::strerror(errno);
+    return false;
+  }
+  std::error_code ec;
+  uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > max_bytes) {
+    error = "the file is " + std::to_string(size >> 20) + " MiB, over the limit of " + std::to_string(max_bytes >> 20) +
+            " MiB for one file";
     return false;
   }
   std::ostringstream ss;
@@ -27,8 +39,27 @@ bool read_file(const std::string& path, std::string& out, std::string& error) {
   return true;
 }
 
+namespace {
+// The temporary files being written now, for remove_pending_writes (a run stopped by a limit).
+std::mutex g_pending_mutex;
+std::set<std::string> g_pending;
+
+struct Pending {
+  explicit Pending(const std::string& tmp) : tmp_(tmp) {
+    std::lock_guard<std::mutex> lock(g_pending_mutex);
+    g_pending.insert(tmp_);
+  }
+  ~Pending() {
+    std::lock_guard<std::mutex> lock(g_pending_mutex);
+    g_pending.erase(tmp_);
+  }
+  const std::string& tmp_;
+};
+}  // namespace
+
 bool write_file_atomic(const std::string& path, const std::string& bytes, std::string& error) {
   std::string tmp = path + ".tmp";
+  Pending pending(tmp);
   FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) {
     error = "cannot write '" + path + "': " + std::strerror(errno);
@@ -41,6 +72,13 @@ bool write_file_atomic(const std::string& path, const std::string& bytes, std::s
     std::remove(tmp.c_str());
   }
   return ok;
+}
+
+void remove_pending_writes() {
+  // try_lock: the caller may be the new-handler of a thread that holds the lock.
+  std::unique_lock<std::mutex> lock(g_pending_mutex, std::try_to_lock);
+  if (!lock.owns_lock()) return;
+  for (const std::string& tmp : g_pending) ::unlink(tmp.c_str());
 }
 
 std::string percent_decoded(const std::string& s) {

@@ -1,11 +1,18 @@
 #pragma once
 // Files: whole-file reads and atomic writes (a failed write never leaves half a file behind).
+#include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace fscript::support {
 
-// Reads a whole file; false on failure with errno text in `error`.
-bool read_file(const std::string& path, std::string& out, std::string& error);
+// The largest scene or script file the tools read (and the most a gzipped scene may inflate to):
+// far above any hand-written scene, far below what would strain memory (docs/reliability.md).
+constexpr size_t kMaxInputBytes = size_t{64} << 20;
+
+// Reads a whole file; false on failure with errno text in `error`, or when the file is larger
+// than `max_bytes` (checked before reading, so a huge file costs nothing).
+bool read_file(const std::string& path, std::string& out, std::string& error, size_t max_bytes = SIZE_MAX);
 
 // `s` with every %XX (two hex digits) replaced by its byte: the path of a file: URL.
 std::string percent_decoded(const std::string& s);
@@ -13,5 +20,9 @@ std::string percent_decoded(const std::string& s);
 // Writes `bytes` to a temporary file beside `path` and renames it over `path`, so a failure never
 // leaves half a file. False with "cannot write 'path': reason" in `error`.
 bool write_file_atomic(const std::string& path, const std::string& bytes, std::string& error);
+
+// Deletes the temporary files of writes in progress in any thread: for a run that a limit ends
+// with _exit (runtime/support/limits.h), so it leaves neither the output nor half of it.
+void remove_pending_writes();
 
 }  // namespace fscript::support

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Behaviour the docs promise, checked by its results rather than by exit statuses: the time model
-# through ROUTEs, budgets and their ceilings on every backend, frames and their clamp, glTF STEP
+# through ROUTEs, budgets and their ceilings on every backend, frames and their limit, glTF STEP
 # timing, picture sizes and contact sheets, Viewpoints, --format, the llvm disk cache, every
 # --stats field, the same bytes for any --threads, pattern colours, blends and mirrored transforms.
 # usage: behaviour_test.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
@@ -97,10 +97,13 @@ check "a resolution over the limit" 1 'huge.wrl:2:73: error: resolution 100000 i
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1-x*x" resolution [3000] } }\n' > "$T/wide.wrl"
 check "a scaled resolution over the limit" 1 'resolution 3000 \(times --resolution-scale 2\) is over the limit' -- "$R" "$T/wide.wrl" -o "$T/wide.ply" --resolution-scale 2
 
-# ---- Frames: the clamp, glTF STEP timing, contact sheets ----
+# ---- Frames: the limit, glTF STEP timing, contact sheets ----
 printf '#VRML V2.0 utf8\nFShape { frames 1500 geometry FGeometry { definition "0.5^2-x^2-y^2-z^2+0.01*t" bboxSize 2 2 2 resolution [4] } }\n' > "$T/many.wrl"
-jcheck "a file's frames above 1000 are clamped to 1000" err \
-  "j['shapes'][0]['frames'] == 1500 and j['animations'][0]['frames'] == 1000" -- "$R" "$T/many.wrl" --stats -o "$T/many.glb"
+check "a file's frames above 1000 are an error at the field" 1 'many.wrl:2:10: error: frames 1500 is over the limit of 1000 for one node' \
+  -- "$R" "$T/many.wrl" --stats -o "$T/many.glb"
+[ -e "$T/many.glb" ] && fail "a refused animation wrote many.glb"
+sed -i 's/frames 1500/frames 1000/' "$T/many.wrl"
+jcheck "a file's frames of 1000 are made" err "j['animations'][0]['frames'] == 1000" -- "$R" "$T/many.wrl" --stats -o "$T/many.glb"
 check "--frames above 1000 is refused" 2 'frames: Value 1001 not in range 1 to 1000' -- "$R" "$T/many.wrl" --frames 1001 -o "$T/x.glb"
 "$R" "$P/figure1-morphing.wrl" --frames 4 -o "$T/anim.glb" --resolution-scale 0.3 2> /dev/null
 # Figure 1's cycleInterval is 5: frame k shows during [1.25k, 1.25(k+1)), a last key at 5 repeats the first.
@@ -364,7 +367,7 @@ grep -q $'\r' "$T/progress-pipe.txt" && fail "fvrml-run on a pipe: progress writ
 grep -q '^wrote [^ ]*progress.ply' "$T/progress-pipe.txt" || fail "fvrml-run on a pipe: no summary line"
 FVRML_PROGRESS_AFTER=0 python3 "$TTY" "$R" "$SRC/examples/paper/figure6-blends.wrl" --frames 6 --threads 1 -o "$T/progress.glb" > "$T/progress-frames.txt" 2>&1
 grep -qE $'\rfvrml-run: [0-6]/6 frames, [0-9]+%' "$T/progress-frames.txt" || { fail "fvrml-run --frames on a terminal: no frames in the progress line"; cat -v "$T/progress-frames.txt" | head -5; }
-printf 'function FRep(x, y, z, t) {\n  var s = 0;\n  for (var i = 0; i < 600; i = i + 1) s = s + sin(x * i + y);\n  return s;\n}\n' > "$T/slow2d.fs"
+printf 'function FRep(x, y, z, t) {\n  var s = 0;\n  for (var i = 0; i < 3000; i = i + 1) s = s + sin(x * i + y);\n  return s;\n}\n' > "$T/slow2d.fs"
 FVRML_PROGRESS_AFTER=0 python3 "$TTY" "$F" render2d "$T/slow2d.fs" --size 512 --bounds -1,1,-1,1 --no-prune -o "$T/slow2d.png" > "$T/progress-2d.txt" 2>&1
 grep -qE $'\rfscript render2d: 0/1 pictures, [0-9]+%' "$T/progress-2d.txt" || { fail "render2d on a terminal: no progress line"; cat -v "$T/progress-2d.txt" | head -5; }
 FVRML_PROGRESS_AFTER=0 "$F" render2d "$T/slow2d.fs" --size 512 --bounds -1,1,-1,1 --no-prune -o "$T/slow2d.png" > /dev/null 2> "$T/progress-2d-pipe.txt"

@@ -111,7 +111,7 @@ WRL
 check wrl-affine 1 'ftransform.wrl:4:19: error: unknown name .oops.' -- "$F" check "$T/ftransform.wrl"
 gzip -c "$T/scene.wrl" > "$T/scene.wrl.gz"
 check wrl-gzip 1 'scene.wrl.gz:4:23: error: unknown name' -- "$F" check "$T/scene.wrl.gz"
-check wrl-missing 1 'none.wrl: error: cannot read' -- "$F" check "$T/none.wrl"
+check wrl-missing 1 'none.wrl:1:1: error: cannot read' -- "$F" check "$T/none.wrl"
 check wrl-positions 1 'scene.wrl:4:23: error: unknown name' -- "$F" check "$T/scene.wrl"
 check emit-ir 0 'fn @kernel\(4\) -> 1 kernel' -- "$F" emit-ir "$T/sphere.fs" --opt
 check emit-ir-passes 0 'fmul' -- "$F" emit-ir "$T/sphere.fs" --passes inline,fold

@@ -232,6 +232,20 @@ def main(d):
     code, out, err = s.stop()
     check("--open without xdg-open: a note, still serving", code == 0 and "open " + s.url in err, err[-200:])
 
+    # --max-seconds: a run over it is cancelled with an error on the page; the server goes on.
+    slow = os.path.join(d, "slow.wrl")
+    write(slow, '#VRML V2.0 utf8\nFShape { frames 24 geometry FGeometry { definition "function FRep(x, y, z, t) { '
+                'var s = 0; for (var i = 0; i < 20000; i++) s += sin(x * i + t); return 0.5 - x * x - y * y - z * z + '
+                '0.001 * s; }" bboxSize 2 2 2 resolution [24] } }\n')
+    s = Server(slow, "--max-seconds", "1", "--backend", "vm")
+    st = s.wait_state(lambda st: "took longer" in st.get("diagnostics", ""), 120)
+    check("--serve --max-seconds: the run is stopped with an error on the page",
+          st.get("ok") is False and "error: the run took longer than 1 s (--max-seconds 1); stopped" in st.get("diagnostics", ""),
+          str(st)[:300])
+    check("--serve --max-seconds: the server goes on", s.request("GET", "/")[0] == 200)
+    code, out, err = s.stop()
+    check("--serve --max-seconds: Ctrl-C ends it cleanly", code == 0, f"{code} {err[-300:]!r}")
+
     # A scene broken from the start: no glTF yet, the diagnostics, and the server runs on.
     write(scene, BALL.replace("RADIUS", "0.5 *"))
     s = Server(scene)

@@ -63,6 +63,22 @@ TEST_CASE("ir: reader reports bad text with a line") {
   CHECK(err.find("line 3: bad source position '!x'") != std::string::npos);
 }
 
+// Found by the ir_reader fuzz target: "v-07" read as value 2^32 - 7 made the reader resize its value
+// table to 32 GB; "fn @f(4000000000)" asked for billions of parameter ranges.
+TEST_CASE("ir: reader refuses ids and counts past its limit, and malformed ones") {
+  std::string err;
+  CHECK(!ir::read("fn @f(0) -> 1 {\nb0:\n  v-07 = const 2\n  ret v-07\n}\n", err));
+  CHECK(err == "line 3: bad value number '-07'");
+  CHECK(!ir::read("fn @f(0) -> 1 {\nb0:\n  v99999999 = const 2\n  ret v99999999\n}\n", err));
+  CHECK(err == "line 3: value number 99999999 is over the reader's limit of 4194304");
+  CHECK(!ir::read("fn @f(4000000000) -> 1 ranges {\nb0:\n  ret\n}\n", err));
+  CHECK(err.find("line 1: bad parameter count '4000000000'") == 0);
+  CHECK(!ir::read("fn @f(0) -> 1 {\nb77777777:\n  ret\n}\n", err));
+  CHECK(err.find("over the reader's limit") != std::string::npos);
+  CHECK(!ir::read("fn @f(3) -> 1 rows 1 ranges 0 1\n", err));
+  CHECK(err.find("parameter ranges") != std::string::npos);
+}
+
 TEST_CASE("ir: the verifier catches broken SSA") {
   std::string err;
   // v1 is used in b1 but defined in b2, which does not dominate b1.

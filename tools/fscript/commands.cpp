@@ -134,7 +134,7 @@ int cmd_check(const std::vector<std::string>& files) {
     bool is_wrl = is_scene_path(path);
     std::string error;
     if (is_wrl ? !vrml::read_scene_text(path, text, error) : !read_source(path, text)) {
-      if (is_wrl) std::cerr << path << ": error: " << error << "\n";
+      if (is_wrl) std::cerr << path << ":1:1: error: " << error << "\n";
       rc = kExitInput;
       continue;
     }

@@ -17,8 +17,8 @@ bool read_source(const std::string& path, std::string& text) {
     return true;
   }
   std::string err;
-  if (support::read_file(path, text, err)) return true;
-  std::cerr << path << ": error: cannot read the file: " << err << "\n";
+  if (support::read_file(path, text, err, support::kMaxInputBytes)) return true;
+  std::cerr << path << ":1:1: error: cannot read the file: " << err << "\n";
   return false;
 }
 

@@ -7,6 +7,7 @@
 
 #include "runtime/support/big_stack.h"
 #include "tools/budget_flags.h"
+#include "tools/limit_flags.h"
 #include "tools/fscript/commands.h"
 #include "tools/fscript/repl.h"
 #include "runtime/support/version.h"
@@ -23,6 +24,7 @@ struct Args {
   bool opt = false, one_point = false, grid = false, llvm = false, disk_cache = false, no_prune = false, stats = false;
   bool in_place = false, check_only = false;
   uint32_t max_depth = 1000;
+  tools::RunLimits limits;
 };
 
 void add_budget_flags(CLI::App& app, Args& a) { tools::add_budget_flags(app, a.opts.budgets, a.max_depth); }
@@ -35,6 +37,7 @@ CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args&
               "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
   c->add_option("--entry,-e", a.entry, "function to call (default: the script's entry point)");
   add_budget_flags(*c, a);
+  tools::add_limit_flags(*c, a.limits);
   return c;
 }
 
@@ -44,6 +47,9 @@ int dispatch(CLI::App& app, Args& a) {
     std::cerr << "error: " << message << "\n";
     return 2;
   }
+  // The REPL is a session, not a run: no watchdog there (the memory cap still holds).
+  bool session = app.got_subcommand("repl") || (app.get_subcommands().empty() && isatty(STDIN_FILENO));
+  if (!tools::apply_limits("fscript", a.limits, !session)) return kExitInput;
   if (CLI::App* run = app.get_subcommand("run"); run->parsed()) {
     for (const auto& extra : run->remaining()) a.values.push_back(extra);
     return cmd_run(a.opts, a.file, a.entry, a.values);
@@ -69,6 +75,7 @@ int real_main(int argc, char** argv) {
   app.require_subcommand(0, 1);
   Args a;
   add_budget_flags(app, a);
+  tools::add_limit_flags(app, a.limits);
 
   CLI::App* run = add_compiling(app, "run", "call the entry (or --entry NAME) with numeric ARGs and print the result", a);
   run->add_option("ARG", a.values, "arguments (nan, inf, -inf accepted); missing ones are 0");

@@ -376,7 +376,7 @@ void Session::cmd_load(const std::string& path, std::string& out) {
   }
   std::string text, error;
   if (!is_scene_path(path)) {
-    if (!support::read_file(path, text, error)) {
+    if (!support::read_file(path, text, error, support::kMaxInputBytes)) {
       out += path + ": error: " + error + "\n";
       return;
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 
 #include "frontend/source.h"
@@ -21,7 +22,7 @@
 namespace fvrml_run {
 namespace {
 
-constexpr int kMaxFrames = 1000;  // a file's `frames` beyond this is clamped (the CLI's own limit)
+using fscript::scene::kMaxFrames;  // a file's `frames` over it is an error (scene_model.h)
 
 // Runs fn(i) for i < n on `threads` workers, each taking every threads-th index; false when any
 // call failed (the others still finish theirs).
@@ -126,7 +127,7 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
   auto t2 = Clock::now();
   uint64_t e0 = mesh::evaluation_ns().load();
   std::vector<SceneModel> models;
-  if (!frame_models(o, l, o.frames, models, true)) return 1;
+  if (!frame_models(o, l, o.frames, models, true) || !within_sample_limits(o, l, models[0], o.frames)) return 1;
   int cols = static_cast<int>(std::ceil(std::sqrt(o.frames))), rows = (o.frames + cols - 1) / cols;
   uint32_t tw = std::max<uint32_t>(16, o.width / cols), th = std::max<uint32_t>(16, o.height / rows);
   std::vector<uint8_t> sheet(size_t(tw) * cols * th * rows * 3, 255);
@@ -174,6 +175,40 @@ std::vector<Track> tracks(const Options& o, const SceneModel& model) {
     if (grp.parent < 0 && n > 0) out.push_back({grp.node, true, static_cast<int>(g), n});
   }
   return out;
+}
+
+bool within_sample_limits(const Options& o, Loaded& l, const SceneModel& model, int frames) {
+  using fscript::scene::ShapeKind;
+  std::vector<uint64_t> per(model.shapes.size(), static_cast<uint64_t>(std::max(frames, 1)));
+  for (const auto& t : frames > 0 ? std::vector<Track>{} : tracks(o, model))
+    for (size_t i = 0; i < model.shapes.size(); ++i)
+      if (t.group ? fscript::scene::inside_group(model, model.shapes[i].group, t.index) : static_cast<int>(i) == t.index)
+        per[i] = static_cast<uint64_t>(t.frames);
+  for (bool implicit : {true, false}) {
+    uint64_t total = 0, most = 0;
+    size_t worst = 0;
+    for (size_t i = 0; i < model.shapes.size(); ++i) {
+      if ((model.shapes[i].kind == ShapeKind::Implicit) != implicit) continue;
+      uint64_t n = fscript::scene::shape_samples(model.shapes[i]) * per[i];
+      total += n;
+      if (n > most) most = n, worst = i;
+    }
+    uint64_t limit = implicit ? fscript::scene::kMaxRunImplicitSamples : fscript::scene::kMaxRunParametricSamples;
+    if (total <= limit) continue;
+    const auto& s = model.shapes[worst];
+    const vrml::Node& at = s.geometry_node ? *s.geometry_node : *s.fshape;
+    const vrml::FieldSlot* res = at.slot("resolution");
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "the run asks for %.3g %s sample points (this shape: %.3g, times %llu frame%s), over the limit of "
+                  "%.3g for one run; lower the resolutions, the frames or --resolution-scale",
+                  static_cast<double>(total), implicit ? "implicit" : "parametric", static_cast<double>(most / per[worst]),
+                  static_cast<unsigned long long>(per[worst]), per[worst] == 1 ? "" : "s", static_cast<double>(limit));
+    l.diag.error(vrml::file_of(l.scene, at), res ? res->span : at.span, text);
+    std::cerr << fscript::frontend::render_all(l.diag);
+    return false;
+  }
+  return true;
 }
 
 int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::json& st) {

@@ -22,11 +22,15 @@
 #include "runtime/support/progress.h"
 #include "runtime/support/version.h"
 #include "tools/budget_flags.h"
+#include "tools/limit_flags.h"
 #include "tools/fvrml-run/run.h"
 #include "tools/fvrml-run/serve.h"
 
 namespace fvrml_run {
 namespace {
+
+// --serve without --max-seconds: a run of the live preview that takes longer is cancelled.
+constexpr double kServeMaxSeconds = 60;
 
 // "640x480" or "512" (a square), each side in [16, 8192].
 bool parse_size(const std::string& s, uint32_t& w, uint32_t& h) {
@@ -133,6 +137,8 @@ int run(int argc, char** argv) {
   // The budgets of every script of the scene, as fscript's (README, "Common options").
   fscript::backends::Budgets& budgets = o.model.compile.budgets;
   fscript::tools::add_budget_flags(app, budgets, budgets.max_call_depth);
+  fscript::tools::RunLimits limits;
+  fscript::tools::add_limit_flags(app, limits, "none; 60 under --serve, where a run over it is cancelled");
   app.add_option("--time", o.model.now, "the scene clock in seconds after load (default 0)")->type_name("SECONDS");
   app.add_option("--fraction", o.fraction, "drive every node as if set_fraction F (0 to 1) had been received")
       ->check(CLI::Range(0.0, 1.0).description(""))
@@ -244,7 +250,12 @@ int run(int argc, char** argv) {
     std::cerr << "error: --frames with " << o.format << " needs -o (the frames go to numbered files)\n";
     return 2;
   }
-  if (serve.on) return fvrml_run::serve(o, serve);
+  // Under --serve the clock is per run (cancelled, the server goes on), not a watchdog on the process.
+  if (!fscript::tools::apply_limits("fvrml-run", limits, !serve.on)) return 1;
+  if (serve.on) {
+    o.max_seconds = limits.max_seconds > 0 ? limits.max_seconds : kServeMaxSeconds;
+    return fvrml_run::serve(o, serve);
+  }
   auto t0 = Clock::now();
   nlohmann::json st;
   int rc;

@@ -51,6 +51,8 @@ struct Options {
   std::function<void(const std::string& glb, size_t frames, size_t of)> on_partial;
   // --serve: set when a newer save makes the run moot; it stops between shapes and frames.
   const std::atomic<bool>* cancel = nullptr;
+  // --serve: a run longer than this is cancelled and reported as an error on the page (0: none).
+  double max_seconds = 0;
 };
 
 inline bool cancelled(const Options& o) { return o.cancel && o.cancel->load(); }
@@ -129,5 +131,9 @@ struct Track {
   int frames = 0;
 };
 std::vector<Track> tracks(const Options& o, const SceneModel& model);
+// Whether the run stays within the scene model's sample limits (kMaxRun*Samples): every shape's
+// samples times `frames` (--frames with a mesh format or pictures), else times the frames of the
+// animation it belongs to. An error at the costliest shape's resolution when not.
+bool within_sample_limits(const Options& o, Loaded& l, const SceneModel& model, int frames);
 
 }  // namespace fvrml_run

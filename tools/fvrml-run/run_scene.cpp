@@ -122,8 +122,10 @@ int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* fi
   auto t0 = Clock::now();
   std::string text, error;
   bool script = is_script_path(o.path);
-  if (!(script ? fscript::support::read_file(o.path, text, error) : vrml::read_scene_text(o.path, text, error))) {
-    std::cerr << o.path << ": error: " << error << "\n";
+  if (!(script ? fscript::support::read_file(o.path, text, error, fscript::support::kMaxInputBytes)
+              : vrml::read_scene_text(o.path, text, error))) {
+    // A whole-file error (unreadable, too large, a gzip bomb) is placed at the file's start.
+    std::cerr << o.path << ":1:1: error: " << error << "\n";
     return 1;
   }
   Loaded l;
@@ -147,7 +149,7 @@ namespace {
 int single(const Options& o, Loaded& l, nlohmann::json& st) {
   auto t1 = Clock::now();
   SceneModel model;
-  if (!build(l, model, o.model, true)) return 1;
+  if (!build(l, model, o.model, true) || !within_sample_limits(o, l, model, 0)) return 1;
   st["compile_ms"] = ms_since(t1);
   auto t2 = Clock::now();
   uint64_t e0 = mesh::evaluation_ns().load();

@@ -162,6 +162,8 @@ Stamps run_and_stamp(const Options& o, int poll_ms, const std::string& dir, Stat
   auto start = fs::file_time_type::clock::now() - std::chrono::milliseconds(50);
   Stamps at_start = stamp(watched);
   std::atomic<bool> cancel{false}, finished{false};
+  bool timed_out = false;
+  auto began = std::chrono::steady_clock::now();
   std::vector<std::string> files;
   std::thread worker([&] {
     files = run_into(o, dir, st, memo, cancel);
@@ -176,8 +178,23 @@ Stamps run_and_stamp(const Options& o, int poll_ms, const std::string& dir, Stat
       stopping = st.stopping;
     }
     if (!finished && (stopping || rerun.load() || stamp(watched) != at_start)) cancel = true;
+    std::chrono::duration<double> took = std::chrono::steady_clock::now() - began;
+    if (!finished && !cancel && o.max_seconds > 0 && took.count() > o.max_seconds) timed_out = cancel = true;
   }
   worker.join();
+  if (timed_out) {  // the page keeps the last good scene and shows why this one is not there
+    char message[160];
+    std::snprintf(message, sizeof message, "error: the run took longer than %g s (--max-seconds %g); stopped\n",
+                  o.max_seconds, o.max_seconds);
+    {
+      std::lock_guard<std::mutex> hold(st.lock);
+      st.ok = false;
+      st.diagnostics = message;
+      ++st.version;
+    }
+    st.changed.notify_all();
+    return stamp(watched);  // not run again until a file changes
+  }
   Stamps seen = stamp(cancel ? watched : files);
   for (auto& [file, time] : seen)
     if (cancel || time >= start) time = fs::file_time_type::min();

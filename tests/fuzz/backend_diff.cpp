@@ -1,0 +1,123 @@
+// Fuzz target: differential testing of the backends. The bytes become a well-formed FScript
+// program (program_gen.h) that runs on the VM, the SSE backend and the LLVM backend over a batch
+// that includes NaN, infinities, signed zeros, denormals and huge values. The backends must agree
+// bit for bit (NaN payloads aside) and fail on the same points with the same message
+// (docs/language.md, "Accuracy"; docs/reliability.md). Without transcendentals, the optimised
+// and the unoptimised module must agree as well (constant folding is exact there).
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+
+#include "backends/backend.h"
+#include "runtime/driver/driver.h"
+#include "tests/fuzz/fuzz_support.h"
+#include "tests/fuzz/program_gen.h"
+
+using namespace fscript;
+
+namespace {
+
+const float kInf = INFINITY, kNan = NAN;
+const float kValues[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, 3.0f, kInf, -kInf, kNan, 1e-40f, -1e-45f,
+                         3.4e38f, -3e38f, 1e30f, 0.1f, 7.25f, -100.0f, 2.0f, 0.49999997f, 1e-7f, 16777216.0f, 6.2831855f};
+constexpr size_t kPoints = 67;  // no multiple of any vector width: the padded tails run too
+
+bool same(float a, float b) {
+  if (std::isnan(a) && std::isnan(b)) return true;
+  uint32_t x, y;
+  std::memcpy(&x, &a, 4);
+  std::memcpy(&y, &b, 4);
+  return x == y;
+}
+
+struct Run {
+  bool ok = false;
+  std::string error;
+  std::vector<float> out;  // [output][point]
+};
+
+using Columns = std::vector<std::vector<float>>;
+
+Run run_batch(const backends::Kernel& k, const Columns& cols, size_t first, size_t n) {
+  std::vector<const float*> in;
+  for (const auto& c : cols) in.push_back(c.data() + first);
+  Run r;
+  r.out.assign(k.num_outputs() * n, 0.0f);
+  std::vector<float*> outs;
+  for (size_t o = 0; o < k.num_outputs(); ++o) outs.push_back(r.out.data() + o * n);
+  backends::RuntimeError err;
+  r.ok = k.eval_batch(in.data(), outs.data(), n, err);
+  r.error = err.message;
+  return r;
+}
+
+std::string describe(const Columns& cols, size_t p) {
+  std::string s = "point " + std::to_string(p) + " (";
+  for (size_t i = 0; i < cols.size(); ++i) s += (i ? ", " : "") + std::to_string(cols[i][p]);
+  return s + ")";
+}
+
+// Point by point (a batch stops at its first failing point, and which one that is depends on the
+// vector width): the same status, the same message, the same bits.
+void compare(const std::string& name, const backends::Kernel& want, const backends::Kernel& got, const Columns& cols,
+             const std::string& text, bool exact) {
+  Run a = run_batch(want, cols, 0, kPoints), b = run_batch(got, cols, 0, kPoints);
+  if (a.ok && b.ok) {
+    for (size_t i = 0; i < a.out.size(); ++i)
+      if (!(exact ? same(a.out[i], b.out[i]) : (same(a.out[i], b.out[i]) || (a.out[i] == 0 && b.out[i] == 0))))
+        fuzz::finding(name + " differs at " + describe(cols, i % kPoints) + ": " + std::to_string(a.out[i]) + " vs " +
+                          std::to_string(b.out[i]),
+                      text);
+    return;
+  }
+  for (size_t p = 0; p < kPoints; ++p) {
+    Run x = run_batch(want, cols, p, 1), y = run_batch(got, cols, p, 1);
+    if (x.ok != y.ok || x.error != y.error)
+      fuzz::finding(name + " fails differently at " + describe(cols, p) + ": '" + x.error + "' vs '" + y.error + "'", text);
+    for (size_t i = 0; x.ok && i < x.out.size(); ++i)
+      if (!same(x.out[i], y.out[i])) fuzz::finding(name + " differs at " + describe(cols, p), text);
+  }
+}
+
+std::unique_ptr<ir::Module> build(const std::string& text, bool optimize, std::unique_ptr<backends::Kernel>& vm) {
+  driver::CompileOptions o;
+  o.backend = "vm";
+  o.budgets = fuzz::small_budgets();
+  o.build.optimize = optimize;
+  o.build.verify_each = true;
+  frontend::DiagnosticSink diag;
+  driver::Compiled c;
+  driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>("gen.fs", text), driver::default_entry(), o,
+                                      diag, c);
+  if (!r.ok()) fuzz::finding("a generated program does not compile: " + r.error + "\n" + frontend::render_all(diag), text);
+  vm = std::move(c.kernel);
+  return std::move(c.module);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  FuzzedDataProvider in(data, size);
+  fuzz::GeneratedProgram prog = fuzz::generate_program(in);
+  std::unique_ptr<backends::Kernel> vm;
+  auto module = build(prog.text, true, vm);
+  Columns cols(vm->num_inputs(), std::vector<float>(kPoints));
+  for (size_t c = 0; c < cols.size(); ++c)
+    for (size_t p = 0; p < kPoints; ++p) cols[c][p] = kValues[(p * (2 * c + 1) + c * 5) % std::size(kValues)];
+  for (const char* name : {"sse", "llvm"}) {
+    auto backend = backends::make_backend(name);
+    if (!backend) continue;  // a build without LLVM
+    std::string error;
+    auto k = backend->compile(*module, fuzz::small_budgets(), error);
+    if (!k) fuzz::finding(std::string(name) + " cannot compile: " + error, prog.text);
+    compare(std::string("vm against ") + name, *vm, *k, cols, prog.text, true);
+  }
+  if (!prog.transcendental) {
+    std::unique_ptr<backends::Kernel> plain;
+    build(prog.text, false, plain);
+    compare("optimised against unoptimised", *vm, *plain, cols, prog.text, false);
+  }
+  return 0;
+}

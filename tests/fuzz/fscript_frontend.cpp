@@ -1,0 +1,53 @@
+// Fuzz target: bytes as an FScript file through the lexer, parser, sema, lowering, the verifier
+// after every pass, and one evaluation on the VM. Diagnostics are fine; crashes, hangs, leaks, a
+// verifier failure or a refusal without an error are findings.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#include "ir/text.h"
+#include "ir/verifier.h"
+#include "runtime/driver/driver.h"
+#include "runtime/support/big_stack.h"
+#include "tests/fuzz/fuzz_support.h"
+
+using namespace fscript;
+
+namespace {
+
+void one_input(const std::string& text) {
+  driver::CompileOptions o;
+  o.backend = "vm";
+  o.budgets = fuzz::small_budgets();
+  o.build.optimize = true;
+  o.build.verify_each = true;
+  frontend::DiagnosticSink diag;
+  driver::Compiled c;
+  driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>("fuzz.fs", text), driver::default_entry(), o,
+                                      diag, c);
+  if (r.stage == driver::Stage::Internal) fuzz::finding("the verifier rejected the compiler's IR: " + r.error, text);
+  if (r.stage == driver::Stage::Source && !diag.has_errors()) fuzz::finding("refused without an error", text);
+  frontend::render_all(diag);  // every diagnostic renders (source line, caret)
+  if (!c.module) return;
+  std::string v = ir::verify(*c.module);
+  if (!v.empty()) fuzz::finding("verifier: " + v, text);
+  // The text form round-trips: print(read(print(m))) == print(m).
+  std::string printed = ir::print(*c.module), error;
+  auto back = ir::read(printed, error);
+  if (!back) fuzz::finding("the IR printer wrote what the reader refuses: " + error + "\n" + printed, text);
+  if (ir::print(*back) != printed) fuzz::finding("the IR text does not round-trip", text);
+  if (!c.kernel) return;
+  std::vector<float> in(c.kernel->num_inputs(), 0.25f), out(c.kernel->num_outputs());
+  backends::RuntimeError err;
+  if (!c.kernel->eval(in.data(), out.data(), err) && err.message.empty())
+    fuzz::finding("a runtime error without a message", text);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  std::string text(reinterpret_cast<const char*>(data), size);
+  // As the tools do: deeply nested (accepted) input needs more than the default stack.
+  support::run_with_big_stack([&] { one_input(text); });
+  return 0;
+}

@@ -1,12 +1,16 @@
 // The runtime error messages every backend shares.
 #include "backends/runtime_errors.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace fscript::backends::errors {
 
 namespace {
 std::string number(float v) {  // as the user would write it back: the shortest round trip
+  // NaN's sign is not the same on every backend (the language does not define it): "nan", never
+  // "-nan", so that every backend gives the same message (a finding of the backend_diff target).
+  if (std::isnan(v)) return "nan";
   char b[32];
   std::snprintf(b, sizeof b, "%.9g", static_cast<double>(v));
   return b;

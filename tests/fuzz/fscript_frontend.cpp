@@ -48,6 +48,6 @@ void one_input(const std::string& text) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string text(reinterpret_cast<const char*>(data), size);
   // As the tools do: deeply nested (accepted) input needs more than the default stack.
-  support::run_with_big_stack([&] { one_input(text); });
+  fuzz::run_deep([&] { one_input(text); });
   return 0;
 }

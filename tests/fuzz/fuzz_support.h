@@ -1,11 +1,16 @@
 #pragma once
 // What every fuzz target shares: how a finding is reported (the input and what broke, then abort,
 // which libFuzzer records as a crash with the input saved), and bounded compile budgets.
+#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
+#include <mutex>
 #include <string>
+#include <thread>
 
 #include "backends/backend.h"
+#include "runtime/support/big_stack.h"
 
 namespace fscript::fuzz {
 
@@ -21,6 +26,38 @@ inline backends::Budgets small_budgets() {
   b.max_call_depth = 64;
   b.max_array_elements = 4096;
   return b;
+}
+
+// Runs `fn` on the one thread with a big stack that serves every input (as the tools run on one:
+// deep but legal nesting must not overflow). A fresh 1 GiB-stack thread per input spent half the
+// time of a small input in mmap and munmap. An exception escaping `fn` ends the process: a finding.
+inline void run_deep(const std::function<void()>& fn) {
+  struct Runner {
+    std::mutex m;
+    std::condition_variable cv;
+    const std::function<void()>* job = nullptr;
+    bool done = false;
+    Runner() {
+      std::thread([this] {
+        support::run_with_big_stack([this] {
+          for (;;) {
+            std::unique_lock<std::mutex> lock(m);
+            cv.wait(lock, [this] { return job != nullptr; });
+            (*job)();
+            job = nullptr;
+            done = true;
+            cv.notify_all();
+          }
+        });
+      }).detach();
+    }
+  };
+  static Runner* runner = new Runner;  // never destroyed: its thread serves until the process ends
+  std::unique_lock<std::mutex> lock(runner->m);
+  runner->job = &fn;
+  runner->done = false;
+  runner->cv.notify_all();
+  runner->cv.wait(lock, [] { return runner->done; });
 }
 
 }  // namespace fscript::fuzz

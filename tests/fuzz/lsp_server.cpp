@@ -142,6 +142,6 @@ void one_input(const uint8_t* data, size_t size) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  support::run_with_big_stack([&] { one_input(data, size); });
+  fuzz::run_deep([&] { one_input(data, size); });
   return 0;
 }

@@ -43,7 +43,7 @@ run_one() {
   [ -n "$dict" ] && args+=("-dict=$dict")
   # A target is one process here: -rss_limit_mb catches a leak or a blow-up, -timeout a hang.
   nice "$exe" "$bf/corpus/$t" "$here/corpus/$t" "$bf/seeds/$t" "${args[@]}" \
-    -max_total_time="$seconds" -rss_limit_mb=2560 -timeout=20 -max_len=65536 -print_final_stats=1 \
+    -max_total_time="$seconds" -rss_limit_mb=2560 -timeout=20 -max_len=16384 -print_final_stats=1 \
     -artifact_prefix="$bf/findings/$t-" > "$bf/logs/$t.log" 2>&1
   local st=$?
   local execs speed

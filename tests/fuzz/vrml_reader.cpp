@@ -61,6 +61,6 @@ void one_input(const std::string& bytes) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string bytes(reinterpret_cast<const char*>(data), size);
-  support::run_with_big_stack([&] { one_input(bytes); });
+  fuzz::run_deep([&] { one_input(bytes); });
   return 0;
 }

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "backends/row_kernel.h"
+#include "backends/runtime_errors.h"
 #include "backends/sse/sse_backend.h"
 #include "backends/tiered/tiered.h"
 #include "ir/eval.h"
@@ -192,6 +193,22 @@ TEST_CASE("backends: a partial last group runs only the points given (errors tha
       INFO(v.name);
       CHECK(test::partial_group_mismatch(*vm->kernel, *compile_on(v, *vm->module, budgets), 17) == "");
     }
+  }
+}
+
+// Found by the backend_diff fuzz target: the VM said "index -nan", the SSE backend "index nan".
+TEST_CASE("backends: a NaN in a runtime error is 'nan' on every backend, whatever its sign") {
+  CHECK(backends::errors::array_index("a", -NAN, 0) == "index nan is out of range for array 'a' of 0 elements");
+  CHECK(backends::errors::array_index("a", NAN, 3) == "index nan is out of range for array 'a' of 3 elements");
+  auto vm = test::build("function FRep(x, y, z, t) { var a = new Array(0); return a[-log(x - 1)]; }");
+  REQUIRE(vm->ok);
+  for (const Variant& v : variants()) {
+    INFO(v.name);
+    auto k = compile_on(v, *vm->module);
+    std::vector<float> in(k->num_inputs(), 0.0f), out(k->num_outputs());
+    backends::RuntimeError err;
+    CHECK_FALSE(k->eval(in.data(), out.data(), err));
+    CHECK(err.message == "index nan is out of range for array 'a' of 0 elements");
   }
 }
 

@@ -72,7 +72,7 @@ fuzz_briefly() {
     fs_skip missing fuzz "clang-19 with libFuzzer (${FUZZ_PACKAGES[*]}) is not installed"
     return
   fi
-  build_fuzz && tests/fuzz/run.sh build-fuzz "$SHARED_DIR" 60 2 "${FUZZ_TARGETS[@]}"
+  build_fuzz && FUZZ_SEED=1 tests/fuzz/run.sh build-fuzz "$SHARED_DIR" 60 2 "${FUZZ_TARGETS[@]}"
 }
 # npm tools for the tests: the Khronos glTF validator and Microsoft's LSP client libraries; the
 # checks that need one that could not be installed are skipped out loud (failures under CI).

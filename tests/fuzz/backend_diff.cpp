@@ -24,14 +24,6 @@ const float kValues[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, 3.0f, kInf, -kIn
                          3.4e38f, -3e38f, 1e30f, 0.1f, 7.25f, -100.0f, 2.0f, 0.49999997f, 1e-7f, 16777216.0f, 6.2831855f};
 constexpr size_t kPoints = 67;  // no multiple of any vector width: the padded tails run too
 
-bool same(float a, float b) {
-  if (std::isnan(a) && std::isnan(b)) return true;
-  uint32_t x, y;
-  std::memcpy(&x, &a, 4);
-  std::memcpy(&y, &b, 4);
-  return x == y;
-}
-
 struct Run {
   bool ok = false;
   std::string error;
@@ -66,7 +58,7 @@ void compare(const std::string& name, const backends::Kernel& want, const backen
   Run a = run_batch(want, cols, 0, kPoints), b = run_batch(got, cols, 0, kPoints);
   if (a.ok && b.ok) {
     for (size_t i = 0; i < a.out.size(); ++i)
-      if (!(exact ? same(a.out[i], b.out[i]) : (same(a.out[i], b.out[i]) || (a.out[i] == 0 && b.out[i] == 0))))
+      if (!(exact ? fuzz::same_bits(a.out[i], b.out[i]) : (fuzz::same_bits(a.out[i], b.out[i]) || (a.out[i] == 0 && b.out[i] == 0))))
         fuzz::finding(name + " differs at " + describe(cols, i % kPoints) + ": " + std::to_string(a.out[i]) + " vs " +
                           std::to_string(b.out[i]),
                       text);
@@ -77,16 +69,12 @@ void compare(const std::string& name, const backends::Kernel& want, const backen
     if (x.ok != y.ok || x.error != y.error)
       fuzz::finding(name + " fails differently at " + describe(cols, p) + ": '" + x.error + "' vs '" + y.error + "'", text);
     for (size_t i = 0; x.ok && i < x.out.size(); ++i)
-      if (!same(x.out[i], y.out[i])) fuzz::finding(name + " differs at " + describe(cols, p), text);
+      if (!fuzz::same_bits(x.out[i], y.out[i])) fuzz::finding(name + " differs at " + describe(cols, p), text);
   }
 }
 
 std::unique_ptr<ir::Module> build(const std::string& text, bool optimize, std::unique_ptr<backends::Kernel>& vm) {
-  driver::CompileOptions o;
-  o.backend = "vm";
-  o.budgets = fuzz::small_budgets();
-  o.build.optimize = optimize;
-  o.build.verify_each = true;
+  driver::CompileOptions o = fuzz::compile_options(optimize);
   frontend::DiagnosticSink diag;
   driver::Compiled c;
   driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>("gen.fs", text), driver::default_entry(), o,

@@ -16,11 +16,7 @@ using namespace fscript;
 namespace {
 
 void one_input(const std::string& text) {
-  driver::CompileOptions o;
-  o.backend = "vm";
-  o.budgets = fuzz::small_budgets();
-  o.build.optimize = true;
-  o.build.verify_each = true;
+  driver::CompileOptions o = fuzz::compile_options(true);
   frontend::DiagnosticSink diag;
   driver::Compiled c;
   driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>("fuzz.fs", text), driver::default_entry(), o,

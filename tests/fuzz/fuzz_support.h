@@ -2,14 +2,18 @@
 // What every fuzz target shares: how a finding is reported (the input and what broke, then abort,
 // which libFuzzer records as a crash with the input saved), and bounded compile budgets.
 #include <condition_variable>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
 
 #include "backends/backend.h"
+#include "runtime/driver/driver.h"
 #include "runtime/support/big_stack.h"
 
 namespace fscript::fuzz {
@@ -26,6 +30,25 @@ inline backends::Budgets small_budgets() {
   b.max_call_depth = 64;
   b.max_array_elements = 4096;
   return b;
+}
+
+// How the targets compile a program: the VM, the small budgets, every pass verified.
+inline driver::CompileOptions compile_options(bool optimize) {
+  driver::CompileOptions o;
+  o.backend = "vm";
+  o.budgets = small_budgets();
+  o.build.optimize = optimize;
+  o.build.verify_each = true;
+  return o;
+}
+
+// The same bits, or both NaN (NaN payloads and signs are not defined by the language).
+inline bool same_bits(float a, float b) {
+  if (std::isnan(a) && std::isnan(b)) return true;
+  uint32_t x, y;
+  std::memcpy(&x, &a, 4);
+  std::memcpy(&y, &b, 4);
+  return x == y;
 }
 
 // Runs `fn` on the one thread with a big stack that serves every input (as the tools run on one:

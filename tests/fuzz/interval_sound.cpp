@@ -37,14 +37,6 @@ float inside(const math::Interval& box, float f) {
   return std::isfinite(v) ? std::fmin(std::fmax(v, box.lo), box.hi) : box.lo;
 }
 
-bool same(float a, float b) {
-  if (std::isnan(a) && std::isnan(b)) return true;
-  uint32_t x, y;
-  std::memcpy(&x, &a, 4);
-  std::memcpy(&y, &b, 4);
-  return x == y;
-}
-
 std::string describe(const std::vector<math::Interval>& box, const std::vector<float>& p) {
   std::string s = "box";
   for (const auto& b : box) s += " [" + std::to_string(b.lo) + ", " + std::to_string(b.hi) + "]";
@@ -60,9 +52,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fuzz::GenOptions go;
   go.straight_line = true;
   fuzz::GeneratedProgram prog = fuzz::generate_program(in, go);
-  driver::CompileOptions o;
-  o.backend = "vm";
-  o.build.verify_each = true;
+  driver::CompileOptions o = fuzz::compile_options(true);
   frontend::DiagnosticSink diag;
   driver::Compiled c;
   if (!driver::compile(std::make_unique<frontend::SourceFile>("gen.fs", prog.text), driver::default_entry(), o, diag, c).ok())
@@ -110,7 +100,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                       prog.text);
       if (!bev.output(k, p % ir::kIntervalLanes).contains(v))
         fuzz::finding("the batched interval evaluator misses " + std::to_string(v) + ", " + describe(box, point), prog.text);
-      if (!same(v, simple[k][p]))
+      if (!fuzz::same_bits(v, simple[k][p]))
         fuzz::finding("the simplified tape gives " + std::to_string(simple[k][p]) + " for " + std::to_string(v) + ", " +
                           describe(box, point),
                       prog.text);

@@ -3,7 +3,8 @@
 #   tests/fuzz/run.sh BUILD_FUZZ SHARED SECONDS JOBS TARGET...
 # Each target runs SECONDS on its regression corpus (tests/fuzz/corpus/T), seeds from the tests,
 # examples/ and the shared corpus, and what earlier runs found (BUILD_FUZZ/corpus/T), JOBS at once.
-# A finding is saved as BUILD_FUZZ/findings/T-crash-... and fails the run.
+# A finding is saved as BUILD_FUZZ/findings/T-crash-... and fails the run. FUZZ_SEED=N fixes
+# libFuzzer's random seed (./dev.sh test does, so that CI explores the same inputs every time).
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 src=$(cd "$here/../.." && pwd)
@@ -41,6 +42,7 @@ run_one() {
   local dict args=()
   dict=$(dict_for "$t")
   [ -n "$dict" ] && args+=("-dict=$dict")
+  [ -n "${FUZZ_SEED:-}" ] && args+=("-seed=$FUZZ_SEED")
   # A target is one process here: -rss_limit_mb catches a leak or a blow-up, -timeout a hang.
   nice "$exe" "$bf/corpus/$t" "$here/corpus/$t" "$bf/seeds/$t" "${args[@]}" \
     -max_total_time="$seconds" -rss_limit_mb=2560 -timeout=20 -max_len=16384 -print_final_stats=1 \

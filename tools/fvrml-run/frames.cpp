@@ -18,6 +18,7 @@
 #include "runtime/support/files.h"
 #include "tools/fvrml-run/memo.h"
 #include "tools/fvrml-run/run.h"
+#include "tools/fvrml-run/shard.h"
 
 namespace fvrml_run {
 namespace {
@@ -101,6 +102,19 @@ bool moves(const SceneModel& m, const Track& t) {
       if (shape_moves(m.shapes[static_cast<size_t>(s)])) return true;
   }
   return false;
+}
+
+// --shard K/M: makes the frames i % M == K of a track (a still track's one frame: shard 0) and
+// adds them to the part with their keys.
+bool shard_frames(const Options& o, const std::vector<std::string>& keys, mesh::FrameCache& cache,
+                  fscript::backends::RuntimeError& err) {
+  Part& part = *o.shard_part;
+  for (size_t i = static_cast<size_t>(part.shard.index); i < keys.size(); i += static_cast<size_t>(part.shard.count)) {
+    mesh::Mesh m;
+    if (!cache.get(i, m, err)) return false;
+    part.frames.push_back({keys[i], *cache.compact(i)});
+  }
+  return true;
 }
 
 // The frame keys of a track in the memo; frames found there go into the cache. Returns the keys of
@@ -221,7 +235,13 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
   uint64_t jobs = mesh_jobs(model, skip);
   for (const auto& t : ts) jobs += moves(model, t) ? static_cast<uint64_t>(t.frames) : 1;  // a still one is made once
   fscript::support::progress_expect(jobs, "frames");
-  Meshed meshed = mesh_scene(o, l.scene, model, world, o.threads, skip);
+  if (o.merging && scene_files_hash(l.files) != o.merging->scene_hash) {
+    std::cerr << o.path << ": error: the scene's files changed since the shards were made; run the shards again\n";
+    return 1;
+  }
+  if (o.shard_part) o.shard_part->scene_hash = scene_files_hash(l.files);
+  // A shard makes only its frames; the static shapes are made by the merge.
+  Meshed meshed = o.shard_part ? Meshed{} : mesh_scene(o, l.scene, model, world, o.threads, skip);
   if (meshed.failed && !o.keep_going) return 1;
   failed |= meshed.failed;
   std::map<int, std::vector<SceneModel>> models;  // per frame count
@@ -243,6 +263,21 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     bool still = !moves(model, t), made = true;
     std::vector<std::string> keys = from_memo(o, l.scene, t, ms, world, still, cache);
     fscript::backends::RuntimeError err;
+    if (o.shard_part) {
+      if (!shard_frames(o, keys, cache, err)) {
+        report(o, l.scene, t.node, err);
+        return 1;
+      }
+      continue;
+    }
+    if (o.merging)
+      for (size_t i = 0; i < keys.size(); ++i)
+        if (!keys[i].empty()) {
+          std::cerr << o.path << ":" << node_line(l.scene, *t.node) << ": error: frame " << i << " of this node is in "
+                    << "none of the parts (shard " << i % static_cast<size_t>(o.merging->shard.count) << " of "
+                    << o.merging->shard.count << " should have made it)\n";
+          return 1;
+        }
     if (still && !cache.has(0)) {  // every frame as the first: made once
       mesh::Mesh first;
       made = cache.get(0, first, err);
@@ -289,6 +324,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
   st["polygonize_ms"] = ms_since(t2);
   st["evaluation_ms"] = evaluation_ms_since(e0);
   st["animations"] = report_json;
+  if (o.shard_part) return 0;  // main.cpp writes the part
   auto t3 = Clock::now();
   bool written = false;
   if (world) {

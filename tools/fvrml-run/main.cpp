@@ -24,7 +24,9 @@
 #include "tools/budget_flags.h"
 #include "tools/limit_flags.h"
 #include "tools/fvrml-run/run.h"
+#include "tools/fvrml-run/memo.h"
 #include "tools/fvrml-run/serve.h"
+#include "tools/fvrml-run/shard.h"
 
 namespace fvrml_run {
 namespace {
@@ -122,7 +124,13 @@ std::string written_summary(const Options& o, const nlohmann::json& st, double m
   return "wrote " + o.output + ": " + what + secs;
 }
 
-int run(int argc, char** argv) {
+// fvrml-run merge: the parts' frames in a memo the run takes every frame from.
+struct Merge {
+  const Part* first = nullptr;
+  MeshMemo* memo = nullptr;
+};
+
+int run(int argc, char** argv, const Merge* merge = nullptr) {
   CLI::App app{"fvrml-run: FVRML scenes (VRML97 with function-defined shapes)"};
   app.set_version_flag("--version", fscript::support::version_line("fvrml-run"));
   Options o;
@@ -167,6 +175,11 @@ int run(int argc, char** argv) {
       ->check(CLI::Range(0.0, 10.0).description(""))
       ->type_name("T");
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
+  std::string shard_text;
+  app.add_option("--shard", shard_text,
+                 "make only shard K of M of the animations' frames (frames i with i % M == K) into the part file -o "
+                 "PART, with --format wrl|glb naming the merged output; auto: Slurm's array task (docs/sharding.md)")
+      ->type_name("K/M|auto");
   ServeOptions serve;
   app.add_flag("--serve", serve.on,
                "a live preview in the browser: serves a page that shows the scene and updates on every save, "
@@ -237,6 +250,10 @@ int run(int argc, char** argv) {
     std::cerr << "no -o given: writing " << o.output << " (-o OUT.wrl|glb|ply|obj|stl|png chooses; -o - "
               << "writes VRML97 to standard output)\n";
   }
+  if (!shard_text.empty() && o.format.empty())
+    return std::cerr << "error: --shard writes the part file -o PART and needs --format wrl or glb, the format of "
+                        "the merged output (fvrml-run merge PART... -o OUT)\n",
+           2;
   if (o.format.empty() && o.output == "-") o.format = "wrl";
   if (o.format.empty() && !o.output.empty()) o.format = o.output.substr(o.output.find_last_of('.') + 1);
   if (o.format.empty()) o.format = "wrl";
@@ -250,6 +267,24 @@ int run(int argc, char** argv) {
     std::cerr << "error: --frames with " << o.format << " needs -o (the frames go to numbered files)\n";
     return 2;
   }
+  Shard shard;
+  Part part;
+  MeshMemo shard_memo;
+  if (!shard_text.empty()) {
+    std::string error;
+    if (!parse_shard(shard_text, shard, error)) return std::cerr << "error: " << error << "\n", 2;
+    if (serve.on || o.output.empty() || o.output == "-" || !o.check.empty() ||
+        std::none_of(argv, argv + argc, [](const char* a) { return std::strncmp(a, "--format", 8) == 0; }) || !animation)
+      return std::cerr << "error: --shard writes the part file -o PART and needs --format wrl or glb, the format of "
+                          "the merged output (fvrml-run merge PART... -o OUT)\n",
+             2;
+    part.shard = shard;
+    part.cwd = std::filesystem::current_path().string();
+    part.args = args_for_part(argc, argv);
+    o.shard_part = &part;
+    o.memo = &shard_memo;  // for the frames' keys
+  }
+  if (merge) o.merging = merge->first, o.memo = merge->memo;
   // Under --serve the clock is per run (cancelled, the server goes on), not a watchdog on the process.
   if (!fscript::tools::apply_limits("fvrml-run", limits, !serve.on)) return 1;
   if (serve.on) {
@@ -271,8 +306,60 @@ int run(int argc, char** argv) {
     st["row_split"] = {{"kernels", rs.kernels}, {"rows", rs.rows}, {"points", rs.points}};
     std::cerr << st.dump() << "\n";
   }
+  if (o.shard_part && rc == 0) {
+    std::string error;
+    if (!write_part(o.output, part, error)) return std::cerr << "error: " << error << "\n", 1;
+    std::cerr << "wrote " << o.output << ": shard " << shard.index << " of " << shard.count << ", " << part.frames.size()
+              << (part.frames.size() == 1 ? " frame\n" : " frames\n");
+    return 0;
+  }
   if (!o.stats && rc == 0 && !o.output.empty() && o.output != "-") std::cerr << written_summary(o, st, ms_since(t0)) << "\n";
   return rc;
+}
+
+// fvrml-run merge PART... -o OUT: the parts checked, their frames in a memo, then the job's own
+// command line run with -o OUT, every animation frame taken from the parts.
+int merge_main(int argc, char** argv) {
+  CLI::App app{"fvrml-run merge: the parts of a sharded animation (fvrml-run --shard K/M) into its output"};
+  std::vector<std::string> paths;
+  std::string output;
+  app.add_option("PART", paths, "every part of the job (fvrml-run --shard K/M -o PART)")->required();
+  app.add_option("-o,--output", output, "the output: .wrl or .glb, as the shards' --format")->required();
+  try {
+    app.parse(argc - 1, argv + 1);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  std::vector<Part> parts(paths.size());
+  std::string error;
+  for (size_t i = 0; i < paths.size(); ++i)
+    if (!read_part(paths[i], parts[i], error)) return std::cerr << paths[i] << ": error: " << error << "\n", 1;
+  if (!check_parts(paths, parts, error)) return std::cerr << "error: " << error << "\n", 1;
+  MeshMemo memo;
+  std::set<std::string> keys;
+  for (size_t i = 0; i < parts.size(); ++i)
+    for (const PartFrame& f : parts[i].frames) {
+      if (!keys.insert(f.key).second)
+        return std::cerr << paths[i] << ": error: a frame that another part holds too (parts of one job never overlap)\n", 1;
+      memo.store_frame(f.key, f.compact);
+    }
+  // The shards' --format is the output's: an -o of another type would get the wrong bytes.
+  const std::vector<std::string>& a = parts[0].args;
+  for (size_t i = 0; i < a.size(); ++i) {
+    std::string format = a[i] == "--format" && i + 1 < a.size() ? a[i + 1] : a[i].rfind("--format=", 0) == 0 ? a[i].substr(9) : "";
+    if (!format.empty() && output.substr(output.find_last_of('.') + 1) != format)
+      return std::cerr << "error: the shards were made for " << format << " output: -o NAME." << format << "\n", 2;
+  }
+  std::string out = std::filesystem::absolute(output).string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(parts[0].cwd, ec)) std::filesystem::current_path(parts[0].cwd, ec);
+  std::vector<std::string> args = {"fvrml-run"};
+  args.insert(args.end(), parts[0].args.begin(), parts[0].args.end());
+  for (const char* a : {"-o", out.c_str()}) args.push_back(a);
+  std::vector<char*> av;
+  for (auto& a : args) av.push_back(a.data());
+  Merge m{&parts[0], &memo};
+  return run(static_cast<int>(av.size()), av.data(), &m);
 }
 
 }  // namespace
@@ -280,6 +367,8 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   int rc = 0;
-  fscript::support::run_with_big_stack([&] { rc = fvrml_run::run(argc, argv); });
+  fscript::support::run_with_big_stack([&] {
+    rc = argc > 1 && std::strcmp(argv[1], "merge") == 0 ? fvrml_run::merge_main(argc, argv) : fvrml_run::run(argc, argv);
+  });
   return rc;
 }

@@ -33,6 +33,7 @@ inline double ms_since(Clock::time_point t0) {
 double evaluation_ms_since(uint64_t ns0);
 
 class MeshMemo;
+struct Part;
 
 struct Options {
   std::string path, output, format, check;
@@ -53,6 +54,11 @@ struct Options {
   const std::atomic<bool>* cancel = nullptr;
   // --serve: a run longer than this is cancelled and reported as an error on the page (0: none).
   double max_seconds = 0;
+  // --shard K/M: the animation frames i % M == K go to this part (shard.h) instead of an output.
+  Part* shard_part = nullptr;
+  // fvrml-run merge: every animation frame comes from `memo` (filled from the parts), made from
+  // the files these parts were made from; a frame missing from it is an error, not made here.
+  const Part* merging = nullptr;
 };
 
 inline bool cancelled(const Options& o) { return o.cancel && o.cancel->load(); }
@@ -61,6 +67,7 @@ struct Loaded {
   fscript::frontend::DiagnosticSink diag;
   vrml::Scene scene;
   bool from_script = false;  // an .fs file wrapped in one FShape (main.cpp, script_scene)
+  std::vector<std::string> files;  // the files read: the scene, then its Inlines and EXTERNPROTOs
 };
 
 // The meshes of one frame: per replaced node (FShape or top-level FTransform) and per shape.

@@ -132,7 +132,9 @@ int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* fi
   l.from_script = script;
   bool ok = script ? script_scene(o.path, text, l)
                    : vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(o.path, text), l.diag, l.scene);
-  if (ok && !script) ok = vrml::load_inlines(l.scene, l.diag, files);  // local Inline files, read and parsed
+  l.files = {o.path};
+  if (ok && !script) ok = vrml::load_inlines(l.scene, l.diag, &l.files);  // local Inline files, read and parsed
+  if (files) files->insert(files->end(), l.files.begin() + 1, l.files.end());
   st = {{"parse_ms", ms_since(t0)}};
   if (!ok) {
     std::cerr << fscript::frontend::render_all(l.diag);
@@ -160,6 +162,11 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
     meshed = mesh_scene(o, l.scene, model, true, o.threads);
     if (meshed.failed && !o.keep_going) return 1;
     if (!check_against(o.check, merged(meshed))) return 1;
+  }
+  if (o.shard_part && tracks(o, model).empty()) {
+    std::cerr << o.path << ": error: nothing in the scene is animated: --shard splits the frames of animations (a "
+              << "node's frames N, or --frames N)\n";
+    return 1;
   }
   if (write && !tracks(o, model).empty()) {
     int rc = animated(o, l, model, st);

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Sharded animations (docs/sharding.md): shards made in any order merge into exactly the bytes of
+# the run on one machine (glTF and VRML97, frames by a node's own `frames` and by --frames), and
+# every way a set of parts can be wrong is refused with its reason, exit 1, and no output.
+# usage: shard_test.sh SOURCE_DIR FVRML_RUN
+set -u
+SRC="$1"
+R="$2"
+. "$SRC/tests/cli/lib.sh"
+S="$SRC/examples/paper/figure1-morphing.wrl"
+
+# same NAME SCENE FORMAT M ARGS...: the single run and the merge of M shards (made last to first).
+same() {
+  local name="$1" scene="$2" format="$3" m="$4"
+  shift 4
+  rm -f "$T"/part-*.fvc
+  "$R" "$scene" "$@" -o "$T/single.$format" 2> /dev/null || { fail "$name: the single run failed"; return; }
+  for ((k = m - 1; k >= 0; k--)); do
+    check "$name: shard $k of $m" 0 "^wrote .*part-$k.fvc: shard $k of $m, [0-9]+ frames?$" \
+      -- "$R" "$scene" "$@" --format "$format" --shard "$k/$m" -o "$T/part-$k.fvc"
+  done
+  check "$name: merge" 0 "^wrote .*merged.$format: animated" -- "$R" merge "$T"/part-*.fvc -o "$T/merged.$format"
+  cmp -s "$T/single.$format" "$T/merged.$format" || fail "$name: the merged $format differs from the single run's"
+}
+same "Figure 1, 8 frames, glTF, 3 shards" "$S" glb 3 --frames 8 --resolution-scale 0.5
+same "Figure 1, 6 frames, VRML97, 4 shards" "$S" wrl 4 --frames 6 --resolution-scale 0.5
+same "more shards than frames" "$S" glb 5 --frames 3 --resolution-scale 0.3
+printf '#VRML V2.0 utf8\nFShape { frames 5 cycleInterval 2 geometry FGeometry { definition "0.5 - x*x - y*y - z*z + 0.2*t" bboxSize 2 2 2 resolution [12] } }\nFShape { geometry FGeometry { definition "0.1 - (x-1)*(x-1) - y*y - z*z" bboxSize 2 2 2 resolution [8] } }\nFShape { frames 3 geometry FGeometry { definition "0.1 - (x+1)*(x+1) - y*y - z*z" bboxSize 2 2 2 resolution [8] } }\n' > "$T/own.wrl"
+same "a node's own frames, a static shape, a still animation" "$T/own.wrl" glb 2
+
+# ---- What the merge refuses ----
+for k in 0 1 2; do "$R" "$S" --frames 6 --format glb --shard "$k/3" -o "$T/p$k.fvc" --resolution-scale 0.3 2> /dev/null; done
+refuse() {  # NAME PATTERN STATUS -- merge arguments
+  local name="$1" pat="$2" status="$3"
+  shift 4
+  rm -f "$T/x.glb" "$T/x.wrl"
+  check "$name" "$status" "$pat" -- "$R" merge "$@"
+  [ -e "$T/x.glb" ] || [ -e "$T/x.wrl" ] && fail "$name: wrote an output"
+}
+refuse "a missing shard" '^error: shard 1 of 3 missing \(run it with --shard 1/3\)$' 1 -- "$T/p0.fvc" "$T/p2.fvc" -o "$T/x.glb"
+refuse "a shard twice" 'p1.fvc and .*p1.fvc are both shard 1 of 3' 1 -- "$T/p0.fvc" "$T/p1.fvc" "$T/p1.fvc" "$T/p2.fvc" -o "$T/x.glb"
+"$R" "$S" --frames 5 --format glb --shard 1/3 -o "$T/other.fvc" --resolution-scale 0.3 2> /dev/null
+refuse "a shard of another job" 'other.fvc: a shard of another job' 1 -- "$T/p0.fvc" "$T/other.fvc" "$T/p2.fvc" -o "$T/x.glb"
+head -c 600 "$T/p1.fvc" > "$T/cut.fvc"
+refuse "a truncated part" 'cut.fvc: error: the part is truncated or damaged' 1 -- "$T/p0.fvc" "$T/cut.fvc" "$T/p2.fvc" -o "$T/x.glb"
+echo "#VRML V2.0 utf8" > "$T/not.fvc"
+refuse "not a part" 'not.fvc: error: not a part file' 1 -- "$T/not.fvc" -o "$T/x.glb"
+refuse "an output of another format" '^error: the shards were made for glb output' 2 -- "$T"/p?.fvc -o "$T/x.wrl"
+cp "$S" "$T/edit.wrl"
+for k in 0 1; do "$R" "$T/edit.wrl" --frames 4 --format glb --shard "$k/2" -o "$T/e$k.fvc" 2> /dev/null; done
+echo "# an edit" >> "$T/edit.wrl"
+refuse "the scene edited after the shards" "edit.wrl: error: the scene's files changed since the shards were made" 1 \
+  -- "$T/e0.fvc" "$T/e1.fvc" -o "$T/x.glb"
+
+# ---- What --shard refuses ----
+check "--shard without --format" 2 'needs --format wrl or glb' -- "$R" "$S" --frames 4 --shard 0/2 -o "$T/q.fvc"
+check "--shard K/M out of range" 2 'wants K/M with 0 <= K < M <= 10000, got 2/2' -- "$R" "$S" --frames 4 --format glb --shard 2/2 -o "$T/q.fvc"
+check "--shard with words" 2 "wants K/M \(shard K of M, from 0\) or auto, got 'half'" -- "$R" "$S" --frames 4 --format glb --shard half -o "$T/q.fvc"
+check "--shard auto outside Slurm" 2 'SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT, which are not set' \
+  -- env -u SLURM_ARRAY_TASK_ID "$R" "$S" --frames 4 --format glb --shard auto -o "$T/q.fvc"
+check "--shard auto in a Slurm array (ids from 1)" 0 'shard 2 of 4' \
+  -- env SLURM_ARRAY_TASK_ID=3 SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_COUNT=4 "$R" "$S" --frames 4 --format glb --shard auto -o "$T/q.fvc"
+check "--shard of a scene without animation" 1 'nothing in the scene is animated' -- "$R" "$S" --format glb --shard 0/2 -o "$T/q.fvc"
+
+finish shard

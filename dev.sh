@@ -16,8 +16,9 @@ cd "$(dirname "$0")"
 PACKAGES=(cmake ninja-build ccache g++ python3 catch2 nlohmann-json3-dev libcli11-dev libpng-dev libedit-dev llvm-19-dev libeigen3-dev libcpp-httplib-dev libjs-three pkg-config)
 # For the tests only: a real VRML97 browser (view3dscene, run under a virtual X server), Neovim as
 # a real LSP client, objdump (binutils) for the x86 encoder, node for the glTF validator and the
-# LSP client libraries (npm below), Chromium for the preview page (with npm's playwright-core).
-TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim nodejs chromium)
+# LSP client libraries (npm below), Chromium for the preview page (with npm's playwright-core),
+# Slurm and munge for a one-node cluster that runs the sharding example.
+TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim nodejs chromium slurm-wlm munge)
 # The fuzz build (build-fuzz) and the replay of the fuzz corpora in the normal build.
 FUZZ_PACKAGES=(clang-19 libfuzzer-19-dev)
 FUZZ_TARGETS=(fscript_frontend ir_reader vrml_reader lsp_server backend_diff interval_sound)

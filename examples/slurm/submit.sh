@@ -1,11 +1,13 @@
 #!/bin/bash
-# Submits the shards as a job array and the merge as a job that starts when every shard succeeded:
+# Submits the shards as a job array and the merge as a job that starts when every shard has ended:
 #   ./submit.sh [SHARDS]        (default 4; SCENE, FRAMES and OUTPUT pass through to the jobs)
-# A failed or cancelled shard leaves the merge pending (afterok); rerun that one shard with
-# `sbatch --array=K shards.sbatch`, then `sbatch merge.sbatch` (the merge names any part missing).
+# A shard that failed or was cancelled left no part, and the merge says which (parts/merge.log):
+# rerun that one shard with `FVRML_SHARDS=M sbatch --array=K shards.sbatch` (so that the one task
+# knows it is shard K of M), then `sbatch merge.sbatch`.
 set -euo pipefail
 cd "$(dirname "$0")"
 shards="${1:-4}"
+export FVRML_SHARDS="$shards"
 mkdir -p parts
 array=$(sbatch --parsable --export=ALL --array="0-$((shards - 1))" shards.sbatch)
-sbatch --parsable --export=ALL --dependency="afterok:${array}" merge.sbatch
+sbatch --parsable --export=ALL --dependency="afterany:${array}" merge.sbatch

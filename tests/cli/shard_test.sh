@@ -60,6 +60,8 @@ check "--shard auto outside Slurm" 2 'SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_C
   -- env -u SLURM_ARRAY_TASK_ID "$R" "$S" --frames 4 --format glb --shard auto -o "$T/q.fvc"
 check "--shard auto in a Slurm array (ids from 1)" 0 'shard 2 of 4' \
   -- env SLURM_ARRAY_TASK_ID=3 SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_COUNT=4 "$R" "$S" --frames 4 --format glb --shard auto -o "$T/q.fvc"
+check "--shard auto rerunning one task (FVRML_SHARDS)" 0 'shard 2 of 4' \
+  -- env SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_MIN=2 SLURM_ARRAY_TASK_COUNT=1 FVRML_SHARDS=4 "$R" "$S" --frames 4 --format glb --shard auto -o "$T/q.fvc"
 check "--shard of a scene without animation" 1 'nothing in the scene is animated' -- "$R" "$S" --format glb --shard 0/2 -o "$T/q.fvc"
 
 finish shard

@@ -130,6 +130,9 @@ bool parse_shard(const std::string& text, Shard& out, std::string& error) {
               "sbatch --array job, or give --shard K/M)";
       return false;
     }
+    // FVRML_SHARDS=M: the job's shard count, for a rerun of some of its tasks (sbatch --array=2
+    // runs one task, whose SLURM_ARRAY_TASK_COUNT is 1); task K is then shard K.
+    if (long shards = 0; whole_number(std::getenv("FVRML_SHARDS"), shards)) return shard_numbers(k, shards, out, error);
     if (const char* min = std::getenv("SLURM_ARRAY_TASK_MIN"); min && !whole_number(min, first)) first = 0;
     return shard_numbers(k - first, m, out, error);
   }

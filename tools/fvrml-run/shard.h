@@ -18,7 +18,8 @@ struct Shard {
 };
 
 // "K/M" with 0 <= K < M <= 10000, or "auto": Slurm's job array (SLURM_ARRAY_TASK_ID from
-// SLURM_ARRAY_TASK_MIN, over SLURM_ARRAY_TASK_COUNT). False with a message.
+// SLURM_ARRAY_TASK_MIN, over SLURM_ARRAY_TASK_COUNT; with FVRML_SHARDS=M set, task K of any array
+// is shard K of M, for reruns). False with a message.
 bool parse_shard(const std::string& text, Shard& out, std::string& error);
 
 struct PartFrame {

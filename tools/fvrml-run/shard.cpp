@@ -28,7 +28,7 @@ struct Writer {
   template <class T>
   void put_vector(const std::vector<T>& v) {
     put<uint64_t>(v.size());
-    out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    if (!v.empty()) out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
   void put_string(const std::string& s) { put_vector(std::vector<char>(s.begin(), s.end())); }
   void put_vec3(const mesh::Vec3& v) {
@@ -53,7 +53,7 @@ struct Reader {
     uint64_t n = get<uint64_t>();
     if (!ok || n > (in.size() - at) / sizeof(T)) return ok = false, std::vector<T>{};
     std::vector<T> v(n);
-    std::memcpy(v.data(), in.data() + at, n * sizeof(T));
+    if (n) std::memcpy(v.data(), in.data() + at, n * sizeof(T));  // an empty vector's data() may be null
     at += n * sizeof(T);
     return v;
   }

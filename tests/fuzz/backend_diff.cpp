@@ -58,7 +58,7 @@ void compare(const std::string& name, const backends::Kernel& want, const backen
   Run a = run_batch(want, cols, 0, kPoints), b = run_batch(got, cols, 0, kPoints);
   if (a.ok && b.ok) {
     for (size_t i = 0; i < a.out.size(); ++i)
-      if (!(exact ? fuzz::same_bits(a.out[i], b.out[i]) : (fuzz::same_bits(a.out[i], b.out[i]) || (a.out[i] == 0 && b.out[i] == 0))))
+      if (!(exact ? fuzz::same(a.out[i], b.out[i]) : (fuzz::same(a.out[i], b.out[i]) || (a.out[i] == 0 && b.out[i] == 0))))
         fuzz::finding(name + " differs at " + describe(cols, i % kPoints) + ": " + std::to_string(a.out[i]) + " vs " +
                           std::to_string(b.out[i]),
                       text);
@@ -69,7 +69,7 @@ void compare(const std::string& name, const backends::Kernel& want, const backen
     if (x.ok != y.ok || x.error != y.error)
       fuzz::finding(name + " fails differently at " + describe(cols, p) + ": '" + x.error + "' vs '" + y.error + "'", text);
     for (size_t i = 0; x.ok && i < x.out.size(); ++i)
-      if (!fuzz::same_bits(x.out[i], y.out[i])) fuzz::finding(name + " differs at " + describe(cols, p), text);
+      if (!fuzz::same(x.out[i], y.out[i])) fuzz::finding(name + " differs at " + describe(cols, p), text);
   }
 }
 

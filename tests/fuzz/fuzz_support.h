@@ -14,6 +14,7 @@
 
 #include "backends/backend.h"
 #include "runtime/driver/driver.h"
+#include "tests/unit/backend_cases.h"
 #include "runtime/support/big_stack.h"
 
 namespace fscript::fuzz {
@@ -42,14 +43,9 @@ inline driver::CompileOptions compile_options(bool optimize) {
   return o;
 }
 
-// The same bits, or both NaN (NaN payloads and signs are not defined by the language).
-inline bool same_bits(float a, float b) {
-  if (std::isnan(a) && std::isnan(b)) return true;
-  uint32_t x, y;
-  std::memcpy(&x, &a, 4);
-  std::memcpy(&y, &b, 4);
-  return x == y;
-}
+// The same bits, or both NaN (NaN payloads and signs are not defined by the language): the
+// backend unit tests' rule.
+using test::same;
 
 // Runs `fn` on the one thread with a big stack that serves every input (as the tools run on one:
 // deep but legal nesting must not overflow). A fresh 1 GiB-stack thread per input spent half the

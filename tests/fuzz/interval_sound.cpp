@@ -100,7 +100,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                       prog.text);
       if (!bev.output(k, p % ir::kIntervalLanes).contains(v))
         fuzz::finding("the batched interval evaluator misses " + std::to_string(v) + ", " + describe(box, point), prog.text);
-      if (!fuzz::same_bits(v, simple[k][p]))
+      if (!fuzz::same(v, simple[k][p]))
         fuzz::finding("the simplified tape gives " + std::to_string(simple[k][p]) + " for " + std::to_string(v) + ", " +
                           describe(box, point),
                       prog.text);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sharded animations (docs/sharding.md): shards made in any order merge into exactly the bytes of
-# the run on one machine (glTF and VRML97, frames by a node's own `frames` and by --frames), and
+# the run on one machine (glTF and VRML97, frames by a node's own `frames` and by --frames;
+# numbered mesh files and contact sheets of --frames N), and
 # every way a set of parts can be wrong is refused with its reason, exit 1, and no output.
 # usage: shard_test.sh SOURCE_DIR FVRML_RUN
 set -u
@@ -28,6 +29,18 @@ same "more shards than frames" "$S" glb 5 --frames 3 --resolution-scale 0.3
 printf '#VRML V2.0 utf8\nFShape { frames 5 cycleInterval 2 geometry FGeometry { definition "0.5 - x*x - y*y - z*z + 0.2*t" bboxSize 2 2 2 resolution [12] } }\nFShape { geometry FGeometry { definition "0.1 - (x-1)*(x-1) - y*y - z*z" bboxSize 2 2 2 resolution [8] } }\nFShape { frames 3 geometry FGeometry { definition "0.1 - (x+1)*(x+1) - y*y - z*z" bboxSize 2 2 2 resolution [8] } }\n' > "$T/own.wrl"
 same "a node's own frames, a static shape, a still animation" "$T/own.wrl" glb 2
 
+# --frames N with mesh files and a contact sheet: whole frames in the parts, the same files.
+mkdir -p "$T/one" "$T/many"
+"$R" "$S" --frames 5 --resolution-scale 0.5 -o "$T/one/f.ply" 2> /dev/null
+for k in 2 0 1; do "$R" "$S" --frames 5 --resolution-scale 0.5 --format ply --shard "$k/3" -o "$T/f$k.fvc" 2> /dev/null; done
+check "numbered ply frames: merge" 0 'wrote .*f.ply: 5 frame files' -- "$R" merge "$T"/f?.fvc -o "$T/many/f.ply"
+for f in "$T"/one/f-*.ply; do cmp -s "$f" "$T/many/$(basename "$f")" || fail "numbered ply frames: $(basename "$f") differs"; done
+[ "$(ls "$T/many" | wc -l)" = 5 ] || fail "numbered ply frames: $(ls "$T/many" | wc -l) files, not 5"
+"$R" "$S" --frames 6 --resolution-scale 0.5 --size 300x200 -o "$T/sheet.png" 2> /dev/null
+for k in 0 1; do "$R" "$S" --frames 6 --resolution-scale 0.5 --size 300x200 --format png --shard "$k/2" -o "$T/s$k.fvc" 2> /dev/null; done
+check "a contact sheet: merge" 0 'wrote .*merged.png' -- "$R" merge "$T"/s?.fvc -o "$T/merged.png"
+cmp -s "$T/sheet.png" "$T/merged.png" || fail "a contact sheet: the merged png differs from the single run's"
+
 # ---- What the merge refuses ----
 for k in 0 1 2; do "$R" "$S" --frames 6 --format glb --shard "$k/3" -o "$T/p$k.fvc" --resolution-scale 0.3 2> /dev/null; done
 refuse() {  # NAME PATTERN STATUS -- merge arguments
@@ -53,7 +66,7 @@ refuse "the scene edited after the shards" "edit.wrl: error: the scene's files c
   -- "$T/e0.fvc" "$T/e1.fvc" -o "$T/x.glb"
 
 # ---- What --shard refuses ----
-check "--shard without --format" 2 'needs --format wrl or glb' -- "$R" "$S" --frames 4 --shard 0/2 -o "$T/q.fvc"
+check "--shard without --format" 2 'needs --format, the format of the merged output' -- "$R" "$S" --frames 4 --shard 0/2 -o "$T/q.fvc"
 check "--shard K/M out of range" 2 'wants K/M with 0 <= K < M <= 10000, got 2/2' -- "$R" "$S" --frames 4 --format glb --shard 2/2 -o "$T/q.fvc"
 check "--shard with words" 2 "wants K/M \(shard K of M, from 0\) or auto, got 'half'" -- "$R" "$S" --frames 4 --format glb --shard half -o "$T/q.fvc"
 check "--shard auto outside Slurm" 2 'SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT, which are not set' \

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <mutex>
 
 #include "frontend/source.h"
 #include "runtime/mesh/field.h"
@@ -142,6 +143,12 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
   uint64_t e0 = mesh::evaluation_ns().load();
   std::vector<SceneModel> models;
   if (!frame_models(o, l, o.frames, models, true) || !within_sample_limits(o, l, models[0], o.frames)) return 1;
+  if (o.merging && scene_files_hash(l.files) != o.merging->scene_hash) {
+    std::cerr << o.path << ": error: the scene's files changed since the shards were made; run the shards again\n";
+    return 1;
+  }
+  if (o.shard_part) o.shard_part->scene_hash = scene_files_hash(l.files);
+  std::mutex part_lock;
   int cols = static_cast<int>(std::ceil(std::sqrt(o.frames))), rows = (o.frames + cols - 1) / cols;
   uint32_t tw = std::max<uint32_t>(16, o.width / cols), th = std::max<uint32_t>(16, o.height / rows);
   std::vector<uint8_t> sheet(size_t(tw) * cols * th * rows * 3, 255);
@@ -150,14 +157,31 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
   fscript::support::progress_expect(static_cast<uint64_t>(o.frames) * mesh_jobs(models[0]), "frames");
   std::atomic<bool> failed{false};
   bool ok = parallel_for(o.frames, parallel, [&](int f) {
-    Meshed meshed = mesh_scene(o, l.scene, models[f], true, per);
-    if (meshed.failed) {
-      failed = true;
-      if (!o.keep_going) return false;
+    if (o.shard_part && f % o.shard_part->shard.count != o.shard_part->shard.index) return true;
+    mesh::Mesh all;
+    if (o.whole_frames) {  // fvrml-run merge: the frame as its shard made it
+      auto it = o.whole_frames->find(static_cast<uint32_t>(f));
+      if (it == o.whole_frames->end()) {
+        std::cerr << "error: frame " << f << " is in none of the parts (shard " << f % o.merging->shard.count << " of "
+                  << o.merging->shard.count << " should have made it)\n";
+        return false;
+      }
+      all = it->second;
+    } else {
+      Meshed meshed = mesh_scene(o, l.scene, models[f], true, per);
+      if (meshed.failed) {
+        failed = true;
+        if (!o.keep_going) return false;
+      }
+      all = o.format == "png" ? picture(meshed, l.scene) : merged(meshed);
     }
-    mesh::Mesh all = o.format == "png" ? picture(meshed, l.scene) : merged(meshed);
     per_frame[f] = {{"fraction", static_cast<double>(f) / o.frames}, {"vertices", all.positions.size()},
                     {"triangles", all.triangles.size()}};
+    if (o.shard_part) {
+      std::lock_guard<std::mutex> hold(part_lock);
+      o.shard_part->whole_frames.emplace_back(static_cast<uint32_t>(f), std::move(all));
+      return true;
+    }
     if (o.format != "png") return write_frame(o, numbered(o.output, f, o.frames), all);
     auto px = fscript::render::render(all, render_options(o, l.scene, tw, th));
     int cx = f % cols, cy = f / cols;
@@ -166,6 +190,11 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
     return true;
   });
   if (!ok) return 1;
+  if (o.shard_part) {  // main.cpp writes the part, its frames in order whatever the threads did
+    std::sort(o.shard_part->whole_frames.begin(), o.shard_part->whole_frames.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    return 0;
+  }
   std::string error;
   if (o.format == "png" && !fscript::render::write_png(o.output, tw * cols, th * rows, 3, sheet, error))
     return std::cerr << "error: " << error << "\n", 1;

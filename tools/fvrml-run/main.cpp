@@ -128,6 +128,7 @@ std::string written_summary(const Options& o, const nlohmann::json& st, double m
 struct Merge {
   const Part* first = nullptr;
   MeshMemo* memo = nullptr;
+  const std::map<uint32_t, mesh::Mesh>* whole_frames = nullptr;
 };
 
 int run(int argc, char** argv, const Merge* merge = nullptr) {
@@ -251,8 +252,8 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
               << "writes VRML97 to standard output)\n";
   }
   if (!shard_text.empty() && o.format.empty())
-    return std::cerr << "error: --shard writes the part file -o PART and needs --format wrl or glb, the format of "
-                        "the merged output (fvrml-run merge PART... -o OUT)\n",
+    return std::cerr << "error: --shard writes the part file -o PART and needs --format, the format of the merged "
+                        "output: wrl or glb, or ply, obj, stl or png with --frames N (fvrml-run merge PART... -o OUT)\n",
            2;
   if (o.format.empty() && o.output == "-") o.format = "wrl";
   if (o.format.empty() && !o.output.empty()) o.format = o.output.substr(o.output.find_last_of('.') + 1);
@@ -274,9 +275,10 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
     std::string error;
     if (!parse_shard(shard_text, shard, error)) return std::cerr << "error: " << error << "\n", 2;
     if (serve.on || o.output.empty() || o.output == "-" || !o.check.empty() ||
-        std::none_of(argv, argv + argc, [](const char* a) { return std::strncmp(a, "--format", 8) == 0; }) || !animation)
-      return std::cerr << "error: --shard writes the part file -o PART and needs --format wrl or glb, the format of "
-                          "the merged output (fvrml-run merge PART... -o OUT)\n",
+        std::none_of(argv, argv + argc, [](const char* a) { return std::strncmp(a, "--format", 8) == 0; }) ||
+        (!animation && o.frames == 0))
+      return std::cerr << "error: --shard writes the part file -o PART and needs --format, the format of the merged "
+                          "output: wrl or glb, or ply, obj, stl or png with --frames N (fvrml-run merge PART... -o OUT)\n",
              2;
     part.shard = shard;
     part.cwd = std::filesystem::current_path().string();
@@ -284,7 +286,7 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
     o.shard_part = &part;
     o.memo = &shard_memo;  // for the frames' keys
   }
-  if (merge) o.merging = merge->first, o.memo = merge->memo;
+  if (merge) o.merging = merge->first, o.memo = merge->memo, o.whole_frames = merge->whole_frames;
   // Under --serve the clock is per run (cancelled, the server goes on), not a watchdog on the process.
   if (!fscript::tools::apply_limits("fvrml-run", limits, !serve.on)) return 1;
   if (serve.on) {
@@ -309,8 +311,9 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   if (o.shard_part && rc == 0) {
     std::string error;
     if (!write_part(o.output, part, error)) return std::cerr << "error: " << error << "\n", 1;
-    std::cerr << "wrote " << o.output << ": shard " << shard.index << " of " << shard.count << ", " << part.frames.size()
-              << (part.frames.size() == 1 ? " frame\n" : " frames\n");
+    size_t made = part.frames.size() + part.whole_frames.size();
+    std::cerr << "wrote " << o.output << ": shard " << shard.index << " of " << shard.count << ", " << made
+              << (made == 1 ? " frame\n" : " frames\n");
     return 0;
   }
   if (!o.stats && rc == 0 && !o.output.empty() && o.output != "-") std::cerr << written_summary(o, st, ms_since(t0)) << "\n";
@@ -337,12 +340,17 @@ int merge_main(int argc, char** argv) {
   if (!check_parts(paths, parts, error)) return std::cerr << "error: " << error << "\n", 1;
   MeshMemo memo;
   std::set<std::string> keys;
-  for (size_t i = 0; i < parts.size(); ++i)
+  std::map<uint32_t, mesh::Mesh> whole;
+  for (size_t i = 0; i < parts.size(); ++i) {
     for (const PartFrame& f : parts[i].frames) {
       if (!keys.insert(f.key).second)
         return std::cerr << paths[i] << ": error: a frame that another part holds too (parts of one job never overlap)\n", 1;
       memo.store_frame(f.key, f.compact);
     }
+    for (auto& [index, m] : parts[i].whole_frames)
+      if (!whole.emplace(index, std::move(m)).second)
+        return std::cerr << paths[i] << ": error: a frame that another part holds too (parts of one job never overlap)\n", 1;
+  }
   // The shards' --format is the output's: an -o of another type would get the wrong bytes.
   const std::vector<std::string>& a = parts[0].args;
   for (size_t i = 0; i < a.size(); ++i) {
@@ -358,7 +366,7 @@ int merge_main(int argc, char** argv) {
   for (const char* a : {"-o", out.c_str()}) args.push_back(a);
   std::vector<char*> av;
   for (auto& a : args) av.push_back(a.data());
-  Merge m{&parts[0], &memo};
+  Merge m{&parts[0], &memo, &whole};
   return run(static_cast<int>(av.size()), av.data(), &m);
 }
 

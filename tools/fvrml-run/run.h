@@ -59,6 +59,8 @@ struct Options {
   // fvrml-run merge: every animation frame comes from `memo` (filled from the parts), made from
   // the files these parts were made from; a frame missing from it is an error, not made here.
   const Part* merging = nullptr;
+  // fvrml-run merge of --frames N with mesh files or a contact sheet: the parts' whole frames.
+  const std::map<uint32_t, mesh::Mesh>* whole_frames = nullptr;
 };
 
 inline bool cancelled(const Options& o) { return o.cancel && o.cancel->load(); }

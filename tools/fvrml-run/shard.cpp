@@ -101,6 +101,32 @@ mesh::CompactMesh get_mesh(Reader& r) {
   return m;
 }
 
+void put_whole(Writer& w, const mesh::Mesh& m) {
+  w.put_vector(m.positions);
+  w.put_vector(m.normals);
+  w.put_vector(m.colours);
+  w.put_vector(m.params);
+  w.put_vector(m.triangles);
+  w.put<uint64_t>(m.polylines.size());
+  for (const auto& line : m.polylines) w.put_vector(line);
+  mesh::CompactMesh material_only;
+  material_only.material = m.material;
+  put_mesh(w, material_only);
+}
+
+mesh::Mesh get_whole(Reader& r) {
+  mesh::Mesh m;
+  m.positions = r.get_vector<mesh::Vec3>();
+  m.normals = r.get_vector<mesh::Vec3>();
+  m.colours = r.get_vector<mesh::Vec3>();
+  m.params = r.get_vector<mesh::Vec3>();
+  m.triangles = r.get_vector<std::array<uint32_t, 3>>();
+  uint64_t lines = r.get<uint64_t>();
+  for (uint64_t i = 0; i < lines && r.ok; ++i) m.polylines.push_back(r.get_vector<uint32_t>());
+  m.material = get_mesh(r).material;
+  return m;
+}
+
 bool shard_numbers(long k, long m, Shard& out, std::string& error) {
   if (m < 1 || m > kMaxShards || k < 0 || k >= m) {
     error = "--shard wants K/M with 0 <= K < M <= " + std::to_string(kMaxShards) + ", got " + std::to_string(k) + "/" +
@@ -158,13 +184,18 @@ uint64_t scene_files_hash(const std::vector<std::string>& files) {
 
 bool write_part(const std::string& path, const Part& p, std::string& error) {
   nlohmann::json header = {{"cwd", p.cwd},          {"args", p.args},          {"scene_hash", p.scene_hash},
-                           {"shard", p.shard.index}, {"of", p.shard.count}, {"frames", p.frames.size()}};
+                           {"shard", p.shard.index}, {"of", p.shard.count}, {"frames", p.frames.size()},
+                           {"whole_frames", p.whole_frames.size()}};
   Writer w;
   w.out = kMagic;
   w.put_string(header.dump());
   for (const PartFrame& f : p.frames) {
     w.put_string(f.key);
     put_mesh(w, f.compact);
+  }
+  for (const auto& [index, m] : p.whole_frames) {
+    w.put(index);
+    put_whole(w, m);
   }
   w.out += kEnd;
   return fscript::support::write_file_atomic(path, w.out, error);
@@ -190,6 +221,11 @@ bool read_part(const std::string& path, Part& p, std::string& error) {
       f.key = r.get_string();
       f.compact = get_mesh(r);
       p.frames.push_back(std::move(f));
+    }
+    size_t whole = header.value("whole_frames", size_t{0});
+    for (size_t i = 0; i < whole && r.ok; ++i) {
+      uint32_t index = r.get<uint32_t>();
+      p.whole_frames.emplace_back(index, get_whole(r));
     }
   } catch (const nlohmann::json::exception&) {
     return error = "the part's header is damaged", false;

@@ -33,6 +33,9 @@ struct Part {
   uint64_t scene_hash = 0;        // of every file the scene read (scene_files_hash)
   Shard shard;
   std::vector<PartFrame> frames;
+  // --frames N with mesh files or a contact sheet: whole frames (every shape in one mesh), exact,
+  // since those outputs are written from meshes as made, not from the frame cache.
+  std::vector<std::pair<uint32_t, mesh::Mesh>> whole_frames;
 };
 
 // FNV-1a over the contents of the files, in order (the scene, then its Inlines and EXTERNPROTOs).

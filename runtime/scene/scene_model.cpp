@@ -319,7 +319,7 @@ class Builder {
                       ? "the scene expands to more than " + std::to_string(kMaxExpandedNodes) +
                             " nodes (every PROTO instance and every USE counted again); refused"
                       : "nodes nested more than " + std::to_string(kMaxExpandedDepth) +
-                            " deep through PROTO instances (a PROTO that contains itself?); refused");
+                            " deep through PROTO instances (PROTOs whose bodies are instances of PROTOs); refused");
       return;
     }
     if (n->type == "FShape") return shape(*n, m, group);

@@ -54,11 +54,17 @@ lines = ["#VRML V2.0 utf8", "DEF A0 Group {}"]
 for i in range(1, 40):  # A39 is 2^39 Groups
     lines.append(f"DEF A{i} Group {{ children [ USE A{i - 1} USE A{i - 1} ] }}")
 open(f"{t}/uses.wrl", "w").write("\n".join(lines + [sphere]) + "\n")
+lines = ["#VRML V2.0 utf8", "PROTO P0 [] { Group {} }"]
+for i in range(1, 2100):  # each body one instance of the last: 2100 levels, 2100 nodes
+    lines.append(f"PROTO P{i} [] {{ P{i - 1} {{}} }}")
+open(f"{t}/chain.wrl", "w").write("\n".join(lines + ["P2099 {}", sphere]) + "\n")
 open(f"{t}/deep.wrl", "w").write("#VRML V2.0 utf8\n" + "Group { children [ " * 1200 + "]}" * 1200 + "\n")
 PY
 refused "a PROTO explosion" 'protos.wrl:3:70: error: the scene expands to more than 1000000 nodes' "$T/o.ply" \
   -- "$R" "$T/protos.wrl" -o "$T/o.ply"
 refused "a USE explosion" 'uses.wrl:2:8: error: the scene expands to more than 1000000 nodes' "$T/o.glb" -- "$R" "$T/uses.wrl" -o "$T/o.glb"
+refused "PROTO instances nested too deep" 'chain.wrl:101:16: error: nodes nested more than 2000 deep through PROTO instances' \
+  "$T/o.ply" -- "$R" "$T/chain.wrl" -o "$T/o.ply"
 refused "nodes nested too deep" 'deep.wrl:2:19020: error: nodes nested deeper than 1000 levels' "$T/o.ply" -- "$R" "$T/deep.wrl" -o "$T/o.ply"
 
 # ---- Frames, resolution and sample points per run ----

@@ -105,6 +105,14 @@ bool moves(const SceneModel& m, const Track& t) {
   return false;
 }
 
+// A shard's part records the hash of the files the scene read; a merge checks it against them now.
+bool stamp_scene(const Options& o, const Loaded& l) {
+  if (o.shard_part) o.shard_part->scene_hash = scene_files_hash(l.files);
+  if (!o.merging || scene_files_hash(l.files) == o.merging->scene_hash) return true;
+  std::cerr << o.path << ": error: the scene's files changed since the shards were made; run the shards again\n";
+  return false;
+}
+
 // --shard K/M: makes the frames i % M == K of a track (a still track's one frame: shard 0) and
 // adds them to the part with their keys.
 bool shard_frames(const Options& o, const std::vector<std::string>& keys, mesh::FrameCache& cache,
@@ -143,11 +151,7 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
   uint64_t e0 = mesh::evaluation_ns().load();
   std::vector<SceneModel> models;
   if (!frame_models(o, l, o.frames, models, true) || !within_sample_limits(o, l, models[0], o.frames)) return 1;
-  if (o.merging && scene_files_hash(l.files) != o.merging->scene_hash) {
-    std::cerr << o.path << ": error: the scene's files changed since the shards were made; run the shards again\n";
-    return 1;
-  }
-  if (o.shard_part) o.shard_part->scene_hash = scene_files_hash(l.files);
+  if (!stamp_scene(o, l)) return 1;
   std::mutex part_lock;
   int cols = static_cast<int>(std::ceil(std::sqrt(o.frames))), rows = (o.frames + cols - 1) / cols;
   uint32_t tw = std::max<uint32_t>(16, o.width / cols), th = std::max<uint32_t>(16, o.height / rows);
@@ -264,11 +268,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
   uint64_t jobs = mesh_jobs(model, skip);
   for (const auto& t : ts) jobs += moves(model, t) ? static_cast<uint64_t>(t.frames) : 1;  // a still one is made once
   fscript::support::progress_expect(jobs, "frames");
-  if (o.merging && scene_files_hash(l.files) != o.merging->scene_hash) {
-    std::cerr << o.path << ": error: the scene's files changed since the shards were made; run the shards again\n";
-    return 1;
-  }
-  if (o.shard_part) o.shard_part->scene_hash = scene_files_hash(l.files);
+  if (!stamp_scene(o, l)) return 1;
   // A shard makes only its frames; the static shapes are made by the merge.
   Meshed meshed = o.shard_part ? Meshed{} : mesh_scene(o, l.scene, model, world, o.threads, skip);
   if (meshed.failed && !o.keep_going) return 1;

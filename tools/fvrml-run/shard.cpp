@@ -6,6 +6,7 @@
 #include <cstring>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
 #include "runtime/support/files.h"
@@ -64,6 +65,21 @@ struct Reader {
   mesh::Vec3 get_vec3() { return {get<float>(), get<float>(), get<float>()}; }
 };
 
+void put_material(Writer& w, const std::optional<mesh::Material>& mat) {
+  w.put<uint8_t>(mat.has_value());
+  if (!mat) return;
+  for (const mesh::Vec3& v : {mat->diffuse, mat->emissive, mat->specular}) w.put_vec3(v);
+  for (float f : {mat->ambient_intensity, mat->shininess, mat->transparency}) w.put(f);
+}
+
+std::optional<mesh::Material> get_material(Reader& r) {
+  if (!r.get<uint8_t>()) return std::nullopt;
+  mesh::Material mat;
+  mat.diffuse = r.get_vec3(), mat.emissive = r.get_vec3(), mat.specular = r.get_vec3();
+  mat.ambient_intensity = r.get<float>(), mat.shininess = r.get<float>(), mat.transparency = r.get<float>();
+  return mat;
+}
+
 void put_mesh(Writer& w, const mesh::CompactMesh& m) {
   w.put_vec3(m.origin);
   w.put_vec3(m.step);
@@ -74,11 +90,7 @@ void put_mesh(Writer& w, const mesh::CompactMesh& m) {
   w.put_vector(m.colours);
   w.put_vector(m.indices);
   w.put_vector(m.polyline_sizes);
-  w.put<uint8_t>(m.material.has_value());
-  if (const auto& mat = m.material) {
-    for (const mesh::Vec3& v : {mat->diffuse, mat->emissive, mat->specular}) w.put_vec3(v);
-    for (float f : {mat->ambient_intensity, mat->shininess, mat->transparency}) w.put(f);
-  }
+  put_material(w, m.material);
 }
 
 mesh::CompactMesh get_mesh(Reader& r) {
@@ -92,12 +104,7 @@ mesh::CompactMesh get_mesh(Reader& r) {
   m.colours = r.get_vector<uint8_t>();
   m.indices = r.get_vector<uint8_t>();
   m.polyline_sizes = r.get_vector<uint32_t>();
-  if (r.get<uint8_t>()) {
-    mesh::Material mat;
-    mat.diffuse = r.get_vec3(), mat.emissive = r.get_vec3(), mat.specular = r.get_vec3();
-    mat.ambient_intensity = r.get<float>(), mat.shininess = r.get<float>(), mat.transparency = r.get<float>();
-    m.material = mat;
-  }
+  m.material = get_material(r);
   return m;
 }
 
@@ -109,9 +116,7 @@ void put_whole(Writer& w, const mesh::Mesh& m) {
   w.put_vector(m.triangles);
   w.put<uint64_t>(m.polylines.size());
   for (const auto& line : m.polylines) w.put_vector(line);
-  mesh::CompactMesh material_only;
-  material_only.material = m.material;
-  put_mesh(w, material_only);
+  put_material(w, m.material);
 }
 
 mesh::Mesh get_whole(Reader& r) {
@@ -123,7 +128,7 @@ mesh::Mesh get_whole(Reader& r) {
   m.triangles = r.get_vector<std::array<uint32_t, 3>>();
   uint64_t lines = r.get<uint64_t>();
   for (uint64_t i = 0; i < lines && r.ok; ++i) m.polylines.push_back(r.get_vector<uint32_t>());
-  m.material = get_mesh(r).material;
+  m.material = get_material(r);
   return m;
 }
 

@@ -153,8 +153,13 @@ double gradient(float plus, float minus, double step) {
 
 }  // namespace
 
+BlockGrid::BlockGrid(const Lattice& g, std::vector<int32_t> slots, std::vector<Block> blocks)
+    : g_(g), slot_(std::move(slots)), blocks_(std::move(blocks)) {
+  for (int a = 0; a < 3; ++a) nb_[a] = blocks_along(g, a);
+}
+
 BlockGrid::BlockGrid(const Lattice& g, const BrickMap* bricks) : g_(g) {
-  for (int a = 0; a < 3; ++a) nb_[a] = (g.n[a] + 1 + kBlock - 1) / kBlock;  // n + 1 cells per axis
+  for (int a = 0; a < 3; ++a) nb_[a] = blocks_along(g, a);
   slot_.assign(static_cast<size_t>(nb_[0]) * nb_[1] * nb_[2], kAllOutside);
   size_t at = 0;
   for (int k = 0; k < nb_[2]; ++k)

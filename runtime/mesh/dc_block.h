@@ -91,7 +91,14 @@ struct Block {
 // inside or all outside.
 class BlockGrid {
  public:
+  static constexpr int32_t kAllInside = -1, kAllOutside = -2;
   BlockGrid(const Lattice& g, const BrickMap* bricks);
+  // A grid of blocks made elsewhere (dc_slabs.h): per block position (x fastest) its index in
+  // `blocks` (in the order of the positions) or kAllInside / kAllOutside.
+  BlockGrid(const Lattice& g, std::vector<int32_t> slots, std::vector<Block> blocks);
+  // Blocks per axis for a lattice: n + 1 dual cells per axis, kBlock to a block.
+  static int blocks_along(const Lattice& g, int axis) { return (g.n[axis] + 1 + kBlock - 1) / kBlock; }
+  int32_t slot(size_t position) const { return slot_[position]; }
   const Lattice& lattice() const { return g_; }
   std::vector<Block>& blocks() { return blocks_; }
   const std::vector<Block>& blocks() const { return blocks_; }
@@ -103,7 +110,6 @@ class BlockGrid {
   unsigned mask(const int c[3]) const;
 
  private:
-  static constexpr int32_t kAllInside = -1, kAllOutside = -2;
   Lattice g_;
   int nb_[3];
   std::vector<int32_t> slot_;  // per block: its index in blocks_, or kAllInside / kAllOutside

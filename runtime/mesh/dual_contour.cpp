@@ -12,6 +12,7 @@
 
 #include "runtime/mesh/dc_block.h"
 #include "runtime/mesh/dc_octree.h"
+#include "runtime/mesh/dc_slabs.h"
 #include "runtime/mesh/octree.h"
 #include "runtime/support/parallel.h"
 
@@ -42,18 +43,31 @@ bool for_blocks(size_t n, int threads, Step step, backends::RuntimeError& err) {
   return false;
 }
 
-// Every block sampled (pruned by the field's bounds when it has them) with its crossings; densely
-// again when a decided sample contradicts its bound.
-bool sample_blocks(const ImplicitJob& job, const Lattice& g, std::unique_ptr<BlockGrid>& grid, backends::RuntimeError& err) {
+// Where the blocks of layers [first, end) are among the grid's (kept in the order of their
+// positions, z slowest).
+std::pair<size_t, size_t> layer_range(const std::vector<Block>& blocks, int first, int end) {
+  auto at = [&](int layer) {
+    return static_cast<size_t>(std::partition_point(blocks.begin(), blocks.end(), [&](const Block& b) { return b.b[2] < layer; }) -
+                               blocks.begin());
+  };
+  return {at(first), at(end)};
+}
+
+// The blocks of layers [first, end) sampled (pruned by the field's bounds when it has them) with
+// their crossings; densely again when a decided sample contradicts its bound.
+bool sample_blocks(const ImplicitJob& job, const Lattice& g, int first, int end, std::unique_ptr<BlockGrid>& grid,
+                   backends::RuntimeError& err) {
   std::unique_ptr<BrickMap> bricks = job_bricks(job);
   PruneStats st = bricks ? bricks->stats() : PruneStats{};
   st.points = static_cast<size_t>(g.n[0]) * g.n[1] * g.n[2];
+  std::pair<size_t, size_t> range;
   auto run = [&](const BrickMap* map) {
     grid = std::make_unique<BlockGrid>(g, map);
     std::vector<Block>& blocks = grid->blocks();
-    if (job.progress) job.progress->set_units(2 * blocks.size());  // sampled, then meshed
-    return for_blocks(blocks.size(), job.threads, [&](size_t i, backends::RuntimeError& e) {
-      bool ok = sample_block(*job.field, map, g, blocks[i], e);
+    range = layer_range(blocks, first, end);
+    if (job.progress) job.progress->set_units(2 * (range.second - range.first));  // sampled, then meshed
+    return for_blocks(range.second - range.first, job.threads, [&](size_t i, backends::RuntimeError& e) {
+      bool ok = sample_block(*job.field, map, g, blocks[range.first + i], e);
       if (job.progress) job.progress->advance(1);
       return ok;
     }, err);
@@ -71,6 +85,28 @@ bool sample_blocks(const ImplicitJob& job, const Lattice& g, std::unique_ptr<Blo
   add_prune_totals(st);
   if (job.stats) *job.stats = st;
   return ok;
+}
+
+// The blocks of layers [first, end) worked from their samples to their vertices: Hermite data,
+// sheets, the octree inside the block; then only their rims are kept.
+bool work_blocks(const ImplicitJob& job, const Lattice& g, BlockGrid& grid, int first, int end, backends::RuntimeError& err) {
+  std::vector<Block>& blocks = grid.blocks();
+  std::pair<size_t, size_t> range = layer_range(blocks, first, end);
+  return for_blocks(range.second - range.first, job.threads, [&](size_t i, backends::RuntimeError& e) {
+    Block& b = blocks[range.first + i];
+    if (b.xs.empty()) {
+      if (job.progress) job.progress->advance(1);
+      return true;
+    }
+    thread_local std::vector<Plane> planes;  // scratch of this thread, reused block after block
+    thread_local std::vector<Qef> qefs;
+    if (!hermite(*job.field, g, b, planes, e)) return false;
+    cell_sheets(grid, b, planes, qefs);
+    merge_block(g, b, qefs, job.mesher.tolerance);
+    b.keep_rim();
+    if (job.progress) job.progress->advance(1);
+    return true;
+  }, err);
 }
 
 // The output vertices: blocks in order, each block's own vertices in the order its sheets name them,
@@ -172,24 +208,22 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
     g.h[a] = (job.box[static_cast<size_t>(2 * a + 1)] - g.lo[a]) / g.n[a];
   }
   std::unique_ptr<BlockGrid> grid;
-  if (!sample_blocks(job, g, grid, err)) return false;
-  std::vector<Block>& blocks = grid->blocks();
-  bool ok = for_blocks(blocks.size(), job.threads, [&](size_t i, backends::RuntimeError& e) {
-    Block& b = blocks[i];
-    if (b.xs.empty()) {
-      if (job.progress) job.progress->advance(1);
+  SlabSplit* split = job.mesher.slabs;
+  uint32_t number = split ? split->next_job() : 0;
+  if (split && split->joining()) {
+    if (!split->grid(number, g, grid, err.message)) return false;
+  } else {
+    int layers = BlockGrid::blocks_along(g, 2), first = 0, end = layers;
+    if (split) split->layers_of(layers, first, end);
+    // A shard samples the layer either side of its slab too: its cells' faces look into them.
+    int lo = first < end ? std::max(0, first - 1) : first, hi = first < end ? std::min(layers, end + 1) : end;
+    if (!sample_blocks(job, g, lo, hi, grid, err) || !work_blocks(job, g, *grid, first, end, err)) return false;
+    if (split) {  // the merge joins the slabs and does the rest
+      split->keep(number, *grid, first, end);
       return true;
     }
-    thread_local std::vector<Plane> planes;  // scratch of this thread, reused block after block
-    thread_local std::vector<Qef> qefs;
-    if (!hermite(*job.field, g, b, planes, e)) return false;
-    cell_sheets(*grid, b, planes, qefs);
-    merge_block(g, b, qefs, job.mesher.tolerance);
-    b.keep_rim();
-    if (job.progress) job.progress->advance(1);
-    return true;
-  }, err);
-  if (!ok) return false;
+  }
+  std::vector<Block>& blocks = grid->blocks();
   std::vector<BlockGroup> groups;
   std::vector<int32_t> group = merge_blocks(*grid, job.mesher.tolerance, groups);
   number_vertices(*grid, group, groups, out, stats);
@@ -221,7 +255,9 @@ DualContourStats dual_contour_totals() {
 bool polygonize(const ImplicitJob& job, Mesh& out, backends::RuntimeError& err) {
   DualContourStats st;
   switch (job.mesher.kind) {
-    case Mesher::MarchingTetrahedra: return polygonize_implicit(job, out, err);
+    case Mesher::MarchingTetrahedra:
+      if (job.mesher.slabs && !job.mesher.slabs->joining()) return out = Mesh{}, true;  // the merge makes it whole
+      return polygonize_implicit(job, out, err);
     case Mesher::DualContouring: {
       if (!dual_contour(job, out, st, err)) return false;
       st.jobs = 1;

@@ -21,12 +21,17 @@ namespace fscript::mesh {
 // dual_contour.h) or marching tetrahedra on the same grid.
 enum class Mesher : uint8_t { MarchingTetrahedra, DualContouring };
 
+class SlabSplit;  // dc_slabs.h
+
 struct MesherOptions {
   Mesher kind = Mesher::DualContouring;
   // Dual contouring merges cells while their vertex stays within this many cells (root-mean-square)
   // of their tangent planes (fvrml-run --tolerance); 0 keeps every cell (dc_octree.h).
   double tolerance = kDefaultTolerance;
   static constexpr double kDefaultTolerance = 0.02;
+  // fvrml-run --shard K/M without --frames (dc_slabs.h): dual contouring makes only this shard's
+  // slab of the blocks, or joins every shard's; marching tetrahedra is left to the merge.
+  SlabSplit* slabs = nullptr;
 };
 
 struct ImplicitJob {

@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 
+#include "runtime/support/bytes.h"
 #include "runtime/support/files.h"
 
 namespace fvrml_run {
@@ -18,50 +19,14 @@ constexpr char kMagic[] = "FVRML-PART 1\n";
 constexpr char kEnd[] = "END\n";
 constexpr int kMaxShards = 10000;
 
-// Little-endian scalars and length-prefixed arrays; the reader checks every length against what
-// is left, so a truncated or hostile part is an error, never a huge allocation.
-struct Writer {
-  std::string out;
-  template <class T>
-  void put(T v) {
-    out.append(reinterpret_cast<const char*>(&v), sizeof v);
-  }
-  template <class T>
-  void put_vector(const std::vector<T>& v) {
-    put<uint64_t>(v.size());
-    if (!v.empty()) out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-  }
-  void put_string(const std::string& s) { put_vector(std::vector<char>(s.begin(), s.end())); }
+// The part's scalars and arrays, and its three-float vectors.
+struct Writer : fscript::support::ByteWriter {
   void put_vec3(const mesh::Vec3& v) {
     for (float f : v) put(f);
   }
 };
 
-struct Reader {
-  const std::string& in;
-  size_t at = 0;
-  bool ok = true;
-  template <class T>
-  T get() {
-    T v{};
-    if (in.size() - at < sizeof v) return ok = false, v;
-    std::memcpy(&v, in.data() + at, sizeof v);
-    at += sizeof v;
-    return v;
-  }
-  template <class T>
-  std::vector<T> get_vector() {
-    uint64_t n = get<uint64_t>();
-    if (!ok || n > (in.size() - at) / sizeof(T)) return ok = false, std::vector<T>{};
-    std::vector<T> v(n);
-    if (n) std::memcpy(v.data(), in.data() + at, n * sizeof(T));  // an empty vector's data() may be null
-    at += n * sizeof(T);
-    return v;
-  }
-  std::string get_string() {
-    std::vector<char> v = get_vector<char>();
-    return std::string(v.begin(), v.end());
-  }
+struct Reader : fscript::support::ByteReader {
   mesh::Vec3 get_vec3() { return {get<float>(), get<float>(), get<float>()}; }
 };
 
@@ -211,7 +176,7 @@ bool read_part(const std::string& path, Part& p, std::string& error) {
   if (!fscript::support::read_file(path, bytes, error)) return error = "cannot read the part: " + error, false;
   if (bytes.compare(0, std::strlen(kMagic), kMagic) != 0)
     return error = "not a part file of fvrml-run --shard (or of another version)", false;
-  Reader r{bytes, std::strlen(kMagic)};
+  Reader r{{bytes, std::strlen(kMagic)}};
   nlohmann::json header = nlohmann::json::parse(r.get_string(), nullptr, false);
   if (!r.ok || !header.is_object() || !header.contains("args") || !header["args"].is_array())
     return error = "the part's header is damaged", false;

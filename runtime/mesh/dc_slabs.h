@@ -1,0 +1,51 @@
+#pragma once
+// One big implicit shape over several machines (fvrml-run --shard K/M without --frames;
+// docs/sharding.md). Dual contouring's blocks lie in layers along z: a shard samples its slab of
+// layers (and the layer either side, which its cells' faces look into), works its blocks as one
+// machine would and keeps them; the merge puts every shard's blocks back into the grid, then merges,
+// numbers and connects them as one machine does, so the seams are welded and the mesh is the same.
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "runtime/mesh/dc_block.h"
+
+namespace fscript::mesh {
+
+// One job's layers from one shard.
+struct Slab {
+  uint32_t job = 0;        // the run's dual contouring jobs, numbered in the order it meshes them
+  int first = 0, end = 0;  // block layers [first, end)
+  std::string bytes;       // the lattice, each block position's class, the kept blocks' state
+};
+
+class SlabSplit {
+ public:
+  // Making shard `index` of `count`: each job's slab is kept (slabs()).
+  static std::unique_ptr<SlabSplit> make(int index, int count);
+  // Joining every shard's slabs.
+  static std::unique_ptr<SlabSplit> join(std::vector<Slab> slabs);
+
+  bool joining() const { return joining_; }
+  // The next job's number. Jobs start one after another, in the same order in every shard and in
+  // the merge (the same scene and arguments).
+  uint32_t next_job();
+  // This shard's layers [first, end) of a job of `layers` block layers: contiguous, in shard order.
+  void layers_of(int layers, int& first, int& end) const;
+  // Making: the blocks of layers [first, end) of `grid` as job `job`'s slab.
+  void keep(uint32_t job, const BlockGrid& grid, int first, int end);
+  const std::vector<Slab>& slabs() const { return slabs_; }
+  // Joining: job `job`'s grid from every shard's slab; false with what is missing or damaged.
+  bool grid(uint32_t job, const Lattice& g, std::unique_ptr<BlockGrid>& out, std::string& error) const;
+
+ private:
+  int index_ = 0, count_ = 1;
+  bool joining_ = false;
+  std::mutex lock_;
+  uint32_t jobs_ = 0;
+  std::vector<Slab> slabs_;
+};
+
+}  // namespace fscript::mesh

@@ -104,9 +104,16 @@ uint32_t SlabSplit::next_job() {
   return jobs_++;
 }
 
-void SlabSplit::layers_of(int layers, int& first, int& end) const {
-  auto at = [&](int k) { return static_cast<int>(static_cast<int64_t>(layers) * k / count_); };
-  first = at(index_), end = at(index_ + 1);
+void SlabSplit::layers_of(const std::vector<size_t>& kept, int& first, int& end) const {
+  // Shard k starts at the first layer whose kept blocks before it reach k / count of the total (a
+  // layer without any counts one, so empty stretches are shared out too).
+  std::vector<uint64_t> before(kept.size() + 1, 0);
+  for (size_t k = 0; k < kept.size(); ++k) before[k + 1] = before[k] + kept[k] + 1;
+  auto start = [&](int shard) {
+    uint64_t want = before.back() * static_cast<uint64_t>(shard) / static_cast<uint64_t>(count_);
+    return static_cast<int>(std::lower_bound(before.begin(), before.end(), want) - before.begin());
+  };
+  first = start(index_), end = index_ + 1 == count_ ? static_cast<int>(kept.size()) : start(index_ + 1);
 }
 
 void SlabSplit::keep(uint32_t job, const BlockGrid& grid, int first, int end) {
@@ -124,8 +131,9 @@ void SlabSplit::keep(uint32_t job, const BlockGrid& grid, int first, int end) {
   }
   w.put_vector(classes);
   for (const Block* b : kept) put_block(w, *b);
+  auto data = std::make_shared<const std::string>(std::move(w.out));
   std::lock_guard<std::mutex> hold(lock_);
-  slabs_.push_back(Slab{job, first, end, std::move(w.out)});
+  slabs_.push_back(Slab{job, first, end, data, *data});
 }
 
 bool SlabSplit::grid(uint32_t job, const Lattice& g, std::unique_ptr<BlockGrid>& out, std::string& error) const {
@@ -149,6 +157,7 @@ bool SlabSplit::grid(uint32_t job, const Lattice& g, std::unique_ptr<BlockGrid>&
     std::vector<uint8_t> classes = r.get_vector<uint8_t>();
     if (!r.ok || classes.size() != static_cast<size_t>(nx) * ny * (s->end - s->first))
       return error = "a part's slab of this shape is damaged", false;
+    blocks.reserve(blocks.size() + static_cast<size_t>(std::count(classes.begin(), classes.end(), kKept)));
     for (size_t i = 0; i < classes.size(); ++i) {
       if (classes[i] != kKept) {
         slots.push_back(classes[i] == kInside ? BlockGrid::kAllInside : BlockGrid::kAllOutside);

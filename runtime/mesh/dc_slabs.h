@@ -8,6 +8,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "runtime/mesh/dc_block.h"
@@ -18,7 +19,10 @@ namespace fscript::mesh {
 struct Slab {
   uint32_t job = 0;        // the run's dual contouring jobs, numbered in the order it meshes them
   int first = 0, end = 0;  // block layers [first, end)
-  std::string bytes;       // the lattice, each block position's class, the kept blocks' state
+  // The lattice, each block position's class, the kept blocks' state: in `data` (made here, or a
+  // whole part file read once: a big mesh's slabs are hundreds of megabytes, not copied again).
+  std::shared_ptr<const std::string> data;
+  std::string_view bytes;
 };
 
 class SlabSplit {
@@ -32,8 +36,9 @@ class SlabSplit {
   // The next job's number. Jobs start one after another, in the same order in every shard and in
   // the merge (the same scene and arguments).
   uint32_t next_job();
-  // This shard's layers [first, end) of a job of `layers` block layers: contiguous, in shard order.
-  void layers_of(int layers, int& first, int& end) const;
+  // This shard's layers [first, end) of a job whose layers keep `kept[k]` blocks (those the surface
+  // may cross): contiguous, in shard order, with about as many kept blocks in each shard.
+  void layers_of(const std::vector<size_t>& kept, int& first, int& end) const;
   // Making: the blocks of layers [first, end) of `grid` as job `job`'s slab.
   void keep(uint32_t job, const BlockGrid& grid, int first, int end);
   const std::vector<Slab>& slabs() const { return slabs_; }

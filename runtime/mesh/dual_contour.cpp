@@ -53,18 +53,35 @@ std::pair<size_t, size_t> layer_range(const std::vector<Block>& blocks, int firs
   return {at(first), at(end)};
 }
 
-// The blocks of layers [first, end) sampled (pruned by the field's bounds when it has them) with
+// The blocks this run works, [first, end) in layers: all of them, or a shard's slab (the layer
+// either side sampled too: its cells' faces look into them).
+struct Layers {
+  int first = 0, end = 0, lo = 0, hi = 0;
+};
+Layers layers_for(const SlabSplit* split, const BlockGrid& grid) {
+  int n = BlockGrid::blocks_along(grid.lattice(), 2);
+  Layers l{0, n, 0, n};
+  if (!split) return l;
+  std::vector<size_t> kept(static_cast<size_t>(n), 0);
+  for (const Block& b : grid.blocks()) ++kept[static_cast<size_t>(b.b[2])];
+  split->layers_of(kept, l.first, l.end);
+  l.lo = l.first < l.end ? std::max(0, l.first - 1) : l.first, l.hi = l.first < l.end ? std::min(n, l.end + 1) : l.end;
+  return l;
+}
+
+// The blocks of the run's layers sampled (pruned by the field's bounds when it has them) with
 // their crossings; densely again when a decided sample contradicts its bound.
-bool sample_blocks(const ImplicitJob& job, const Lattice& g, int first, int end, std::unique_ptr<BlockGrid>& grid,
-                   backends::RuntimeError& err) {
+bool sample_blocks(const ImplicitJob& job, const Lattice& g, const SlabSplit* split, Layers& layers,
+                   std::unique_ptr<BlockGrid>& grid, backends::RuntimeError& err) {
   std::unique_ptr<BrickMap> bricks = job_bricks(job);
   PruneStats st = bricks ? bricks->stats() : PruneStats{};
   st.points = static_cast<size_t>(g.n[0]) * g.n[1] * g.n[2];
-  std::pair<size_t, size_t> range;
+  bool chosen = false;
   auto run = [&](const BrickMap* map) {
     grid = std::make_unique<BlockGrid>(g, map);
+    if (!chosen) layers = layers_for(split, *grid), chosen = true;  // by the pruned grid's blocks, once
     std::vector<Block>& blocks = grid->blocks();
-    range = layer_range(blocks, first, end);
+    std::pair<size_t, size_t> range = layer_range(blocks, layers.lo, layers.hi);
     if (job.progress) job.progress->set_units(2 * (range.second - range.first));  // sampled, then meshed
     return for_blocks(range.second - range.first, job.threads, [&](size_t i, backends::RuntimeError& e) {
       bool ok = sample_block(*job.field, map, g, blocks[range.first + i], e);
@@ -213,13 +230,11 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   if (split && split->joining()) {
     if (!split->grid(number, g, grid, err.message)) return false;
   } else {
-    int layers = BlockGrid::blocks_along(g, 2), first = 0, end = layers;
-    if (split) split->layers_of(layers, first, end);
-    // A shard samples the layer either side of its slab too: its cells' faces look into them.
-    int lo = first < end ? std::max(0, first - 1) : first, hi = first < end ? std::min(layers, end + 1) : end;
-    if (!sample_blocks(job, g, lo, hi, grid, err) || !work_blocks(job, g, *grid, first, end, err)) return false;
+    Layers layers;
+    if (!sample_blocks(job, g, split, layers, grid, err) || !work_blocks(job, g, *grid, layers.first, layers.end, err))
+      return false;
     if (split) {  // the merge joins the slabs and does the rest
-      split->keep(number, *grid, first, end);
+      split->keep(number, *grid, layers.first, layers.end);
       return true;
     }
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "runtime/support/progress.h"
+#include "runtime/mesh/dc_slabs.h"
 #include "runtime/mesh/implicit.h"
 #include "runtime/mesh/parametric.h"
 #include "runtime/scene/shape_field.h"
@@ -159,13 +160,20 @@ void expect_work(const Shape& s, bool prune) {
     if (f && f->kernel) f->kernel->expect_points(points);
 }
 
+// A shard of a still scene (fvrml-run --shard without --frames) makes only the slabs of the shapes
+// dual contouring meshes; the merge makes the parametric ones.
+// The merge joins their slabs: nothing of theirs is sampled (no native compile pays).
+static bool making_slabs(const mesh::MesherOptions& mesher) { return mesher.slabs && !mesher.slabs->joining(); }
+static bool joining_slabs(const mesh::MesherOptions& mesher) { return mesher.slabs && mesher.slabs->joining(); }
+
 bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bool world, int threads, bool prune,
                 const mesh::MesherOptions& mesher) {
   if (!s.geometry.kernel) {
     err.message = "the shape has no compiled geometry";
     return false;
   }
-  expect_work(s, prune);
+  if (making_slabs(mesher) && s.kind != ShapeKind::Implicit) return out = mesh::Mesh{}, true;
+  if (!joining_slabs(mesher)) expect_work(s, prune);
   bool ok;
   support::ProgressJob progress;  // one job of the run's progress line
   if (s.kind == ShapeKind::Implicit) {
@@ -248,8 +256,9 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::Runti
   out = mesh::Mesh{};
   support::ProgressJob progress;
   for (const Shape& s : m.shapes)
-    if (inside_group(m, s.group, group)) expect_work(s, prune);
+    if (inside_group(m, s.group, group) && !joining_slabs(mesher)) expect_work(s, prune);
   if (parametric_group(m, group)) {
+    if (making_slabs(mesher)) return true;
     if (!mesh_parametric_group(m, group, out, err, threads, prune)) return false;
     const Shape* first = first_shape_below(m, group);
     if (first && world) transform_mesh(first->transform, out);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -31,7 +32,7 @@ struct ByteWriter {
 };
 
 struct ByteReader {
-  const std::string& in;
+  std::string_view in;
   size_t at = 0;
   bool ok = true;
   template <class T>
@@ -61,7 +62,7 @@ struct ByteReader {
   std::string get_string() {
     uint64_t n = get<uint64_t>();
     if (!ok || n > in.size() - at) return ok = false, std::string{};
-    std::string s = in.substr(at, n);
+    std::string s(in.substr(at, n));
     at += n;
     return s;
   }

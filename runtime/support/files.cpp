@@ -29,13 +29,28 @@ bool read_file(const std::string& path, std::string& out, std::string& error, si
             " MiB for one file";
     return false;
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  // A regular file straight into a string of its size (a part file of a sharded mesh is hundreds of
+  // megabytes); then whatever is left, which is all of a pipe's, a chunk at a time within the limit.
+  out.clear();
+  if (!ec && size > 0) {
+    out.resize(static_cast<size_t>(size));
+    in.read(out.data(), static_cast<std::streamsize>(size));
+    out.resize(static_cast<size_t>(in.gcount()));
+  }
+  static thread_local char chunk[1 << 16];
+  while (in) {
+    in.read(chunk, sizeof chunk);
+    out.append(chunk, static_cast<size_t>(in.gcount()));
+    if (out.size() > max_bytes) {
+      error = "the file is over the limit of " + std::to_string(max_bytes >> 20) + " MiB for one file";
+      out.clear();
+      return false;
+    }
+  }
   if (in.bad()) {
     error = "read error";
     return false;
   }
-  out = ss.str();
   return true;
 }
 

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Sharded animations (docs/sharding.md): shards made in any order merge into exactly the bytes of
-# the run on one machine (glTF and VRML97, frames by a node's own `frames` and by --frames;
-# numbered mesh files and contact sheets of --frames N), and
+# Sharded jobs (docs/sharding.md): shards made in any order merge into exactly the bytes of the run
+# on one machine (glTF and VRML97, frames by a node's own `frames` and by --frames; numbered mesh
+# files and contact sheets of --frames N; a still scene's implicit shapes in slabs, welded), and
 # every way a set of parts can be wrong is refused with its reason, exit 1, and no output.
-# usage: shard_test.sh SOURCE_DIR FVRML_RUN
+# usage: shard_test.sh SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
 SRC="$1"
 R="$2"
+FVRML_MESHDIFF="$3"
 . "$SRC/tests/cli/lib.sh"
 S="$SRC/examples/paper/figure1-morphing.wrl"
 
@@ -75,6 +76,42 @@ check "--shard auto in a Slurm array (ids from 1)" 0 'shard 2 of 4' \
   -- env SLURM_ARRAY_TASK_ID=3 SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_COUNT=4 "$R" "$S" --frames 4 --format glb --shard auto -o "$T/q.fvc"
 check "--shard auto rerunning one task (FVRML_SHARDS)" 0 'shard 2 of 4' \
   -- env SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_MIN=2 SLURM_ARRAY_TASK_COUNT=1 FVRML_SHARDS=4 "$R" "$S" --frames 4 --format glb --shard auto -o "$T/q.fvc"
-check "--shard of a scene without animation" 1 'nothing in the scene is animated' -- "$R" "$S" --format glb --shard 0/2 -o "$T/q.fvc"
+
+# ---- One big shape in slabs: a still scene's implicit shapes split into block layers ----
+G="$SRC/bench/scenes/gyroid-sphere256.wrl"
+# slabs NAME SCENE FORMAT M ARGS...: the single run (one thread) and the merge of M shards (made
+# last to first, on two threads).
+slabs() {
+  local name="$1" scene="$2" format="$3" m="$4" what="$5"
+  shift 5
+  rm -f "$T"/part-*.fvc
+  "$R" "$scene" "$@" --threads 1 -o "$T/single.$format" 2> /dev/null || { fail "$name: the single run failed"; return; }
+  for ((k = m - 1; k >= 0; k--)); do
+    check "$name: shard $k of $m" 0 "^wrote .*part-$k.fvc: shard $k of $m, $what$" \
+      -- "$R" "$scene" "$@" --threads 2 --format "$format" --shard "$k/$m" -o "$T/part-$k.fvc"
+  done
+  check "$name: merge" 0 "^wrote .*merged.$format: " -- "$R" merge "$T"/part-*.fvc -o "$T/merged.$format"
+  cmp -s "$T/single.$format" "$T/merged.$format" || fail "$name: the merged $format differs from the single run's"
+}
+slabs "gyroid in a sphere, PLY, 3 slabs" "$G" ply 3 'its slab of 1 shape' --resolution-scale 0.4
+"$FVRML_MESHDIFF" "$T/merged.ply" "$T/merged.ply" > "$T/topology.json" 2>&1
+grep -q '"watertight": true' "$T/topology.json" && grep -q '"manifold": true' "$T/topology.json" ||
+  fail "gyroid in a sphere in slabs: the merged mesh is not a closed manifold"
+slabs "gyroid in a sphere, glTF, 4 slabs" "$G" glb 4 'its slab of 1 shape' --resolution-scale 0.3
+slabs "gyroid in a sphere, VRML97, 2 slabs" "$G" wrl 2 'its slab of 1 shape' --resolution-scale 0.3
+slabs "gyroid in a sphere, a picture, 2 slabs" "$G" png 2 'its slab of 1 shape' --resolution-scale 0.3 --size 200x150
+slabs "more shards than layers of blocks" "$G" stl 9 'its slab of 1 shape' --resolution-scale 0.2
+slabs "merged up the octree, no tolerance" "$G" obj 3 'its slab of 1 shape' --resolution-scale 0.3 --tolerance 0
+slabs "a coloured surface and a blend (Figure 6)" "$SRC/examples/paper/figure6-blends.wrl" ply 2 'its slab of 1 shape'
+slabs "a parametric scene: the merge makes it" "$SRC/examples/paper/figure3-colour.wrl" ply 2 'no slab \(the merge makes every shape\)'
+slabs "marching tetrahedra: the merge makes it" "$G" ply 2 'no slab \(the merge makes every shape\)' --resolution-scale 0.2 --mesher mt
+for k in 0 1 2; do "$R" "$G" --resolution-scale 0.3 --format ply --shard "$k/3" -o "$T/g$k.fvc" 2> /dev/null; done
+refuse "a missing slab" '^error: shard 2 of 3 missing \(run it with --shard 2/3\)$' 1 -- "$T/g0.fvc" "$T/g1.fvc" -o "$T/x.glb"
+refuse "slabs and frames mixed" 'p1.fvc: a shard of another job' 1 -- "$T/g0.fvc" "$T/p1.fvc" "$T/g2.fvc" -o "$T/x.glb"
+head -c 2000 "$T/g1.fvc" > "$T/gcut.fvc"
+refuse "a truncated slab" 'gcut.fvc: error: the part is truncated or damaged' 1 -- "$T/g0.fvc" "$T/gcut.fvc" "$T/g2.fvc" -o "$T/x.glb"
+printf 'FVRML-PART 1\n' > "$T/old.fvc"
+refuse "a part of the previous version" 'old.fvc: error: not a part file of fvrml-run --shard \(or of another version\)' 1 \
+  -- "$T/old.fvc" -o "$T/x.glb"
 
 finish shard

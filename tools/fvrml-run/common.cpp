@@ -55,7 +55,7 @@ bool memo_mesh(const Options& o, const std::string& key, mesh::Mesh& m, Make mak
       return true;
     }
   if (!make()) return false;
-  if (o.memo) o.memo->store(key, m);
+  if (o.memo && !o.merging) o.memo->store(key, m);  // a merge's memo holds the parts' frames, for this run only
   return true;
 }
 

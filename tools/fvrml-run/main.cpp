@@ -129,7 +129,12 @@ struct Merge {
   const Part* first = nullptr;
   MeshMemo* memo = nullptr;
   const std::map<uint32_t, mesh::Mesh>* whole_frames = nullptr;
+  mesh::SlabSplit* slabs = nullptr;  // a still scene's slabs, joined
 };
+
+constexpr char kShardNeeds[] =
+    "error: --shard writes the part file -o PART and needs --format, the format of the merged output (wrl, glb, ply, "
+    "obj, stl or png; fvrml-run merge PART... -o OUT)\n";
 
 int run(int argc, char** argv, const Merge* merge = nullptr) {
   CLI::App app{"fvrml-run: FVRML scenes (VRML97 with function-defined shapes)"};
@@ -178,8 +183,9 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
   std::string shard_text;
   app.add_option("--shard", shard_text,
-                 "make only shard K of M of the animations' frames (frames i with i % M == K) into the part file -o "
-                 "PART, with --format wrl|glb naming the merged output; auto: Slurm's array task (docs/sharding.md)")
+                 "make only shard K of M into the part file -o PART, --format naming the merged output: the "
+                 "animations' frames i with i % M == K, or in a still scene slab K of each implicit shape; auto: "
+                 "Slurm's array task (docs/sharding.md)")
       ->type_name("K/M|auto");
   ServeOptions serve;
   app.add_flag("--serve", serve.on,
@@ -251,10 +257,7 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
     std::cerr << "no -o given: writing " << o.output << " (-o OUT.wrl|glb|ply|obj|stl|png chooses; -o - "
               << "writes VRML97 to standard output)\n";
   }
-  if (!shard_text.empty() && o.format.empty())
-    return std::cerr << "error: --shard writes the part file -o PART and needs --format, the format of the merged "
-                        "output: wrl or glb, or ply, obj, stl or png with --frames N (fvrml-run merge PART... -o OUT)\n",
-           2;
+  if (!shard_text.empty() && o.format.empty()) return std::cerr << kShardNeeds, 2;
   if (o.format.empty() && o.output == "-") o.format = "wrl";
   if (o.format.empty() && !o.output.empty()) o.format = o.output.substr(o.output.find_last_of('.') + 1);
   if (o.format.empty()) o.format = "wrl";
@@ -275,18 +278,15 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
     std::string error;
     if (!parse_shard(shard_text, shard, error)) return std::cerr << "error: " << error << "\n", 2;
     if (serve.on || o.output.empty() || o.output == "-" || !o.check.empty() ||
-        std::none_of(argv, argv + argc, [](const char* a) { return std::strncmp(a, "--format", 8) == 0; }) ||
-        (!animation && o.frames == 0))
-      return std::cerr << "error: --shard writes the part file -o PART and needs --format, the format of the merged "
-                          "output: wrl or glb, or ply, obj, stl or png with --frames N (fvrml-run merge PART... -o OUT)\n",
-             2;
+        std::none_of(argv, argv + argc, [](const char* a) { return std::strncmp(a, "--format", 8) == 0; }))
+      return std::cerr << kShardNeeds, 2;
     part.shard = shard;
     part.cwd = std::filesystem::current_path().string();
     part.args = args_for_part(argc, argv);
     o.shard_part = &part;
     o.memo = &shard_memo;  // for the frames' keys
   }
-  if (merge) o.merging = merge->first, o.memo = merge->memo, o.whole_frames = merge->whole_frames;
+  if (merge) o.merging = merge->first, o.memo = merge->memo, o.whole_frames = merge->whole_frames, o.mesher.slabs = merge->slabs;
   // Under --serve the clock is per run (cancelled, the server goes on), not a watchdog on the process.
   if (!fscript::tools::apply_limits("fvrml-run", limits, !serve.on)) return 1;
   if (serve.on) {
@@ -311,9 +311,11 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   if (o.shard_part && rc == 0) {
     std::string error;
     if (!write_part(o.output, part, error)) return std::cerr << "error: " << error << "\n", 1;
-    size_t made = part.frames.size() + part.whole_frames.size();
-    std::cerr << "wrote " << o.output << ": shard " << shard.index << " of " << shard.count << ", " << made
-              << (made == 1 ? " frame\n" : " frames\n");
+    size_t made = part.frames.size() + part.whole_frames.size(), slabs = part.slabs.size();
+    std::cerr << "wrote " << o.output << ": shard " << shard.index << " of " << shard.count << ", ";
+    if (part.still && slabs) std::cerr << "its slab of " << slabs << (slabs == 1 ? " shape\n" : " shapes\n");
+    else if (part.still) std::cerr << "no slab (the merge makes every shape)\n";
+    else std::cerr << made << (made == 1 ? " frame\n" : " frames\n");
     return 0;
   }
   if (!o.stats && rc == 0 && !o.output.empty() && o.output != "-") std::cerr << written_summary(o, st, ms_since(t0)) << "\n";
@@ -321,13 +323,13 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
 }
 
 // fvrml-run merge PART... -o OUT: the parts checked, their frames in a memo, then the job's own
-// command line run with -o OUT, every animation frame taken from the parts.
+// command line run with -o OUT, every animation frame (or implicit shape's slab) taken from the parts.
 int merge_main(int argc, char** argv) {
-  CLI::App app{"fvrml-run merge: the parts of a sharded animation (fvrml-run --shard K/M) into its output"};
+  CLI::App app{"fvrml-run merge: the parts of a sharded job (fvrml-run --shard K/M) into its output"};
   std::vector<std::string> paths;
   std::string output;
   app.add_option("PART", paths, "every part of the job (fvrml-run --shard K/M -o PART)")->required();
-  app.add_option("-o,--output", output, "the output: .wrl or .glb, as the shards' --format")->required();
+  app.add_option("-o,--output", output, "the output, of the shards' --format (.wrl, .glb, .ply, .obj, .stl or .png)")->required();
   try {
     app.parse(argc - 1, argv + 1);
   } catch (const CLI::ParseError& e) {
@@ -366,7 +368,10 @@ int merge_main(int argc, char** argv) {
   for (const char* a : {"-o", out.c_str()}) args.push_back(a);
   std::vector<char*> av;
   for (auto& a : args) av.push_back(a.data());
-  Merge m{&parts[0], &memo, &whole};
+  std::vector<mesh::Slab> slabs;
+  for (Part& p : parts) std::move(p.slabs.begin(), p.slabs.end(), std::back_inserter(slabs));
+  std::unique_ptr<mesh::SlabSplit> joined = slabs.empty() ? nullptr : mesh::SlabSplit::join(std::move(slabs));
+  Merge m{&parts[0], &memo, &whole, joined.get()};
   return run(static_cast<int>(av.size()), av.data(), &m);
 }
 

@@ -14,6 +14,7 @@
 #include "runtime/support/files.h"
 #include "runtime/support/progress.h"
 #include "tools/fvrml-run/run.h"
+#include "tools/fvrml-run/shard.h"
 
 namespace fvrml_run {
 namespace {
@@ -147,6 +148,23 @@ int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* fi
 
 namespace {
 
+// --shard K/M of a still scene: slab K of every implicit shape's dual contouring blocks into the
+// part (dc_slabs.h); the merge joins them and makes the rest (parametric shapes, colours, marching
+// tetrahedra), as one machine does.
+int shard_slabs(const Options& o, Loaded& l, const SceneModel& model) {
+  auto split = mesh::SlabSplit::make(o.shard_part->shard.index, o.shard_part->shard.count);
+  Options mine = o;
+  mine.mesher.slabs = split.get();
+  fscript::support::progress_expect(mesh_jobs(model), "meshes");
+  if (mesh_scene(mine, l.scene, model, o.format != "wrl", o.threads).failed) return 1;
+  o.shard_part->slabs = split->slabs();
+  o.shard_part->still = true;
+  if (o.shard_part->slabs.empty())
+    std::cerr << o.path << ": note: no shape here is meshed by dual contouring in slabs (the implicit shapes with "
+              << "--mesher dc): the merge makes every shape\n";
+  return 0;
+}
+
 // One frame: VRML97 to a file or standard output, a mesh file, or a picture.
 int single(const Options& o, Loaded& l, nlohmann::json& st) {
   auto t1 = Clock::now();
@@ -163,11 +181,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
     if (meshed.failed && !o.keep_going) return 1;
     if (!check_against(o.check, merged(meshed))) return 1;
   }
-  if (o.shard_part && tracks(o, model).empty()) {
-    std::cerr << o.path << ": error: nothing in the scene is animated: --shard splits the frames of animations (a "
-              << "node's frames N, or --frames N)\n";
-    return 1;
-  }
+  if (o.shard_part && tracks(o, model).empty()) return shard_slabs(o, l, model);
   if (write && !tracks(o, model).empty()) {
     int rc = animated(o, l, model, st);
     nlohmann::json s = stats(l.scene, model, nullptr);

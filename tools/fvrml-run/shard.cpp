@@ -15,7 +15,7 @@
 namespace fvrml_run {
 namespace {
 
-constexpr char kMagic[] = "FVRML-PART 1\n";
+constexpr char kMagic[] = "FVRML-PART 2\n";
 constexpr char kEnd[] = "END\n";
 constexpr int kMaxShards = 10000;
 
@@ -155,7 +155,7 @@ uint64_t scene_files_hash(const std::vector<std::string>& files) {
 bool write_part(const std::string& path, const Part& p, std::string& error) {
   nlohmann::json header = {{"cwd", p.cwd},          {"args", p.args},          {"scene_hash", p.scene_hash},
                            {"shard", p.shard.index}, {"of", p.shard.count}, {"frames", p.frames.size()},
-                           {"whole_frames", p.whole_frames.size()}};
+                           {"whole_frames", p.whole_frames.size()}, {"slabs", p.slabs.size()}};
   Writer w;
   w.out = kMagic;
   w.put_string(header.dump());
@@ -167,13 +167,18 @@ bool write_part(const std::string& path, const Part& p, std::string& error) {
     w.put(index);
     put_whole(w, m);
   }
+  for (const mesh::Slab& s : p.slabs) {
+    w.put(s.job), w.put(s.first), w.put(s.end);
+    w.put<uint64_t>(s.bytes.size()), w.put_bytes(s.bytes.data(), s.bytes.size());
+  }
   w.out += kEnd;
   return fscript::support::write_file_atomic(path, w.out, error);
 }
 
 bool read_part(const std::string& path, Part& p, std::string& error) {
-  std::string bytes;
-  if (!fscript::support::read_file(path, bytes, error)) return error = "cannot read the part: " + error, false;
+  auto raw = std::make_shared<std::string>();  // kept by the slabs, which point into it
+  const std::string& bytes = *raw;
+  if (!fscript::support::read_file(path, *raw, error)) return error = "cannot read the part: " + error, false;
   if (bytes.compare(0, std::strlen(kMagic), kMagic) != 0)
     return error = "not a part file of fvrml-run --shard (or of another version)", false;
   Reader r{{bytes, std::strlen(kMagic)}};
@@ -196,6 +201,18 @@ bool read_part(const std::string& path, Part& p, std::string& error) {
     for (size_t i = 0; i < whole && r.ok; ++i) {
       uint32_t index = r.get<uint32_t>();
       p.whole_frames.emplace_back(index, get_whole(r));
+    }
+    size_t slabs = header.value("slabs", size_t{0});
+    for (size_t i = 0; i < slabs && r.ok; ++i) {
+      mesh::Slab s;
+      s.job = r.get<uint32_t>(), s.first = r.get<int>(), s.end = r.get<int>();
+      uint64_t n = r.get<uint64_t>();
+      if (!r.ok || n > r.in.size() - r.at) {
+        r.ok = false;
+        break;
+      }
+      s.data = raw, s.bytes = r.in.substr(r.at, n), r.at += n;
+      p.slabs.push_back(std::move(s));
     }
   } catch (const nlohmann::json::exception&) {
     return error = "the part's header is damaged", false;

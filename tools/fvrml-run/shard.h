@@ -1,12 +1,14 @@
 #pragma once
-// Sharding animations across machines (docs/sharding.md): `--shard K/M` makes the frames i with
-// i % M == K of every animated node and writes them to a part file, with the hash of the scene's
-// files and the run's arguments; `fvrml-run merge PART... -o OUT` checks that the parts are one
-// job's, complete and without overlap, then writes what the run on one machine writes.
+// Sharding across machines (docs/sharding.md): `--shard K/M` makes the frames i with i % M == K of
+// every animated node, or in a still scene slab K of every implicit shape, and writes them to a
+// part file with the hash of the scene's files and the run's arguments; `fvrml-run merge PART...
+// -o OUT` checks that the parts are one job's, complete and without overlap, then writes what the
+// run on one machine writes.
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "runtime/mesh/dc_slabs.h"
 #include "runtime/mesh/frame_cache.h"
 
 namespace fvrml_run {
@@ -36,6 +38,9 @@ struct Part {
   // --frames N with mesh files or a contact sheet: whole frames (every shape in one mesh), exact,
   // since those outputs are written from meshes as made, not from the frame cache.
   std::vector<std::pair<uint32_t, mesh::Mesh>> whole_frames;
+  // A still scene: each implicit shape's slab of block layers (dual contouring, dc_slabs.h).
+  std::vector<mesh::Slab> slabs;
+  bool still = false;  // a still scene's shard (slabs, perhaps none), not an animation's
 };
 
 // FNV-1a over the contents of the files, in order (the scene, then its Inlines and EXTERNPROTOs).

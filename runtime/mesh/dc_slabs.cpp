@@ -15,7 +15,6 @@ using support::ByteWriter;
 
 enum : uint8_t { kOutside = 0, kInside = 1, kKept = 2 };
 constexpr size_t kRim = static_cast<size_t>(kBlock * kBlock + (kBlock - 1) * kBlock + (kBlock - 1) * (kBlock - 1));
-constexpr size_t kCells = static_cast<size_t>(kBlock) * kBlock * kBlock;
 
 void put_lattice(ByteWriter& w, const Lattice& g) {
   w.put_bytes(g.n, sizeof g.n), w.put_bytes(g.lo, sizeof g.lo), w.put_bytes(g.h, sizeof g.h);
@@ -28,18 +27,54 @@ bool same_lattice(ByteReader& r, const Lattice& g) {
          std::memcmp(got.h, g.h, sizeof g.h) == 0;
 }
 
-// A block as merge_blocks, number_vertices and the polygons use it: its samples' signs, crossings,
-// sheets, vertices and the cells of its upper faces (only those with a sheet).
+// The signs of a block's eight corner samples (0 or m along each axis): all the join reads of its
+// samples, since the nodes above the blocks test only samples on block corners (merge_blocks).
+uint8_t corner_signs(const Block& b) {
+  uint8_t out = 0;
+  for (int c = 0; c < 8; ++c)
+    out |= static_cast<uint8_t>(b.inside(c & 1 ? b.m[0] : 0, c & 2 ? b.m[1] : 0, c & 4 ? b.m[2] : 0) << c);
+  return out;
+}
+
+void set_corner_signs(Block& b, uint8_t signs) {
+  std::memset(b.rows, 0, sizeof b.rows);
+  for (int c = 0; c < 8; ++c)
+    if (signs >> c & 1) b.rows[c & 4 ? b.m[2] : 0][c & 2 ? b.m[1] : 0] |= 1u << (c & 1 ? b.m[0] : 0);
+}
+
+// A block's sheet and vertex numbers fit 16 bits (at most four sheets in each of kBlock^3 cells).
+static_assert(4 * kBlock * kBlock * kBlock <= 0xffff);
+constexpr uint16_t kNone16 = 0xffff;
+uint16_t narrow(uint32_t v) { return v == kNone ? kNone16 : static_cast<uint16_t>(v); }
+uint32_t widen(uint16_t v) { return v == kNone16 ? kNone : v; }
+
+// At least what put_block writes (so the slab's string is allocated once).
+size_t block_bytes(const Block& b) {
+  return 128 + b.xs.size() * (sizeof(Crossing) + 8) + b.sheets.size() * 5 + b.positions.size() * 12 + b.rim.size() * 8 +
+         sizeof(Qef);
+}
+
+// A block as the join uses it (merge_blocks, number_vertices, the polygons): its corners' signs,
+// crossings with their cells' sheets, the sheets' chains and vertices, and the cells of its upper
+// faces that have a sheet.
 void put_block(ByteWriter& w, const Block& b) {
   w.put_bytes(b.b, sizeof b.b), w.put_bytes(b.s0, sizeof b.s0), w.put_bytes(b.m, sizeof b.m);
-  w.put_bytes(b.rows, sizeof b.rows);
-  w.put_vector(b.xs), w.put_vector(b.ids), w.put_vector(b.sheets), w.put_vector(b.vertex), w.put_vector(b.positions);
+  w.put(corner_signs(b));
+  w.put_vector(b.xs);
+  std::vector<std::array<uint16_t, 4>> ids(b.ids.size());
+  for (size_t e = 0; e < ids.size(); ++e)
+    for (size_t q = 0; q < 4; ++q) ids[e][q] = narrow(b.ids[e][q]);
+  std::vector<uint16_t> next(b.sheets.size()), vertex(b.vertex.size());
+  std::vector<uint8_t> key(b.sheets.size());
+  for (size_t s = 0; s < b.sheets.size(); ++s) next[s] = narrow(b.sheets[s].next), key[s] = static_cast<uint8_t>(b.sheets[s].key);
+  for (size_t s = 0; s < b.vertex.size(); ++s) vertex[s] = narrow(b.vertex[s]);
+  w.put_vector(ids), w.put_vector(next), w.put_vector(key), w.put_vector(vertex), w.put_vector(b.positions);
   std::vector<uint16_t> at, signs;
-  std::vector<uint32_t> first;
+  std::vector<uint16_t> first;
   for (size_t i = 0; i < b.rim.size(); ++i)
     if (b.rim[i].first != kNone)
       at.push_back(static_cast<uint16_t>(i)), signs.push_back(static_cast<uint16_t>(b.rim[i].mask | b.rim[i].flips << 8)),
-          first.push_back(b.rim[i].first);
+          first.push_back(narrow(b.rim[i].first));
   w.put_vector(at), w.put_vector(signs), w.put_vector(first);
   w.put(b.max_rms), w.put<uint64_t>(b.merged), w.put<uint8_t>(b.root), w.put(b.root_qef);
   w.put<uint64_t>(b.evaluated), w.put<uint8_t>(b.sound);
@@ -55,7 +90,7 @@ bool block_sound(const Block& b) {
     for (uint32_t s : id)
       if (s != kNone && s >= sheets) return false;
   for (size_t s = 0; s < sheets; ++s)
-    if (b.sheets[s].cell >= kCells || (b.sheets[s].next != kNone && b.sheets[s].next >= s)) return false;
+    if (b.sheets[s].next != kNone && b.sheets[s].next >= s) return false;
   for (uint32_t v : b.vertex)
     if (v >= b.positions.size()) return false;
   for (const Block::CellInfo& c : b.rim)
@@ -65,20 +100,29 @@ bool block_sound(const Block& b) {
 
 bool get_block(ByteReader& r, Block& b, const Lattice& g, const int pos[3]) {
   r.get_bytes(b.b, sizeof b.b), r.get_bytes(b.s0, sizeof b.s0), r.get_bytes(b.m, sizeof b.m);
-  r.get_bytes(b.rows, sizeof b.rows);
   for (int a = 0; a < 3; ++a)
     if (b.b[a] != pos[a] || b.s0[a] != pos[a] * kBlock - 1 || b.m[a] != std::min(kBlock, g.n[a] + 1 - pos[a] * kBlock))
       return false;
-  b.xs = r.get_vector<Crossing>(), b.ids = r.get_vector<std::array<uint32_t, 4>>();
-  b.sheets = r.get_vector<Sheet>(), b.vertex = r.get_vector<uint32_t>();
+  set_corner_signs(b, r.get<uint8_t>());
+  b.xs = r.get_vector<Crossing>();
+  std::vector<std::array<uint16_t, 4>> ids = r.get_vector<std::array<uint16_t, 4>>();
+  std::vector<uint16_t> next = r.get_vector<uint16_t>();
+  std::vector<uint8_t> key = r.get_vector<uint8_t>();
+  std::vector<uint16_t> vertex = r.get_vector<uint16_t>();
   b.positions = r.get_vector<std::array<float, 3>>();
-  std::vector<uint16_t> at = r.get_vector<uint16_t>(), signs = r.get_vector<uint16_t>();
-  std::vector<uint32_t> first = r.get_vector<uint32_t>();
-  if (!r.ok || signs.size() != at.size() || first.size() != at.size()) return false;
+  std::vector<uint16_t> at = r.get_vector<uint16_t>(), signs = r.get_vector<uint16_t>(), first = r.get_vector<uint16_t>();
+  if (!r.ok || key.size() != next.size() || signs.size() != at.size() || first.size() != at.size()) return false;
+  b.ids.resize(ids.size());
+  for (size_t e = 0; e < ids.size(); ++e)
+    for (size_t q = 0; q < 4; ++q) b.ids[e][q] = widen(ids[e][q]);
+  b.sheets.resize(next.size());
+  for (size_t s = 0; s < next.size(); ++s) b.sheets[s] = Sheet{0, widen(next[s]), key[s]};  // the cell: not needed now
+  b.vertex.resize(vertex.size());
+  for (size_t s = 0; s < vertex.size(); ++s) b.vertex[s] = widen(vertex[s]);
   if (!at.empty()) b.rim.assign(kRim, Block::CellInfo{});
   for (size_t i = 0; i < at.size(); ++i) {
     if (at[i] >= kRim) return false;
-    b.rim[at[i]] = {static_cast<uint8_t>(signs[i]), static_cast<uint8_t>(signs[i] >> 8), first[i]};
+    b.rim[at[i]] = {static_cast<uint8_t>(signs[i]), static_cast<uint8_t>(signs[i] >> 8), widen(first[i])};
   }
   b.max_rms = r.get<double>(), b.merged = r.get<uint64_t>(), b.root = r.get<uint8_t>() != 0;
   b.root_qef = r.get<Qef>(), b.evaluated = r.get<uint64_t>(), b.sound = r.get<uint8_t>() != 0;
@@ -129,6 +173,9 @@ void SlabSplit::keep(uint32_t job, const BlockGrid& grid, int first, int end) {
     classes.push_back(s >= 0 ? kKept : s == BlockGrid::kAllInside ? kInside : kOutside);
     if (s >= 0) kept.push_back(&grid.blocks()[static_cast<size_t>(s)]);
   }
+  size_t size = 256 + classes.size();
+  for (const Block* b : kept) size += block_bytes(*b);
+  w.out.reserve(size);
   w.put_vector(classes);
   for (const Block* b : kept) put_block(w, *b);
   auto data = std::make_shared<const std::string>(std::move(w.out));

@@ -73,6 +73,10 @@ struct Pending {
 }  // namespace
 
 bool write_file_atomic(const std::string& path, const std::string& bytes, std::string& error) {
+  return write_file_atomic(path, std::vector<std::string_view>{bytes}, error);
+}
+
+bool write_file_atomic(const std::string& path, const std::vector<std::string_view>& pieces, std::string& error) {
   std::string tmp = path + ".tmp";
   Pending pending(tmp);
   FILE* f = std::fopen(tmp.c_str(), "wb");
@@ -80,7 +84,8 @@ bool write_file_atomic(const std::string& path, const std::string& bytes, std::s
     error = "cannot write '" + path + "': " + std::strerror(errno);
     return false;
   }
-  bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+  bool ok = true;
+  for (std::string_view p : pieces) ok = ok && std::fwrite(p.data(), 1, p.size(), f) == p.size();
   ok = (std::fclose(f) == 0) && ok && std::rename(tmp.c_str(), path.c_str()) == 0;
   if (!ok) {
     error = "cannot write '" + path + "': " + std::strerror(errno);

@@ -3,6 +3,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace fscript::support {
 
@@ -20,6 +22,8 @@ std::string percent_decoded(const std::string& s);
 // Writes `bytes` to a temporary file beside `path` and renames it over `path`, so a failure never
 // leaves half a file. False with "cannot write 'path': reason" in `error`.
 bool write_file_atomic(const std::string& path, const std::string& bytes, std::string& error);
+// The same with the file's bytes in pieces, written one after another (no copy into one string).
+bool write_file_atomic(const std::string& path, const std::vector<std::string_view>& pieces, std::string& error);
 
 // Deletes the temporary files of writes in progress in any thread: for a run that a limit ends
 // with _exit (runtime/support/limits.h), so it leaves neither the output nor half of it.

@@ -167,12 +167,16 @@ bool write_part(const std::string& path, const Part& p, std::string& error) {
     w.put(index);
     put_whole(w, m);
   }
-  for (const mesh::Slab& s : p.slabs) {
-    w.put(s.job), w.put(s.first), w.put(s.end);
-    w.put<uint64_t>(s.bytes.size()), w.put_bytes(s.bytes.data(), s.bytes.size());
+  // The slabs' bytes go to the file as they are: a big mesh's are hundreds of megabytes.
+  std::vector<Writer> heads(p.slabs.size());
+  std::vector<std::string_view> pieces{w.out};
+  for (size_t i = 0; i < p.slabs.size(); ++i) {
+    const mesh::Slab& s = p.slabs[i];
+    heads[i].put(s.job), heads[i].put(s.first), heads[i].put(s.end), heads[i].put<uint64_t>(s.bytes.size());
+    pieces.push_back(heads[i].out), pieces.push_back(s.bytes);
   }
-  w.out += kEnd;
-  return fscript::support::write_file_atomic(path, w.out, error);
+  pieces.push_back(kEnd);
+  return fscript::support::write_file_atomic(path, pieces, error);
 }
 
 bool read_part(const std::string& path, Part& p, std::string& error) {

@@ -416,13 +416,16 @@ class Parser {
     if (at(VTok::RBracket)) advance();
   }
 
-  bool number(double& out, bool integer) {
+  // A number; with `integer`, one without a fraction or exponent from INT32_MIN to `most` (SFInt32:
+  // INT32_MAX; an SFImage pixel: UINT32_MAX, 0xRRGGBBAA), so every integer field fits 32 bits.
+  bool number(double& out, bool integer, double most = 2147483647.0) {
     if (!at(VTok::Number)) return false;
     const std::string& t = cur().text;
     char* end = nullptr;
     bool hex = t.find("0x") != std::string::npos || t.find("0X") != std::string::npos;
     out = hex ? static_cast<double>(std::strtoll(t.c_str(), &end, 16)) : std::strtod(t.c_str(), &end);
     if (integer && !hex && t.find_first_of(".eE") != std::string::npos) return false;
+    if (integer && !(out >= -2147483648.0 && out <= most)) return false;
     advance();
     return true;
   }
@@ -467,7 +470,7 @@ class Parser {
     for (int i = 0; i < k; ++i) {
       double d;
       if (!number(d, integer))
-        return fail(k == 1 ? (integer ? "an integer" : "a number") : std::to_string(k) + " numbers");
+        return fail(k == 1 ? (integer ? "an integer from -2147483648 to 2147483647" : "a number") : std::to_string(k) + " numbers");
       v.nums.push_back(d);
     }
     return true;
@@ -483,7 +486,7 @@ class Parser {
     v.nums.assign(head, head + 3);
     for (double i = 0; i < head[0] * head[1]; ++i) {
       double px;
-      if (!number(px, true)) return fail("one integer per pixel");
+      if (!number(px, true, 4294967295.0)) return fail("one integer per pixel");
       v.nums.push_back(px);
     }
     return true;

@@ -212,14 +212,21 @@ TEST_CASE("vrml: exposedField events by their set_ and _changed names, and field
     ROUTE A.translation_changed TO B.sett_translation
     PixelTexture { image 1 1 5 0 }
     Switch { whichChoice 1.5 }
+    Switch { whichChoice 20011100000000000000000000000000000000000000000000000000000000000000000000 }
+    IndexedFaceSet { coordIndex [ 0 1 2 -2147483649 ] }
+    PixelTexture { image 1 2 4 0xFF0000FF 4294967295 }
   )");
   std::string t = bad->text();
   INFO(t);
   CHECK(t.find("has no eventOut 'translation_change'") != std::string::npos);
   CHECK(t.find("has no eventIn 'sett_translation'") != std::string::npos);
   CHECK(t.find("t.wrl:5:32: error: expected a valid image size (SFImage)") != std::string::npos);  // 5 components
-  CHECK(t.find("t.wrl:6:26: error: expected an integer (SFInt32)") != std::string::npos);
-  CHECK(bad->diag.error_count() == 4);
+  CHECK(t.find("t.wrl:6:26: error: expected an integer from -2147483648 to 2147483647 (SFInt32)") != std::string::npos);
+  // Found by the vrml_reader fuzzer: an integer past 32 bits reached a cast to long long (UB) in the
+  // writer. Every integer field now fits 32 bits (an image's pixels: unsigned, 0xRRGGBBAA).
+  CHECK(t.find("t.wrl:7:26: error: expected an integer from -2147483648 to 2147483647 (SFInt32)") != std::string::npos);
+  CHECK(t.find("t.wrl:8:41: error: expected an integer from -2147483648 to 2147483647 (SFInt32)") != std::string::npos);
+  CHECK(bad->diag.error_count() == 6);
 }
 
 TEST_CASE("vrml: every FVRML node and field is documented in the node table") {

@@ -82,7 +82,9 @@ bool sample_blocks(const ImplicitJob& job, const Lattice& g, const SlabSplit* sp
     if (!chosen) layers = layers_for(split, *grid), chosen = true;  // by the pruned grid's blocks, once
     std::vector<Block>& blocks = grid->blocks();
     std::pair<size_t, size_t> range = layer_range(blocks, layers.lo, layers.hi);
-    if (job.progress) job.progress->set_units(2 * (range.second - range.first));  // sampled, then meshed
+    std::pair<size_t, size_t> worked = layer_range(blocks, layers.first, layers.end);
+    if (job.progress)  // sampled, then meshed
+      job.progress->set_units(range.second - range.first + worked.second - worked.first);
     return for_blocks(range.second - range.first, job.threads, [&](size_t i, backends::RuntimeError& e) {
       bool ok = sample_block(*job.field, map, g, blocks[range.first + i], e);
       if (job.progress) job.progress->advance(1);

@@ -84,8 +84,12 @@ void put_block(ByteWriter& w, const Block& b) {
 bool block_sound(const Block& b) {
   size_t sheets = b.sheets.size();
   if (b.ids.size() != b.xs.size() || b.vertex.size() != sheets) return false;
-  for (const Crossing& c : b.xs)
-    if (c.axis > 2 || c.l[0] > kBlock || c.l[1] > kBlock || c.l[2] > kBlock || c.l[c.axis] == kBlock) return false;
+  for (const Crossing& c : b.xs) {
+    uint8_t inside;  // a bool's byte read from a file: 0 or 1, else loading it is undefined
+    std::memcpy(&inside, &c.lower_inside, 1);
+    if (inside > 1 || c.axis > 2 || c.l[0] > kBlock || c.l[1] > kBlock || c.l[2] > kBlock || c.l[c.axis] == kBlock)
+      return false;
+  }
   for (const auto& id : b.ids)
     for (uint32_t s : id)
       if (s != kNone && s >= sheets) return false;

@@ -296,7 +296,7 @@ std::vector<int32_t> merge_blocks(const BlockGrid& grid, double tolerance, std::
   double limit = tolerance * std::min({g.h[0], g.h[1], g.h[2]});
   std::vector<Level> levels(1);
   for (const Block& b : blocks)
-    if (!b.sheets.empty()) {
+    if (!b.positions.empty()) {  // it has sheets (each has a vertex); in a join, only its vertices are known
       Node n;
       n.state = b.root ? State::Merged : State::Kept;
       n.qef = b.root_qef;

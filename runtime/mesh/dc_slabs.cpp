@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "runtime/mesh/dc_octree.h"
 #include "runtime/support/bytes.h"
 
 namespace fscript::mesh {
@@ -48,51 +49,123 @@ constexpr uint16_t kNone16 = 0xffff;
 uint16_t narrow(uint32_t v) { return v == kNone ? kNone16 : static_cast<uint16_t>(v); }
 uint32_t widen(uint16_t v) { return v == kNone16 ? kNone : v; }
 
-// At least what put_block writes (so the slab's string is allocated once).
-size_t block_bytes(const Block& b) {
-  return 128 + b.xs.size() * (sizeof(Crossing) + 8) + b.sheets.size() * 5 + b.positions.size() * 12 + b.rim.size() * 8 +
-         sizeof(Qef);
+// A crossing's ring: the vertices of its four cells as the shard numbers them, for the join to
+// number again. ref[q]: the vertex (bits 0-14) of the block at the cell's offset (bits 15-17: -1
+// along x, y, z where set); or, kForeign, a cell of the layer below the slab, which the shard did
+// not work: its cell in the block (bits 0-11), the crossing's inside corner in it (18-20) and axis
+// (21-22), for the join to find among that block's top cells. kLowerInside in ref[0]: the solid is
+// below the crossing.
+using Ring = SlabSplit::Ring;
+constexpr uint32_t kForeign = 1u << 31, kLowerInside = 1u << 30, kRefBits = ~kLowerInside;
+constexpr size_t kFace = static_cast<size_t>(kBlock) * kBlock;  // a block's top cells, first in its rim
+
+// The ring of crossing e of block b, or false where a cell has no vertex (as ring_of: only if two
+// blocks disagreed on a sign).
+bool ring_refs(const BlockGrid& grid, const Block& b, size_t e, int first_layer, Ring& out) {
+  const Crossing& c = b.xs[e];
+  int cells[4][3], inside[3] = {c.l[0], c.l[1], c.l[2]};
+  if (!c.lower_inside) ++inside[c.axis];
+  cells_of(c, cells);
+  for (size_t q = 0; q < 4; ++q) {
+    uint32_t s = b.ids[e][q];
+    if (s != kNone) {
+      out[q] = b.vertex[s];
+      continue;
+    }
+    int nb[3], nl[3];
+    uint32_t delta = 0;
+    for (int a = 0; a < 3; ++a) {
+      nb[a] = b.b[a], nl[a] = cells[q][a];
+      if (nl[a] < 0) --nb[a], nl[a] += kBlock, delta |= 1u << a;
+    }
+    const Block* owner = grid.at(nb[0], nb[1], nb[2]);
+    if (!owner) return false;
+    uint32_t in = 0;
+    for (int a = 0; a < 3; ++a) in |= static_cast<uint32_t>(b.s0[a] + inside[a] - owner->s0[a] - nl[a]) << a;
+    if (nb[2] < first_layer) {
+      out[q] = kForeign | delta << 15 | static_cast<uint32_t>(nl[0] | nl[1] << 4 | nl[2] << 8) | in << 18 |
+               static_cast<uint32_t>(c.axis) << 21;
+      continue;
+    }
+    uint32_t t = owner->sheet(owner->rim[Block::rim_index(nl[0], nl[1], nl[2])], static_cast<int>(in),
+                              static_cast<int>(in ^ (1u << c.axis)));
+    if (t == kNone) return false;
+    out[q] = delta << 15 | owner->vertex[t];
+  }
+  if (c.lower_inside) out[0] |= kLowerInside;
+  return true;
 }
 
-// A block as the join uses it (merge_blocks, number_vertices, the polygons): its corners' signs,
-// crossings with their cells' sheets, the sheets' chains and vertices, and the cells of its upper
-// faces that have a sheet.
-void put_block(ByteWriter& w, const Block& b) {
+// Rings in 16-bit words: a ring whose cells are all in its own block, with vertices under 2^14,
+// in four words (the first with kNarrowInside for kLowerInside); any other in nine, kWide first.
+constexpr uint16_t kWide = 0x8000, kNarrowInside = 0x4000;
+void put_ring(std::vector<uint16_t>& out, const Ring& r) {
+  bool narrow = true;
+  for (uint32_t ref : r) narrow = narrow && (ref & kRefBits) < 0x4000;
+  if (narrow) {
+    out.push_back(static_cast<uint16_t>((r[0] & 0x3fff) | (r[0] & kLowerInside ? kNarrowInside : 0)));
+    for (size_t q = 1; q < 4; ++q) out.push_back(static_cast<uint16_t>(r[q]));
+    return;
+  }
+  out.push_back(kWide);
+  for (uint32_t ref : r) out.push_back(static_cast<uint16_t>(ref)), out.push_back(static_cast<uint16_t>(ref >> 16));
+}
+
+// The rings of put_ring back; false where the words end inside a ring.
+bool get_rings(const std::vector<uint16_t>& in, std::vector<Ring>& out) {
+  for (size_t i = 0; i < in.size();) {
+    Ring r;
+    if (in[i] & kWide) {
+      if (in.size() - i < 9) return false;
+      for (size_t q = 0; q < 4; ++q) r[q] = in[i + 1 + 2 * q] | static_cast<uint32_t>(in[i + 2 + 2 * q]) << 16;
+      i += 9;
+    } else {
+      if (in.size() - i < 4) return false;
+      r = {static_cast<uint32_t>(in[i] & 0x3fff) | (in[i] & kNarrowInside ? kLowerInside : 0), in[i + 1], in[i + 2], in[i + 3]};
+      i += 4;
+    }
+    out.push_back(r);
+  }
+  return true;
+}
+
+// A block of the slab as the join needs it: what merge_blocks reads (corners, root), its vertices,
+// its rings; for a block of the slab's top layer also its top cells' sheets, which the rings of
+// the slab above reach.
+void put_block(ByteWriter& w, const BlockGrid& grid, const Block& b, int first_layer, bool top) {
   w.put_bytes(b.b, sizeof b.b), w.put_bytes(b.s0, sizeof b.s0), w.put_bytes(b.m, sizeof b.m);
   w.put(corner_signs(b));
-  w.put_vector(b.xs);
-  std::vector<std::array<uint16_t, 4>> ids(b.ids.size());
-  for (size_t e = 0; e < ids.size(); ++e)
-    for (size_t q = 0; q < 4; ++q) ids[e][q] = narrow(b.ids[e][q]);
-  std::vector<uint16_t> next(b.sheets.size()), vertex(b.vertex.size());
+  std::vector<uint16_t> rings;
+  rings.reserve(4 * b.xs.size());
+  for (size_t e = 0; e < b.xs.size(); ++e) {
+    const Crossing& c = b.xs[e];
+    Ring r;
+    if (c.l[0] < b.m[0] && c.l[1] < b.m[1] && c.l[2] < b.m[2] && ring_refs(grid, b, e, first_layer, r)) put_ring(rings, r);
+  }
+  w.put_vector(rings), w.put_vector(b.positions);
+  w.put(b.max_rms), w.put<uint64_t>(b.merged), w.put<uint8_t>(b.root), w.put(b.root_qef);
+  w.put<uint8_t>(top);
+  if (!top) return;
+  std::vector<uint16_t> next(b.sheets.size()), vertex(b.vertex.size()), at, signs, first;
   std::vector<uint8_t> key(b.sheets.size());
   for (size_t s = 0; s < b.sheets.size(); ++s) next[s] = narrow(b.sheets[s].next), key[s] = static_cast<uint8_t>(b.sheets[s].key);
   for (size_t s = 0; s < b.vertex.size(); ++s) vertex[s] = narrow(b.vertex[s]);
-  w.put_vector(ids), w.put_vector(next), w.put_vector(key), w.put_vector(vertex), w.put_vector(b.positions);
-  std::vector<uint16_t> at, signs;
-  std::vector<uint16_t> first;
-  for (size_t i = 0; i < b.rim.size(); ++i)
+  for (size_t i = 0; i < std::min(kFace, b.rim.size()); ++i)
     if (b.rim[i].first != kNone)
       at.push_back(static_cast<uint16_t>(i)), signs.push_back(static_cast<uint16_t>(b.rim[i].mask | b.rim[i].flips << 8)),
           first.push_back(narrow(b.rim[i].first));
-  w.put_vector(at), w.put_vector(signs), w.put_vector(first);
-  w.put(b.max_rms), w.put<uint64_t>(b.merged), w.put<uint8_t>(b.root), w.put(b.root_qef);
-  w.put<uint64_t>(b.evaluated), w.put<uint8_t>(b.sound);
+  w.put_vector(next), w.put_vector(key), w.put_vector(vertex), w.put_vector(at), w.put_vector(signs), w.put_vector(first);
 }
 
-// Every index a block holds points inside it, so a damaged part cannot lead the join astray.
-bool block_sound(const Block& b) {
+// At least what put_block writes (so the slab's string is allocated once).
+size_t block_bytes(const Block& b) {
+  return 160 + b.xs.size() * 8 + b.positions.size() * 12 + sizeof(Qef);
+}
+
+// Every index a top block holds points inside it, so a damaged part cannot lead the join astray.
+bool top_sound(const Block& b) {
   size_t sheets = b.sheets.size();
-  if (b.ids.size() != b.xs.size() || b.vertex.size() != sheets) return false;
-  for (const Crossing& c : b.xs) {
-    uint8_t inside;  // a bool's byte read from a file: 0 or 1, else loading it is undefined
-    std::memcpy(&inside, &c.lower_inside, 1);
-    if (inside > 1 || c.axis > 2 || c.l[0] > kBlock || c.l[1] > kBlock || c.l[2] > kBlock || c.l[c.axis] == kBlock)
-      return false;
-  }
-  for (const auto& id : b.ids)
-    for (uint32_t s : id)
-      if (s != kNone && s >= sheets) return false;
+  if (b.vertex.size() != sheets) return false;
   for (size_t s = 0; s < sheets; ++s)
     if (b.sheets[s].next != kNone && b.sheets[s].next >= s) return false;
   for (uint32_t v : b.vertex)
@@ -102,35 +175,32 @@ bool block_sound(const Block& b) {
   return true;
 }
 
-bool get_block(ByteReader& r, Block& b, const Lattice& g, const int pos[3]) {
+bool get_block(ByteReader& r, Block& b, std::vector<Ring>& rings, const Lattice& g, const int pos[3]) {
   r.get_bytes(b.b, sizeof b.b), r.get_bytes(b.s0, sizeof b.s0), r.get_bytes(b.m, sizeof b.m);
   for (int a = 0; a < 3; ++a)
     if (b.b[a] != pos[a] || b.s0[a] != pos[a] * kBlock - 1 || b.m[a] != std::min(kBlock, g.n[a] + 1 - pos[a] * kBlock))
       return false;
   set_corner_signs(b, r.get<uint8_t>());
-  b.xs = r.get_vector<Crossing>();
-  std::vector<std::array<uint16_t, 4>> ids = r.get_vector<std::array<uint16_t, 4>>();
+  if (!get_rings(r.get_vector<uint16_t>(), rings)) return false;
+  b.positions = r.get_vector<std::array<float, 3>>();
+  b.max_rms = r.get<double>(), b.merged = r.get<uint64_t>(), b.root = r.get<uint8_t>() != 0;
+  b.root_qef = r.get<Qef>();
+  if (!r.get<uint8_t>()) return r.ok;
   std::vector<uint16_t> next = r.get_vector<uint16_t>();
   std::vector<uint8_t> key = r.get_vector<uint8_t>();
   std::vector<uint16_t> vertex = r.get_vector<uint16_t>();
-  b.positions = r.get_vector<std::array<float, 3>>();
   std::vector<uint16_t> at = r.get_vector<uint16_t>(), signs = r.get_vector<uint16_t>(), first = r.get_vector<uint16_t>();
   if (!r.ok || key.size() != next.size() || signs.size() != at.size() || first.size() != at.size()) return false;
-  b.ids.resize(ids.size());
-  for (size_t e = 0; e < ids.size(); ++e)
-    for (size_t q = 0; q < 4; ++q) b.ids[e][q] = widen(ids[e][q]);
   b.sheets.resize(next.size());
   for (size_t s = 0; s < next.size(); ++s) b.sheets[s] = Sheet{0, widen(next[s]), key[s]};  // the cell: not needed now
   b.vertex.resize(vertex.size());
   for (size_t s = 0; s < vertex.size(); ++s) b.vertex[s] = widen(vertex[s]);
-  if (!at.empty()) b.rim.assign(kRim, Block::CellInfo{});
+  b.rim.assign(kFace, Block::CellInfo{});
   for (size_t i = 0; i < at.size(); ++i) {
-    if (at[i] >= kRim) return false;
+    if (at[i] >= kFace) return false;
     b.rim[at[i]] = {static_cast<uint8_t>(signs[i]), static_cast<uint8_t>(signs[i] >> 8), widen(first[i])};
   }
-  b.max_rms = r.get<double>(), b.merged = r.get<uint64_t>(), b.root = r.get<uint8_t>() != 0;
-  b.root_qef = r.get<Qef>(), b.evaluated = r.get<uint64_t>(), b.sound = r.get<uint8_t>() != 0;
-  return r.ok && block_sound(b);
+  return top_sound(b);
 }
 
 }  // namespace
@@ -181,13 +251,88 @@ void SlabSplit::keep(uint32_t job, const BlockGrid& grid, int first, int end) {
   for (const Block* b : kept) size += block_bytes(*b);
   w.out.reserve(size);
   w.put_vector(classes);
-  for (const Block* b : kept) put_block(w, *b);
+  for (const Block* b : kept) put_block(w, grid, *b, first, b->b[2] == end - 1);
   auto data = std::make_shared<const std::string>(std::move(w.out));
   std::lock_guard<std::mutex> hold(lock_);
   slabs_.push_back(Slab{job, first, end, data, *data});
 }
 
-bool SlabSplit::grid(uint32_t job, const Lattice& g, std::unique_ptr<BlockGrid>& out, std::string& error) const {
+bool SlabSplit::join(uint32_t job, const Lattice& g, double tolerance, Mesh& out, DualContourStats& stats,
+                     std::string& error) const {
+  std::unique_ptr<BlockGrid> grid;
+  std::vector<std::vector<Ring>> joined;  // per block
+  if (!read_slabs(job, g, grid, joined, error)) return false;
+  std::vector<BlockGroup> groups;
+  std::vector<int32_t> group = merge_blocks(*grid, tolerance, groups);
+  // The output vertices as number_vertices (dual_contour.cpp) numbers them: blocks in order, a
+  // block's own, or its group's when first named.
+  const std::vector<Block>& blocks = grid->blocks();
+  std::vector<uint32_t> base(blocks.size(), kNone), group_vertex(groups.size(), kNone);
+  std::vector<bool> grouped(blocks.size(), false);
+  double h = std::min({g.h[0], g.h[1], g.h[2]});
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    const Block& b = blocks[i];
+    if (b.positions.empty()) continue;
+    if (group[i] >= 0) {
+      const BlockGroup& bg = groups[static_cast<size_t>(group[i])];
+      uint32_t& v = group_vertex[static_cast<size_t>(group[i])];
+      if (v == kNone) {
+        out.positions.push_back({float(bg.x[0]), float(bg.x[1]), float(bg.x[2])});
+        v = static_cast<uint32_t>(out.positions.size() - 1), ++stats.merged;
+        stats.max_error = std::max(stats.max_error, bg.rms / h);
+      }
+      base[i] = v, grouped[i] = true;
+      continue;
+    }
+    base[i] = static_cast<uint32_t>(out.positions.size());
+    out.positions.insert(out.positions.end(), b.positions.begin(), b.positions.end());
+    stats.max_error = std::max(stats.max_error, b.max_rms / h);
+    stats.merged += b.merged;
+  }
+  stats.cells = out.positions.size();
+  // One polygon per ring, as polygons() makes it from ring_of's vertices.
+  auto index_of = [&](const Block* b) { return static_cast<size_t>(b - blocks.data()); };
+  auto global = [&](size_t i, uint32_t ref, uint32_t& v) {
+    const Block& b = blocks[i];
+    const Block* t = &b;
+    if (ref >> 15 & 7) t = grid->at(b.b[0] - (ref >> 15 & 1), b.b[1] - (ref >> 16 & 1), b.b[2] - (ref >> 17 & 1));
+    if (!t) return false;
+    uint32_t local = ref & 0x7fff;
+    if (ref & kForeign) {
+      int in = ref >> 18 & 7, axis = ref >> 21 & 3, nl[3] = {int(ref & 15), int(ref >> 4 & 15), int(ref >> 8 & 15)};
+      if (t->rim.empty() || nl[2] != kBlock - 1 || axis > 2) return false;
+      uint32_t s = t->sheet(t->rim[Block::rim_index(nl[0], nl[1], nl[2])], in, in ^ (1 << axis));
+      if (s == kNone) return false;
+      local = t->vertex[s];
+    }
+    size_t ti = index_of(t);
+    if (local >= t->positions.size()) return false;
+    v = grouped[ti] ? base[ti] : base[ti] + local;
+    return true;
+  };
+  for (size_t i = 0; i < blocks.size(); ++i)
+    for (const Ring& r : joined[i]) {
+      uint32_t ring[4];
+      int n = 0;
+      bool ok = true;
+      for (size_t q = 0; q < 4 && ok; ++q) {
+        uint32_t v = 0;
+        ok = global(i, r[q] & kRefBits, v);
+        if (ok && (n == 0 || ring[n - 1] != v)) ring[n++] = v;
+      }
+      if (!ok) return error = "a part's slab of this shape is damaged", false;
+      if (n > 1 && ring[n - 1] == ring[0]) --n;
+      if (n < 3) continue;
+      if (!(r[0] & kLowerInside)) std::reverse(ring, ring + n);
+      out.triangles.push_back({ring[0], ring[1], ring[2]});
+      if (n == 4) out.triangles.push_back({ring[0], ring[2], ring[3]});
+    }
+  stats.triangles = out.triangles.size();
+  return true;
+}
+
+bool SlabSplit::read_slabs(uint32_t job, const Lattice& g, std::unique_ptr<BlockGrid>& out,
+                           std::vector<std::vector<Ring>>& joined, std::string& error) const {
   std::vector<const Slab*> mine;
   for (const Slab& s : slabs_)
     if (s.job == job) mine.push_back(&s);
@@ -208,7 +353,8 @@ bool SlabSplit::grid(uint32_t job, const Lattice& g, std::unique_ptr<BlockGrid>&
     std::vector<uint8_t> classes = r.get_vector<uint8_t>();
     if (!r.ok || classes.size() != static_cast<size_t>(nx) * ny * (s->end - s->first))
       return error = "a part's slab of this shape is damaged", false;
-    blocks.reserve(blocks.size() + static_cast<size_t>(std::count(classes.begin(), classes.end(), kKept)));
+    size_t more = static_cast<size_t>(std::count(classes.begin(), classes.end(), kKept));
+    blocks.reserve(blocks.size() + more), joined.reserve(joined.size() + more);
     for (size_t i = 0; i < classes.size(); ++i) {
       if (classes[i] != kKept) {
         slots.push_back(classes[i] == kInside ? BlockGrid::kAllInside : BlockGrid::kAllOutside);
@@ -217,7 +363,8 @@ bool SlabSplit::grid(uint32_t job, const Lattice& g, std::unique_ptr<BlockGrid>&
       size_t at = slots.size();
       int pos[3] = {static_cast<int>(at % nx), static_cast<int>(at / nx % ny), static_cast<int>(at / nx / ny)};
       slots.push_back(static_cast<int32_t>(blocks.size()));
-      if (!get_block(r, blocks.emplace_back(), g, pos)) return error = "a part's slab of this shape is damaged", false;
+      if (!get_block(r, blocks.emplace_back(), joined.emplace_back(), g, pos))
+        return error = "a part's slab of this shape is damaged", false;
     }
     next = s->end;
   }

@@ -4,6 +4,7 @@
 // layers (and the layer either side, which its cells' faces look into), works its blocks as one
 // machine would and keeps them; the merge puts every shard's blocks back into the grid, then merges,
 // numbers and connects them as one machine does, so the seams are welded and the mesh is the same.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "runtime/mesh/dc_block.h"
+#include "runtime/mesh/dual_contour.h"
 
 namespace fscript::mesh {
 
@@ -27,6 +29,8 @@ struct Slab {
 
 class SlabSplit {
  public:
+  using Ring = std::array<uint32_t, 4>;  // a crossing's four cells' vertices, as its shard names them
+
   // Making shard `index` of `count`: each job's slab is kept (slabs()).
   static std::unique_ptr<SlabSplit> make(int index, int count);
   // Joining every shard's slabs.
@@ -42,8 +46,10 @@ class SlabSplit {
   // Making: the blocks of layers [first, end) of `grid` as job `job`'s slab.
   void keep(uint32_t job, const BlockGrid& grid, int first, int end);
   const std::vector<Slab>& slabs() const { return slabs_; }
-  // Joining: job `job`'s grid from every shard's slab; false with what is missing or damaged.
-  bool grid(uint32_t job, const Lattice& g, std::unique_ptr<BlockGrid>& out, std::string& error) const;
+  // Joining: job `job`'s mesh from every shard's slab, the same as dual_contour makes on one
+  // machine; false with what is missing or damaged.
+  bool join(uint32_t job, const Lattice& g, double tolerance, Mesh& out, DualContourStats& stats,
+            std::string& error) const;
 
  private:
   int index_ = 0, count_ = 1;
@@ -51,6 +57,10 @@ class SlabSplit {
   std::mutex lock_;
   uint32_t jobs_ = 0;
   std::vector<Slab> slabs_;
+
+  // The grid of job `job`'s blocks, and each block's rings.
+  bool read_slabs(uint32_t job, const Lattice& g, std::unique_ptr<BlockGrid>& out, std::vector<std::vector<Ring>>& rings,
+                  std::string& error) const;
 };
 
 }  // namespace fscript::mesh

@@ -229,16 +229,14 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   std::unique_ptr<BlockGrid> grid;
   SlabSplit* split = job.mesher.slabs;
   uint32_t number = split ? split->next_job() : 0;
-  if (split && split->joining()) {
-    if (!split->grid(number, g, grid, err.message)) return false;
-  } else {
-    Layers layers;
-    if (!sample_blocks(job, g, split, layers, grid, err) || !work_blocks(job, g, *grid, layers.first, layers.end, err))
-      return false;
-    if (split) {  // the merge joins the slabs and does the rest
-      split->keep(number, *grid, layers.first, layers.end);
-      return true;
-    }
+  // The merge: the shards' slabs joined into the mesh, numbered and connected as below.
+  if (split && split->joining()) return split->join(number, g, job.mesher.tolerance, out, stats, err.message);
+  Layers layers;
+  if (!sample_blocks(job, g, split, layers, grid, err) || !work_blocks(job, g, *grid, layers.first, layers.end, err))
+    return false;
+  if (split) {  // a shard: its slab's blocks, for the merge
+    split->keep(number, *grid, layers.first, layers.end);
+    return true;
   }
   std::vector<Block>& blocks = grid->blocks();
   std::vector<BlockGroup> groups;

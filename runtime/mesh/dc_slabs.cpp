@@ -1,5 +1,5 @@
-// Slabs of dual contouring jobs (dc_slabs.h): a slab's blocks written after their sheets are merged
-// and their rims kept, read back with every index checked, and joined into one grid.
+// Slabs of dual contouring jobs (dc_slabs.h): a slab's blocks written once worked (corners, vertices,
+// each crossing's ring of vertices), read back with every index checked, and joined into the mesh.
 #include "runtime/mesh/dc_slabs.h"
 
 #include <algorithm>
@@ -15,7 +15,6 @@ using support::ByteReader;
 using support::ByteWriter;
 
 enum : uint8_t { kOutside = 0, kInside = 1, kKept = 2 };
-constexpr size_t kRim = static_cast<size_t>(kBlock * kBlock + (kBlock - 1) * kBlock + (kBlock - 1) * (kBlock - 1));
 
 void put_lattice(ByteWriter& w, const Lattice& g) {
   w.put_bytes(g.n, sizeof g.n), w.put_bytes(g.lo, sizeof g.lo), w.put_bytes(g.h, sizeof g.h);

@@ -1,6 +1,6 @@
 #!/bin/bash
 # Submits the shards as a job array and the merge as a job that starts when every shard has ended:
-#   ./submit.sh [SHARDS]        (default 4; SCENE, FRAMES and OUTPUT pass through to the jobs)
+#   ./submit.sh [SHARDS]        (default 4; SCENE, FRAMES, FORMAT and OUTPUT pass through to the jobs)
 # A shard that failed or was cancelled left no part, and the merge says which (parts/merge.log):
 # rerun that one shard with `FVRML_SHARDS=M sbatch --array=K shards.sbatch` (so that the one task
 # knows it is shard K of M), then `sbatch merge.sbatch`.

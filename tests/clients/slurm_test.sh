@@ -111,6 +111,18 @@ else
   fail "the merged figure1.glb differs from the single run's (merge log: $(tail -3 "$T/examples/slurm/parts/merge.log" 2> /dev/null))"
 fi
 
+# ---- One big shape in 3 slabs (FRAMES=0), PLY, through the same scripts ----
+rm -rf "$T/examples/slurm/parts"
+cp "$SRC/bench/scenes/gyroid-sphere256.wrl" "$T/examples/big.wrl"
+jobs=$(cd "$T/examples/slurm" && FRAMES=0 FORMAT=ply SCENE=../big.wrl OUTPUT=big.ply ./submit.sh 3) || fail "submit.sh (slabs): $jobs"
+wait_job "$(tail -1 <<<"$jobs")" 600 || fail "the merge of the slabs did not finish in 10 minutes"
+"$R" "$T/examples/big.wrl" -o "$T/single.ply" 2> /dev/null
+if cmp -s "$T/single.ply" "$T/examples/slurm/big.ply"; then
+  echo "slurm: 3 slabs merged into the single run's $(stat -c %s "$T/single.ply") bytes of PLY"
+else
+  fail "the merged big.ply differs from the single run's (merge log: $(tail -3 "$T/examples/slurm/parts/merge.log" 2> /dev/null))"
+fi
+
 # ---- A shard that fails: the merge reports it missing; that shard again, then the merge ----
 mkdir -p "$T/fail/parts"
 cat > "$T/fail/shards.sbatch" <<EOF

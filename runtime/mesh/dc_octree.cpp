@@ -346,4 +346,35 @@ std::vector<int32_t> merge_blocks(const BlockGrid& grid, double tolerance, std::
   return group;
 }
 
+void number_blocks(const BlockGrid& grid, const std::vector<int32_t>& group, const std::vector<BlockGroup>& groups,
+                   Mesh& out, DualContourStats& stats, std::vector<uint32_t>& base, std::vector<bool>& grouped) {
+  const std::vector<Block>& blocks = grid.blocks();
+  std::vector<uint32_t> group_vertex(groups.size(), kNone);
+  base.assign(blocks.size(), kNone), grouped.assign(blocks.size(), false);
+  double h = std::min({grid.lattice().h[0], grid.lattice().h[1], grid.lattice().h[2]});
+  size_t total = groups.size();
+  for (const Block& b : blocks) total += b.positions.size();
+  out.positions.reserve(total);
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    const Block& b = blocks[i];
+    if (b.positions.empty()) continue;
+    if (group[i] >= 0) {
+      const BlockGroup& bg = groups[static_cast<size_t>(group[i])];
+      uint32_t& v = group_vertex[static_cast<size_t>(group[i])];
+      if (v == kNone) {
+        out.positions.push_back({float(bg.x[0]), float(bg.x[1]), float(bg.x[2])});
+        v = static_cast<uint32_t>(out.positions.size() - 1), ++stats.merged;
+        stats.max_error = std::max(stats.max_error, bg.rms / h);
+      }
+      base[i] = v, grouped[i] = true;
+      continue;
+    }
+    base[i] = static_cast<uint32_t>(out.positions.size());
+    out.positions.insert(out.positions.end(), b.positions.begin(), b.positions.end());
+    stats.max_error = std::max(stats.max_error, b.max_rms / h);
+    stats.merged += b.merged;
+  }
+  stats.cells = out.positions.size();
+}
+
 }  // namespace fscript::mesh

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "runtime/mesh/dc_block.h"
+#include "runtime/mesh/dual_contour.h"
 #include "runtime/mesh/qef.h"
 
 namespace fscript::mesh {
@@ -38,5 +39,11 @@ struct BlockGroup {
 // Blocks whose root merged, merged further with their neighbours under the same tests: per block,
 // the group that takes all its sheets, or none (index -1: the block keeps its own vertices).
 std::vector<int32_t> merge_blocks(const BlockGrid& grid, double tolerance, std::vector<BlockGroup>& groups);
+
+// The output vertices, blocks in order: a block's own positions from base[i] on, or, where the
+// block merged into a group (grouped[i]), the group's one vertex base[i], made when first named.
+// Blocks without positions (no surface) get none. Also the stats' cells, merged and max_error.
+void number_blocks(const BlockGrid& grid, const std::vector<int32_t>& group, const std::vector<BlockGroup>& groups,
+                   Mesh& out, DualContourStats& stats, std::vector<uint32_t>& base, std::vector<bool>& grouped);
 
 }  // namespace fscript::mesh

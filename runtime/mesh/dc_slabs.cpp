@@ -263,32 +263,10 @@ bool SlabSplit::join(uint32_t job, const Lattice& g, double tolerance, Mesh& out
   if (!read_slabs(job, g, grid, joined, error)) return false;
   std::vector<BlockGroup> groups;
   std::vector<int32_t> group = merge_blocks(*grid, tolerance, groups);
-  // The output vertices as number_vertices (dual_contour.cpp) numbers them: blocks in order, a
-  // block's own, or its group's when first named.
   const std::vector<Block>& blocks = grid->blocks();
-  std::vector<uint32_t> base(blocks.size(), kNone), group_vertex(groups.size(), kNone);
-  std::vector<bool> grouped(blocks.size(), false);
-  double h = std::min({g.h[0], g.h[1], g.h[2]});
-  for (size_t i = 0; i < blocks.size(); ++i) {
-    const Block& b = blocks[i];
-    if (b.positions.empty()) continue;
-    if (group[i] >= 0) {
-      const BlockGroup& bg = groups[static_cast<size_t>(group[i])];
-      uint32_t& v = group_vertex[static_cast<size_t>(group[i])];
-      if (v == kNone) {
-        out.positions.push_back({float(bg.x[0]), float(bg.x[1]), float(bg.x[2])});
-        v = static_cast<uint32_t>(out.positions.size() - 1), ++stats.merged;
-        stats.max_error = std::max(stats.max_error, bg.rms / h);
-      }
-      base[i] = v, grouped[i] = true;
-      continue;
-    }
-    base[i] = static_cast<uint32_t>(out.positions.size());
-    out.positions.insert(out.positions.end(), b.positions.begin(), b.positions.end());
-    stats.max_error = std::max(stats.max_error, b.max_rms / h);
-    stats.merged += b.merged;
-  }
-  stats.cells = out.positions.size();
+  std::vector<uint32_t> base;
+  std::vector<bool> grouped;
+  number_blocks(*grid, group, groups, out, stats, base, grouped);
   // One polygon per ring, as polygons() makes it from ring_of's vertices.
   auto index_of = [&](const Block* b) { return static_cast<size_t>(b - blocks.data()); };
   auto global = [&](size_t i, uint32_t ref, uint32_t& v) {

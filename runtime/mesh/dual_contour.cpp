@@ -128,39 +128,22 @@ bool work_blocks(const ImplicitJob& job, const Lattice& g, BlockGrid& grid, int 
   }, err);
 }
 
-// The output vertices: blocks in order, each block's own vertices in the order its sheets name them,
-// or the vertex of the group of blocks it merged into when the group is first named; each sheet's
-// vertex (Block::vertex) becomes its output vertex.
+// Each sheet's vertex (Block::vertex) as its output vertex (number_blocks); the blocks' positions
+// are dropped once copied.
 void number_vertices(BlockGrid& grid, const std::vector<int32_t>& group, const std::vector<BlockGroup>& groups, Mesh& out,
                      DualContourStats& stats) {
-  std::vector<uint32_t> group_vertex(groups.size(), kNone);
-  double h = std::min({grid.lattice().h[0], grid.lattice().h[1], grid.lattice().h[2]});
+  std::vector<uint32_t> base;
+  std::vector<bool> grouped;
+  number_blocks(grid, group, groups, out, stats, base, grouped);
   std::vector<Block>& blocks = grid.blocks();
-  size_t total = groups.size();
-  for (const Block& b : blocks) total += b.positions.size();
-  out.positions.reserve(total);
   for (size_t i = 0; i < blocks.size(); ++i) {
     Block& b = blocks[i];
-    if (b.sheets.empty()) continue;
-    if (group[i] >= 0) {
-      const BlockGroup& bg = groups[static_cast<size_t>(group[i])];
-      uint32_t& v = group_vertex[static_cast<size_t>(group[i])];
-      if (v == kNone) {
-        out.positions.push_back({float(bg.x[0]), float(bg.x[1]), float(bg.x[2])});
-        v = static_cast<uint32_t>(out.positions.size() - 1), ++stats.merged;
-        stats.max_error = std::max(stats.max_error, bg.rms / h);
-      }
-      std::fill(b.vertex.begin(), b.vertex.end(), v);
-      continue;
-    }
-    uint32_t base = static_cast<uint32_t>(out.positions.size());
-    out.positions.insert(out.positions.end(), b.positions.begin(), b.positions.end());
-    for (uint32_t& v : b.vertex) v += base;
-    stats.max_error = std::max(stats.max_error, b.max_rms / h);
-    stats.merged += b.merged;
+    if (base[i] == kNone) continue;
+    if (grouped[i]) std::fill(b.vertex.begin(), b.vertex.end(), base[i]);
+    else
+      for (uint32_t& v : b.vertex) v += base[i];
     b.positions = {};
   }
-  stats.cells = out.positions.size();
 }
 
 // The output vertex of the sheet of lattice cell `cell` that holds the crossing whose inside sample

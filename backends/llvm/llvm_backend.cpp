@@ -103,8 +103,14 @@ bool LlvmKernel::eval(const float* inputs, float* outputs, backends::RuntimeErro
   backends::Scratch<float*> out(outputs_);
   for (size_t k = 0; k < inputs_; ++k) in.data[k] = inputs + k;
   for (size_t k = 0; k < outputs_; ++k) out.data[k] = outputs + k;
+  // Code without arrays never touches its arrays argument: no LaneArrays to build per call.
+  static const backends::LaneArrays no_arrays;
+  if (arrays_.empty()) {
+    uint64_t code = backends::call_generated([&] { return f(in.data, out.data, 0, 1, nullptr, backends::stack_limit()); });
+    return backends::jit_status(code, no_arrays, budgets_, err);
+  }
   backends::LaneArrays arrays;
-  if (!arrays_.empty()) arrays.init(1, budgets_.max_array_elements, arrays_);
+  arrays.init(1, budgets_.max_array_elements, arrays_);
   uint64_t code = backends::call_generated([&] { return f(in.data, out.data, 0, 1, &arrays, backends::stack_limit()); });
   return backends::jit_status(code, arrays, budgets_, err);
 }

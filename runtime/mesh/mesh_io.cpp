@@ -7,105 +7,144 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <string_view>
+#include <vector>
 
 namespace fscript::mesh {
 namespace {
 
-template <class T>
-void put(std::string& s, T v) {
-  char b[sizeof(T)];
-  std::memcpy(b, &v, sizeof(T));
-  s.append(b, sizeof(T));
-}
+// Bytes out: into a string (encode_mesh) or into a file through a fixed buffer (write_mesh), so
+// writing a mesh of millions of triangles never holds its whole file in memory.
+class Out {
+ public:
+  explicit Out(std::string& s) : s_(&s) {}
+  explicit Out(std::FILE* f) : f_(f), buf_(kChunk) {}
+  void put(const void* p, size_t n) {
+    if (s_) return void(s_->append(static_cast<const char*>(p), n));
+    if (used_ + n > buf_.size()) flush();
+    if (n > buf_.size()) return void(ok_ = ok_ && std::fwrite(p, 1, n, f_) == n);
+    std::memcpy(buf_.data() + used_, p, n);
+    used_ += n;
+  }
+  void text(std::string_view t) { put(t.data(), t.size()); }
+  template <class T>
+  void value(T v) { put(&v, sizeof(T)); }
+  void reserve(size_t n) {
+    if (s_) s_->reserve(s_->size() + n);
+  }
+  bool finish() {
+    flush();
+    return ok_;
+  }
 
-std::string ply(const Mesh& m) {
+ private:
+  static constexpr size_t kChunk = size_t{1} << 18;
+  void flush() {
+    if (f_ && used_) ok_ = ok_ && std::fwrite(buf_.data(), 1, used_, f_) == used_;
+    used_ = 0;
+  }
+  std::string* s_ = nullptr;
+  std::FILE* f_ = nullptr;
+  std::vector<char> buf_;
+  size_t used_ = 0;
+  bool ok_ = true;
+};
+
+void ply(const Mesh& m, Out& out) {
   bool normals = m.normals.size() == m.positions.size() && !m.positions.empty();
   bool colours = m.colours.size() == m.positions.size() && !m.positions.empty();
-  std::string s = "ply\nformat binary_little_endian 1.0\ncomment written by fvrml-run\n";
-  s += "element vertex " + std::to_string(m.positions.size()) + "\n";
-  s += "property float x\nproperty float y\nproperty float z\n";
-  if (normals) s += "property float nx\nproperty float ny\nproperty float nz\n";
-  if (colours) s += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
-  s += "element face " + std::to_string(m.triangles.size()) + "\nproperty list uchar int vertex_indices\n";
-  s += "end_header\n";
-  // Sized once and filled through a cursor: meshes of millions of triangles are common.
-  size_t header = s.size(), vertex = 12 + (normals ? 12 : 0) + (colours ? 3 : 0);
-  s.resize(header + m.positions.size() * vertex + m.triangles.size() * 13);
-  char* out = s.data() + header;
-  auto emit = [&out](const void* p, size_t n) { std::memcpy(out, p, n), out += n; };
+  std::string h = "ply\nformat binary_little_endian 1.0\ncomment written by fvrml-run\n";
+  h += "element vertex " + std::to_string(m.positions.size()) + "\n";
+  h += "property float x\nproperty float y\nproperty float z\n";
+  if (normals) h += "property float nx\nproperty float ny\nproperty float nz\n";
+  if (colours) h += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
+  h += "element face " + std::to_string(m.triangles.size()) + "\nproperty list uchar int vertex_indices\n";
+  h += "end_header\n";
+  size_t vertex = 12 + (normals ? 12 : 0) + (colours ? 3 : 0);
+  out.reserve(h.size() + m.positions.size() * vertex + m.triangles.size() * 13);
+  out.text(h);
   for (size_t i = 0; i < m.positions.size(); ++i) {
-    emit(m.positions[i].data(), 12);
-    if (normals) emit(m.normals[i].data(), 12);
+    char v[27];
+    std::memcpy(v, m.positions[i].data(), 12);
+    if (normals) std::memcpy(v + 12, m.normals[i].data(), 12);
     if (colours)
-      for (float v : m.colours[i]) *out++ = static_cast<char>(std::lround(std::fmin(std::fmax(v, 0.0f), 1.0f) * 255));
+      for (size_t c = 0; c < 3; ++c)
+        v[vertex - 3 + c] = static_cast<char>(std::lround(std::fmin(std::fmax(m.colours[i][c], 0.0f), 1.0f) * 255));
+    out.put(v, vertex);
   }
   for (const auto& t : m.triangles) {
-    *out++ = 3;
-    emit(t.data(), 12);
+    char f[13];
+    f[0] = 3;
+    std::memcpy(f + 1, t.data(), 12);
+    out.put(f, 13);
   }
-  return s;
 }
 
-std::string obj(const Mesh& m) {
+void obj(const Mesh& m, Out& out) {
   bool normals = m.normals.size() == m.positions.size() && !m.positions.empty();
-  std::string s = "# written by fvrml-run\n";
+  out.text("# written by fvrml-run\n");
   char buf[128];
-  for (const auto& p : m.positions) {
-    std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\n", p[0], p[1], p[2]);
-    s += buf;
-  }
+  auto line = [&](int n) { out.put(buf, static_cast<size_t>(n)); };
+  for (const auto& p : m.positions) line(std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\n", p[0], p[1], p[2]));
   if (normals)
-    for (const auto& n : m.normals) {
-      std::snprintf(buf, sizeof buf, "vn %.9g %.9g %.9g\n", n[0], n[1], n[2]);
-      s += buf;
-    }
+    for (const auto& n : m.normals) line(std::snprintf(buf, sizeof buf, "vn %.9g %.9g %.9g\n", n[0], n[1], n[2]));
   for (const auto& t : m.triangles) {
     if (normals)
-      std::snprintf(buf, sizeof buf, "f %u//%u %u//%u %u//%u\n", t[0] + 1, t[0] + 1, t[1] + 1, t[1] + 1, t[2] + 1, t[2] + 1);
+      line(std::snprintf(buf, sizeof buf, "f %u//%u %u//%u %u//%u\n", t[0] + 1, t[0] + 1, t[1] + 1, t[1] + 1, t[2] + 1,
+                         t[2] + 1));
     else
-      std::snprintf(buf, sizeof buf, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1);
-    s += buf;
+      line(std::snprintf(buf, sizeof buf, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1));
   }
   for (const auto& l : m.polylines) {
-    s += "l";
+    std::string s = "l";
     for (uint32_t v : l) s += " " + std::to_string(v + 1);
-    s += "\n";
+    out.text(s + "\n");
   }
-  return s;
 }
 
-std::string stl(const Mesh& m) {
-  std::string s(80, '\0');
-  std::memcpy(s.data(), "binary STL written by fvrml-run", 31);
-  put(s, static_cast<uint32_t>(m.triangles.size()));
+void stl(const Mesh& m, Out& out) {
+  char head[80] = "binary STL written by fvrml-run";
+  out.reserve(84 + 50 * m.triangles.size());
+  out.put(head, sizeof head);
+  out.value(static_cast<uint32_t>(m.triangles.size()));
   for (const auto& t : m.triangles) {
     const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
     float n[3] = {(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
                   (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
                   (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])};
     float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (float v : n) put(s, len > 0 ? v / len : 0.0f);
-    for (const Vec3* p : {&a, &b, &c})
-      for (float v : *p) put(s, v);
-    put(s, static_cast<uint16_t>(0));
+    float r[12];
+    for (int k = 0; k < 3; ++k) r[k] = len > 0 ? n[k] / len : 0.0f;
+    for (int k = 0; k < 3; ++k) r[3 + k] = a[k], r[6 + k] = b[k], r[9 + k] = c[k];
+    out.put(r, sizeof r);
+    out.value(static_cast<uint16_t>(0));
   }
-  return s;
+}
+
+bool encode(const Mesh& m, MeshFormat f, Out& out) {
+  switch (f) {
+    case MeshFormat::Ply: ply(m, out); break;
+    case MeshFormat::Obj: obj(m, out); break;
+    case MeshFormat::Stl: stl(m, out); break;
+    case MeshFormat::Glb: out.text(encode_glb(m)); break;
+  }
+  return out.finish();
 }
 
 }  // namespace
 
 std::string encode_mesh(const Mesh& m, MeshFormat f) {
-  switch (f) {
-    case MeshFormat::Ply: return ply(m);
-    case MeshFormat::Obj: return obj(m);
-    case MeshFormat::Stl: return stl(m);
-    case MeshFormat::Glb: return encode_glb(m);
-  }
-  return "";
+  std::string s;
+  Out out(s);
+  encode(m, f, out);
+  return s;
 }
 
 bool write_mesh(const Mesh& m, MeshFormat f, const std::string& path, std::string& error) {
-  return support::write_file_atomic(path, encode_mesh(m, f), error);
+  return support::write_file_atomic(path, [&](std::FILE* file) {
+    Out out(file);
+    return encode(m, f, out);
+  }, error);
 }
 
 }  // namespace fscript::mesh

@@ -76,6 +76,14 @@ bool write_file_atomic(const std::string& path, const std::string& bytes, std::s
 }
 
 bool write_file_atomic(const std::string& path, const std::vector<std::string_view>& pieces, std::string& error) {
+  return write_file_atomic(path, [&](std::FILE* f) {
+    for (std::string_view p : pieces)
+      if (std::fwrite(p.data(), 1, p.size(), f) != p.size()) return false;
+    return true;
+  }, error);
+}
+
+bool write_file_atomic(const std::string& path, const std::function<bool(std::FILE*)>& fill, std::string& error) {
   std::string tmp = path + ".tmp";
   Pending pending(tmp);
   FILE* f = std::fopen(tmp.c_str(), "wb");
@@ -83,8 +91,7 @@ bool write_file_atomic(const std::string& path, const std::vector<std::string_vi
     error = "cannot write '" + path + "': " + std::strerror(errno);
     return false;
   }
-  bool ok = true;
-  for (std::string_view p : pieces) ok = ok && std::fwrite(p.data(), 1, p.size(), f) == p.size();
+  bool ok = fill(f);
   ok = (std::fclose(f) == 0) && ok && std::rename(tmp.c_str(), path.c_str()) == 0;
   if (!ok) {
     error = "cannot write '" + path + "': " + std::strerror(errno);

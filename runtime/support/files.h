@@ -2,6 +2,8 @@
 // Files: whole-file reads and atomic writes (a failed write never leaves half a file behind).
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +26,9 @@ std::string percent_decoded(const std::string& s);
 bool write_file_atomic(const std::string& path, const std::string& bytes, std::string& error);
 // The same with the file's bytes in pieces, written one after another (no copy into one string).
 bool write_file_atomic(const std::string& path, const std::vector<std::string_view>& pieces, std::string& error);
+// The same with the bytes written to the open file by `fill` (false on a failed write): a large
+// output streamed through a small buffer, never held whole in memory.
+bool write_file_atomic(const std::string& path, const std::function<bool(std::FILE*)>& fill, std::string& error);
 
 // Deletes the temporary files of writes in progress in any thread: for a run that a limit ends
 // with _exit (runtime/support/limits.h), so it leaves neither the output nor half of it.

@@ -2,6 +2,8 @@
 // Euler characteristic, vertices on the true surface, caps on the box faces.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
+#include <unistd.h>
 
 #include "runtime/mesh/implicit.h"
 #include "tests/unit/helpers.h"
@@ -146,6 +148,7 @@ TEST_CASE("mesh: a parametric curve is a polyline of N+1 samples; a solid is its
 #include "runtime/mesh/distance.h"
 #include "runtime/mesh/mesh_io.h"
 #include "runtime/mesh/mesh_read.h"
+#include "runtime/support/files.h"
 
 TEST_CASE("mesh: distances with known answers, and every writer read back") {
   auto small = polygonize("function FRep(x,y,z,t){ return 1 - x*x - y*y - z*z; }", {-1.5, 1.5, -1.5, 1.5, -1.5, 1.5}, 40);
@@ -174,6 +177,31 @@ TEST_CASE("mesh: distances with known answers, and every writer read back") {
   CHECK(!mesh::parse_mesh("v 0 0 0\nf 1 2 3\n", "x.obj", bad, err));
   CHECK(err.find("refers to vertex") != std::string::npos);
   CHECK(!mesh::parse_mesh("garbage", "x.stl", bad, err));
+}
+
+TEST_CASE("mesh: files are streamed in chunks with the same bytes as encode_mesh; a failed write leaves nothing") {
+  // 160^3 cells: about 300,000 triangles, several of the writer's 256 KiB chunks in every format.
+  auto m = polygonize("function FRep(x,y,z,t){ return 1 - x*x - y*y - z*z; }", {-1.5, 1.5, -1.5, 1.5, -1.5, 1.5}, 160);
+  REQUIRE(m.triangles.size() > 100000);
+  m.colours.assign(m.positions.size(), {0.25f, 0.5f, 2.0f});  // PLY's colour bytes, one clamped
+  std::string dir = (std::filesystem::temp_directory_path() / ("mesh-stream-" + std::to_string(::getpid()))).string();
+  std::filesystem::create_directories(dir);
+  for (auto [fmt, name] : {std::pair{mesh::MeshFormat::Ply, "a.ply"}, {mesh::MeshFormat::Obj, "a.obj"},
+                           {mesh::MeshFormat::Stl, "a.stl"}, {mesh::MeshFormat::Glb, "a.glb"}}) {
+    INFO(name);
+    std::string path = dir + "/" + name, err, bytes;
+    REQUIRE(mesh::write_mesh(m, fmt, path, err));
+    REQUIRE(support::read_file(path, bytes, err));
+    std::string want = mesh::encode_mesh(m, fmt);
+    CHECK(want.size() > (size_t{1} << 19));
+    CHECK(bytes == want);
+  }
+  std::string err;
+  CHECK(!mesh::write_mesh(m, mesh::MeshFormat::Ply, dir + "/no/such/dir/a.ply", err));
+  CHECK(err.find("cannot write") != std::string::npos);
+  std::string left;
+  CHECK(!support::read_file(dir + "/no/such/dir/a.ply.tmp", left, err));
+  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("mesh: the same mesh, vertex for vertex, for 1, 2 and 5 threads") {

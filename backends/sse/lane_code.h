@@ -247,11 +247,15 @@ class LaneCode {
   // sin (offset 0) and cos (offset 1) inline: runtime/math/batch.cpp's trig_lane step for step
   // (the argument reduced in double, Cephes polynomials, quadrant by bit tricks), so the result is
   // the batch function's, bit for bit. A group with a lane outside the fast range (huge, inf,
-  // NaN) takes the batch function itself, out of line.
+  // NaN) takes the batch function itself, out of line. Both polynomials are computed whatever the
+  // quadrant, so a later sin or cos of the same value in the block (the gyroid's pairs) is made
+  // here too, from the same reduction, and skipped when its turn comes.
   void trig(const ir::Inst& in, int pos, int offset) {
     using namespace math::trig;
+    const ir::Inst* partner = trig_partner(in, pos, offset);
     Src a = src(in.args[0]);
     Xmm d = alloc(pos), t0 = temp(pos), t1 = temp(pos), t2 = temp(pos), t3 = temp(pos);
+    Xmm cp = partner ? temp(pos) : d;  // paired: the cosine polynomial kept apart from both results
     load(Xmm::x1, a);
     a_.movaps(at(kScratch), Xmm::x1);
     a_.movaps(Xmm::x0, Xmm::x1);
@@ -259,8 +263,8 @@ class LaneCode {
     a_.cmpps(Xmm::x0, k(kFastLimit), Pred::Le);
     a_.movmskps(Gp::rax, Xmm::x0);
     a_.cmp(Gp::rax, 15);
-    SlowPath sp{a_.new_label(), a_.new_label(), d, offset ? reinterpret_cast<const void*>(&math::cos_batch)
-                                                          : reinterpret_cast<const void*>(&math::sin_batch)};
+    SlowPath sp{a_.new_label(), a_.new_label(), partner ? t0 : d, batch_trig(offset), t1,
+                partner ? batch_trig(1 - offset) : nullptr};
     a_.jcc(Cond::NE, sp.entry);
     a_.cvtps2pd(t0, Xmm::x1);
     a_.movhlps(Xmm::x1, Xmm::x1);
@@ -281,7 +285,7 @@ class LaneCode {
     }
     a_.movlhps(t0, t1);     // r, four lanes
     a_.punpcklqdq(t2, t3);  // q, four lanes
-    if (offset) a_.paddd(t2, bits(1));
+    if (offset && !partner) a_.paddd(t2, bits(1));
     a_.movaps(t1, t0);
     a_.mulps(t1, t0);  // z = r * r
     a_.movaps(t3, k(kSin1));  // sin: ((kSin1 z + kSin2) z - kSin3) z r + r
@@ -292,29 +296,67 @@ class LaneCode {
     a_.mulps(t3, t1);
     a_.mulps(t3, t0);
     a_.addps(t3, t0);
-    a_.movaps(d, k(kCos1));  // cos: ((kCos1 z - kCos2) z + kCos3) z z - 0.5 z + 1
-    a_.mulps(d, t1);
-    a_.subps(d, k(kCos2));
-    a_.mulps(d, t1);
-    a_.addps(d, k(kCos3));
-    a_.mulps(d, t1);
-    a_.mulps(d, t1);
+    a_.movaps(cp, k(kCos1));  // cos: ((kCos1 z - kCos2) z + kCos3) z z - 0.5 z + 1
+    a_.mulps(cp, t1);
+    a_.subps(cp, k(kCos2));
+    a_.mulps(cp, t1);
+    a_.addps(cp, k(kCos3));
+    a_.mulps(cp, t1);
+    a_.mulps(cp, t1);
     a_.movaps(Xmm::x1, k(0.5f));
     a_.mulps(Xmm::x1, t1);
-    a_.subps(d, Xmm::x1);
-    a_.addps(d, k(1.0f));
-    a_.movaps(Xmm::x0, t2);  // odd quadrant: the cosine polynomial
-    a_.pand(Xmm::x0, bits(1));
-    a_.pcmpeqd(Xmm::x0, bits(1));
-    a_.blendvps(t3, d);
-    a_.pand(t2, bits(2));  // quadrants 2 and 3: the sign flips
-    a_.pslld(t2, 30);
-    a_.xorps(t3, t2);
-    a_.movaps(d, t3);
+    a_.subps(cp, Xmm::x1);
+    a_.addps(cp, k(1.0f));
+    if (partner) {  // r and z are done with: their registers take the two results
+      quadrant_pick(t0, t3, cp, t2, offset);
+      quadrant_pick(t1, t3, cp, t2, 1 - offset);
+    } else {
+      a_.movaps(Xmm::x0, t2);  // odd quadrant: the cosine polynomial
+      a_.pand(Xmm::x0, bits(1));
+      a_.pcmpeqd(Xmm::x0, bits(1));
+      a_.blendvps(t3, d);
+      a_.pand(t2, bits(2));  // quadrants 2 and 3: the sign flips
+      a_.pslld(t2, 30);
+      a_.xorps(t3, t2);
+      a_.movaps(d, t3);
+    }
     a_.bind(sp.back);
     slow_.push_back(sp);
-    for (Xmm t : {t0, t1, t2, t3}) release(t);
-    define(in, d);
+    if (!partner) {
+      for (Xmm t : {t0, t1, t2, t3}) release(t);
+      define(in, d);
+      return;
+    }
+    for (Xmm t : {t2, t3, cp}) release(t);
+    define(in, t0);
+    define(*partner, t1);
+    early_[partner->id] = true;
+  }
+  // out = (quadrant q + offset odd ? cos polynomial : sin polynomial), negated in quadrants 2, 3.
+  void quadrant_pick(Xmm out, Xmm sin_poly, Xmm cos_poly, Xmm q, int offset) {
+    a_.movaps(Xmm::x1, q);
+    if (offset) a_.paddd(Xmm::x1, bits(1));
+    a_.movaps(Xmm::x0, Xmm::x1);
+    a_.pand(Xmm::x0, bits(1));
+    a_.pcmpeqd(Xmm::x0, bits(1));
+    a_.movaps(out, sin_poly);
+    a_.blendvps(out, cos_poly);
+    a_.pand(Xmm::x1, bits(2));
+    a_.pslld(Xmm::x1, 30);
+    a_.xorps(out, Xmm::x1);
+  }
+  static const void* batch_trig(int offset) {
+    return offset ? reinterpret_cast<const void*>(&math::cos_batch) : reinterpret_cast<const void*>(&math::sin_batch);
+  }
+  // The first later cos (sin) of the same value in this block, not yet made, for a sin (cos).
+  const ir::Inst* trig_partner(const ir::Inst& in, int pos, int offset) const {
+    ir::Op want = offset ? ir::Op::Sin : ir::Op::Cos;
+    for (int u : uses_[in.args[0]->id]) {
+      if (u <= pos || u >= block_end_[cur_]) continue;
+      const ir::Inst* p = inst_at_[u];
+      if (p->op == want && p->args[0] == in.args[0] && !early_[p->id]) return p;
+    }
+    return nullptr;
   }
 
   // An array operation: its operands to the scratch slots, every register saved, the helper called
@@ -376,6 +418,8 @@ class LaneCode {
   std::vector<int> block_index_, block_start_, block_end_, def_block_;
   std::vector<bool> cross_;
   std::vector<std::vector<int>> uses_;
+  std::vector<const ir::Inst*> inst_at_;  // by position
+  std::vector<bool> early_;               // by value id: made with an earlier instruction (trig pairs)
   std::vector<int> reg_of_, slot_of_, home_;
   std::array<int, kNumRegs> held_{};
   bool straight_ = true, arrays_ = false;
@@ -387,6 +431,8 @@ class LaneCode {
     Label entry, back;
     Xmm result;
     const void* fn;
+    Xmm result2 = Xmm::x0;     // a paired sin/cos: the second function's result
+    const void* fn2 = nullptr;
   };
   std::vector<SlowPath> slow_;
 };

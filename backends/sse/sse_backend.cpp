@@ -68,8 +68,27 @@ bool SseKernel::eval_rows(const float* first, size_t count, const float* const* 
   return backends::jit_eval_rows(*this, row_from_, first, count, rest, rows, outputs, err);
 }
 
+// One point: the four lanes of one group all hold it, straight into the code (the batch path's
+// padding copies and per-call array state cost more than a small kernel's work).
 bool SseKernel::eval(const float* inputs, float* outputs, backends::RuntimeError& err) const {
-  return backends::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
+  constexpr size_t kMaxDirect = 16;
+  if (inputs_ > kMaxDirect || outputs_ > kMaxDirect || !arrays_.empty() || row_from_)
+    return backends::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
+  alignas(16) float in[4 * kMaxDirect], out[4 * kMaxDirect];
+  const float* ip[kMaxDirect];
+  float* op[kMaxDirect];
+  for (size_t k = 0; k < inputs_; ++k) {
+    for (size_t l = 0; l < 4; ++l) in[4 * k + l] = inputs[k];
+    ip[k] = in + 4 * k;
+  }
+  for (size_t k = 0; k < outputs_; ++k) op[k] = out + 4 * k;
+  KernelFn f = entry(*code_);
+  if (param_bound_ > 0 && !in_range(ip, 1) && !(f = general(err))) return false;
+  static const backends::LaneArrays no_arrays;  // code without arrays never touches its argument
+  uint64_t code = backends::call_generated([&] { return f(ip, op, 0, 4, nullptr, backends::stack_limit()); });
+  if (!backends::jit_status(code, no_arrays, budgets_, err)) return false;
+  for (size_t k = 0; k < outputs_; ++k) outputs[k] = out[4 * k];
+  return true;
 }
 
 }  // namespace fscript::sse

@@ -92,8 +92,22 @@ class Codegen : public detail::LaneCode {
       a_.mov_imm(Gp::rdx, 4);
       a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(sp.fn));
       a_.call(Gp::rax);
+      if (sp.fn2) {  // the pair's second function of the same argument; the first's result to slot 32
+        a_.movaps(Xmm::x0, at(kScratch + 48));
+        a_.movaps(at(kScratch + 32), Xmm::x0);
+        a_.lea(Gp::rdi, at(kScratch));
+        a_.lea(Gp::rsi, at(kScratch + 48));
+        a_.mov_imm(Gp::rdx, 4);
+        a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(sp.fn2));
+        a_.call(Gp::rax);
+      }
       for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(static_cast<Xmm>(r), at(save_slot_ + 16 * r));
-      a_.movaps(sp.result, at(kScratch + 48));
+      if (sp.fn2) {
+        a_.movaps(sp.result, at(kScratch + 32));
+        a_.movaps(sp.result2, at(kScratch + 48));
+      } else {
+        a_.movaps(sp.result, at(kScratch + 48));
+      }
       a_.jmp(sp.back);
     }
     return true;
@@ -116,6 +130,7 @@ class Codegen : public detail::LaneCode {
     block_index_.assign(fn_.next_block, -1);
     for (size_t b = 0; b < order_.size(); ++b) block_index_[order_[b]->id] = static_cast<int>(b);
     uses_.assign(fn_.next_value, {});
+    early_.assign(fn_.next_value, false);
     def_block_.assign(fn_.next_value, -1);
     cross_.assign(fn_.next_value, false);
     int pos = 0;
@@ -123,6 +138,7 @@ class Codegen : public detail::LaneCode {
     for (size_t b = 0; b < order_.size(); ++b) {
       block_start_.push_back(pos);
       for (const ir::Inst* in : order_[b]->insts) {
+        inst_at_.push_back(in);
         if (in->defines_value()) def_block_[in->id] = static_cast<int>(b);
         if (in->op == ir::Op::Phi) cross_[in->id] = true;
         else
@@ -299,7 +315,7 @@ class Codegen : public detail::LaneCode {
     int pos = block_start_[b];
     for (const ir::Inst* in : order_[b]->insts) {
       if (in->op != ir::Op::Phi) {
-        if (!inst(*in, pos, error)) return false;
+        if (!early_[in->id] && !inst(*in, pos, error)) return false;
         release_dead(*in, pos);
       }
       ++pos;

@@ -158,3 +158,37 @@ TEST_CASE("sse: loop budgets beyond int32 keep exact 64-bit counts (fs_ticks_car
   REQUIRE(b->ok);
   CHECK(test::eval1(*b, {100}) == 4950.0f);
 }
+
+TEST_CASE("sse: sin and cos of one value share their reduction, bit for bit with the VM") {
+  // Pairs in either order, with inf/NaN/huge lanes (the batch functions out of line, both of a pair).
+  agree("return sin(x) * cos(x) + cos(y) * sin(y) + sin(z * 2) - cos(z * 2);");
+  // A pair's second result defined early stays live across many values (spilled and reloaded).
+  std::string body = "var c = cos(x);";
+  for (int k = 0; k < 20; ++k) body += "var a" + std::to_string(k) + " = sin(y * " + std::to_string(k + 1) + ") + x;";
+  body += "var s = sin(x);";
+  for (int k = 0; k < 20; ++k) body += "s = s + a" + std::to_string(k) + " * cos(y * " + std::to_string(k + 1) + ");";
+  agree(body + "return s * c;");
+  // Only within a block: a cos under a condition is not made with the sin before it.
+  agree("var s = sin(x); var n = 0; for (var i = 0; i < min(y, 3); i++) { n = n + cos(x); } return s + n;");
+  agree("var s = sin(x); if (y > 0) { s = s + cos(x); } return s + cos(x);");
+
+  // One reduction per value: the gyroid's six calls on three values convert to double three times.
+  std::string text = "function FRep(x, y, z, t) { return sin(x) * cos(y) + sin(y) * cos(z) + sin(z) * cos(x); }";
+  auto vm = test::build(text, "", true, {}, "vm");
+  REQUIRE(vm->ok);
+  std::string error, listing;
+  REQUIRE(!sse::generate(*vm->module, {}, error, &listing).empty());
+  size_t conversions = 0;
+  for (size_t at = listing.find("cvtps2pd"); at != std::string::npos; at = listing.find("cvtps2pd", at + 1)) ++conversions;
+  CHECK(conversions == 3 * 2);  // two per reduction: four lanes in two pairs of doubles
+  // The one-point path (four lanes of one point) gives the batch's bits.
+  auto sse = test::build(text, "", true, {}, "sse");
+  REQUIRE(sse->ok);
+  for (float v : kSpecial) {
+    float in[4] = {v, 0.5f * v, -v, 0}, a, b;
+    backends::RuntimeError err;
+    REQUIRE(vm->kernel->eval(in, &a, err));
+    REQUIRE(sse->kernel->eval(in, &b, err));
+    CHECK(same(a, b));
+  }
+}

@@ -25,6 +25,10 @@ struct RowStats {
 };
 RowStats row_stats();
 
+// A row job's points expanded into batches of `k` (the default Kernel::eval_rows).
+bool expand_rows(const Kernel& k, const float* first, size_t count, const float* const* rest, size_t rows,
+                 float* const* outputs, RuntimeError& err);
+
 // FSCRIPT_ROW_SPLIT=0 turns the split off (measurements, and a check that both paths agree).
 bool row_split_enabled();
 

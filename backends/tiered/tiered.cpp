@@ -2,6 +2,8 @@
 // compile once the work done says it pays.
 #include "backends/tiered/tiered.h"
 
+#include "backends/llvm_module.h"
+
 #include <chrono>
 #include <condition_variable>
 #include <cstdlib>
@@ -30,13 +32,9 @@ constexpr size_t kChunk = 16384;         // points per VM call: timed, and a cha
 // would otherwise spend it on the VM (docs/performance.md, "Tiered execution").
 constexpr double kMiddleTierNs = 50e6;
 
-std::string native_backend() {
-#ifdef FS_HAVE_LLVM
-  return "llvm";
-#else
-  return "sse";
-#endif
-}
+// LLVM when its module loads (the first call loads it: from the compile thread, off the job's
+// path), else the SSE emitter.
+std::string native_backend() { return llvm_module() ? "llvm" : "sse"; }
 
 // FSCRIPT_AUTO_SWITCH_AFTER=N (tests): compile at once, and run every batch after the N-th point
 // natively, waiting for the compile if need be: a switch in the middle of a job, on purpose.
@@ -325,7 +323,12 @@ TierStats tier_stats() {
   s.vm_points = t.vm_points, s.native_points = t.native_points;
   int64_t first = t.first_switch_ns.load();
   s.first_switch_ms = first < 0 ? -1 : double(first) / 1e6;
-  s.native = native_backend();
+  // Without a native compile the module was never needed: name it without loading LLVM for it.
+#ifdef FS_HAVE_LLVM
+  s.native = llvm_module_loaded() || !t.compiles ? "llvm" : native_backend();
+#else
+  s.native = "sse";
+#endif
   return s;
 }
 

@@ -366,6 +366,19 @@ PY
       check "fvrml-run-corpus-reads $(basename "$w")" 0 '' -- "$F" check "$T/c.wrl"
     done < <(find "$SHARED/corpus" -name '*.wrl' -print0)
   fi
+  # A file's meshes follow the scene's order (they once followed the nodes' addresses, which moved with
+  # the heap: a backend that allocated more put the shapes of one scene in another order).
+  for order in "-2 2 0" "2 0 -2" "0 -2 2"; do
+    { echo "#VRML V2.0 utf8"
+      for x in $order; do
+        echo "Transform { translation $x 0 0 children FShape { geometry FGeometry { definition \"0.3-x*x-y*y-z*z\" bboxSize 2 2 2 resolution [16] } } }"
+      done; } > "$T/order.wrl"
+    for b in vm sse ${LLVM:+llvm}; do
+      "$R" "$T/order.wrl" -o "$T/order.obj" --backend "$b" > /dev/null 2>&1
+      got=$(awk '/^v /{ x = $2 + 0; c = x < -1 ? -2 : x > 1 ? 2 : 0; if (c != last) { printf "%s ", c; last = c } }' last=9 "$T/order.obj")
+      [ "$got" = "$order " ] || { echo "FAIL shapes out of order ($b): want '$order', got '$got'"; fails=$((fails + 1)); }
+    done
+  done
   # Every corpus file and example: the same mesh, byte for byte, with the sse and llvm backends as with the VM,
   # the VM's without the row split (every grid point a point) and the others' with it (grid rows).
   while IFS= read -r -d '' w; do

@@ -24,5 +24,26 @@ mkdir -p "$T/elsewhere"
 printf 'function FRep(x, y, z, t) { return 0.5 - x * x - y * y; }\n' > "$T/elsewhere/disc.fs"
 (cd "$T/elsewhere" && "$T/prefix/bin/fscript" render2d disc.fs --size 32 --bounds -1,1,-1,1 > r.txt 2>&1) || fail "installed fscript render2d"
 grep -q "wrote disc.png" "$T/elsewhere/r.txt" || { cat "$T/elsewhere/r.txt"; fail "installed fscript render2d summary"; }
+# The llvm backend is a module loaded on first use: the installed one, found next to the binary.
+if [ "${FS_HAVE_LLVM:-1}" = 1 ]; then
+  module=$(find "$T/prefix" -name libfs_llvm.so | head -n 1)
+  [ -n "$module" ] || fail "the llvm module is not installed"
+  (cd "$T/elsewhere" && LD_DEBUG=libs "$T/prefix/bin/fscript" run --backend llvm disc.fs 0.25 0.5 0 0 > l.txt 2> ld.txt) ||
+    { cat "$T/elsewhere/l.txt"; fail "installed fscript --backend llvm"; }
+  grep -q "^0.1875$" "$T/elsewhere/l.txt" || { cat "$T/elsewhere/l.txt"; fail "installed fscript --backend llvm result"; }
+  grep -q "calling init: $T/prefix/.*libfs_llvm.so" "$T/elsewhere/ld.txt" || fail "the installed binary did not load the installed llvm module"
+  # A job that never compiles natively never loads LLVM.
+  (cd "$T/elsewhere" && LD_DEBUG=libs "$T/prefix/bin/fscript" run disc.fs 0.25 0.5 0 0 > /dev/null 2> ld2.txt)
+  if grep -q "libLLVM" "$T/elsewhere/ld2.txt"; then fail "a small job loaded LLVM"; fi
+  # Without the module: --backend llvm says why, and everything else still works.
+  rm -f "$module"
+  (cd "$T/elsewhere" && "$T/prefix/bin/fscript" run --backend llvm disc.fs 0.25 0.5 0 0 > m.txt 2>&1)
+  status=$?
+  [ "$status" -ne 0 ] || fail "--backend llvm without the module succeeded"
+  grep -q "backend 'llvm' cannot start: the llvm backend's module could not be loaded: libfs_llvm.so" "$T/elsewhere/m.txt" ||
+    { cat "$T/elsewhere/m.txt"; fail "--backend llvm without the module: message"; }
+  (cd "$T/elsewhere" && "$T/prefix/bin/fscript" run disc.fs 0.25 0.5 0 0 > a.txt 2>&1) || fail "auto without the module"
+  grep -q "^0.1875$" "$T/elsewhere/a.txt" || { cat "$T/elsewhere/a.txt"; fail "auto without the module: result"; }
+fi
 if [ "$fails" -gt 0 ]; then echo "install: $fails failures"; exit 1; fi
 echo "install: ok"

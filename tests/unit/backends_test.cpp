@@ -15,9 +15,7 @@
 #include "ir/text.h"
 #include "tests/unit/backend_cases.h"
 #include "tests/unit/helpers.h"
-#ifdef FS_HAVE_LLVM
-#include "backends/llvm/llvm_backend.h"
-#endif
+#include "backends/llvm_module.h"
 
 using namespace fscript;
 using test::same;
@@ -37,7 +35,8 @@ std::vector<Variant> variants() {
 #ifdef FS_HAVE_LLVM
       for (uint32_t w : {4u, 8u, 16u})
         out.push_back({"llvm/" + std::to_string(w), [w](const ir::Module& m, const backends::Budgets& b, std::string& e) {
-                         return llvmjit::LlvmBackend(w).compile(m, b, e);
+                         const backends::LlvmModule* lm = backends::llvm_module(&e);
+                         return lm ? lm->backend(w)->compile(m, b, e) : nullptr;
                        }});
 #endif
       continue;

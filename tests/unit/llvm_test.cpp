@@ -10,7 +10,7 @@
 
 #include <unistd.h>
 
-#include "backends/llvm/llvm_backend.h"
+#include "backends/llvm_module.h"
 #include "tests/unit/backend_cases.h"
 #include "tests/unit/helpers.h"
 
@@ -22,11 +22,19 @@ using test::same;
 
 namespace {
 
+// The backend's module (loaded by the first call); the test fails with the loader's reason if not.
+const backends::LlvmModule& llvm() {
+  std::string error;
+  const backends::LlvmModule* m = backends::llvm_module(&error);
+  if (!m) FAIL(error);
+  return *m;
+}
+
 const uint32_t kWidths[] = {4, 8, 16};
 
 std::unique_ptr<backends::Kernel> llvm_kernel(const ir::Module& m, uint32_t width, const backends::Budgets& budgets = {}) {
   std::string error;
-  auto k = llvmjit::LlvmBackend(width).compile(m, budgets, error);
+  auto k = llvm().backend(width)->compile(m, budgets, error);
   INFO(error);
   REQUIRE(k);
   return k;
@@ -39,7 +47,7 @@ TEST_CASE("llvm: bounded-input code, and the general code for batches outside th
   auto vm = test::build(text, "", true, {}, "vm");
   auto k = llvm_kernel(*vm->module, 16);
   std::string error;
-  std::string ir = llvmjit::kernel_text(*vm->module, {}, false, error);
+  std::string ir = llvm().kernel_text(*vm->module, {}, false, error);
   CHECK(ir.find("inputs finite with |x| <= 65536") != std::string::npos);
   std::vector<float> x = {0.5f, 1e30f, 2.0f, kInf, kNan, 70000.0f, -3.0f}, zero(x.size()), out(x.size());
   const float* in[4] = {x.data(), zero.data(), zero.data(), zero.data()};
@@ -63,10 +71,10 @@ TEST_CASE("llvm: kernels compiled and freed, and the cache of compiled code") {
     CHECK(r == static_cast<float>(i));
   }
   auto vm = test::build("function FRep(x, y, z, t) { return x * 123.5 + y; }");
-  llvmjit::CacheStats before = llvmjit::cache_stats();
+  backends::LlvmCacheStats before = llvm().cache_stats();
   auto k1 = llvm_kernel(*vm->module, 8);
   auto k2 = llvm_kernel(*vm->module, 8);  // the same IR: no second compile
-  llvmjit::CacheStats after = llvmjit::cache_stats();
+  backends::LlvmCacheStats after = llvm().cache_stats();
   CHECK(after.compiles == before.compiles + 1);
   CHECK(after.hits == before.hits + 1);
   float in[4] = {2, 1, 0, 0}, r1 = 0, r2 = 0;
@@ -80,15 +88,15 @@ TEST_CASE("llvm: kernels compiled and freed, and the cache of compiled code") {
 TEST_CASE("llvm: the on-disk cache of machine code serves the next compile of the same program") {
   std::string dir = "/tmp/fscript-llvm-test-cache-" + std::to_string(::getpid());
   setenv("XDG_CACHE_HOME", dir.c_str(), 1);
-  REQUIRE(llvmjit::set_disk_cache_enabled(true) == dir + "/fscript/llvm");
-  llvmjit::set_cache_enabled(false);  // so the second compile cannot come from memory
+  REQUIRE(llvm().set_disk_cache_enabled(true) == dir + "/fscript/llvm");
+  llvm().set_cache_enabled(false);  // so the second compile cannot come from memory
   auto vm = test::build("function FRep(x, y, z, t) { return sin(x) * 7.25 + y * y; }");
-  llvmjit::CacheStats before = llvmjit::cache_stats();
+  backends::LlvmCacheStats before = llvm().cache_stats();
   auto k1 = llvm_kernel(*vm->module, 16);
   auto k2 = llvm_kernel(*vm->module, 16);
-  llvmjit::CacheStats after = llvmjit::cache_stats();
-  llvmjit::set_cache_enabled(true);
-  llvmjit::set_disk_cache_enabled(false);
+  backends::LlvmCacheStats after = llvm().cache_stats();
+  llvm().set_cache_enabled(true);
+  llvm().set_disk_cache_enabled(false);
   CHECK(after.compiles == before.compiles + 2);
   CHECK(after.disk_hits == before.disk_hits + 1);
   float in[4] = {0.5f, 3, 0, 0}, r1 = 0, r2 = 0, r0 = 0;

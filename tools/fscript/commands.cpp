@@ -8,9 +8,7 @@
 #include <sstream>
 
 #include "backends/sse/sse_backend.h"
-#ifdef FS_HAVE_LLVM
-#include "backends/llvm/llvm_backend.h"
-#endif
+#include "backends/llvm_module.h"
 #include "backends/vm/vm_backend.h"
 #include "frontend/check.h"
 #include "frontend/fscript/formatter.h"
@@ -170,18 +168,14 @@ int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, con
     return kExitInput;
   }
   if (llvm) {
-#ifdef FS_HAVE_LLVM
-    std::string text = llvmjit::kernel_text(*c.module, {}, false, error);
+    const backends::LlvmModule* lm = backends::llvm_module(&error);
+    std::string text = lm ? lm->kernel_text(*c.module, {}, false, error) : "";
     if (text.empty()) {
       std::cerr << "error: " << error << "\n";
-      return kExitInput;
+      return lm ? kExitInput : kExitUsage;
     }
     std::cout << text;
     return kExitOk;
-#else
-    std::cerr << "error: this binary is built without the llvm backend (install llvm-19-dev and rebuild)\n";
-    return kExitUsage;
-#endif
   }
   std::cout << ir::print(*c.module);
   return kExitOk;
@@ -199,9 +193,10 @@ std::string backend_listing(const std::string& name, const ir::Module& m, const 
              " (other batches run the general code)\n" + text;
     return text;
   }
-#ifdef FS_HAVE_LLVM
-  if (name == "llvm") return llvmjit::kernel_text(m, budgets, true, error);
-#endif
+  if (name == "llvm") {
+    const backends::LlvmModule* lm = backends::llvm_module(&error);
+    return lm ? lm->kernel_text(m, budgets, true, error) : "";
+  }
   error = "no listing for backend '" + name + "'";
   return "";
 }

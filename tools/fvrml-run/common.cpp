@@ -76,7 +76,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
       out.failed = true;
     }
     out.counts.push_back({m.positions.size(), m.triangles.size()});
-    if (mine) out.by_node[s.fshape] = std::move(m);
+    if (mine) out.put(s.fshape, std::move(m));
   }
   for (size_t g = 0; g < model.groups.size(); ++g) {
     if (!own_group(model.groups[g], skip)) continue;
@@ -91,7 +91,7 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
       out.failed = true;
     }
     out.group_counts[g] = {m.positions.size(), m.triangles.size()};
-    out.by_node[model.groups[g].node] = std::move(m);
+    out.put(model.groups[g].node, std::move(m));
   }
   return out;
 }
@@ -115,9 +115,7 @@ mesh::Mesh picture(Meshed& m, const vrml::Scene& scene) {
 
 mesh::Mesh merged(Meshed& m) {
   if (m.by_node.size() == 1) return std::move(m.by_node.begin()->second);
-  mesh::Mesh all;
-  for (const auto& [node, part] : m.by_node) all.append(part);
-  return all;
+  return m.all();
 }
 
 bool build(Loaded& l, SceneModel& model, const fscript::scene::ModelOptions& mo, bool print) {

@@ -316,8 +316,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     // done and this one's frames so far (made coarse to fine, so they span the cycle).
     auto publish = [&](size_t cached) {
       if (!o.on_partial || !world || cached >= cache.size() || (cached & (cached - 1)) != 0) return;
-      mesh::Mesh all;
-      for (const auto& [node, part] : meshed.by_node) all.append(part);
+      mesh::Mesh all = meshed.all();
       std::vector<mesh::GltfAnimation> now = gltf;
       now.push_back(gltf_animation(l.scene, t, cache, true));
       size_t frames = now.back().frames.size();  // other threads may have added some meanwhile
@@ -341,7 +340,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     if (cache.all_same()) {  // nothing moves: one frame, shown as a static shape
       mesh::Mesh m;
       cache.peek(0, m);
-      meshed.by_node[t.node] = std::move(m);
+      meshed.put(t.node, std::move(m));
       continue;
     }
     if (!world) {

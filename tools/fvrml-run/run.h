@@ -75,6 +75,18 @@ struct Loaded {
 // The meshes of one frame: per replaced node (FShape or top-level FTransform) and per shape.
 struct Meshed {
   std::map<const vrml::Node*, mesh::Mesh> by_node;
+  std::vector<const vrml::Node*> order;  // by_node's keys as put, in the model's order
+  // Files and pictures take the meshes in this order, never the map's (pointer) order: that moved
+  // with the heap, so one scene's shapes came out in another order when a backend allocated more.
+  void put(const vrml::Node* n, mesh::Mesh m) {
+    if (!by_node.count(n)) order.push_back(n);
+    by_node[n] = std::move(m);
+  }
+  mesh::Mesh all() const {
+    mesh::Mesh out;
+    for (const vrml::Node* n : order) out.append(by_node.at(n));
+    return out;
+  }
   std::vector<std::pair<size_t, size_t>> counts;  // vertices, triangles per shape
   std::map<size_t, std::pair<size_t, size_t>> group_counts;  // per top-level FTransform
   bool failed = false;

@@ -35,14 +35,19 @@ if [ "${FS_HAVE_LLVM:-1}" = 1 ]; then
   # A job that never compiles natively never loads LLVM.
   (cd "$T/elsewhere" && LD_DEBUG=libs "$T/prefix/bin/fscript" run disc.fs 0.25 0.5 0 0 > /dev/null 2> ld2.txt)
   if grep -q "libLLVM" "$T/elsewhere/ld2.txt"; then fail "a small job loaded LLVM"; fi
-  # Without the module: --backend llvm says why, and everything else still works.
-  rm -f "$module"
+  # Without the module (FSCRIPT_LLVM_MODULE names a file that is not there): --backend llvm says
+  # why, and everything else still works.
+  export FSCRIPT_LLVM_MODULE="$T/none/libfs_llvm.so"
   (cd "$T/elsewhere" && "$T/prefix/bin/fscript" run --backend llvm disc.fs 0.25 0.5 0 0 > m.txt 2>&1)
   status=$?
   [ "$status" -ne 0 ] || fail "--backend llvm without the module succeeded"
-  grep -q "backend 'llvm' cannot start: the llvm backend's module could not be loaded: libfs_llvm.so" "$T/elsewhere/m.txt" ||
+  grep -q "backend 'llvm' cannot start: the llvm backend's module could not be loaded: $T/none/libfs_llvm.so: cannot open" "$T/elsewhere/m.txt" ||
     { cat "$T/elsewhere/m.txt"; fail "--backend llvm without the module: message"; }
   (cd "$T/elsewhere" && "$T/prefix/bin/fscript" run disc.fs 0.25 0.5 0 0 > a.txt 2>&1) || fail "auto without the module"
+  (cd "$T/elsewhere" && "$T/prefix/bin/fvrml-run" "$T/prefix/share/fvrml/examples/paper/figure6-blends.wrl" \
+    --fraction 0.5 -o f6b.png --stats > f6b.txt 2>&1) || { cat "$T/elsewhere/f6b.txt"; fail "a big job without the module"; }
+  grep -q '"native":"sse"' "$T/elsewhere/f6b.txt" || fail "a big job without the module: native code from the sse emitter"
+  unset FSCRIPT_LLVM_MODULE
   grep -q "^0.1875$" "$T/elsewhere/a.txt" || { cat "$T/elsewhere/a.txt"; fail "auto without the module: result"; }
 fi
 if [ "$fails" -gt 0 ]; then echo "install: $fails failures"; exit 1; fi

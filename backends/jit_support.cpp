@@ -78,16 +78,20 @@ bool jit_status(uint64_t code, const LaneArrays& arrays, const Budgets& budgets,
 }
 
 uintptr_t stack_limit() {
-  thread_local uintptr_t limit = [] {
-    pthread_attr_t attr;
-    void* addr = nullptr;
-    size_t size = 0;
-    if (pthread_getattr_np(pthread_self(), &attr) != 0)  // then assume the smallest usual stack
-      return reinterpret_cast<uintptr_t>(__builtin_frame_address(0)) - (size_t{1} << 20) + kStackMargin;
-    pthread_attr_getstack(&attr, &addr, &size);
-    pthread_attr_destroy(&attr);
-    return reinterpret_cast<uintptr_t>(addr) + kStackMargin;
-  }();
+  // Initial-exec TLS without a dynamic initializer: one load per call, also in the llvm module
+  // (a dlopened library's default model calls __tls_get_addr, a third of a small kernel's call).
+  static thread_local uintptr_t limit __attribute__((tls_model("initial-exec"))) = 0;
+  if (limit) return limit;
+  pthread_attr_t attr;
+  void* addr = nullptr;
+  size_t size = 0;
+  if (pthread_getattr_np(pthread_self(), &attr) != 0) {  // then assume the smallest usual stack
+    limit = reinterpret_cast<uintptr_t>(__builtin_frame_address(0)) - (size_t{1} << 20) + kStackMargin;
+    return limit;
+  }
+  pthread_attr_getstack(&attr, &addr, &size);
+  pthread_attr_destroy(&attr);
+  limit = reinterpret_cast<uintptr_t>(addr) + kStackMargin;
   return limit;
 }
 

@@ -85,12 +85,14 @@ bool LlvmKernel::eval_rows(const float* first, size_t count, const float* const*
 // One point: the kernel compiled again at one lane (on the first call), so a call costs one point's
 // work, not a padded group's. Its code is general (no bounded-input assumptions): no range check.
 KernelFn LlvmKernel::scalar(backends::RuntimeError& err) const {
+  if (KernelFn ready = scalar_fn_.load(std::memory_order_acquire)) return ready;  // no call_once per call
   std::call_once(scalar_once_, [this] {
     Lowered lowered;
     double ms = 0;
     std::string error;
     scalar_ = compile_module(*module_, 1, budgets_, false, lowered, ms, error);
     if (!scalar_) scalar_error_ = "the llvm backend could not compile the kernel's one-point code: " + error;
+    else scalar_fn_.store(scalar_->entry(), std::memory_order_release);
   });
   if (!scalar_) err.message = scalar_error_;
   return scalar_ ? scalar_->entry() : nullptr;

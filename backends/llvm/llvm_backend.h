@@ -3,6 +3,7 @@
 // compiled in-process by ORC LLJIT (llvm_jit.h). Batches run in groups of `width` points, the
 // tail padded; like the SSE backend, code that assumes bounded inputs (no NaN tests where value
 // ranges prove them useless) runs only batches whose inputs are in range.
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -42,6 +43,7 @@ class LlvmKernel : public backends::Kernel {
   mutable std::string general_error_;
   mutable std::once_flag scalar_once_;
   mutable std::shared_ptr<Program> scalar_;
+  mutable std::atomic<KernelFn> scalar_fn_{nullptr};  // scalar_'s entry once compiled
   mutable std::string scalar_error_;
 };
 

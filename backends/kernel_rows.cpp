@@ -60,7 +60,6 @@ bool expand_rows(const Kernel& k, const float* first, size_t count, const float*
   return true;
 }
 
-
 bool Kernel::eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
                        RuntimeError& err) const {
   return expand_rows(*this, first, count, rest, rows, outputs, err);

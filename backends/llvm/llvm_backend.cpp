@@ -105,7 +105,8 @@ bool LlvmKernel::eval(const float* inputs, float* outputs, backends::RuntimeErro
   backends::Scratch<float*> out(outputs_);
   for (size_t k = 0; k < inputs_; ++k) in.data[k] = inputs + k;
   for (size_t k = 0; k < outputs_; ++k) out.data[k] = outputs + k;
-  // Code without arrays never touches its arrays argument: no LaneArrays to build per call.
+  // Code without arrays never touches its arrays argument: no LaneArrays to build per call (two
+  // calls, not one through a std::optional: measured 15 ns a call slower).
   static const backends::LaneArrays no_arrays;
   if (arrays_.empty()) {
     uint64_t code = backends::call_generated([&] { return f(in.data, out.data, 0, 1, nullptr, backends::stack_limit()); });

@@ -254,8 +254,7 @@ class LaneCode {
     using namespace math::trig;
     const ir::Inst* partner = trig_partner(in, pos, offset);
     Src a = src(in.args[0]);
-    Xmm d = alloc(pos), t0 = temp(pos), t1 = temp(pos), t2 = temp(pos), t3 = temp(pos);
-    Xmm cp = partner ? temp(pos) : d;  // paired: the cosine polynomial kept apart from both results
+    Xmm t0 = temp(pos), t1 = temp(pos), t2 = temp(pos), t3 = temp(pos), cp = temp(pos);
     load(Xmm::x1, a);
     a_.movaps(at(kScratch), Xmm::x1);
     a_.movaps(Xmm::x0, Xmm::x1);
@@ -263,8 +262,7 @@ class LaneCode {
     a_.cmpps(Xmm::x0, k(kFastLimit), Pred::Le);
     a_.movmskps(Gp::rax, Xmm::x0);
     a_.cmp(Gp::rax, 15);
-    SlowPath sp{a_.new_label(), a_.new_label(), partner ? t0 : d, batch_trig(offset), t1,
-                partner ? batch_trig(1 - offset) : nullptr};
+    SlowPath sp{a_.new_label(), a_.new_label(), t0, batch_trig(offset), t1, partner ? batch_trig(1 - offset) : nullptr};
     a_.jcc(Cond::NE, sp.entry);
     a_.cvtps2pd(t0, Xmm::x1);
     a_.movhlps(Xmm::x1, Xmm::x1);
@@ -285,7 +283,6 @@ class LaneCode {
     }
     a_.movlhps(t0, t1);     // r, four lanes
     a_.punpcklqdq(t2, t3);  // q, four lanes
-    if (offset && !partner) a_.paddd(t2, bits(1));
     a_.movaps(t1, t0);
     a_.mulps(t1, t0);  // z = r * r
     a_.movaps(t3, k(kSin1));  // sin: ((kSin1 z + kSin2) z - kSin3) z r + r
@@ -307,28 +304,13 @@ class LaneCode {
     a_.mulps(Xmm::x1, t1);
     a_.subps(cp, Xmm::x1);
     a_.addps(cp, k(1.0f));
-    if (partner) {  // r and z are done with: their registers take the two results
-      quadrant_pick(t0, t3, cp, t2, offset);
-      quadrant_pick(t1, t3, cp, t2, 1 - offset);
-    } else {
-      a_.movaps(Xmm::x0, t2);  // odd quadrant: the cosine polynomial
-      a_.pand(Xmm::x0, bits(1));
-      a_.pcmpeqd(Xmm::x0, bits(1));
-      a_.blendvps(t3, d);
-      a_.pand(t2, bits(2));  // quadrants 2 and 3: the sign flips
-      a_.pslld(t2, 30);
-      a_.xorps(t3, t2);
-      a_.movaps(d, t3);
-    }
+    quadrant_pick(t0, t3, cp, t2, offset);  // r and z are done with: their registers take the results
+    if (partner) quadrant_pick(t1, t3, cp, t2, 1 - offset);
     a_.bind(sp.back);
     slow_.push_back(sp);
-    if (!partner) {
-      for (Xmm t : {t0, t1, t2, t3}) release(t);
-      define(in, d);
-      return;
-    }
     for (Xmm t : {t2, t3, cp}) release(t);
     define(in, t0);
+    if (!partner) return release(t1);
     define(*partner, t1);
     early_[partner->id] = true;
   }

@@ -2,8 +2,10 @@
 // The run-wide limits every tool that runs scripts takes (fscript, fvrml-run): --max-seconds and
 // --max-memory, one wording, one range (runtime/support/limits.h does the work).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <iostream>
 
+#include "runtime/support/huge_heap.h"
 #include "runtime/support/limits.h"
 
 namespace fscript::tools {
@@ -26,7 +28,8 @@ inline void add_limit_flags(CLI::App& app, RunLimits& limits, const char* second
       ->type_name("N");
 }
 
-// Puts the limits in force for the rest of the process; false (after an error message) if the
+// Puts the limits in force for the rest of the process, then reserves the huge heap within them
+// (runtime/support/huge_heap.h); false (after an error message) if the
 // memory limit cannot be set.
 inline bool apply_limits(const char* tool, const RunLimits& limits, bool watchdog = true) {
   std::string error;
@@ -36,6 +39,8 @@ inline bool apply_limits(const char* tool, const RunLimits& limits, bool watchdo
     return false;
   }
   if (watchdog) support::start_watchdog(tool, limits.max_seconds);
+  // Inside the cap, so the cap still bounds the run: a quarter of it, at most 1 GiB.
+  support::reserve_huge_heap(std::min<uint64_t>(uint64_t{1} << 30, (mib << 20) / 4));
   return true;
 }
 

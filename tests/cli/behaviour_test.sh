@@ -177,7 +177,7 @@ fi
 
 # ---- Every --stats field ----
 jcheck "--stats fields of a single run" err "
-set(j) == {'compile_ms', 'dual_contouring', 'evaluation_ms', 'ftransforms', 'parse_ms', 'polygonize_ms', 'prune', 'row_split', 'shapes', 'tiers', 'write_ms'} and
+set(j) == {'compile_ms', 'dual_contouring', 'evaluation_ms', 'ftransforms', 'huge_heap_mib', 'parse_ms', 'polygonize_ms', 'prune', 'row_split', 'shapes', 'tiers', 'write_ms'} and
 set(j['dual_contouring']) == {'max_qef_error_cells', 'merged_cells', 'shapes', 'triangles', 'vertices'} and
 set(j['prune']) == {'evaluated', 'evaluated_fraction', 'fallbacks', 'levels', 'points', 'pruned'} and
 j['prune']['pruned'] and j['prune']['points'] == 512 and j['prune']['fallbacks'] == 0 and

@@ -142,6 +142,7 @@ int real_main(int argc, char** argv) {
 }  // namespace fscript::cli
 
 int main(int argc, char** argv) {
+  fscript::support::prepare_huge_heap();  // before any thread: one heap for all
   int rc = 0;
   fscript::support::run_with_big_stack([&] { rc = fscript::cli::real_main(argc, argv); });
   std::cout.flush();

@@ -306,6 +306,7 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
     if (o.model.compile.backend == "auto") st["tiers"] = tiers_json();
     fscript::backends::RowStats rs = fscript::backends::row_stats();
     st["row_split"] = {{"kernels", rs.kernels}, {"rows", rs.rows}, {"points", rs.points}};
+    st["huge_heap_mib"] = fscript::support::huge_heap().reserved >> 20;
     std::cerr << st.dump() << "\n";
   }
   if (o.shard_part && rc == 0) {
@@ -379,6 +380,7 @@ int merge_main(int argc, char** argv) {
 }  // namespace fvrml_run
 
 int main(int argc, char** argv) {
+  fscript::support::prepare_huge_heap();  // before any thread: one heap for all
   int rc = 0;
   fscript::support::run_with_big_stack([&] {
     rc = argc > 1 && std::strcmp(argv[1], "merge") == 0 ? fvrml_run::merge_main(argc, argv) : fvrml_run::run(argc, argv);

@@ -27,9 +27,10 @@ using Clock = std::chrono::steady_clock;
 constexpr double kStartShare = 1.0;
 constexpr double kVmNsPerOpPoint = 0.5;  // before the kernel has timed itself
 constexpr size_t kChunk = 16384;         // points per VM call: timed, and a chance to switch
-// A kernel whose LLVM compile is estimated past this gets the SSE emitter's code first (about 1 ms
-// per 1,000 operations) to run while LLVM works: prospero's dense picture, 0.4 s of LLVM compile,
-// would otherwise spend it on the VM (docs/performance.md, "Tiered execution").
+// A kernel whose LLVM code is estimated further off than this (its compile, and the module's load
+// on a process's first compile) gets the SSE emitter's code first (about 1 ms per 1,000
+// operations) to run while LLVM works: prospero's dense picture, 0.4 s of LLVM compile, would
+// otherwise spend it on the VM (docs/performance.md, "Tiered execution").
 constexpr double kMiddleTierNs = 50e6;
 
 // LLVM when its module loads (the first call loads it: from the compile thread, off the job's
@@ -126,7 +127,8 @@ class Compiler {
 
   static void compile(Shared& s) {
     std::string error;
-    if (native_backend() != "sse" && native_compile_ns(s.ops) > kMiddleTierNs) {
+    // Decided before the module loads, since loading it is part of the wait.
+    if (native_compile_ns(s.ops) > kMiddleTierNs) {
       if (auto m = make_backend("sse")->compile(*s.module, s.budgets, error)) {
         std::lock_guard<std::mutex> hold(s.lock);
         s.middle = std::move(m);
@@ -134,15 +136,18 @@ class Compiler {
       }
     }
     std::unique_ptr<Kernel> k;
-    // The kernel went away while the middle tier compiled, or its job ends first: no LLVM (a compile
-    // under way cannot be stopped, and the kernel's end waits for it).
-    if (s.abandoned || (s.middle && s.ends_before_native())) {
+    // The kernel went away while the middle tier compiled, or its job ends before LLVM's code could
+    // arrive (the module's load counted), or the middle tier is the native code (no module): no
+    // LLVM (a compile or a load under way cannot be stopped, and the kernel's end waits for it).
+    auto finish = [&] {
       std::lock_guard<std::mutex> hold(s.lock);
       s.done = true, s.running = false;
       s.done_cv.notify_all();
-      return;
-    }
-    if (auto be = make_backend(native_backend())) k = be->compile(*s.module, s.budgets, error);
+    };
+    if (s.abandoned || (s.middle && s.ends_before_native())) return finish();
+    std::string native = native_backend();  // loads the module on the first compile
+    if (s.middle && native == "sse") return finish();
+    if (auto be = make_backend(native)) k = be->compile(*s.module, s.budgets, error);
     std::lock_guard<std::mutex> hold(s.lock);
     if (k) {
       s.native = std::move(k);
@@ -289,7 +294,9 @@ class TieredKernel : public Kernel {
 
 double native_compile_ns(size_t ops) {
 #ifdef FS_HAVE_LLVM
-  return 10e6 + 50e3 * static_cast<double>(ops);
+  // The first compile of a process also loads the module: dlopen and LLVM's relocations, 49 ms here.
+  double load = llvm_module_loaded() ? 0 : 50e6;
+  return load + 10e6 + 50e3 * static_cast<double>(ops);
 #else
   return 0.2e6 + 1e3 * static_cast<double>(ops);
 #endif

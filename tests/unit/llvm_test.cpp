@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "backends/llvm_module.h"
+#include "backends/tiered/tiered.h"
 #include "tests/unit/backend_cases.h"
 #include "tests/unit/helpers.h"
 
@@ -41,6 +42,17 @@ std::unique_ptr<backends::Kernel> llvm_kernel(const ir::Module& m, uint32_t widt
 }
 
 }  // namespace
+
+// First in the file: nothing has loaded the module yet.
+TEST_CASE("llvm: auto's estimate of the first native code counts the module's load") {
+  REQUIRE_FALSE(backends::llvm_module_loaded());
+  double first = backends::native_compile_ns(21);
+  llvm();
+  REQUIRE(backends::llvm_module_loaded());
+  double later = backends::native_compile_ns(21);
+  CHECK(later == Approx(10e6 + 21 * 50e3));
+  CHECK(first == Approx(later + 50e6));
+}
 
 TEST_CASE("llvm: bounded-input code, and the general code for batches outside the bound") {
   std::string text = "function FRep(x, y, z, t) { return max(1, x * x - x * x); }";

@@ -314,10 +314,13 @@ class Sema {
   }
 
   // A known name that differs only in letter case, or "" if none (or several).
-  std::string case_slip(const std::string& name, bool want_function) const {
+  // `builtins_only`: for Math.NAME, which names a built-in even where a user function differs from
+  // it only in case.
+  std::string case_slip(const std::string& name, bool want_function, bool builtins_only = false) const {
     std::vector<std::string> pool;
     if (want_function) {
-      for (auto& [n, id] : fn_syms_) pool.push_back(n);
+      if (!builtins_only)
+        for (auto& [n, id] : fn_syms_) pool.push_back(n);
       for (int i = 0; i < kNumBuiltins; ++i) pool.push_back(kBuiltins[i].name);
     } else {
       for (auto& sc : scopes_)
@@ -463,7 +466,7 @@ class Sema {
     auto fn = e->builtin_only ? fn_syms_.end() : fn_syms_.find(name);
     int builtin = find_builtin(name);
     if (fn == fn_syms_.end() && builtin < 0) {
-      std::string alt = case_slip(name, true);
+      std::string alt = case_slip(name, true, e->builtin_only);
       if (alt.empty()) {
         error(e->name_span, lookup(name) >= 0 ? "'" + name + "' is not a function" : "unknown function '" + name + "'");
         return;

@@ -10,3 +10,5 @@ function p(x) { f = 2; return x; }  // error: cannot assign to the function 'f'
 function q(x) { break; return x; }  // error: 'break' outside a loop
 function f(y) { return y; }  // error: redefinition of function 'f'
 return 3;  // error: 'return' outside a function
+function Helper(x) { return x; }
+function r(x) { return Math.helper(x); }  // error: unknown function 'helper'

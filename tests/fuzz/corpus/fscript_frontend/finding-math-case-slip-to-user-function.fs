@@ -1,0 +1,2 @@
+function Foo(x) { return x; }
+function main(x) { return Math.foo(x); }

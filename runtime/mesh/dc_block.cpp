@@ -101,10 +101,25 @@ void find_crossings(Block& b) {
       rows[k][j] = r & in_row;
     }
   const uint32_t along_x = (1u << b.m[0]) - 1;
+  auto changes = [&](int j, int k, uint32_t change[3]) {
+    uint32_t r = rows[k][j];
+    change[0] = (r ^ (r >> 1)) & along_x, change[1] = j < b.m[1] ? r ^ rows[k][j + 1] : 0;
+    change[2] = k < b.m[2] ? r ^ rows[k + 1][j] : 0;
+  };
+  // Counted first, so the list takes exactly its room: the blocks' data is most of a big mesh's
+  // memory, and every new megabyte touched costs a millisecond here (docs/performance.md).
+  size_t count = 0;
   for (int k = 0; k <= b.m[2]; ++k)
     for (int j = 0; j <= b.m[1]; ++j) {
-      uint32_t r = rows[k][j], change[3] = {(r ^ (r >> 1)) & along_x, j < b.m[1] ? r ^ rows[k][j + 1] : 0,
-                                            k < b.m[2] ? r ^ rows[k + 1][j] : 0};
+      uint32_t change[3];
+      changes(j, k, change);
+      count += static_cast<size_t>(__builtin_popcount(change[0]) + __builtin_popcount(change[1]) + __builtin_popcount(change[2]));
+    }
+  b.xs.reserve(count);
+  for (int k = 0; k <= b.m[2]; ++k)
+    for (int j = 0; j <= b.m[1]; ++j) {
+      uint32_t r = rows[k][j], change[3];
+      changes(j, k, change);
       for (uint32_t any = change[0] | change[1] | change[2]; any; any &= any - 1) {
         int i = __builtin_ctz(any);
         for (int a = 0; a < 3; ++a)
@@ -250,13 +265,26 @@ std::vector<Block::CellInfo>& cell_buffer() {
 
 void Block::keep_rim() {
   constexpr int L = kBlock - 1;
-  rim.assign(static_cast<size_t>(kBlock * kBlock + L * kBlock + L * L), CellInfo{});
+  rim.clear();
   auto keep = [&](int i, int j, int k) {
-    if (i < m[0] && j < m[1] && k < m[2]) rim[rim_index(i, j, k)] = cells[cell(i, j, k)];
+    if (i >= m[0] || j >= m[1] || k >= m[2]) return;
+    const CellInfo& c = cells[cell(i, j, k)];
+    if (c.first != kNone) rim.push_back({static_cast<uint16_t>(rim_index(i, j, k)), c.mask, c.flips, c.first});
   };
   for (int a = 0; a < kBlock; ++a)
     for (int c = 0; c < kBlock; ++c) keep(c, a, L), keep(c, L, a), keep(L, c, a);  // the faces k, j and i = L
+  std::sort(rim.begin(), rim.end(), [](const RimCell& x, const RimCell& y) { return x.at < y.at; });
+  rim.erase(std::unique(rim.begin(), rim.end(), [](const RimCell& x, const RimCell& y) { return x.at == y.at; }), rim.end());
+  rim.shrink_to_fit();
   cells.swap(cell_buffer());
+}
+
+Block::CellInfo Block::rim_cell(int i, int j, int k) const {
+  auto at = static_cast<uint16_t>(rim_index(i, j, k));
+  auto it = std::lower_bound(rim.begin(), rim.end(), at, [](const RimCell& c, uint16_t v) { return c.at < v; });
+  CellInfo c;
+  if (it != rim.end() && it->at == at) c.mask = it->mask, c.flips = it->flips, c.first = it->first;
+  return c;
 }
 
 bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Block& b, backends::RuntimeError& err) {
@@ -491,6 +519,7 @@ void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& plan
     }
     b.ids.push_back(id);
   }
+  b.sheets.shrink_to_fit();  // a sheet per two or three crossings: the reserve's rest goes to the next block
 }
 
 }  // namespace fscript::mesh

@@ -56,7 +56,14 @@ struct Block {
   };
   static constexpr uint8_t kOneSheet = 0x80;
   std::vector<CellInfo> cells;  // every cell, while the block is worked (a buffer of the thread)
-  std::vector<CellInfo> rim;    // then only its cells on its upper faces, which the next blocks' polygons reach
+  // Then only its cells with sheets on its upper faces, which the next blocks' polygons reach: a
+  // tenth of a face's cells or fewer, and the block's largest part once the whole face was kept.
+  struct RimCell {
+    uint16_t at;  // rim_index
+    uint8_t mask, flips;
+    uint32_t first;
+  };
+  std::vector<RimCell> rim;  // by `at`
   std::vector<Sheet> sheets;
   std::vector<std::array<uint32_t, 4>> ids;  // per crossing: its cells' sheets here (kNone: another block's)
   // Vertices (dc_octree.h): each sheet's vertex among the block's (then, once numbered, in the
@@ -81,8 +88,10 @@ struct Block {
   // key that names it in the cell.
   uint32_t sheet(const CellInfo& c, int in, int out) const;
   static int key(const CellInfo& c, int in, int out);
-  // Where a cell with a coordinate kBlock - 1 is in `rim`.
+  // Where a cell with a coordinate kBlock - 1 is on the rim; that cell's signs and sheets (none
+  // where the rim keeps none).
   static size_t rim_index(int i, int j, int k);
+  CellInfo rim_cell(int i, int j, int k) const;
   // Keeps the rim of `cells` and gives the buffer back.
   void keep_rim();
 };

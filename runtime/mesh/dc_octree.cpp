@@ -254,6 +254,7 @@ void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, doubl
   if (tolerance > 0) tree.grow(g, b, qefs, limit);
   b.vertex.assign(b.sheets.size(), kNone);
   b.positions.clear(), b.max_rms = 0, b.merged = 0;
+  b.positions.reserve(b.sheets.size());  // at most one vertex a sheet; the rest given back below
   auto add = [&b](const double x[3], double rms) {
     b.positions.push_back({float(x[0]), float(x[1]), float(x[2])}), b.max_rms = std::max(b.max_rms, rms);
   };
@@ -283,6 +284,7 @@ void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, doubl
     b.vertex[s] = static_cast<uint32_t>(b.positions.size() - 1);
     if (named) *named = b.vertex[s];
   }
+  b.positions.shrink_to_fit();
   b.root = tree.built == kBlockLevels && tree.nodes[kBlockLevels].size() == 1 && tree.nodes[kBlockLevels][0].state == State::Merged;
   b.root_qef = b.root ? tree.nodes[kBlockLevels][0].qef : Qef{};
 }

@@ -86,7 +86,7 @@ bool ring_refs(const BlockGrid& grid, const Block& b, size_t e, int first_layer,
                static_cast<uint32_t>(c.axis) << 21;
       continue;
     }
-    uint32_t t = owner->sheet(owner->rim[Block::rim_index(nl[0], nl[1], nl[2])], static_cast<int>(in),
+    uint32_t t = owner->sheet(owner->rim_cell(nl[0], nl[1], nl[2]), static_cast<int>(in),
                               static_cast<int>(in ^ (1u << c.axis)));
     if (t == kNone) return false;
     out[q] = delta << 15 | owner->vertex[t];
@@ -149,10 +149,9 @@ void put_block(ByteWriter& w, const BlockGrid& grid, const Block& b, int first_l
   std::vector<uint8_t> key(b.sheets.size());
   for (size_t s = 0; s < b.sheets.size(); ++s) next[s] = narrow(b.sheets[s].next), key[s] = static_cast<uint8_t>(b.sheets[s].key);
   for (size_t s = 0; s < b.vertex.size(); ++s) vertex[s] = narrow(b.vertex[s]);
-  for (size_t i = 0; i < std::min(kFace, b.rim.size()); ++i)
-    if (b.rim[i].first != kNone)
-      at.push_back(static_cast<uint16_t>(i)), signs.push_back(static_cast<uint16_t>(b.rim[i].mask | b.rim[i].flips << 8)),
-          first.push_back(narrow(b.rim[i].first));
+  for (const Block::RimCell& c : b.rim)
+    if (c.at < kFace)
+      at.push_back(c.at), signs.push_back(static_cast<uint16_t>(c.mask | c.flips << 8)), first.push_back(narrow(c.first));
   w.put_vector(next), w.put_vector(key), w.put_vector(vertex), w.put_vector(at), w.put_vector(signs), w.put_vector(first);
 }
 
@@ -169,7 +168,7 @@ bool top_sound(const Block& b) {
     if (b.sheets[s].next != kNone && b.sheets[s].next >= s) return false;
   for (uint32_t v : b.vertex)
     if (v >= b.positions.size()) return false;
-  for (const Block::CellInfo& c : b.rim)
+  for (const Block::RimCell& c : b.rim)
     if (c.first != kNone && c.first >= sheets) return false;
   return true;
 }
@@ -194,10 +193,10 @@ bool get_block(ByteReader& r, Block& b, std::vector<Ring>& rings, const Lattice&
   for (size_t s = 0; s < next.size(); ++s) b.sheets[s] = Sheet{0, widen(next[s]), key[s]};  // the cell: not needed now
   b.vertex.resize(vertex.size());
   for (size_t s = 0; s < vertex.size(); ++s) b.vertex[s] = widen(vertex[s]);
-  b.rim.assign(kFace, Block::CellInfo{});
+  b.rim.clear();
   for (size_t i = 0; i < at.size(); ++i) {
-    if (at[i] >= kFace) return false;
-    b.rim[at[i]] = {static_cast<uint8_t>(signs[i]), static_cast<uint8_t>(signs[i] >> 8), widen(first[i])};
+    if (at[i] >= kFace || (i > 0 && at[i] <= at[i - 1])) return false;  // rim_cell searches it in order
+    b.rim.push_back({at[i], static_cast<uint8_t>(signs[i]), static_cast<uint8_t>(signs[i] >> 8), widen(first[i])});
   }
   return top_sound(b);
 }
@@ -277,8 +276,8 @@ bool SlabSplit::join(uint32_t job, const Lattice& g, double tolerance, Mesh& out
     uint32_t local = ref & 0x7fff;
     if (ref & kForeign) {
       int in = ref >> 18 & 7, axis = ref >> 21 & 3, nl[3] = {int(ref & 15), int(ref >> 4 & 15), int(ref >> 8 & 15)};
-      if (t->rim.empty() || nl[2] != kBlock - 1 || axis > 2) return false;
-      uint32_t s = t->sheet(t->rim[Block::rim_index(nl[0], nl[1], nl[2])], in, in ^ (1 << axis));
+      if (nl[2] != kBlock - 1 || axis > 2) return false;
+      uint32_t s = t->sheet(t->rim_cell(nl[0], nl[1], nl[2]), in, in ^ (1 << axis));
       if (s == kNone) return false;
       local = t->vertex[s];
     }

@@ -156,7 +156,7 @@ uint32_t vertex_at(const BlockGrid& grid, const Block& b, const int l[3], const 
   if (!owner) return kNone;  // only if the sign of a sample differed between two blocks
   int in = 0;
   for (int a = 0; a < 3; ++a) in |= (b.s0[a] + inside[a] - owner->s0[a] - nl[a]) << a;
-  uint32_t s = owner->sheet(owner->rim[Block::rim_index(nl[0], nl[1], nl[2])], in, in ^ (1 << axis));
+  uint32_t s = owner->sheet(owner->rim_cell(nl[0], nl[1], nl[2]), in, in ^ (1 << axis));
   return s == kNone ? kNone : owner->vertex[s];
 }
 

@@ -322,6 +322,12 @@ class Parser {
   void script_declaration(Scope& sc, Node& n) {
     FieldDecl d;
     if (!declaration(sc, true, d)) return;
+    if (find_field(n, d.name)) {  // one name, one type: an IS or a ROUTE could not tell which
+      error(d.span, n.iface && n.iface->find(d.name) ? "'" + d.name + "' is a field of every Script: declare another name"
+                                                       : "'" + d.name + "' is declared twice in 'Script'");
+      if (at_id("IS")) is_reference(sc, n, d.name, d.type, cur().span);
+      return;
+    }
     if (at_id("IS")) {
       FieldSlot slot;
       slot.name = d.name;

@@ -115,6 +115,23 @@ TEST_CASE("vrml: errors name the field and the expected type, all in one run") {
   CHECK(p->diag.error_count() == 4);
 }
 
+// The fuzzer's finding: a Script field declared twice (one name, two types) was kept twice, so the
+// writer wrote an IS the parser refuses on reading it back.
+TEST_CASE("vrml: a Script's fields are declared once each, and not over its own") {
+  auto p = parse("PROTO P [ field SFInt32 frames 0 field SFString center \"\" ] {\n"
+                 "  Script { field SFString frames IS center\n    field SFInt32 frames IS frames }\n}\n"
+                 "Script { eventIn SFFloat go field SFTime go 0 }\n"
+                 "Script { field MFString url [] }\n"
+                 "Script { field SFInt32 n 1 eventOut SFInt32 m }\n");
+  CHECK(!p->ok);
+  std::string t = p->text();
+  INFO(t);
+  CHECK(t.find("t.wrl:4:5: error: 'frames' is declared twice in 'Script'") != std::string::npos);
+  CHECK(t.find("t.wrl:6:29: error: 'go' is declared twice in 'Script'") != std::string::npos);
+  CHECK(t.find("t.wrl:7:10: error: 'url' is a field of every Script: declare another name") != std::string::npos);
+  CHECK(p->diag.error_count() == 3);
+}
+
 TEST_CASE("vrml: bad routes") {
   auto p = parse(R"(DEF A TimeSensor { } DEF B Transform { }
     ROUTE A.fraction_changed TO B.set_translation

@@ -33,6 +33,11 @@ struct VInst {
   uint32_t line = 0, col = 0;
 };
 
+// A sin and a cos of one value in one block share one range reduction: the first of the two
+// computes both (math::sincos_batch), the other's result into the extra register `c`, and the
+// second copies it from there. Their `aux` says which they are; unpaired ones have c == kNoReg.
+constexpr int32_t kTrigFirst = 1, kTrigSecond = 2;
+
 struct Move {
   uint32_t dst, src;
 };

@@ -46,9 +46,29 @@ class FunctionCompiler {
 
   uint32_t r(const Inst* v) { return v->op == Op::Const ? const_reg(v) : reg_[v->id]; }
 
+  // The block's sin and cos of one value, paired (bytecode.h): each pair's extra register, by its
+  // two instructions.
+  void pair_trig(const ir::Block* b) {
+    trig_.clear();
+    std::unordered_map<const Inst*, const Inst*> open[2];  // by operand: an unpaired sin, cos
+    for (const Inst* i : b->insts) {
+      if (i->op != Op::Sin && i->op != Op::Cos) continue;
+      int kind = i->op == Op::Cos, other = 1 - kind;
+      auto it = open[other].find(i->args[0]);
+      if (it == open[other].end()) {
+        open[kind].emplace(i->args[0], i);
+        continue;
+      }
+      uint32_t extra = out_.num_regs++;
+      trig_[it->second] = {kTrigFirst, extra}, trig_[i] = {kTrigSecond, extra};
+      open[other].erase(it);
+    }
+  }
+
   void emit_block(ir::Block* b) {
     VBlock vb;
     vb.begin = static_cast<uint32_t>(out_.code.size());
+    pair_trig(b);
     for (const Inst* i : b->insts) {
       if (i->op == Op::Phi || i->op == Op::Const) continue;
       if (ir::has_flag(i->op, ir::Terminator)) break;
@@ -112,6 +132,7 @@ class FunctionCompiler {
         *slots[k] = r(a);
       }
     }
+    if (auto t = trig_.find(&i); t != trig_.end()) v.aux = t->second.first, v.c = t->second.second;
     out_.code.push_back(v);
   }
 
@@ -121,6 +142,7 @@ class FunctionCompiler {
   std::vector<uint32_t> reg_;
   std::unordered_map<const Inst*, uint32_t> const_regs_;
   std::unordered_map<const ir::Block*, uint32_t> block_index_;
+  std::unordered_map<const Inst*, std::pair<int32_t, uint32_t>> trig_;  // pair_trig's, for this block
 };
 
 }  // namespace
@@ -173,7 +195,12 @@ std::string disassemble(const VmProgram& p) {
         };
         operand(0, v.a, v.imm_a);
         operand(1, v.b, v.imm_b);
-        operand(2, v.c, 0);
+        if ((v.op == ir::Op::Sin || v.op == ir::Op::Cos) && v.c != kNoReg)  // a pair (bytecode.h)
+          s += v.aux == kTrigFirst ? std::string(" (and its ") + (v.op == ir::Op::Sin ? "cos" : "sin") + " into r" +
+                                         std::to_string(v.c) + ")"
+                                   : " (computed with its pair, from r" + std::to_string(v.c) + ")";
+        else
+          operand(2, v.c, 0);
         s += "\n";
       }
       s += "  " + std::string(ir::mnemonic(vb.term));

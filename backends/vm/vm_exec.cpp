@@ -117,6 +117,26 @@ inline void batched(const VInst& v, float* R, const Mask* m, bool full, void (*f
   for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? tmp[i] : d[i];
 }
 
+// sin and cos: as batched, or one of a pair (bytecode.h): the first computes both, the second
+// copies its result from the pair's register. Both run under the block's one mask.
+inline void trig(const VInst& v, float* R, const Mask* m, bool full, void (*fn)(const float*, float*, size_t)) {
+  if (v.c == kNoReg) return batched(v, R, m, full, fn);
+  float* d = reg(R, v.dst);
+  float* o = reg(R, v.c);
+  if (v.aux == kTrigSecond) {
+    if (full) std::copy_n(o, K, d);
+    else
+      for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? o[i] : d[i];
+    return;
+  }
+  alignas(64) float tmp[K];
+  float* mine = full ? d : tmp;  // the other's lanes need no mask: only the second reads them
+  bool sin = v.op == Op::Sin;
+  fscript::math::FS_ISA::sincos_batch(reg(R, v.a), sin ? mine : o, sin ? o : mine, K);
+  if (!full)
+    for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? tmp[i] : d[i];
+}
+
 // The same for a binary one; an immediate operand is broadcast into a scratch lane vector.
 inline void batched2(const VInst& v, float* R, const Mask* m, bool full,
                      void (*fn)(const float*, const float*, float*, size_t)) {
@@ -151,7 +171,7 @@ inline void batched3(const VInst& v, float* R, const Mask* m, bool full,
 #define FS_VM_Batch1(N, FN) case Op::N: batched(v, R, m, full, M::FS_ISA::FN##_batch); return true;
 #define FS_VM_Batch2(N, FN) case Op::N: batched2(v, R, m, full, M::FS_ISA::FN##_batch); return true;
 #define FS_VM_Batch3(N, FN) case Op::N: batched3(v, R, m, full, M::FS_ISA::FN##_batch); return true;
-#define FS_VM_Trig1 FS_VM_Batch1
+#define FS_VM_Trig1(N, FN) case Op::N: trig(v, R, m, full, M::FS_ISA::FN##_batch); return true;
 #define FS_ONE_Lane1(N, FN) case Op::N: *d = M::FN(a); return true;
 #define FS_ONE_Lane2(N, FN) case Op::N: *d = M::FN(a, b); return true;
 #define FS_ONE_Lane3(N, FN) case Op::N: *d = M::FN(a, b, R[v.c]); return true;
@@ -163,7 +183,12 @@ inline void batched3(const VInst& v, float* R, const Mask* m, bool full,
     I::FN##_batch(&a, &b, &c, d, 1); \
     return true;             \
   }
-#define FS_ONE_Trig1 FS_ONE_Batch1
+#define FS_ONE_Trig1(N, FN)                                                        \
+  case Op::N:                                                                     \
+    if (v.c == kNoReg) I::FN##_batch(&a, d, 1);                                   \
+    else if (v.aux == kTrigSecond) *d = R[v.c];                                   \
+    else I::sincos_batch(&a, v.op == Op::Sin ? d : &R[v.c], v.op == Op::Sin ? &R[v.c] : d, 1); \
+    return true;
 
 // A 64-byte aligned, growable scratch buffer (one per thread).
 struct AlignedFloats {

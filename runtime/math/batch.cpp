@@ -104,6 +104,24 @@ void cos_batch(const float* a, float* out, size_t n) {
   fix_up<fscript::math::cos>(a, out, n, [](float v) { return !(std::fabs(v) <= kFastLimit); });
 }
 
+// Both of one argument: one reduction for the two (the VM's sin and cos of the same value), the
+// bits of sin_batch and cos_batch.
+void sincos_batch(const float* a, float* sin_out, float* cos_out, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    float x = a[i], xs = pick(mask_of(std::fabs(x) <= kFastLimit), x, 0.0f);
+    double xd = static_cast<double>(xs);
+    double jd = (xd * kTwoOverPi + kRoundMagic) - kRoundMagic;
+    double r = (xd - jd * kPio2Hi) - jd * kPio2Lo;
+    int q = static_cast<int>(jd);
+    float rf = static_cast<float>(r), sp = sin_poly(rf), cp = cos_poly(rf);
+    float s = pick(mask_of(q & 1), cp, sp), c = pick(mask_of((q + 1) & 1), cp, sp);
+    sin_out[i] = std::bit_cast<float>(std::bit_cast<uint32_t>(s) ^ (static_cast<uint32_t>(q & 2) << 30));
+    cos_out[i] = std::bit_cast<float>(std::bit_cast<uint32_t>(c) ^ (static_cast<uint32_t>((q + 1) & 2) << 30));
+  }
+  fix_up<fscript::math::sin>(a, sin_out, n, [](float v) { return !(std::fabs(v) <= kFastLimit); });
+  fix_up<fscript::math::cos>(a, cos_out, n, [](float v) { return !(std::fabs(v) <= kFastLimit); });
+}
+
 void exp_batch(const float* a, float* out, size_t n) {
   for (size_t i = 0; i < n; ++i) out[i] = exp_lane(a[i]);
   fix_up<fscript::math::exp>(a, out, n, [](float v) { return !((v <= kExpHi) & (v >= kExpLo)); });

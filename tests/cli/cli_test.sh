@@ -117,6 +117,11 @@ check emit-ir 0 'fn @kernel\(4\) -> 1 kernel' -- "$F" emit-ir "$T/sphere.fs" --o
 check emit-ir-passes 0 'fmul' -- "$F" emit-ir "$T/sphere.fs" --passes inline,fold
 check emit-ir-bad-pass 1 "unknown pass 'nope'" -- "$F" emit-ir "$T/sphere.fs" --passes nope
 check emit-asm-vm 0 'registers' -- "$F" emit-asm "$T/sphere.fs" --backend vm
+# A kernel the row split wraps still lists (it did not: "no listing for backend 'vm'"), with its
+# sin and cos pairs.
+printf 'function f(x, y) { return sin(x) * cos(y) + cos(x) * sin(y); }\n' > "$T/trig.fs"
+check emit-asm-vm-pairs 0 'sin r[0-9]+ \(and its cos into r[0-9]+\)' -- "$F" emit-asm "$T/trig.fs" --backend vm
+check emit-asm-auto-pairs 0 'computed with its pair' -- "$F" emit-asm "$T/trig.fs"
 # bench: the operation count of the kernel, and evals/s and ns/eval that describe the same rate.
 bench_ok() {
   python3 -c "

@@ -2,8 +2,10 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 
+#include "backends/vm/bytecode.h"
 #include "ir/eval.h"
 #include "ir/text.h"
 #include "tests/unit/helpers.h"
@@ -96,4 +98,49 @@ TEST_CASE("vm: a chunk whose loop runs long runs again point by point, with the 
   xs[300] = 1e9f;
   CHECK_FALSE(capped->kernel->eval_batch(in, outs, n, err));
   CHECK(err.message == "loop iteration budget exceeded: more than 200000 iterations in one evaluation");
+}
+
+// sin and cos of one value in one block share one range reduction (backends/vm/bytecode.h): the
+// listing shows the pairs, and the results are the SSE backend's bits (which compute sin and cos
+// on their own where unpaired) on special values, batch and one point, under a mask.
+TEST_CASE("vm: paired sin and cos give the bits of sin and cos alone") {
+  const char* src = R"(
+    function FRep(x, y, z, t) {
+      var r = 0;
+      if (y > 0) { r = sin(x) * 3 + cos(x); } else { r = cos(x * 2) - sin(x * 2) + sin(x); }
+      return r + cos(z) * 0.5 - sin(z);
+    })";
+  auto vm = test::build(src);
+  auto sse = test::build(src, "", true, {}, "sse");
+  REQUIRE(vm->ok);
+  REQUIRE(sse->ok);
+  vm::VmProgram p;
+  std::string error;
+  REQUIRE(vm::compile_program(*vm->module, p, error));
+  std::string listing = vm::disassemble(p);
+  INFO(listing);
+  CHECK(listing.find("(and its cos into r") != std::string::npos);
+  CHECK(listing.find("(computed with its pair, from r") != std::string::npos);
+  const float special[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 3.14159265f, -1.5707964f, 100.0f, 1e5f, 8388608.0f, 1e30f,
+                           -1e30f, INFINITY, -INFINITY, NAN, 1e-40f, 7.25f, -2.5f, 6.2831855f, 1e-7f, 16777216.0f};
+  const size_t n = std::size(special) * 4;
+  std::vector<float> xs(n), ys(n), zs(n), ts(n, 0), a(n), b(n);
+  for (size_t i = 0; i < n; ++i) {
+    xs[i] = special[i % std::size(special)];
+    ys[i] = (i / std::size(special)) % 2 ? 1.0f : -1.0f;  // both branches, lanes mixed
+    zs[i] = special[(i * 7 + 3) % std::size(special)];
+  }
+  const float* in[] = {xs.data(), ys.data(), zs.data(), ts.data()};
+  float* oa[] = {a.data()};
+  float* ob[] = {b.data()};
+  backends::RuntimeError err;
+  REQUIRE(vm->kernel->eval_batch(in, oa, n, err));
+  REQUIRE(sse->kernel->eval_batch(in, ob, n, err));
+  int batch = 0, one = 0;
+  for (size_t i = 0; i < n; ++i) {
+    batch += !same(a[i], b[i]);
+    one += !same(test::eval1(*vm, {xs[i], ys[i], zs[i], 0}), b[i]);
+  }
+  CHECK(batch == 0);
+  CHECK(one == 0);
 }

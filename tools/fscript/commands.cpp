@@ -184,6 +184,10 @@ int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, con
 std::string backend_listing(const std::string& name, const ir::Module& m, const backends::Kernel* kernel,
                             const backends::Budgets& budgets, std::string& error) {
   if (auto* vk = dynamic_cast<const vm::VmKernel*>(kernel)) return vm::disassemble(vk->program());
+  if (name == "vm" || name == "auto") {  // a kernel the row split wraps: the whole function's code
+    vm::VmProgram p;
+    return vm::compile_program(m, p, error) ? vm::disassemble(p) : "";
+  }
   if (name == "sse") {
     std::string text;
     double bound = 0;

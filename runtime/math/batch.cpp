@@ -35,16 +35,29 @@ inline float pick(uint32_t m, float a, float b) {
   return std::bit_cast<float>((std::bit_cast<uint32_t>(a) & m) | (std::bit_cast<uint32_t>(b) & ~m));
 }
 
-// quadrant_offset 0: sin, 1: cos (cos x = sin(x + pi/2)).
-inline float trig_lane(float x, int quadrant_offset) {
+// x reduced to r in [-pi/4, pi/4] and its quadrant q (0 outside the fast range: fix_up redoes those).
+struct Reduced {
+  float r;
+  int q;
+};
+inline Reduced reduce(float x) {
   float xs = pick(mask_of(std::fabs(x) <= kFastLimit), x, 0.0f);
   double xd = static_cast<double>(xs);
   double jd = (xd * kTwoOverPi + kRoundMagic) - kRoundMagic;
   double r = (xd - jd * kPio2Hi) - jd * kPio2Lo;
-  int q = static_cast<int>(jd) + quadrant_offset;
-  float rf = static_cast<float>(r);
-  float v = pick(mask_of(q & 1), cos_poly(rf), sin_poly(rf));
+  return {static_cast<float>(r), static_cast<int>(jd)};
+}
+
+// sin in quadrant q, from both polynomials on the reduced argument (cos x = sin(x + pi/2): q + 1).
+inline float quadrant_value(int q, float sin_r, float cos_r) {
+  float v = pick(mask_of(q & 1), cos_r, sin_r);
   return std::bit_cast<float>(std::bit_cast<uint32_t>(v) ^ (static_cast<uint32_t>(q & 2) << 30));
+}
+
+// quadrant_offset 0: sin, 1: cos.
+inline float trig_lane(float x, int quadrant_offset) {
+  Reduced d = reduce(x);
+  return quadrant_value(d.q + quadrant_offset, sin_poly(d.r), cos_poly(d.r));
 }
 
 // Redoes lanes outside the fast range with the scalar definition. The test is a vectorised
@@ -108,15 +121,9 @@ void cos_batch(const float* a, float* out, size_t n) {
 // bits of sin_batch and cos_batch.
 void sincos_batch(const float* a, float* sin_out, float* cos_out, size_t n) {
   for (size_t i = 0; i < n; ++i) {
-    float x = a[i], xs = pick(mask_of(std::fabs(x) <= kFastLimit), x, 0.0f);
-    double xd = static_cast<double>(xs);
-    double jd = (xd * kTwoOverPi + kRoundMagic) - kRoundMagic;
-    double r = (xd - jd * kPio2Hi) - jd * kPio2Lo;
-    int q = static_cast<int>(jd);
-    float rf = static_cast<float>(r), sp = sin_poly(rf), cp = cos_poly(rf);
-    float s = pick(mask_of(q & 1), cp, sp), c = pick(mask_of((q + 1) & 1), cp, sp);
-    sin_out[i] = std::bit_cast<float>(std::bit_cast<uint32_t>(s) ^ (static_cast<uint32_t>(q & 2) << 30));
-    cos_out[i] = std::bit_cast<float>(std::bit_cast<uint32_t>(c) ^ (static_cast<uint32_t>((q + 1) & 2) << 30));
+    Reduced d = reduce(a[i]);
+    float sp = sin_poly(d.r), cp = cos_poly(d.r);
+    sin_out[i] = quadrant_value(d.q, sp, cp), cos_out[i] = quadrant_value(d.q + 1, sp, cp);
   }
   fix_up<fscript::math::sin>(a, sin_out, n, [](float v) { return !(std::fabs(v) <= kFastLimit); });
   fix_up<fscript::math::cos>(a, cos_out, n, [](float v) { return !(std::fabs(v) <= kFastLimit); });

@@ -55,10 +55,39 @@ uint32_t node_samples(const Block& b, const int s0[3], int half) {
   return in;
 }
 
+// The 36 squares of the 3x3x3 samples (four per face of each child, faces inside the node too),
+// each as its four samples in the order a, b, c, d of a square [[a b] [c d]].
+const std::array<std::array<uint8_t, 4>, 36>& sub_faces() {
+  static const auto t = [] {
+    std::array<std::array<uint8_t, 4>, 36> out{};
+    size_t n = 0;
+    for (int axis = 0; axis < 3; ++axis)  // the square spans the two other axes u, v
+      for (int w = 0; w < 3; ++w)
+        for (int v = 0; v < 2; ++v)
+          for (int u = 0; u < 2; ++u) {
+            auto at = [&](int du, int dv) {
+              int q[3];
+              q[axis] = w, q[(axis + 1) % 3] = u + du, q[(axis + 2) % 3] = v + dv;
+              return static_cast<uint8_t>(q[0] + 3 * q[1] + 9 * q[2]);
+            };
+            out[n++] = {at(0, 0), at(1, 0), at(0, 1), at(1, 1)};
+          }
+    return out;
+  }();
+  return t;
+}
+
 // Whether a node allows one vertex, from its 27 samples (node_samples): one sheet, no ambiguous
 // face, and every midpoint agreeing in sign with a corner of the edge, face or body it is the
-// middle of.
+// middle of. Its children's faces must not be ambiguous either: a cell of one sheet may still
+// have one (its sheet then crosses that face twice), and a node over it can meet its own boundary
+// in two loops, whose polygons then share the node's one vertex as two fans (a pinched,
+// non-manifold vertex: three in the gyroid ∩ sphere at 256^3).
 bool topology_safe(uint32_t in) {
+  for (const auto& f : sub_faces()) {
+    unsigned a = in >> f[0] & 1, b = in >> f[1] & 1, c = in >> f[2] & 1, d = in >> f[3] & 1;
+    if (a == d && b == c && a != b) return false;
+  }
   const std::array<uint8_t, 27>& middle = middle_of();
   unsigned corners = 0;
   for (int c = 0; c < 8; ++c) corners |= (in >> ((c & 1) * 2 + (c >> 1 & 1) * 6 + (c >> 2 & 1) * 18) & 1u) << c;

@@ -55,26 +55,25 @@ uint32_t node_samples(const Block& b, const int s0[3], int half) {
   return in;
 }
 
-// The 36 squares of the 3x3x3 samples (four per face of each child, faces inside the node too),
-// each as its four samples in the order a, b, c, d of a square [[a b] [c d]].
-const std::array<std::array<uint8_t, 4>, 36>& sub_faces() {
-  static const auto t = [] {
-    std::array<std::array<uint8_t, 4>, 36> out{};
-    size_t n = 0;
-    for (int axis = 0; axis < 3; ++axis)  // the square spans the two other axes u, v
-      for (int w = 0; w < 3; ++w)
-        for (int v = 0; v < 2; ++v)
-          for (int u = 0; u < 2; ++u) {
-            auto at = [&](int du, int dv) {
-              int q[3];
-              q[axis] = w, q[(axis + 1) % 3] = u + du, q[(axis + 2) % 3] = v + dv;
-              return static_cast<uint8_t>(q[0] + 3 * q[1] + 9 * q[2]);
-            };
-            out[n++] = {at(0, 0), at(1, 0), at(0, 1), at(1, 1)};
-          }
-    return out;
-  }();
-  return t;
+// Whether any of the 36 squares of the 3x3x3 samples (four per face of each child, faces inside
+// the node too) is ambiguous: corners a, d of one sign and b, c of the other ([[a b] [c d]]). Bit
+// parallel: the squares normal to each axis, their lowest samples picked by a mask.
+constexpr uint32_t lowest_samples(int ni, int nj, int nk) {
+  uint32_t m = 0;
+  for (int k = 0; k < nk; ++k)
+    for (int j = 0; j < nj; ++j)
+      for (int i = 0; i < ni; ++i) m |= 1u << (i + 3 * j + 9 * k);
+  return m;
+}
+
+bool ambiguous_square(uint32_t in) {
+  auto diagonal = [in](int b, int c, int d, uint32_t lowest) {
+    uint32_t A = in, B = in >> b, C = in >> c, D = in >> d;
+    return (~(A ^ D) & ~(B ^ C) & (A ^ B) & lowest) != 0;
+  };
+  // Lowest samples (i, j, k) with i, j < 2 (squares normal to z), i, k < 2 (y), j, k < 2 (x).
+  constexpr uint32_t kZ = lowest_samples(2, 2, 3), kY = lowest_samples(2, 3, 2), kX = lowest_samples(3, 2, 2);
+  return diagonal(1, 3, 4, kZ) || diagonal(1, 9, 10, kY) || diagonal(3, 9, 12, kX);
 }
 
 // Whether a node allows one vertex, from its 27 samples (node_samples): one sheet, no ambiguous
@@ -84,10 +83,7 @@ const std::array<std::array<uint8_t, 4>, 36>& sub_faces() {
 // in two loops, whose polygons then share the node's one vertex as two fans (a pinched,
 // non-manifold vertex: three in the gyroid ∩ sphere at 256^3).
 bool topology_safe(uint32_t in) {
-  for (const auto& f : sub_faces()) {
-    unsigned a = in >> f[0] & 1, b = in >> f[1] & 1, c = in >> f[2] & 1, d = in >> f[3] & 1;
-    if (a == d && b == c && a != b) return false;
-  }
+  if (ambiguous_square(in)) return false;
   const std::array<uint8_t, 27>& middle = middle_of();
   unsigned corners = 0;
   for (int c = 0; c < 8; ++c) corners |= (in >> ((c & 1) * 2 + (c >> 1 & 1) * 6 + (c >> 2 & 1) * 18) & 1u) << c;

@@ -2,6 +2,7 @@
 #include "runtime/driver/driver.h"
 
 #include "frontend/fscript/lower.h"
+#include "ir/passes/gradient.h"
 #include "ir/passes/passes.h"
 #include "ir/verifier.h"
 #include "backends/row_kernel.h"
@@ -46,6 +47,14 @@ Outcome compile_kernel(const ir::Module& m, const std::string& name, const backe
   if (!out) o.stage = Stage::Backend;
   else out = backends::with_row_split(std::move(out), n, m, budgets);
   return o;
+}
+
+std::unique_ptr<backends::Kernel> gradient_kernel(const ir::Module& m, const std::string& name,
+                                                  const backends::Budgets& budgets) {
+  std::unique_ptr<ir::Module> g = ir::gradient_module(m);
+  std::unique_ptr<backends::Kernel> k;
+  if (g && !compile_kernel(*g, name, budgets, k).ok()) k.reset();
+  return k;
 }
 
 Outcome compile(std::unique_ptr<frontend::SourceFile> file, const EntryChoice& entry, const CompileOptions& opts,

@@ -72,4 +72,10 @@ std::unique_ptr<ir::Module> build_module(const frontend::Script& s, const fronte
 Outcome compile_kernel(const ir::Module& m, const std::string& name, const backends::Budgets& budgets,
                        std::unique_ptr<backends::Kernel>& out);
 
+// The kernel of f and its gradient (ir::gradient_module: outputs f, df/dx, df/dy, df/dz) for the
+// FRep module `m` on backend `name`; nullptr when f has no gradient here or it did not compile
+// (the polygonizers then take differences).
+std::unique_ptr<backends::Kernel> gradient_kernel(const ir::Module& m, const std::string& name,
+                                                  const backends::Budgets& budgets);
+
 }  // namespace fscript::driver

@@ -359,30 +359,64 @@ struct Edges {
   std::vector<std::array<double, 3>> at;          // per crossing: the edge's lower end, then the crossing
 };
 
-// Normals from the gradient by central differences, kProbe cells either side of the crossing
+// The normal at crossing r from its probes (6 r .. 6 r + 5 in `out`); false when there is none.
+bool probed_normal(const float* out, const Lattice& g, double normal[3]) {
+  for (int a = 0; a < 3; ++a) normal[a] = -gradient(out[2 * a], out[2 * a + 1], kProbe * g.h[a]);
+  return std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0;
+}
+
+// Normals: minus the field's own gradient at the crossings where it has one (ir::gradient_module,
+// one evaluation each), else central differences, kProbe cells either side of the crossing
 // (forward differences from the crossing cost two evaluations less but take a sharp edge's other face
 // whole where a probe crosses it: vertices 0.16 of a cell off in unit_dc_csg, against under 0.1).
 bool normals(const Field& f, const Lattice& g, const Block& b, Edges& E, std::vector<Plane>& planes, backends::RuntimeError& err) {
   Batch& pts = scratch();
   const size_t n = E.real.size();
-  pts.resize(6 * n);
-  const double d[3] = {kProbe * g.h[0], kProbe * g.h[1], kProbe * g.h[2]};
+  thread_local std::vector<size_t> probe;  // crossings whose normal the differences give
+  thread_local std::vector<float> grad;
+  probe.clear();
   for (size_t r = 0; r < n; ++r) {
     std::array<double, 3>& p = E.at[E.real[r]];
     p[b.xs[E.real[r]].axis] += E.t[r] * g.h[b.xs[E.real[r]].axis];
-    size_t q = 6 * r;
-    pts.set(q, p[0] + d[0], p[1], p[2]), pts.set(q + 1, p[0] - d[0], p[1], p[2]);
-    pts.set(q + 2, p[0], p[1] + d[1], p[2]), pts.set(q + 3, p[0], p[1] - d[1], p[2]);
-    pts.set(q + 4, p[0], p[1], p[2] + d[2]), pts.set(q + 5, p[0], p[1], p[2] - d[2]);
+  }
+  if (f.has_gradient()) {
+    pts.clear();
+    pts.resize(n);
+    for (size_t r = 0; r < n; ++r) pts.set(r, E.at[E.real[r]][0], E.at[E.real[r]][1], E.at[E.real[r]][2]);
+    grad.resize(4 * n);
+    float* const o[4] = {grad.data(), grad.data() + n, grad.data() + 2 * n, grad.data() + 3 * n};
+    {
+      EvalTimer timed;
+      if (!f.eval_gradient(pts.x.data(), pts.y.data(), pts.z.data(), n, o, err)) return false;
+    }
+    for (size_t r = 0; r < n; ++r) {
+      double normal[3] = {-double(o[1][r]), -double(o[2][r]), -double(o[3][r])};
+      bool finite = std::isfinite(normal[0]) && std::isfinite(normal[1]) && std::isfinite(normal[2]);
+      if (finite && std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0)
+        planes[E.real[r]] = Qef::plane(E.at[E.real[r]].data(), normal);
+      else
+        probe.push_back(r);
+    }
+  } else {
+    for (size_t r = 0; r < n; ++r) probe.push_back(r);
+  }
+  if (probe.empty()) return true;
+  pts.clear();
+  pts.resize(6 * probe.size());
+  const double d[3] = {kProbe * g.h[0], kProbe * g.h[1], kProbe * g.h[2]};
+  for (size_t q = 0; q < probe.size(); ++q) {
+    const std::array<double, 3>& p = E.at[E.real[probe[q]]];
+    pts.set(6 * q, p[0] + d[0], p[1], p[2]), pts.set(6 * q + 1, p[0] - d[0], p[1], p[2]);
+    pts.set(6 * q + 2, p[0], p[1] + d[1], p[2]), pts.set(6 * q + 3, p[0], p[1] - d[1], p[2]);
+    pts.set(6 * q + 4, p[0], p[1], p[2] + d[2]), pts.set(6 * q + 5, p[0], p[1], p[2] - d[2]);
   }
   if (!pts.run(f, err)) return false;
-  for (size_t r = 0; r < n; ++r) {
-    const Crossing& c = b.xs[E.real[r]];
+  for (size_t q = 0; q < probe.size(); ++q) {
+    const Crossing& c = b.xs[E.real[probe[q]]];
     double normal[3];
-    for (int a = 0; a < 3; ++a) normal[a] = -gradient(pts.out[6 * r + 2 * a], pts.out[6 * r + 2 * a + 1], kProbe * g.h[a]);
-    if (!(std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0))
-      normal[c.axis] = c.lower_inside ? 1 : -1;  // no gradient at all: the edge's own direction
-    planes[E.real[r]] = Qef::plane(E.at[E.real[r]].data(), normal);
+    if (!probed_normal(pts.out.data() + 6 * q, g, normal))
+      normal[0] = normal[1] = normal[2] = 0, normal[c.axis] = c.lower_inside ? 1 : -1;  // the edge's own direction
+    planes[E.real[probe[q]]] = Qef::plane(E.at[E.real[probe[q]]].data(), normal);
   }
   return true;
 }

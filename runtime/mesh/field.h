@@ -52,28 +52,40 @@ class Field {
   virtual math::Interval bound(const Box3&) const { return math::Interval::everything(); }
   // Whether bound() can ever say more than "anything" (else the polygonizer does not ask).
   virtual bool can_bound() const { return false; }
+  // f and its gradient at points: out[0][i] = f, out[1..3][i] = df/dx, df/dy, df/dz (infinite or
+  // NaN where f is not differentiable there). Only asked when has_gradient(); the polygonizers
+  // otherwise take central differences of eval.
+  virtual bool has_gradient() const { return false; }
+  virtual bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
+                             backends::RuntimeError& err) const;
 };
 
 // The result of `tape` (a kernel of x, y, z, t and perhaps more inputs, given in `extra`) over a box.
 math::Interval kernel_bound(const ir::IntervalTape& tape, const Box3& b, const std::vector<math::Interval>& extra);
 
 // An FRep kernel (inputs x, y, z, t; the first output) at time t; `intervals`, when the kernel has
-// them (ir::interval_evaluable), bounds it.
+// them (ir::interval_evaluable), bounds it, and `gradient`, when it has one (ir::gradient_module:
+// outputs f, df/dx, df/dy, df/dz), gives its gradient.
 class KernelField : public Field {
  public:
-  KernelField(const backends::Kernel& k, float t, const ir::IntervalTape* intervals = nullptr)
-      : k_(k), t_(t), intervals_(intervals) {}
+  KernelField(const backends::Kernel& k, float t, const ir::IntervalTape* intervals = nullptr,
+              const backends::Kernel* gradient = nullptr)
+      : k_(k), t_(t), intervals_(intervals), gradient_(gradient) {}
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
             backends::RuntimeError& err) const override;
   bool eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
                  backends::RuntimeError& err) const override;
   math::Interval bound(const Box3& b) const override;
   bool can_bound() const override { return intervals_ != nullptr; }
+  bool has_gradient() const override { return gradient_ != nullptr; }
+  bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
+                     backends::RuntimeError& err) const override;
 
  private:
   const backends::Kernel& k_;
   float t_;
   const ir::IntervalTape* intervals_;
+  const backends::Kernel* gradient_;
 };
 
 }  // namespace fscript::mesh

@@ -608,6 +608,20 @@ bool KernelField::eval(const float* x, const float* y, const float* z, size_t n,
   return k_.eval_batch(in, outs.data(), n, err);
 }
 
+bool Field::eval_gradient(const float*, const float*, const float*, size_t, float* const[4],
+                          backends::RuntimeError& err) const {
+  err.message = "internal error: this field has no gradient";
+  return false;
+}
+
+bool KernelField::eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
+                                backends::RuntimeError& err) const {
+  thread_local std::vector<float> ts;
+  ts.assign(n, t_);
+  const float* in[4] = {x, y, z, ts.data()};
+  return gradient_->eval_batch(in, out, n, err);
+}
+
 bool Field::eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
                       backends::RuntimeError& err) const {
   thread_local std::vector<float> xs, ys, zs;

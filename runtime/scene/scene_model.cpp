@@ -24,6 +24,11 @@ const char* kind_name(ShapeKind k) {
   return "implicit";
 }
 
+const backends::Kernel* LazyGradient::get() const {
+  std::call_once(once_, [this] { kernel_ = driver::gradient_kernel(*module_, backend_, budgets_); });
+  return kernel_.get();
+}
+
 Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
 
 Mat4 multiply(const Mat4& a, const Mat4& b) {
@@ -166,6 +171,8 @@ class Builder {
       return false;
     }
     keep(c, out);
+    if (role == Role::Geometry && implicit && *implicit && c.module)
+      out.gradient = std::make_shared<const LazyGradient>(std::move(c.module), opts_.compile.backend, opts_.compile.budgets);
     out.field = field;
     return true;
   }

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,11 +36,30 @@ double field_number(const vrml::Node& n, const char* field, size_t k = 0, double
 // The TimeSensor fields of a TimeSensor, FShape or FTransform.
 TimeSensorFields time_fields(const vrml::Node& n);
 
+// The gradient kernel of an FRep (ir::gradient_module: outputs f, df/dx, df/dy, df/dz), built
+// and compiled on the first get(): only the dual contouring of a shape with crossings asks, so
+// other shapes and other jobs never pay for it. Safe to call from several threads.
+class LazyGradient {
+ public:
+  LazyGradient(std::shared_ptr<const ir::Module> m, std::string backend, const backends::Budgets& b)
+      : module_(std::move(m)), backend_(std::move(backend)), budgets_(b) {}
+  // nullptr when the FRep has no gradient here (not straight-line, or noise) or it did not compile.
+  const backends::Kernel* get() const;
+
+ private:
+  std::shared_ptr<const ir::Module> module_;
+  std::string backend_;
+  backends::Budgets budgets_;
+  mutable std::once_flag once_;
+  mutable std::unique_ptr<backends::Kernel> kernel_;
+};
+
 // One compiled FScript field of a node.
 struct CompiledField {
   std::string field;
   std::unique_ptr<backends::Kernel> kernel;
   std::shared_ptr<const ir::IntervalTape> intervals;  // bounds on it, when ir::interval_evaluable
+  std::shared_ptr<const LazyGradient> gradient;        // an FShape's definition: its gradient
   bool rgb = false;  // colour: the script sets r, g, b (else its value goes through the pattern)
   double span0 = 0, span1 = 1;  // the node's timeSpan
   double t = 0;                 // the node's t at the evaluated time

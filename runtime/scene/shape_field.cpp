@@ -44,6 +44,14 @@ math::Interval ShapeField::bound(const mesh::Box3& b) const {
   return math::iv::add(f, mesh::kernel_bound(*s_.texture->intervals, b, uvw_t));
 }
 
+bool ShapeField::has_gradient() const { return !s_.texture && s_.geometry.gradient && s_.geometry.gradient->get(); }
+
+bool ShapeField::eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
+                               backends::RuntimeError& err) const {
+  mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(s_.geometry.t), nullptr, s_.geometry.gradient->get());
+  return geometry.eval_gradient(x, y, z, n, out, err);
+}
+
 bool ShapeField::can_bound() const { return s_.geometry.intervals && (!s_.texture || s_.texture->intervals); }
 
 namespace {
@@ -268,6 +276,60 @@ void GroupField::fold(float* out, const float* rest, size_t n) const {
     } else {
       for (size_t i = 0; i < n; ++i) out[i] = math::max(out[i], g[i]);  // union (and any unknown name, reported)
     }
+  }
+}
+
+bool GroupField::has_gradient() const {
+  if (!invalid_.empty() || g_.op_kernel || kids_.empty()) return false;
+  return std::all_of(kids_.begin(), kids_.end(), [](const auto& k) { return k->has_gradient(); });
+}
+
+bool GroupField::eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
+                               backends::RuntimeError& err) const {
+  std::vector<float> lx, ly, lz;
+  if (moved_) {
+    lx.assign(x, x + n), ly.assign(y, y + n), lz.assign(z, z + n);
+    for (size_t i = 0; i < n; ++i) apply(inverse_, lx[i], ly[i], lz[i]);
+    x = lx.data(), y = ly.data(), z = lz.data();
+  }
+  if (!kids_[0]->eval_gradient(x, y, z, n, out, err)) return false;
+  std::unique_ptr<float[]> buf(new float[4 * n]);
+  float* const g[4] = {buf.get(), buf.get() + n, buf.get() + 2 * n, buf.get() + 3 * n};
+  for (size_t k = 1; k < kids_.size(); ++k) {
+    if (!kids_[k]->eval_gradient(x, y, z, n, g, err)) return false;
+    fold_gradient(out, g, n);
+  }
+  if (!moved_) return true;
+  for (size_t i = 0; i < n; ++i) {  // d/dp_j = sum over i of d/dl_i dl_i/dp_j, with l = M^-1 p
+    double l[3] = {out[1][i], out[2][i], out[3][i]};
+    for (int j = 0; j < 3; ++j)
+      out[1 + j][i] = static_cast<float>(l[0] * inverse_[4 * j] + l[1] * inverse_[4 * j + 1] + l[2] * inverse_[4 * j + 2]);
+  }
+  return true;
+}
+
+void GroupField::fold_gradient(float* const out[4], const float* const g[4], size_t n) const {
+  std::string op = g_.operation.empty() ? "union" : g_.operation;
+  const vrml::Value* p = g_.node->get("parameters");
+  double a0 = p && p->nums.size() > 0 ? p->nums[0] : 0, a1 = p && p->nums.size() > 1 ? p->nums[1] : 1,
+         a2 = p && p->nums.size() > 2 ? p->nums[2] : 1;
+  bool blend = op == "blend_union" || op == "blend_intersection";
+  double sign = op == "blend_union" ? 1 : -1;
+  bool subtract = op == "subtraction" || op == "difference";
+  for (size_t i = 0; i < n; ++i) {
+    float f = out[0][i], h = subtract ? -g[0][i] : g[0][i];
+    double hs = subtract ? -1 : 1;
+    if (blend) {  // the derivative of fold's formula in f and in h
+      double fa = f / a1, ga = h / a2, r = std::sqrt(double(f) * f + double(h) * h), d = 1 + fa * fa + ga * ga;
+      double df = 1 + sign * f / r - a0 * 2 * fa / a1 / (d * d), dh = 1 + sign * h / r - a0 * 2 * ga / a2 / (d * d);
+      out[0][i] = static_cast<float>(f + h + sign * r + a0 / d);
+      for (int a = 1; a < 4; ++a) out[a][i] = static_cast<float>(df * out[a][i] + dh * g[a][i]);
+      continue;
+    }
+    bool min = op == "intersection" || subtract;
+    out[0][i] = min ? math::min(f, h) : math::max(f, h);
+    if (min ? h < f : h > f)
+      for (int a = 1; a < 4; ++a) out[a][i] = static_cast<float>(hs * g[a][i]);
   }
 }
 

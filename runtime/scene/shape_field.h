@@ -27,6 +27,9 @@ class ShapeField : public mesh::Field {
                  backends::RuntimeError& err) const override;
   math::Interval bound(const mesh::Box3& b) const override;
   bool can_bound() const override;
+  bool has_gradient() const override;  // the FRep's, when it has one and no 3D texture displaces it
+  bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
+                     backends::RuntimeError& err) const override;
 
  private:
   const Shape& s_;
@@ -41,6 +44,11 @@ class GroupField : public mesh::Field {
                  backends::RuntimeError& err) const override;
   math::Interval bound(const mesh::Box3& b) const override;
   bool can_bound() const override;
+  // Set operations and blends by the chain rule over the children's gradients (not an analytical
+  // operation: its script's gradient in f, g, ... is not built).
+  bool has_gradient() const override;
+  bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
+                     backends::RuntimeError& err) const override;
   // False (with a message) when a child cannot be part of an implicit field (a parametric shape).
   bool valid(std::string& why) const;
   std::array<double, 6> box() const;     // the union of the children's boxes
@@ -52,6 +60,8 @@ class GroupField : public mesh::Field {
   bool eval_operator(const float* x, const float* y, const float* z, size_t n, float* out, backends::RuntimeError& err) const;
   // The set operation folded over the children's values: the first in out, the others in rest.
   void fold(float* out, const float* rest, size_t n) const;
+  // One step of that fold with gradients: out (f, df/dx, df/dy, df/dz) combined with g.
+  void fold_gradient(float* const out[4], const float* const g[4], size_t n) const;
   const SceneModel& m_;
   const Group& g_;
   std::vector<std::unique_ptr<mesh::Field>> kids_;

@@ -176,6 +176,7 @@ BlockGrid::BlockGrid(const Lattice& g, std::vector<int32_t> slots, std::vector<B
 BlockGrid::BlockGrid(const Lattice& g, const BrickMap* bricks) : g_(g) {
   for (int a = 0; a < 3; ++a) nb_[a] = blocks_along(g, a);
   slot_.assign(static_cast<size_t>(nb_[0]) * nb_[1] * nb_[2], kAllOutside);
+  blocks_.reserve(slot_.size());  // virtual until used: no copies as it grows
   size_t at = 0;
   for (int k = 0; k < nb_[2]; ++k)
     for (int j = 0; j < nb_[1]; ++j)
@@ -533,7 +534,7 @@ void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& plan
     int u = kNextAxis[c.axis], w = kNextAxis[u];
     bool u0 = c.l[u] < b.m[u], u1 = c.l[u] > 0, w0 = c.l[w] < b.m[w], w1 = c.l[w] > 0;
     const bool here[4] = {u0 && w0, u1 && w0, u1 && w1, u0 && w1};
-    std::array<uint32_t, 4> id{kNone, kNone, kNone, kNone};
+    std::array<uint16_t, 4> id{Block::kNoSheet, Block::kNoSheet, Block::kNoSheet, Block::kNoSheet};
     for (int q = 0; q < 4; ++q) {
       if (!here[q]) continue;
       const int* l = cells[q];
@@ -549,7 +550,7 @@ void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& plan
         info.first = s;
       }
       qefs[s].add(planes[e]);
-      id[static_cast<size_t>(q)] = s;
+      id[static_cast<size_t>(q)] = static_cast<uint16_t>(s);  // s < 4 * kCells < kNoSheet
     }
     b.ids.push_back(id);
   }

@@ -65,7 +65,11 @@ struct Block {
   };
   std::vector<RimCell> rim;  // by `at`
   std::vector<Sheet> sheets;
-  std::vector<std::array<uint32_t, 4>> ids;  // per crossing: its cells' sheets here (kNone: another block's)
+  // Per crossing: its cells' sheets here (kNoSheet: another block's). 16 bits: a block has at most
+  // four sheets in each of its 4,096 cells, and these are most of a finished block's bytes.
+  static constexpr uint16_t kNoSheet = 0xffff;
+  std::vector<std::array<uint16_t, 4>> ids;
+  uint32_t id(size_t e, size_t q) const { return ids[e][q] == kNoSheet ? kNone : ids[e][q]; }
   // Vertices (dc_octree.h): each sheet's vertex among the block's (then, once numbered, in the
   // output mesh), their positions (as the mesh stores them) and their largest plane distance.
   std::vector<uint32_t> vertex;

@@ -66,7 +66,7 @@ bool ring_refs(const BlockGrid& grid, const Block& b, size_t e, int first_layer,
   if (!c.lower_inside) ++inside[c.axis];
   cells_of(c, cells);
   for (size_t q = 0; q < 4; ++q) {
-    uint32_t s = b.ids[e][q];
+    uint32_t s = b.id(e, q);
     if (s != kNone) {
       out[q] = b.vertex[s];
       continue;

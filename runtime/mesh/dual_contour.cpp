@@ -169,7 +169,7 @@ bool ring_of(const BlockGrid& grid, const Block& b, size_t e, uint32_t ring[4], 
   cells_of(c, cells);
   n = 0;
   for (int q = 0; q < 4; ++q) {
-    uint32_t s = b.ids[e][static_cast<size_t>(q)];
+    uint32_t s = b.id(e, static_cast<size_t>(q));
     uint32_t v = s != kNone ? b.vertex[s] : vertex_at(grid, b, cells[q], inside, c.axis);
     if (v == kNone) return false;
     if (n == 0 || ring[n - 1] != v) ring[n++] = v;

@@ -355,9 +355,23 @@ namespace {
 // The block's edges under refinement, and their crossings (scratch arrays reused per thread).
 struct Edges {
   std::vector<size_t> real, active;               // crossings on real edges (not into the padding)
+  std::vector<size_t> rest;                       // of those, the ones the first step did not settle
   std::vector<double> lo_t, hi_t, lo_f, hi_f;     // bracket along the edge (t in [0, 1]) and f there
   std::vector<double> t, v;                       // the crossing, and f there
   std::vector<std::array<double, 3>> at;          // per crossing: the edge's lower end, then the crossing
+  std::vector<float> grad;                        // f and its gradient per crossing, four arrays of n
+  // Where the chord through the bracket's ends crosses zero (bisection where f is undefined).
+  double false_position(size_t r) const {
+    double d = lo_f[r] - hi_f[r];
+    return d != 0 && std::isfinite(d) ? lo_t[r] + (hi_t[r] - lo_t[r]) * lo_f[r] / d : 0.5 * (lo_t[r] + hi_t[r]);
+  }
+  // f = value at t for crossing r: the end of the bracket with its sign moves there.
+  void narrow(size_t r, double value) {
+    v[r] = value;
+    bool same_as_lo = (value > 0) == (lo_f[r] > 0);
+    (same_as_lo ? lo_t[r] : hi_t[r]) = t[r];
+    (same_as_lo ? lo_f[r] : hi_f[r]) = value;
+  }
 };
 
 // The normal at crossing r from its probes (6 r .. 6 r + 5 in `out`); false when there is none.
@@ -366,40 +380,86 @@ bool probed_normal(const float* out, const Lattice& g, double normal[3]) {
   return std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0;
 }
 
-// Normals: minus the field's own gradient at the crossings where it has one (ir::gradient_module,
-// one evaluation each), else central differences, kProbe cells either side of the crossing
+// Minus the gradient in o[1..3] at q, when it is finite and not zero.
+bool gradient_normal(float* const o[4], size_t q, double normal[3]) {
+  for (int a = 0; a < 3; ++a) normal[a] = -double(o[1 + a][q]);
+  return std::isfinite(normal[0]) && std::isfinite(normal[1]) && std::isfinite(normal[2]) &&
+         std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0;
+}
+
+// f and its gradient at the points of pts (the field has one), into E.grad.
+bool eval_gradient(const Field& f, Batch& pts, size_t n, Edges& E, float* o[4], backends::RuntimeError& err) {
+  E.grad.resize(4 * n);
+  for (int k = 0; k < 4; ++k) o[k] = E.grad.data() + k * n;
+  EvalTimer timed;
+  return f.eval_gradient(pts.x.data(), pts.y.data(), pts.z.data(), n, o, err);
+}
+
+// The first step of a field with a gradient: f and its gradient at the chord's zero, then one
+// Newton step along the edge from there. Where that step stays in the bracket and moves less than
+// kNewtonReach of the edge, the crossing is its end and the normal the gradient, for one evaluation
+// (regula falsi took two or three, and the normal one more); the others go on to E.rest.
+bool newton(const Field& f, const Lattice& g, const Block& b, Edges& E, std::vector<Plane>& planes, backends::RuntimeError& err) {
+  constexpr double kNewtonReach = 0.05;
+  Batch& pts = scratch();
+  const size_t n = E.real.size();
+  pts.clear();
+  pts.resize(n);
+  for (size_t r = 0; r < n; ++r) {
+    E.t[r] = E.false_position(r);
+    std::array<double, 3> p = E.at[E.real[r]];
+    p[b.xs[E.real[r]].axis] += E.t[r] * g.h[b.xs[E.real[r]].axis];
+    pts.set(r, p[0], p[1], p[2]);
+  }
+  float* o[4];
+  if (!eval_gradient(f, pts, n, E, o, err)) return false;
+  E.rest.clear();
+  for (size_t r = 0; r < n; ++r) {
+    E.narrow(r, o[0][r]);
+    const int a = b.xs[E.real[r]].axis;
+    double normal[3], slope = double(o[1 + a][r]) * g.h[a];  // df/dt along the edge
+    double next = E.v[r] == 0 ? E.t[r] : E.t[r] - E.v[r] / slope;
+    if (!gradient_normal(o, r, normal) || !std::isfinite(next) || std::abs(next - E.t[r]) > kNewtonReach ||
+        next < E.lo_t[r] || next > E.hi_t[r]) {
+      E.rest.push_back(r);
+      continue;
+    }
+    E.t[r] = next;
+    std::array<double, 3>& p = E.at[E.real[r]];
+    p[a] += next * g.h[a];
+    planes[E.real[r]] = Qef::plane(p.data(), normal);
+  }
+  return true;
+}
+
+// Normals of the crossings E.rest: minus the field's own gradient where it has one
+// (ir::gradient_module, one evaluation each), else central differences, kProbe cells either side
 // (forward differences from the crossing cost two evaluations less but take a sharp edge's other face
 // whole where a probe crosses it: vertices 0.16 of a cell off in unit_dc_csg, against under 0.1).
 bool normals(const Field& f, const Lattice& g, const Block& b, Edges& E, std::vector<Plane>& planes, backends::RuntimeError& err) {
   Batch& pts = scratch();
-  const size_t n = E.real.size();
   thread_local std::vector<size_t> probe;  // crossings whose normal the differences give
-  thread_local std::vector<float> grad;
   probe.clear();
-  for (size_t r = 0; r < n; ++r) {
+  for (size_t r : E.rest) {
     std::array<double, 3>& p = E.at[E.real[r]];
     p[b.xs[E.real[r]].axis] += E.t[r] * g.h[b.xs[E.real[r]].axis];
   }
   if (f.has_gradient()) {
     pts.clear();
-    pts.resize(n);
-    for (size_t r = 0; r < n; ++r) pts.set(r, E.at[E.real[r]][0], E.at[E.real[r]][1], E.at[E.real[r]][2]);
-    grad.resize(4 * n);
-    float* const o[4] = {grad.data(), grad.data() + n, grad.data() + 2 * n, grad.data() + 3 * n};
-    {
-      EvalTimer timed;
-      if (!f.eval_gradient(pts.x.data(), pts.y.data(), pts.z.data(), n, o, err)) return false;
+    pts.resize(E.rest.size());
+    for (size_t q = 0; q < E.rest.size(); ++q) {
+      const std::array<double, 3>& p = E.at[E.real[E.rest[q]]];
+      pts.set(q, p[0], p[1], p[2]);
     }
-    for (size_t r = 0; r < n; ++r) {
-      double normal[3] = {-double(o[1][r]), -double(o[2][r]), -double(o[3][r])};
-      bool finite = std::isfinite(normal[0]) && std::isfinite(normal[1]) && std::isfinite(normal[2]);
-      if (finite && std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0)
-        planes[E.real[r]] = Qef::plane(E.at[E.real[r]].data(), normal);
-      else
-        probe.push_back(r);
+    float* o[4];
+    if (!eval_gradient(f, pts, E.rest.size(), E, o, err)) return false;
+    for (size_t q = 0; q < E.rest.size(); ++q) {
+      double normal[3];
+      if (gradient_normal(o, q, normal)) planes[E.real[E.rest[q]]] = Qef::plane(E.at[E.real[E.rest[q]]].data(), normal);
+      else probe.push_back(E.rest[q]);
     }
   } else {
-    for (size_t r = 0; r < n; ++r) probe.push_back(r);
+    probe = E.rest;
   }
   if (probe.empty()) return true;
   pts.clear();
@@ -447,19 +507,20 @@ bool hermite(const Field& f, const Lattice& g, Block& b, std::vector<Plane>& pla
     real.push_back(e);
     lo_t.push_back(0), hi_t.push_back(1), lo_f.push_back(b.ends[e][0]), hi_f.push_back(b.ends[e][1]);
   }
-  auto false_position = [&](size_t r) {  // where the chord through the bracket's ends crosses zero
-    double d = lo_f[r] - hi_f[r];  // NaN or infinite where the function is undefined: bisect instead
-    return d != 0 && std::isfinite(d) ? lo_t[r] + (hi_t[r] - lo_t[r]) * lo_f[r] / d : 0.5 * (lo_t[r] + hi_t[r]);
-  };
-  Batch& pts = scratch();
+  b.ends = {};
   t.assign(real.size(), 0), v.assign(real.size(), 0);
-  E.active.resize(real.size());
-  for (size_t r = 0; r < real.size(); ++r) E.active[r] = r;
+  E.rest.resize(real.size());
+  for (size_t r = 0; r < real.size(); ++r) E.rest[r] = r;
+  if (f.has_gradient() && !newton(f, g, b, E, planes, err)) return false;
+  // Regula falsi for the rest.
+  Batch& pts = scratch();
+  E.active = E.rest;
   for (int step = 0; step < kRefineSteps && !E.active.empty(); ++step) {
+    pts.clear();
     pts.resize(E.active.size());
     for (size_t q = 0; q < E.active.size(); ++q) {
       size_t r = E.active[q];
-      t[r] = false_position(r);
+      t[r] = E.false_position(r);
       std::array<double, 3> p = E.at[real[r]];
       p[b.xs[real[r]].axis] += t[r] * g.h[b.xs[real[r]].axis];
       pts.set(q, p[0], p[1], p[2]);
@@ -468,10 +529,7 @@ bool hermite(const Field& f, const Lattice& g, Block& b, std::vector<Plane>& pla
     size_t kept = 0;
     for (size_t q = 0; q < E.active.size(); ++q) {
       size_t r = E.active[q];
-      v[r] = pts.out[q];
-      bool same_as_lo = (v[r] > 0) == (lo_f[r] > 0);
-      (same_as_lo ? lo_t[r] : hi_t[r]) = t[r];
-      (same_as_lo ? lo_f[r] : hi_f[r]) = v[r];
+      E.narrow(r, pts.out[q]);
       // Settled: the chord's next step would move the crossing by less than kSettled of the edge.
       double d = std::abs(lo_f[r] - hi_f[r]);
       if (!(std::isfinite(d) && std::abs(v[r]) * (hi_t[r] - lo_t[r]) <= kSettled * d)) E.active[kept++] = r;
@@ -479,10 +537,8 @@ bool hermite(const Field& f, const Lattice& g, Block& b, std::vector<Plane>& pla
     E.active.resize(kept);
   }
   // A settled crossing stays where f was last evaluated; the others go to the final chord's zero.
-  for (size_t r : E.active) t[r] = std::clamp(false_position(r), 0.0, 1.0);
-  bool ok = normals(f, g, b, E, planes, err);
-  b.ends = {};
-  return ok;
+  for (size_t r : E.active) t[r] = std::clamp(E.false_position(r), 0.0, 1.0);
+  return normals(f, g, b, E, planes, err);
 }
 
 namespace {

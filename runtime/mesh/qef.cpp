@@ -81,7 +81,7 @@ bool dominant(const Eigen::Matrix3d& a, double cutoff, Eigen::Vector3d& v, doubl
     double moved = next.cross(v).squaredNorm(), scale = next.squaredNorm() * v.squaredNorm();
     v = next;
     if (!(scale > 0)) return false;
-    if (moved < 1e-24 * scale) break;
+    if (moved < 1e-18 * scale) break;
   }
   v.normalize();
   lambda = v.dot(a * v);

@@ -246,7 +246,7 @@ uint32_t Block::sheet(const CellInfo& c, int in, int out) const {
   if (c.flips & kOneSheet) return c.first;
   int k = key(c, in, out);
   uint32_t s = c.first;
-  while (s != kNone && sheets[s].key != k) s = sheets[s].next;
+  while (s != kNone && sheets[s].key != k) s = sheets[s].next();
   return s;
 }
 

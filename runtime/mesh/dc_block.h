@@ -33,10 +33,18 @@ void cells_of(const Crossing& c, int out[4][3]);
 
 // One sheet of surface in a dual cell (manifold dual contouring). Its planes (a Qef) live only while
 // the block is merged (cell_sheets to merge_block), so the blocks stay small.
+// In 16 bits: a block holds 4,096 cells and at most four sheets in each (6 bytes a sheet, not 12:
+// a finished block keeps them to the end).
 struct Sheet {
-  uint32_t cell;  // in the block
-  uint32_t next;  // the cell's next sheet, or kNone
-  int key;        // sheet_key: which sheet of the cell
+  Sheet() = default;
+  Sheet(uint32_t in_cell, uint32_t next_sheet, int sheet_key)
+      : cell(static_cast<uint16_t>(in_cell)), link(next_sheet == kNone ? kEnd : static_cast<uint16_t>(next_sheet)),
+        key(static_cast<uint8_t>(sheet_key)) {}
+  uint32_t next() const { return link == kEnd ? kNone : link; }  // the cell's next sheet, or kNone
+  static constexpr uint16_t kEnd = 0xffff;
+  uint16_t cell = 0;     // in the block
+  uint16_t link = kEnd;  // next(), or kEnd
+  uint8_t key = 0;       // sheet_key: which sheet of the cell
 };
 
 struct Block {

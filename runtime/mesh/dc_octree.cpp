@@ -164,7 +164,7 @@ struct BlockTree {
   static Child leaf(const Block& b, const std::vector<Qef>& qefs, size_t c) {
     uint32_t first = b.cells[c].first;
     if (first == kNone) return {State::Empty, nullptr};
-    return {b.sheets[first].next == kNone ? State::Merged : State::Kept, &qefs[first]};
+    return {b.sheets[first].next() == kNone ? State::Merged : State::Kept, &qefs[first]};
   }
   // The level's nodes: the parents of the level below's (of the cells with sheets for level 1).
   void make_level(const Block& b, int l) {

@@ -147,7 +147,7 @@ void put_block(ByteWriter& w, const BlockGrid& grid, const Block& b, int first_l
   if (!top) return;
   std::vector<uint16_t> next(b.sheets.size()), vertex(b.vertex.size()), at, signs, first;
   std::vector<uint8_t> key(b.sheets.size());
-  for (size_t s = 0; s < b.sheets.size(); ++s) next[s] = narrow(b.sheets[s].next), key[s] = static_cast<uint8_t>(b.sheets[s].key);
+  for (size_t s = 0; s < b.sheets.size(); ++s) next[s] = narrow(b.sheets[s].next()), key[s] = static_cast<uint8_t>(b.sheets[s].key);
   for (size_t s = 0; s < b.vertex.size(); ++s) vertex[s] = narrow(b.vertex[s]);
   for (const Block::RimCell& c : b.rim)
     if (c.at < kFace)
@@ -165,7 +165,7 @@ bool top_sound(const Block& b) {
   size_t sheets = b.sheets.size();
   if (b.vertex.size() != sheets) return false;
   for (size_t s = 0; s < sheets; ++s)
-    if (b.sheets[s].next != kNone && b.sheets[s].next >= s) return false;
+    if (b.sheets[s].next() != kNone && b.sheets[s].next() >= s) return false;
   for (uint32_t v : b.vertex)
     if (v >= b.positions.size()) return false;
   for (const Block::RimCell& c : b.rim)

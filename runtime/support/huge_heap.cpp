@@ -15,13 +15,7 @@
 #include <unistd.h>
 #endif
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define FS_FOREIGN_MALLOC 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
-#define FS_FOREIGN_MALLOC 1
-#endif
-#endif
+#include "runtime/support/sanitizers.h"
 
 namespace fscript::support {
 namespace {

@@ -13,14 +13,8 @@
 #include <unistd.h>
 
 #include "runtime/support/files.h"
+#include "runtime/support/sanitizers.h"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define FS_UNDER_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define FS_UNDER_ASAN 1
-#endif
-#endif
 
 namespace fscript::support {
 namespace {
@@ -65,7 +59,7 @@ void start_watchdog(const char* tool, double seconds) {
 }
 
 bool limit_memory(const char* tool, uint64_t mib, std::string& error) {
-#ifdef FS_UNDER_ASAN
+#ifdef FS_ASAN
   if (mib > 0) return true;  // AddressSanitizer's shadow memory would count against the limit
 #endif
   std::snprintf(g_memory_message, sizeof g_memory_message,

@@ -9,21 +9,13 @@
 #include <string>
 
 #include "runtime/support/huge_heap.h"
+#include "runtime/support/sanitizers.h"
 
 using namespace fscript;
 
 namespace {
 
-bool sanitized() {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-  return true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
-  return true;
-#endif
-#endif
-  return false;
-}
+bool sanitized() { return support::kForeignMalloc; }
 
 bool huge_pages_on() {
   std::ifstream f("/sys/kernel/mm/transparent_hugepage/enabled");

@@ -1,10 +1,12 @@
 // Fuzz target: bytes as an FScript file through the lexer, parser, sema, lowering, the verifier
-// after every pass, and one evaluation on the VM. Diagnostics are fine; crashes, hangs, leaks, a
-// verifier failure or a refusal without an error are findings.
+// after every pass, the gradient pass, and one evaluation on the VM. Diagnostics are fine; crashes,
+// hangs, leaks, a verifier failure, a refusal without an error, or a gradient kernel whose f is not
+// the kernel's are findings.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 
+#include "ir/passes/gradient.h"
 #include "ir/text.h"
 #include "ir/verifier.h"
 #include "runtime/driver/driver.h"
@@ -35,8 +37,16 @@ void one_input(const std::string& text) {
   if (!c.kernel) return;
   std::vector<float> in(c.kernel->num_inputs(), 0.25f), out(c.kernel->num_outputs());
   backends::RuntimeError err;
-  if (!c.kernel->eval(in.data(), out.data(), err) && err.message.empty())
-    fuzz::finding("a runtime error without a message", text);
+  bool ran = c.kernel->eval(in.data(), out.data(), err);
+  if (!ran && err.message.empty()) fuzz::finding("a runtime error without a message", text);
+  auto g = ir::gradient_module(*c.module);
+  if (!g) return;
+  if (std::string gv = ir::verify(*g); !gv.empty()) fuzz::finding("verifier, gradient module: " + gv, text);
+  std::unique_ptr<backends::Kernel> gk;
+  if (!driver::compile_kernel(*g, "vm", o.budgets, gk).ok()) fuzz::finding("the gradient module does not compile", text);
+  float d[4];
+  if (!ran || !gk->eval(in.data(), d, err)) return;  // a straight-line kernel has no runtime error
+  if (!(d[0] == out[0] || (d[0] != d[0] && out[0] != out[0]))) fuzz::finding("the gradient kernel's f is not the kernel's", text);
 }
 
 }  // namespace

@@ -22,6 +22,14 @@ constexpr double kProbe = 0.01;
 constexpr size_t kSamples = static_cast<size_t>(kBlockSamples) * kBlockSamples * kBlockSamples;
 constexpr size_t kCells = static_cast<size_t>(kBlock) * kBlock * kBlock;
 
+// The set bits of v, inline: the baseline instruction set has no popcnt, and __builtin_popcount
+// became a library call per row.
+int bit_count(uint32_t v) {
+  v -= (v >> 1) & 0x55555555u;
+  v = (v & 0x33333333u) + ((v >> 2) & 0x33333333u);
+  return static_cast<int>((((v + (v >> 4)) & 0x0F0F0F0Fu) * 0x01010101u) >> 24);
+}
+
 // Scratch arrays for one batch of points, reused per thread: they only grow, and `n` says how many
 // points the batch holds (shrinking and growing them again zero-filled them at every step). A batch
 // is either points (add) or grid rows (add_row), which run through Field::eval_rows.
@@ -113,7 +121,7 @@ void find_crossings(Block& b) {
     for (int j = 0; j <= b.m[1]; ++j) {
       uint32_t change[3];
       changes(j, k, change);
-      count += static_cast<size_t>(__builtin_popcount(change[0]) + __builtin_popcount(change[1]) + __builtin_popcount(change[2]));
+      count += static_cast<size_t>(bit_count(change[0]) + bit_count(change[1]) + bit_count(change[2]));
     }
   b.xs.reserve(count);
   for (int k = 0; k <= b.m[2]; ++k)

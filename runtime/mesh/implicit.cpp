@@ -443,27 +443,55 @@ bool refine(const Grid& g, const Field& f, std::vector<Edge>& edges, Mesh& m, in
   }, err);
 }
 
-// Normals: minus the gradient (central differences, a tenth of a cell); caps face outward.
+// Minus the field's own gradient at vertices b0 .. b0 + n - 1 (ir::gradient_module), into d[3 q ..];
+// false where a vertex has none (not finite, or zero): then the block takes differences.
+bool gradient_normals(const Field& f, const Mesh& m, size_t b0, size_t n, std::vector<float>& d, backends::RuntimeError& err,
+                      bool& usable) {
+  std::vector<float> xs(n), ys(n), zs(n), g(4 * n);
+  for (size_t q = 0; q < n; ++q) xs[q] = m.positions[b0 + q][0], ys[q] = m.positions[b0 + q][1], zs[q] = m.positions[b0 + q][2];
+  float* const o[4] = {g.data(), g.data() + n, g.data() + 2 * n, g.data() + 3 * n};
+  {
+    EvalTimer timed;
+    if (!f.eval_gradient(xs.data(), ys.data(), zs.data(), n, o, err)) return false;
+  }
+  usable = true;
+  d.resize(3 * n);
+  for (size_t q = 0; q < n && usable; ++q) {
+    float len2 = 0;
+    for (int a = 0; a < 3; ++a) d[3 * q + a] = -o[1 + a][q], len2 += o[1 + a][q] * o[1 + a][q];
+    usable = len2 > 0 && std::isfinite(len2);
+  }
+  return true;
+}
+
+// Normals: minus the gradient (the field's own where it has one, else central differences a tenth
+// of a cell apart); caps face outward.
 bool normals(const Grid& g, const Field& f, const std::vector<Edge>& edges, Mesh& m, int threads,
              backends::RuntimeError& err) {
   m.normals.resize(m.positions.size());
   constexpr size_t kBlock = kBatch / 6;
+  const bool analytic = f.has_gradient();
   return split(m.positions.size(), threads, [&](size_t b, size_t e, backends::RuntimeError& er) {
-    std::vector<float> xs(6 * kBlock), ys(6 * kBlock), zs(6 * kBlock), out(6 * kBlock);
+    std::vector<float> xs(6 * kBlock), ys(6 * kBlock), zs(6 * kBlock), out(6 * kBlock), grad;
     for (size_t b0 = b; b0 < e; b0 += kBlock) {
       size_t n = std::min(kBlock, e - b0), p = 0;
-      for (int a = 0; a < 3; ++a)
-        for (int s = -1; s <= 1; s += 2)
-          for (size_t v = b0; v < b0 + n; ++v, ++p) {
-            Vec3 q = m.positions[v];
-            q[a] += static_cast<float>(s * 0.1 * g.h[a]);
-            xs[p] = q[0], ys[p] = q[1], zs[p] = q[2];
-          }
-      if (!evaluate(f, xs.data(), ys.data(), zs.data(), p, out.data(), er)) return false;
+      bool usable = false;
+      if (analytic && !gradient_normals(f, m, b0, n, grad, er, usable)) return false;
+      if (!usable) {
+        for (int a = 0; a < 3; ++a)
+          for (int s = -1; s <= 1; s += 2)
+            for (size_t v = b0; v < b0 + n; ++v, ++p) {
+              Vec3 q = m.positions[v];
+              q[a] += static_cast<float>(s * 0.1 * g.h[a]);
+              xs[p] = q[0], ys[p] = q[1], zs[p] = q[2];
+            }
+        if (!evaluate(f, xs.data(), ys.data(), zs.data(), p, out.data(), er)) return false;
+      }
       for (size_t q = 0; q < n; ++q) {
         const Edge& ed = edges[b0 + q];
         std::array<float, 3> d;
-        for (int a = 0; a < 3; ++a) d[a] = -(out[(2 * a + 1) * n + q] - out[2 * a * n + q]) / static_cast<float>(0.2 * g.h[a]);
+        for (int a = 0; a < 3; ++a)
+          d[a] = usable ? grad[3 * q + a] : -(out[(2 * a + 1) * n + q] - out[2 * a * n + q]) / static_cast<float>(0.2 * g.h[a]);
         float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         if (ed.cap || !(len > 0) || !std::isfinite(len)) {
           for (int a = 0; a < 3; ++a) d[a] = static_cast<float>(ed.step[a]);

@@ -150,9 +150,9 @@ void transform_mesh(const Mat4& t, mesh::Mesh& m) {
 
 // Tells the shape's kernels how many points are ahead (the auto backend compiles natively at once
 // when that pays): a dense grid's (of the shape's own dimensions), or a quarter of it where
-// interval pruning skips most cells; dual contouring's gradient kernel, a crossing per cell of
-// three faces of the grid (a plane across it; the gyroid has four times that).
-void expect_work(const Shape& s, bool prune, mesh::Mesher mesher) {
+// interval pruning skips most cells; the gradient kernel (the meshers' normals), a crossing per
+// cell of three faces of the grid (a plane across it; the gyroid has four times that).
+void expect_work(const Shape& s, bool prune) {
   uint64_t points = 1, face = 1;
   int dims = s.kind == ShapeKind::Curve ? 1 : s.kind == ShapeKind::Surface ? 2 : 3;
   for (int k = 0; k < dims; ++k) points *= static_cast<uint64_t>(std::max(s.resolution[static_cast<size_t>(k)], 1) + 1);
@@ -160,7 +160,7 @@ void expect_work(const Shape& s, bool prune, mesh::Mesher mesher) {
   if (s.kind == ShapeKind::Implicit && prune) points /= 4;
   for (const CompiledField* f : {&s.geometry, s.texture ? &*s.texture : nullptr, s.colour ? &*s.colour : nullptr})
     if (f && f->kernel) f->kernel->expect_points(points);
-  if (s.kind == ShapeKind::Implicit && mesher == mesh::Mesher::DualContouring && s.geometry.gradient && !s.texture)
+  if (s.kind == ShapeKind::Implicit && s.geometry.gradient && !s.texture)
     if (const backends::Kernel* g = s.geometry.gradient->get()) g->expect_points(3 * face);
 }
 
@@ -177,7 +177,7 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bo
     return false;
   }
   if (making_slabs(mesher) && s.kind != ShapeKind::Implicit) return out = mesh::Mesh{}, true;
-  if (!joining_slabs(mesher)) expect_work(s, prune, mesher.kind);
+  if (!joining_slabs(mesher)) expect_work(s, prune);
   bool ok;
   support::ProgressJob progress;  // one job of the run's progress line
   if (s.kind == ShapeKind::Implicit) {
@@ -260,7 +260,7 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::Runti
   out = mesh::Mesh{};
   support::ProgressJob progress;
   for (const Shape& s : m.shapes)
-    if (inside_group(m, s.group, group) && !joining_slabs(mesher)) expect_work(s, prune, mesher.kind);
+    if (inside_group(m, s.group, group) && !joining_slabs(mesher)) expect_work(s, prune);
   if (parametric_group(m, group)) {
     if (making_slabs(mesher)) return true;
     if (!mesh_parametric_group(m, group, out, err, threads, prune)) return false;

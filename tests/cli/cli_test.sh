@@ -116,6 +116,12 @@ check wrl-positions 1 'scene.wrl:4:23: error: unknown name' -- "$F" check "$T/sc
 check emit-ir 0 'fn @kernel\(4\) -> 1 kernel' -- "$F" emit-ir "$T/sphere.fs" --opt
 check emit-ir-passes 0 'fmul' -- "$F" emit-ir "$T/sphere.fs" --passes inline,fold
 check emit-ir-bad-pass 1 "unknown pass 'nope'" -- "$F" emit-ir "$T/sphere.fs" --passes nope
+# --gradient: f and its three partial derivatives, what the meshers evaluate for normals.
+check emit-ir-gradient 0 'fn @kernel.gradient\(4\) -> 4 kernel' -- "$F" emit-ir --gradient "$T/sphere.fs"
+"$F" emit-ir --gradient "$T/sphere.fs" | grep -Eq '^  ret v[0-9]+, v[0-9]+, v[0-9]+, v[0-9]+$' || fail "emit-ir --gradient: four outputs"
+printf 'function FRep(x, y, z, t) { return noise(x, y, z) - 0.1; }\n' > "$T/noisy.fs"
+check emit-ir-gradient-none 1 'noisy.fs: error: this kernel has no gradient' -- "$F" emit-ir --gradient "$T/noisy.fs"
+n=$((n + 1))
 check emit-asm-vm 0 'registers' -- "$F" emit-asm "$T/sphere.fs" --backend vm
 # A kernel the row split wraps still lists (it did not: "no listing for backend 'vm'"), with its
 # sin and cos pairs.

@@ -18,6 +18,7 @@
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "ir/passes/passes.h"
+#include "ir/passes/gradient.h"
 #include "ir/text.h"
 
 namespace fscript::cli {
@@ -144,19 +145,21 @@ int cmd_check(const std::vector<std::string>& files) {
   return rc;
 }
 
-int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes, bool llvm) {
+int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes, bool llvm,
+                bool gradient) {
   Compiled c;
   std::string text;
   if (refuse_scene(file) || !read_source(file, text)) return kExitInput;
   frontend::DiagnosticSink diag;
   // No entry point is fine here: the listing shows the functions with an empty kernel.
   driver::EntryChoice chosen = driver::named_entry(entry);
+  std::string no_entry;
   auto any_entry = [&](const frontend::SemaResult& sema, frontend::KernelSpec& spec, std::string& error) {
-    if (!chosen(sema, spec, error)) spec = {};
+    if (!chosen(sema, spec, error)) spec = {}, no_entry = error.empty() ? "no entry point" : error;
     return true;
   };
   Options o;
-  o.build.optimize = (opt || llvm) && passes.empty();
+  o.build.optimize = (opt || llvm || gradient) && passes.empty();
   o.want_kernel = false;
   driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>(file, text), any_entry, o, diag, c);
   print_diagnostics(diag);
@@ -166,6 +169,20 @@ int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, con
   if (!c.module || !error.empty()) {
     std::cerr << "error: " << error << "\n";
     return kExitInput;
+  }
+  if (gradient && !no_entry.empty()) {
+    std::cerr << file << ": error: --gradient needs the kernel: " << no_entry << "\n";
+    return kExitInput;
+  }
+  if (gradient) {  // what the meshers evaluate for normals
+    std::unique_ptr<ir::Module> g = ir::gradient_module(*c.module);
+    if (!g) {
+      std::cerr << file << ": error: this kernel has no gradient: after optimisation it is not one block of "
+                   "pure operations (a loop, a call, a global or an array is left), or it uses noise of x, y or z; "
+                   "the meshers take differences of it instead\n";
+      return kExitInput;
+    }
+    c.module = std::move(g);
   }
   if (llvm) {
     const backends::LlvmModule* lm = backends::llvm_module(&error);

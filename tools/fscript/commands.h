@@ -10,7 +10,8 @@ namespace fscript::cli {
 int cmd_run(const Options& o, const std::string& file, const std::string& entry, const std::vector<std::string>& args);
 int cmd_eval(const Options& o, const std::string& file, const std::string& entry, const std::string& points);
 int cmd_check(const std::vector<std::string>& files);
-int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes, bool llvm);
+int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, const std::string& passes, bool llvm,
+                bool gradient);
 int cmd_emit_asm(const Options& o, const std::string& file, const std::string& entry);
 // Prints the canonical formatting; -i rewrites the file (only if it changes), --check only says.
 int cmd_fmt(const std::string& file, bool in_place, bool check_only);

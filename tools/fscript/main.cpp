@@ -21,7 +21,7 @@ struct Args {
   std::vector<std::string> files, values;
   size_t points = 1'000'000;
   unsigned threads = 1, repeat = 1;
-  bool opt = false, one_point = false, grid = false, llvm = false, disk_cache = false, no_prune = false, stats = false;
+  bool opt = false, gradient = false, one_point = false, grid = false, llvm = false, disk_cache = false, no_prune = false, stats = false;
   bool in_place = false, check_only = false;
   uint32_t max_depth = 1000;
   tools::RunLimits limits;
@@ -56,7 +56,7 @@ int dispatch(CLI::App& app, Args& a) {
   }
   if (app.got_subcommand("eval")) return cmd_eval(a.opts, a.file, a.entry, a.points_path);
   if (app.got_subcommand("check")) return cmd_check(a.files);
-  if (app.got_subcommand("emit-ir")) return cmd_emit_ir(a.file, a.entry, a.opt, a.passes, a.llvm);
+  if (app.got_subcommand("emit-ir")) return cmd_emit_ir(a.file, a.entry, a.opt, a.passes, a.llvm, a.gradient);
   if (app.got_subcommand("emit-asm")) return cmd_emit_asm(a.opts, a.file, a.entry);
   if (app.got_subcommand("fmt")) return cmd_fmt(a.file, a.in_place, a.check_only);
   if (app.got_subcommand("repl")) return run_repl(a.opts);
@@ -93,6 +93,8 @@ int real_main(int argc, char** argv) {
   emit->add_flag("--llvm", a.llvm, "the kernel lowered to LLVM IR and optimised by LLVM (the llvm backend)");
   emit->add_option("--passes", a.passes, "run these passes in order instead (inline,promote,fold,dce,gvn,simplify,ifconv)");
   emit->add_option("--entry,-e", a.entry, "function to build the kernel for");
+  emit->add_flag("--gradient", a.gradient,
+                 "the optimised kernel of f and its partial derivatives in x, y, z (what the meshers evaluate for normals)");
 
   add_compiling(app, "emit-asm", "print the generated code of a backend", a);
 

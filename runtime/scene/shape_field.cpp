@@ -253,25 +253,34 @@ bool GroupField::eval_rows(const float* x, size_t count, const float* y, const f
   return true;
 }
 
+GroupField::SetOp GroupField::set_op() const {
+  SetOp s;
+  const std::string& op = g_.operation;
+  s.kind = op == "intersection"                           ? SetOp::Intersection
+           : op == "subtraction" || op == "difference"    ? SetOp::Subtraction
+           : op == "blend_union" || op == "blend_intersection" ? SetOp::Blend
+                                                          : SetOp::Union;  // and any unknown name, reported
+  s.sign = op == "blend_union" ? 1 : -1;
+  const vrml::Value* p = g_.node->get("parameters");
+  s.a0 = p && p->nums.size() > 0 ? p->nums[0] : 0, s.a1 = p && p->nums.size() > 1 ? p->nums[1] : 1;
+  s.a2 = p && p->nums.size() > 2 ? p->nums[2] : 1;
+  return s;
+}
+
 void GroupField::fold(float* out, const float* rest, size_t n) const {
   auto vals = [&](size_t k) { return rest + n * (k - 1); };
-  std::string op = g_.operation.empty() ? "union" : g_.operation;
-  const vrml::Value* p = g_.node->get("parameters");
-  double a0 = p && p->nums.size() > 0 ? p->nums[0] : 0, a1 = p && p->nums.size() > 1 ? p->nums[1] : 1,
-         a2 = p && p->nums.size() > 2 ? p->nums[2] : 1;
-  bool blend = op == "blend_union" || op == "blend_intersection";
-  double sign = op == "blend_union" ? 1 : -1;
+  const SetOp op = set_op();
   for (size_t k = 1; k < kids_.size(); ++k) {
     const float* g = vals(k);
-    if (op == "intersection") {
+    if (op.kind == SetOp::Intersection) {
       for (size_t i = 0; i < n; ++i) out[i] = math::min(out[i], g[i]);
-    } else if (op == "subtraction" || op == "difference") {
+    } else if (op.kind == SetOp::Subtraction) {
       for (size_t i = 0; i < n; ++i) out[i] = math::min(out[i], -g[i]);
-    } else if (blend) {
+    } else if (op.kind == SetOp::Blend) {
       for (size_t i = 0; i < n; ++i) {
         float f = out[i], h = g[i];  // f + h is a float sum, the rest double
-        double fa = f / a1, ga = h / a2;
-        out[i] = static_cast<float>(f + h + sign * std::sqrt(double(f) * f + double(h) * h) + a0 / (1 + fa * fa + ga * ga));
+        double fa = f / op.a1, ga = h / op.a2;
+        out[i] = static_cast<float>(f + h + op.sign * std::sqrt(double(f) * f + double(h) * h) + op.a0 / (1 + fa * fa + ga * ga));
       }
     } else {
       for (size_t i = 0; i < n; ++i) out[i] = math::max(out[i], g[i]);  // union (and any unknown name, reported)
@@ -309,13 +318,9 @@ bool GroupField::eval_gradient(const float* x, const float* y, const float* z, s
 }
 
 void GroupField::fold_gradient(float* const out[4], const float* const g[4], size_t n) const {
-  std::string op = g_.operation.empty() ? "union" : g_.operation;
-  const vrml::Value* p = g_.node->get("parameters");
-  double a0 = p && p->nums.size() > 0 ? p->nums[0] : 0, a1 = p && p->nums.size() > 1 ? p->nums[1] : 1,
-         a2 = p && p->nums.size() > 2 ? p->nums[2] : 1;
-  bool blend = op == "blend_union" || op == "blend_intersection";
-  double sign = op == "blend_union" ? 1 : -1;
-  bool subtract = op == "subtraction" || op == "difference";
+  const SetOp op = set_op();
+  const double a0 = op.a0, a1 = op.a1, a2 = op.a2, sign = op.sign;
+  const bool blend = op.kind == SetOp::Blend, subtract = op.kind == SetOp::Subtraction;
   for (size_t i = 0; i < n; ++i) {
     float f = out[0][i], h = subtract ? -g[0][i] : g[0][i];
     double hs = subtract ? -1 : 1;
@@ -326,7 +331,7 @@ void GroupField::fold_gradient(float* const out[4], const float* const g[4], siz
       for (int a = 1; a < 4; ++a) out[a][i] = static_cast<float>(df * out[a][i] + dh * g[a][i]);
       continue;
     }
-    bool min = op == "intersection" || subtract;
+    bool min = op.kind == SetOp::Intersection || subtract;
     out[0][i] = min ? math::min(f, h) : math::max(f, h);
     if (min ? h < f : h > f)
       for (int a = 1; a < 4; ++a) out[a][i] = static_cast<float>(hs * g[a][i]);
@@ -369,15 +374,12 @@ math::Interval GroupField::bound(const mesh::Box3& box) const {
     g_.op_kernel->intervals->eval(in, ev);
     return ev.outputs.empty() ? math::Interval::everything() : ev.outputs[0];
   }
-  const vrml::Value* p = g_.node->get("parameters");
-  double a0 = p && p->nums.size() > 0 ? p->nums[0] : 0, a1 = p && p->nums.size() > 1 ? p->nums[1] : 1,
-         a2 = p && p->nums.size() > 2 ? p->nums[2] : 1;
-  std::string op = g_.operation.empty() ? "union" : g_.operation;
+  const SetOp op = set_op();
   math::Interval out = vals[0];
   for (size_t k = 1; k < vals.size(); ++k) {
-    if (op == "intersection") out = math::iv::min(out, vals[k]);
-    else if (op == "subtraction" || op == "difference") out = math::iv::min(out, math::iv::neg(vals[k]));
-    else if (op == "blend_union" || op == "blend_intersection") out = blend_bound(out, vals[k], op == "blend_union" ? 1 : -1, a0, a1, a2);
+    if (op.kind == SetOp::Intersection) out = math::iv::min(out, vals[k]);
+    else if (op.kind == SetOp::Subtraction) out = math::iv::min(out, math::iv::neg(vals[k]));
+    else if (op.kind == SetOp::Blend) out = blend_bound(out, vals[k], op.sign, op.a0, op.a1, op.a2);
     else out = math::iv::max(out, vals[k]);
   }
   return out;

@@ -58,6 +58,12 @@ class GroupField : public mesh::Field {
  private:
   // An analytical operation (the FTransform's operation as a script) over the children's values.
   bool eval_operator(const float* x, const float* y, const float* z, size_t n, float* out, backends::RuntimeError& err) const;
+  // The set operation and its blend parameters (a0, a1, a2; sign +1 for blend_union), read once.
+  struct SetOp {
+    enum Kind { Union, Intersection, Subtraction, Blend } kind = Union;
+    double sign = -1, a0 = 0, a1 = 1, a2 = 1;
+  };
+  SetOp set_op() const;
   // The set operation folded over the children's values: the first in out, the others in rest.
   void fold(float* out, const float* rest, size_t n) const;
   // One step of that fold with gradients: out (f, df/dx, df/dy, df/dz) combined with g.

@@ -407,7 +407,7 @@ bool eval_gradient(const Field& f, Batch& pts, size_t n, Edges& E, float* o[4], 
 // Newton step along the edge from there. Where that step stays in the bracket and moves less than
 // kNewtonReach of the edge, the crossing is its end and the normal the gradient, for one evaluation
 // (regula falsi took two or three, and the normal one more); the others go on to E.rest.
-bool newton(const Field& f, const Lattice& g, const Block& b, Edges& E, std::vector<Plane>& planes, backends::RuntimeError& err) {
+bool newton(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<Plane>& planes, backends::RuntimeError& err) {
   constexpr double kNewtonReach = 0.05;
   Batch& pts = scratch();
   const size_t n = E.real.size();
@@ -437,6 +437,7 @@ bool newton(const Field& f, const Lattice& g, const Block& b, Edges& E, std::vec
     p[a] += next * g.h[a];
     planes[E.real[r]] = Qef::plane(p.data(), normal);
   }
+  b.gradient_normals += static_cast<uint32_t>(n - E.rest.size());
   return true;
 }
 
@@ -444,7 +445,7 @@ bool newton(const Field& f, const Lattice& g, const Block& b, Edges& E, std::vec
 // (ir::gradient_module, one evaluation each), else central differences, kProbe cells either side
 // (forward differences from the crossing cost two evaluations less but take a sharp edge's other face
 // whole where a probe crosses it: vertices 0.16 of a cell off in unit_dc_csg, against under 0.1).
-bool normals(const Field& f, const Lattice& g, const Block& b, Edges& E, std::vector<Plane>& planes, backends::RuntimeError& err) {
+bool normals(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<Plane>& planes, backends::RuntimeError& err) {
   Batch& pts = scratch();
   thread_local std::vector<size_t> probe;  // crossings whose normal the differences give
   probe.clear();
@@ -469,6 +470,8 @@ bool normals(const Field& f, const Lattice& g, const Block& b, Edges& E, std::ve
   } else {
     probe = E.rest;
   }
+  b.gradient_normals += static_cast<uint32_t>(E.rest.size() - probe.size());
+  b.difference_normals += static_cast<uint32_t>(probe.size());
   if (probe.empty()) return true;
   pts.clear();
   pts.resize(6 * probe.size());

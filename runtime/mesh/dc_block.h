@@ -87,6 +87,7 @@ struct Block {
   bool root = false;        // one merged cell holds every sheet: it may merge with other blocks
   Qef root_qef;
   size_t evaluated = 0;
+  uint32_t gradient_normals = 0, difference_normals = 0;  // of its crossings' normals (the box's aside)
   bool sound = true;  // no evaluated sample contradicted its brick's bound
 
   static size_t sample(int i, int j, int k) {

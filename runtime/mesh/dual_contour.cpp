@@ -230,6 +230,7 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   out.triangles.reserve(2 * crossings);
   for (const Block& b : blocks) polygons(*grid, b, out);
   stats.triangles = out.triangles.size();
+  for (const Block& b : blocks) stats.gradient_normals += b.gradient_normals, stats.difference_normals += b.difference_normals;
   // No vertex normals: a vertex on a sharp edge has no one normal, and its faces' mean would shade
   // both sides wrong; without them every output is shaded flat (glTF and VRML97 viewers too).
   return true;
@@ -237,6 +238,7 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
 
 void DualContourStats::add(const DualContourStats& o) {
   cells += o.cells, merged += o.merged, triangles += o.triangles, jobs += o.jobs;
+  gradient_normals += o.gradient_normals, difference_normals += o.difference_normals;
   max_error = std::max(max_error, o.max_error);
 }
 

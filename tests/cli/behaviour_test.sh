@@ -178,7 +178,7 @@ fi
 # ---- Every --stats field ----
 jcheck "--stats fields of a single run" err "
 set(j) == {'compile_ms', 'dual_contouring', 'evaluation_ms', 'ftransforms', 'huge_heap_mib', 'parse_ms', 'polygonize_ms', 'prune', 'row_split', 'shapes', 'tiers', 'write_ms'} and
-set(j['dual_contouring']) == {'max_qef_error_cells', 'merged_cells', 'shapes', 'triangles', 'vertices'} and
+set(j['dual_contouring']) == {'max_qef_error_cells', 'merged_cells', 'normals', 'shapes', 'triangles', 'vertices'} and
 set(j['prune']) == {'evaluated', 'evaluated_fraction', 'fallbacks', 'levels', 'points', 'pruned'} and
 j['prune']['pruned'] and j['prune']['points'] == 512 and j['prune']['fallbacks'] == 0 and
 [l['size'] for l in j['prune']['levels']] == [64, 32, 16, 8] and
@@ -396,6 +396,14 @@ jcheck "fvrml-run --mesher dc --stats: merged cells, fewer triangles, QEF error"
 j['dual_contouring']['shapes'] == 1 and j['dual_contouring']['merged_cells'] > 0 and
 j['dual_contouring']['triangles'] < 288 / 2 and j['dual_contouring']['max_qef_error_cells'] < 0.02
 " -- "$R" "$T/turned.fs" --mesher dc --stats -o "$T/turned-dc2.ply"
+# Normals from the function's gradient (a straight-line script); noise of x has none: differences.
+jcheck "fvrml-run --stats: the turned cube's normals from its gradient" err "
+j['dual_contouring']['normals']['gradient'] > 100 and j['dual_contouring']['normals']['differences'] == 0
+" -- "$R" "$T/turned.fs" --stats -o "$T/turned-dc4.ply"
+printf 'function FRep(x, y, z, t) { return 0.5 - sqrt(x*x + y*y + z*z) + 0.05 * noise(4*x, 4*y, 4*z); }\n' > "$T/noisy.fs"
+jcheck "fvrml-run --stats: noise has no gradient, its normals come from differences" err "
+j['dual_contouring']['normals']['gradient'] == 0 and j['dual_contouring']['normals']['differences'] > 100
+" -- "$R" "$T/noisy.fs" --stats -o "$T/noisy.ply"
 jcheck "fvrml-run --mesher dc --tolerance 0: no merged cells" err "
 j['dual_contouring']['merged_cells'] == 0 and j['dual_contouring']['triangles'] == 288
 " -- "$R" "$T/turned.fs" --mesher dc --tolerance 0 --stats -o "$T/turned-dc3.ply"

@@ -84,7 +84,8 @@ nlohmann::json prune_json() {
 nlohmann::json dual_contouring_json() {
   mesh::DualContourStats d = mesh::dual_contour_totals();
   return {{"shapes", d.jobs}, {"vertices", d.cells}, {"merged_cells", d.merged}, {"triangles", d.triangles},
-          {"max_qef_error_cells", d.max_error}};
+          {"max_qef_error_cells", d.max_error},
+          {"normals", {{"gradient", d.gradient_normals}, {"differences", d.difference_normals}}}};
 }
 
 // What the auto backend did: native compiles, the switch, the points on each tier.

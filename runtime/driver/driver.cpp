@@ -53,7 +53,8 @@ std::unique_ptr<backends::Kernel> gradient_kernel(const ir::Module& m, const std
                                                   const backends::Budgets& budgets) {
   std::unique_ptr<ir::Module> g = ir::gradient_module(m);
   std::unique_ptr<backends::Kernel> k;
-  if (g && !compile_kernel(*g, name, budgets, k).ok()) k.reset();
+  if (!g || (name == "llvm" && g->instruction_count() > kMaxLlvmGradientOps)) return k;
+  if (!compile_kernel(*g, name, budgets, k).ok()) k.reset();
   return k;
 }
 

@@ -74,7 +74,11 @@ Outcome compile_kernel(const ir::Module& m, const std::string& name, const backe
 
 // The kernel of f and its gradient (ir::gradient_module: outputs f, df/dx, df/dy, df/dz) for the
 // FRep module `m` on backend `name`; nullptr when f has no gradient here or it did not compile
-// (the polygonizers then take differences).
+// (the polygonizers then take differences), and with `llvm` for a gradient of more than
+// kMaxLlvmGradientOps operations: LLVM compiles about 50 us per operation, so prospero's gradient
+// (30,000) would cost 1.5 s, far more than the differences it saves (auto and sse compile it in
+// milliseconds, the VM at once).
+constexpr size_t kMaxLlvmGradientOps = 2000;
 std::unique_ptr<backends::Kernel> gradient_kernel(const ir::Module& m, const std::string& name,
                                                   const backends::Budgets& budgets);
 

@@ -218,3 +218,18 @@ TEST_CASE("gradient: marching tetrahedra's normals are the function's own gradie
   }
   CHECK(worst < 1e-5);  // the differences: 4.3e-5; the gradient: 1e-7
 }
+
+TEST_CASE("gradient: a big kernel's gradient is not compiled by LLVM, which would take seconds") {
+  std::string body = "var s = 0;";
+  for (int i = 0; i < 400; ++i) body += " s = s + sin(x * " + std::to_string(i + 1) + ".5) * y;";
+  auto b = test::build("function FRep(x,y,z,t){ " + body + " return s; }");
+  REQUIRE(b->ok);
+  auto g = ir::gradient_module(*b->module);
+  REQUIRE(g);
+  REQUIRE(g->instruction_count() > driver::kMaxLlvmGradientOps);
+  CHECK(driver::gradient_kernel(*b->module, "vm", {}) != nullptr);
+  CHECK(driver::gradient_kernel(*b->module, "llvm", {}) == nullptr);
+  auto small = test::build("function FRep(x,y,z,t){ return sin(x) * y; }");
+  REQUIRE(small->ok);
+  for (const std::string& be : backends::available_backends()) CHECK(driver::gradient_kernel(*small->module, be, {}) != nullptr);
+}

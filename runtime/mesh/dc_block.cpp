@@ -373,6 +373,13 @@ struct Edges {
     double d = lo_f[r] - hi_f[r];
     return d != 0 && std::isfinite(d) ? lo_t[r] + (hi_t[r] - lo_t[r]) * lo_f[r] / d : 0.5 * (lo_t[r] + hi_t[r]);
   }
+  // The point of crossing r's edge at t (0: its lower end).
+  std::array<double, 3> point(const Block& b, const Lattice& g, size_t r, double at_t) const {
+    std::array<double, 3> p = at[real[r]];
+    int a = b.xs[real[r]].axis;
+    p[a] += at_t * g.h[a];
+    return p;
+  }
   // f = value at t for crossing r: the end of the bracket with its sign moves there.
   void narrow(size_t r, double value) {
     v[r] = value;
@@ -415,8 +422,7 @@ bool newton(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<Pl
   pts.resize(n);
   for (size_t r = 0; r < n; ++r) {
     E.t[r] = E.false_position(r);
-    std::array<double, 3> p = E.at[E.real[r]];
-    p[b.xs[E.real[r]].axis] += E.t[r] * g.h[b.xs[E.real[r]].axis];
+    std::array<double, 3> p = E.point(b, g, r, E.t[r]);
     pts.set(r, p[0], p[1], p[2]);
   }
   float* o[4];
@@ -433,9 +439,8 @@ bool newton(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<Pl
       continue;
     }
     E.t[r] = next;
-    std::array<double, 3>& p = E.at[E.real[r]];
-    p[a] += next * g.h[a];
-    planes[E.real[r]] = Qef::plane(p.data(), normal);
+    E.at[E.real[r]] = E.point(b, g, r, next);
+    planes[E.real[r]] = Qef::plane(E.at[E.real[r]].data(), normal);
   }
   b.gradient_normals += static_cast<uint32_t>(n - E.rest.size());
   return true;
@@ -449,10 +454,7 @@ bool normals(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<P
   Batch& pts = scratch();
   thread_local std::vector<size_t> probe;  // crossings whose normal the differences give
   probe.clear();
-  for (size_t r : E.rest) {
-    std::array<double, 3>& p = E.at[E.real[r]];
-    p[b.xs[E.real[r]].axis] += E.t[r] * g.h[b.xs[E.real[r]].axis];
-  }
+  for (size_t r : E.rest) E.at[E.real[r]] = E.point(b, g, r, E.t[r]);
   if (f.has_gradient()) {
     pts.clear();
     pts.resize(E.rest.size());
@@ -532,8 +534,7 @@ bool hermite(const Field& f, const Lattice& g, Block& b, std::vector<Plane>& pla
     for (size_t q = 0; q < E.active.size(); ++q) {
       size_t r = E.active[q];
       t[r] = E.false_position(r);
-      std::array<double, 3> p = E.at[real[r]];
-      p[b.xs[real[r]].axis] += t[r] * g.h[b.xs[real[r]].axis];
+      std::array<double, 3> p = E.point(b, g, r, t[r]);
       pts.set(q, p[0], p[1], p[2]);
     }
     if (!pts.run(f, err)) return false;

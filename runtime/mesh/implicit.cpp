@@ -443,16 +443,18 @@ bool refine(const Grid& g, const Field& f, std::vector<Edge>& edges, Mesh& m, in
   }, err);
 }
 
-// Minus the field's own gradient at vertices b0 .. b0 + n - 1 (ir::gradient_module), into d[3 q ..];
-// false where a vertex has none (not finite, or zero): then the block takes differences.
-bool gradient_normals(const Field& f, const Mesh& m, size_t b0, size_t n, std::vector<float>& d, backends::RuntimeError& err,
-                      bool& usable) {
-  std::vector<float> xs(n), ys(n), zs(n), g(4 * n);
+// Minus the field's own gradient at vertices b0 .. b0 + n - 1 (ir::gradient_module), into d[3 q ..]
+// (xs, ys, zs: the caller's point buffers, of n at least); `usable` false where a vertex has none
+// (not finite, or zero): then the block takes differences.
+bool gradient_normals(const Field& f, const Mesh& m, size_t b0, size_t n, float* xs, float* ys, float* zs,
+                      std::vector<float>& d, backends::RuntimeError& err, bool& usable) {
+  thread_local std::vector<float> g;
+  g.resize(4 * n);
   for (size_t q = 0; q < n; ++q) xs[q] = m.positions[b0 + q][0], ys[q] = m.positions[b0 + q][1], zs[q] = m.positions[b0 + q][2];
   float* const o[4] = {g.data(), g.data() + n, g.data() + 2 * n, g.data() + 3 * n};
   {
     EvalTimer timed;
-    if (!f.eval_gradient(xs.data(), ys.data(), zs.data(), n, o, err)) return false;
+    if (!f.eval_gradient(xs, ys, zs, n, o, err)) return false;
   }
   usable = true;
   d.resize(3 * n);
@@ -476,7 +478,7 @@ bool normals(const Grid& g, const Field& f, const std::vector<Edge>& edges, Mesh
     for (size_t b0 = b; b0 < e; b0 += kBlock) {
       size_t n = std::min(kBlock, e - b0), p = 0;
       bool usable = false;
-      if (analytic && !gradient_normals(f, m, b0, n, grad, er, usable)) return false;
+      if (analytic && !gradient_normals(f, m, b0, n, xs.data(), ys.data(), zs.data(), grad, er, usable)) return false;
       if (!usable) {
         for (int a = 0; a < 3; ++a)
           for (int s = -1; s <= 1; s += 2)

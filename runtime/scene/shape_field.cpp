@@ -218,14 +218,18 @@ std::array<int, 3> GroupField::cells() const {
 
 const Shape* GroupField::first_shape() const { return shapes_.empty() ? nullptr : shapes_.front(); }
 
+void GroupField::to_local(const float*& x, const float*& y, const float*& z, size_t n, std::vector<float>& lx,
+                          std::vector<float>& ly, std::vector<float>& lz) const {
+  if (!moved_) return;
+  lx.assign(x, x + n), ly.assign(y, y + n), lz.assign(z, z + n);
+  for (size_t i = 0; i < n; ++i) apply(inverse_, lx[i], ly[i], lz[i]);
+  x = lx.data(), y = ly.data(), z = lz.data();
+}
+
 bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
                       backends::RuntimeError& err) const {
   std::vector<float> lx, ly, lz;
-  if (moved_) {  // the children live in the FTransform's own frame
-    lx.assign(x, x + n), ly.assign(y, y + n), lz.assign(z, z + n);
-    for (size_t i = 0; i < n; ++i) apply(inverse_, lx[i], ly[i], lz[i]);
-    x = lx.data(), y = ly.data(), z = lz.data();
-  }
+  to_local(x, y, z, n, lx, ly, lz);
   if (kids_.empty()) {  // an empty group holds nothing: outside everywhere
     std::fill_n(out, n, -1.0f);
     return true;
@@ -296,11 +300,7 @@ bool GroupField::has_gradient() const {
 bool GroupField::eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                                backends::RuntimeError& err) const {
   std::vector<float> lx, ly, lz;
-  if (moved_) {
-    lx.assign(x, x + n), ly.assign(y, y + n), lz.assign(z, z + n);
-    for (size_t i = 0; i < n; ++i) apply(inverse_, lx[i], ly[i], lz[i]);
-    x = lx.data(), y = ly.data(), z = lz.data();
-  }
+  to_local(x, y, z, n, lx, ly, lz);
   if (!kids_[0]->eval_gradient(x, y, z, n, out, err)) return false;
   std::unique_ptr<float[]> buf(new float[4 * n]);
   float* const g[4] = {buf.get(), buf.get() + n, buf.get() + 2 * n, buf.get() + 3 * n};

@@ -342,8 +342,10 @@ TierStats tier_stats() {
   int64_t first = t.first_switch_ns.load();
   s.first_switch_ms = first < 0 ? -1 : double(first) / 1e6;
   // Without a native compile the module was never needed: name it without loading LLVM for it.
+  // With compiles but no module loaded, the native code was the SSE emitter's (the middle tier
+  // alone, or a module that failed to load): asking native_backend() would load it only to say so.
 #ifdef FS_HAVE_LLVM
-  s.native = llvm_module_loaded() || !t.compiles ? "llvm" : native_backend();
+  s.native = llvm_module_loaded() || !t.compiles ? "llvm" : "sse";
 #else
   s.native = "sse";
 #endif

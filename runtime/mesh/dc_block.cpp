@@ -285,6 +285,7 @@ void Block::keep_rim() {
   std::sort(rim.begin(), rim.end(), [](const RimCell& x, const RimCell& y) { return x.at < y.at; });
   rim.erase(std::unique(rim.begin(), rim.end(), [](const RimCell& x, const RimCell& y) { return x.at == y.at; }), rim.end());
   rim.shrink_to_fit();
+  for (const Sheet& s : sheets) cells[s.cell] = CellInfo{};  // every cell written has a sheet
   cells.swap(cell_buffer());
 }
 
@@ -584,8 +585,10 @@ void cell_signs(const BlockGrid& grid, Block& b, const int l[3], size_t c) {
 }  // namespace
 
 void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& planes, std::vector<Qef>& qefs) {
-  b.cells.swap(cell_buffer());  // given back by keep_rim
-  b.cells.assign(kCells, Block::CellInfo{});  // filled for the cells with surface
+  // Given back clean by keep_rim (only its cells with sheets were written): clearing all 4,096
+  // cells per block cost more than the few hundred it names.
+  b.cells.swap(cell_buffer());
+  if (b.cells.size() != kCells) b.cells.assign(kCells, Block::CellInfo{});
   b.sheets.clear();
   qefs.clear();
   qefs.reserve(b.xs.size());

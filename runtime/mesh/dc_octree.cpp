@@ -11,9 +11,10 @@
 namespace fscript::mesh {
 namespace {
 
-// The root-mean-square distance from a solution to the QEF's planes.
-double rms(const Qef& q, const Qef::Solution& s) {
-  return std::sqrt(s.error / static_cast<double>(std::max<size_t>(q.count(), 1)));
+// The mean squared distance from a solution to the QEF's planes: compared with the tolerance
+// squared, so the square root (on every solve's dependency chain) is taken only for the stats.
+double mean_square(const Qef& q, const Qef::Solution& s) {
+  return s.error / static_cast<double>(std::max<size_t>(q.count(), 1));
 }
 
 // Per sample of a node's 3x3x3 (corners, edge and face midpoints, centre; p = i + 3j + 9k), the
@@ -102,7 +103,7 @@ enum class State : uint8_t { Empty, Merged, Kept };  // no surface; one vertex; 
 struct Node {
   Qef qef;
   double x[3] = {0, 0, 0};
-  double rms = 0;
+  double mean_square = 0;  // of its planes' distances
   State state = State::Empty;
 };
 
@@ -112,11 +113,11 @@ struct Child {
   const Qef* qef;
 };
 
-// A node of lattice cells c0 .. c0 + size - 1 per axis from its children: merged when every child
-// with surface is merged, the topology allows it and the vertex stays within the tolerance.
+// A node of lattice cells c0 .. c0 + size - 1 per axis from its children, into `out` (as made,
+// empty), in place: a Node is 176 bytes and a block makes hundreds. Merged when every child with
+// surface is merged, the topology allows it and the vertex stays within the tolerance.
 template <class Samples, class ChildAt>
-Node collapse(const Lattice& g, Samples samples, ChildAt child, const int c0[3], int size, double limit) {
-  Node out;
+void collapse(const Lattice& g, Samples samples, ChildAt child, const int c0[3], int size, double limit2, Node& out) {
   bool any = false;
   for (int c = 0; c < 8; ++c) {
     Child n = child(c);
@@ -125,18 +126,16 @@ Node collapse(const Lattice& g, Samples samples, ChildAt child, const int c0[3],
     if (n.state == State::Kept) out.state = State::Kept;
     out.qef.merge(*n.qef);
   }
-  if (!any) return Node{};
-  if (out.state == State::Kept) return out;
+  if (!any || out.state == State::Kept) return;
   out.state = State::Kept;
   for (int a = 0; a < 3; ++a)
-    if (c0[a] + size > g.n[a]) return out;  // past the last cell
-  if (!topology_safe(samples())) return out;
+    if (c0[a] + size > g.n[a]) return;  // past the last cell
+  if (!topology_safe(samples())) return;
   Qef::Solution s = solve_in_cells(g, out.qef, c0, size);
-  out.rms = rms(out.qef, s);
-  if (out.rms > limit) return out;
+  out.mean_square = mean_square(out.qef, s);
+  if (out.mean_square > limit2) return;
   std::copy(s.x, s.x + 3, out.x);
   out.state = State::Merged;
-  return out;
 }
 
 // The block's octree levels above its cells: the nodes with surface, found through a dense slot
@@ -192,7 +191,7 @@ struct BlockTree {
       add(u);
     }
   }
-  void grow(const Lattice& g, const Block& b, const std::vector<Qef>& qefs, double limit) {
+  void grow(const Lattice& g, const Block& b, const std::vector<Qef>& qefs, double limit2) {
     for (int l = 1; l <= kBlockLevels; ++l) {
       make_level(b, l);
       int size = 1 << l;
@@ -209,7 +208,7 @@ struct BlockTree {
         };
         int s0[3] = {u[0] * size, u[1] * size, u[2] * size};
         auto samples = [&] { return node_samples(b, s0, size / 2); };
-        nodes[l][q] = collapse(g, samples, child, cell, size, limit);
+        collapse(g, samples, child, cell, size, limit2, nodes[l][q]);
         any = any || nodes[l][q].state == State::Merged;
       }
       built = l;
@@ -276,14 +275,17 @@ void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, doubl
   thread_local BlockTree tree;
   double limit = tolerance * std::min({g.h[0], g.h[1], g.h[2]});
   tree.built = 0;
-  if (tolerance > 0) tree.grow(g, b, qefs, limit);
+  if (tolerance > 0) tree.grow(g, b, qefs, limit * limit);
   b.vertex.assign(b.sheets.size(), kNone);
-  b.positions.clear(), b.max_rms = 0, b.merged = 0;
-  b.positions.reserve(b.sheets.size());  // at most one vertex a sheet; the rest given back below
-  auto add = [&b](const double x[3], double rms) {
-    b.positions.push_back({float(x[0]), float(x[1]), float(x[2])}), b.max_rms = std::max(b.max_rms, rms);
+  b.merged = 0;
+  // Made in buffers of the thread, the block keeping exactly its vertices' room.
+  thread_local std::vector<std::array<float, 3>> positions;
+  thread_local std::vector<uint32_t> node_vertex[kBlockLevels + 1];
+  positions.clear();
+  double max_square = 0;
+  auto add = [&](const double x[3], double square) {
+    positions.push_back({float(x[0]), float(x[1]), float(x[2])}), max_square = std::max(max_square, square);
   };
-  std::vector<uint32_t> node_vertex[kBlockLevels + 1];
   for (int l = 1; l <= tree.built; ++l) node_vertex[l].assign(tree.nodes[l].size(), kNone);
   for (size_t s = 0; s < b.sheets.size(); ++s) {
     const Sheet& sh = b.sheets[s];
@@ -300,16 +302,17 @@ void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, doubl
         continue;
       }
       const Node& n = tree.nodes[l][q];
-      add(n.x, n.rms), ++b.merged;
+      add(n.x, n.mean_square), ++b.merged;
     } else {  // a cell of the uniform grid: its vertex now
       int cell[3] = {b.s0[0] + c[0], b.s0[1] + c[1], b.s0[2] + c[2]};
       Qef::Solution sol = solve_in_cells(g, qefs[s], cell, 1);
-      add(sol.x, rms(qefs[s], sol));
+      add(sol.x, mean_square(qefs[s], sol));
     }
-    b.vertex[s] = static_cast<uint32_t>(b.positions.size() - 1);
+    b.vertex[s] = static_cast<uint32_t>(positions.size() - 1);
     if (named) *named = b.vertex[s];
   }
-  b.positions.shrink_to_fit();
+  b.positions.assign(positions.begin(), positions.end());
+  b.max_rms = std::sqrt(max_square);
   b.root = tree.built == kBlockLevels && tree.nodes[kBlockLevels].size() == 1 && tree.nodes[kBlockLevels][0].state == State::Merged;
   b.root_qef = b.root ? tree.nodes[kBlockLevels][0].qef : Qef{};
 }
@@ -346,7 +349,9 @@ std::vector<int32_t> merge_blocks(const BlockGrid& grid, double tolerance, std::
         return n ? Child{n->state, &n->qef} : Child{State::Empty, nullptr};
       };
       auto samples = [&] { return node_samples(inside, c0, size / 2); };
-      next.add(p, collapse(g, samples, child_at, c0, size, limit));
+      Node n;
+      collapse(g, samples, child_at, c0, size, limit * limit, n);
+      next.add(p, n);
       any = any || next.nodes.back().state == State::Merged;
     }
     levels.push_back(std::move(next));
@@ -366,7 +371,7 @@ std::vector<int32_t> merge_blocks(const BlockGrid& grid, double tolerance, std::
     auto [at, fresh] = named.try_emplace(top, static_cast<uint32_t>(groups.size()));
     if (fresh) {
       const Node& n = *levels[static_cast<size_t>((top >> 57) - kBlockLevels)].find(top);
-      groups.push_back(BlockGroup{top, {n.x[0], n.x[1], n.x[2]}, n.rms});
+      groups.push_back(BlockGroup{top, {n.x[0], n.x[1], n.x[2]}, std::sqrt(n.mean_square)});
     }
     group[i] = static_cast<int32_t>(at);
   }

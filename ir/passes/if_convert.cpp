@@ -3,6 +3,7 @@
 // (h -> t, f -> j) and both triangles (h -> t -> j, h -> j). Arms are speculated, so only pure
 // ops qualify, and only up to a cost budget (a runtime call counts as 8).
 #include <algorithm>
+#include <vector>
 
 #include "ir/passes/passes.h"
 
@@ -41,7 +42,10 @@ Inst* incoming(Inst* p, Block* from) {
   return p->args[it - p->targets.begin()];
 }
 
-bool convert(Function& fn, Block* h) {
+// Converts at h; the phis it replaces go into `rep` (applied once for the whole pass, with the
+// unreachable arms removed then too: per conversion, both walked the whole function, quadratic on
+// a long chain of `||`).
+bool convert(Function& fn, Block* h, std::vector<Inst*>& rep) {
   Inst* br = h->terminator();
   if (br->op != Op::Branch) return false;
   Block* t = br->targets[0];
@@ -64,7 +68,6 @@ bool convert(Function& fn, Block* h) {
   if (from_t != h) hoist(t, h);
   if (from_f != h) hoist(f, h);
   // Each phi of j becomes a select at the end of h.
-  std::vector<Inst*> rep(fn.next_value, nullptr);
   size_t nphi = j->first_non_phi();
   for (size_t k = 0; k < nphi; ++k) {
     Inst* p = j->insts[k];
@@ -76,7 +79,6 @@ bool convert(Function& fn, Block* h) {
     rep[p->id] = sel;
   }
   j->insts.erase(j->insts.begin(), j->insts.begin() + static_cast<long>(nphi));
-  replace_uses(fn, rep);
   // h now jumps straight to j; the emptied arms become unreachable.
   for (Block* arm : {t, f})
     if (arm != j) remove_pred(arm, h);
@@ -85,7 +87,6 @@ bool convert(Function& fn, Block* h) {
   br->op = Op::Jump;
   br->args.clear();
   br->targets = {j};
-  fn.remove_unreachable_blocks();
   return true;
 }
 
@@ -93,7 +94,12 @@ bool convert(Function& fn, Block* h) {
 
 bool run_if_convert(Function& fn) {
   bool changed = false;
-  for (size_t k = 0; k < fn.blocks.size(); ++k) changed |= convert(fn, fn.blocks[k].get());
+  std::vector<Inst*> rep;
+  for (size_t k = 0; k < fn.blocks.size(); ++k) changed |= convert(fn, fn.blocks[k].get(), rep);
+  if (changed) {
+    replace_uses(fn, rep);  // resolves chains: a select made from a phi replaced earlier
+    fn.remove_unreachable_blocks();
+  }
   return changed;
 }
 

@@ -63,17 +63,24 @@ struct Batch {
     if (rows.empty()) return n == 0 || f.eval(x.data(), y.data(), z.data(), n, out.data(), err);
     // Rows over the same run of x values go as one eval_rows call (a block's bricks cut its rows
     // into a few distinct runs), their results copied back to each row's place.
-    thread_local std::vector<size_t> at, members;
+    // Grouped in one pass, then laid out group by group (a counting sort): a block has a handful of
+    // distinct runs (searched linearly) and hundreds of rows.
+    thread_local std::vector<size_t> at, group_of, first_row, start, sorted;
     thread_local std::vector<float> group_out;
-    at.resize(rows.size());
-    for (size_t r = 0, o = 0; r < rows.size(); o += rows[r].count, ++r) at[r] = o;
-    std::vector<char> done(rows.size(), 0);
-    for (size_t r = 0; r < rows.size(); ++r) {
-      if (done[r]) continue;
-      members.clear();
-      for (size_t q = r; q < rows.size(); ++q)
-        if (!done[q] && rows[q].xs == rows[r].xs && rows[q].count == rows[r].count) members.push_back(q), done[q] = 1;
-      size_t m = members.size(), count = rows[r].count;
+    at.resize(rows.size()), group_of.resize(rows.size()), sorted.resize(rows.size());
+    first_row.clear(), start.assign(1, 0);
+    for (size_t r = 0, o = 0; r < rows.size(); o += rows[r].count, ++r) {
+      at[r] = o;
+      size_t gr = 0;
+      while (gr < first_row.size() && !(rows[first_row[gr]].xs == rows[r].xs && rows[first_row[gr]].count == rows[r].count)) ++gr;
+      if (gr == first_row.size()) first_row.push_back(r), start.push_back(0);
+      group_of[r] = gr, ++start[gr + 1];
+    }
+    for (size_t gr = 1; gr < start.size(); ++gr) start[gr] += start[gr - 1];
+    for (size_t r = 0; r < rows.size(); ++r) sorted[start[group_of[r]]++] = r;  // start[gr]: now its end
+    for (size_t gr = 0, from = 0; gr < first_row.size(); from = start[gr], ++gr) {
+      const size_t r = first_row[gr], m = start[gr] - from, count = rows[r].count;
+      const size_t* members = sorted.data() + from;
       if (y.size() < m) y.resize(m), z.resize(m);
       for (size_t i = 0; i < m; ++i) y[i] = rows[members[i]].y, z[i] = rows[members[i]].z;
       group_out.resize(m * count);

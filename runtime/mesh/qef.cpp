@@ -8,33 +8,6 @@
 
 namespace fscript::mesh {
 
-Plane Qef::plane(const double p[3], const double n[3]) {
-  Plane q;
-  double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (!(len > 0) || !std::isfinite(len)) return q;
-  double u[3];
-  for (int a = 0; a < 3; ++a) u[a] = n[a] / len;
-  double d = u[0] * p[0] + u[1] * p[1] + u[2] * p[2];
-  double* w = q.w;
-  w[kXX] = u[0] * u[0], w[kXY] = u[0] * u[1], w[kXZ] = u[0] * u[2];
-  w[kYY] = u[1] * u[1], w[kYZ] = u[1] * u[2], w[kZZ] = u[2] * u[2];
-  for (int a = 0; a < 3; ++a) w[kBX + a] = u[a] * d, w[kMX + a] = p[a];
-  w[kBB] = d * d;
-  q.valid = true;
-  return q;
-}
-
-void Qef::add(const Plane& q) {
-  if (!q.valid) return;
-  for (int k = 0; k < kQefTerms; ++k) s_[k] += q.w[k];
-  ++count_;
-}
-
-void Qef::merge(const Qef& o) {
-  for (int k = 0; k < kQefTerms; ++k) s_[k] += o.s_[k];
-  count_ += o.count_;
-}
-
 namespace {
 
 // The symmetric matrix of the first six terms.

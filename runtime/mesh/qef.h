@@ -2,6 +2,7 @@
 // Quadric error functions for dual contouring: the planes through a cell's surface crossings
 // (Hermite data: point and normal), accumulated, summed when cells merge, and minimised robustly
 // inside the cell. Eigen stays in qef.cpp.
+#include <cmath>
 #include <cstddef>
 
 namespace fscript::mesh {
@@ -20,11 +21,34 @@ struct Plane {
 class Qef {
  public:
   // The plane through p with normal n (any length but zero: normalised here).
-  static Plane plane(const double p[3], const double n[3]);
-  void add(const Plane& q);
+  // Inline, like add and merge: they run per crossing and per cell, and as calls they were more
+  // of the meshing than their arithmetic.
+  static Plane plane(const double p[3], const double n[3]) {
+    Plane q;
+    double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(len > 0) || !std::isfinite(len)) return q;
+    double u[3];
+    for (int a = 0; a < 3; ++a) u[a] = n[a] / len;
+    double d = u[0] * p[0] + u[1] * p[1] + u[2] * p[2];
+    double* w = q.w;
+    w[kXX] = u[0] * u[0], w[kXY] = u[0] * u[1], w[kXZ] = u[0] * u[2];
+    w[kYY] = u[1] * u[1], w[kYZ] = u[1] * u[2], w[kZZ] = u[2] * u[2];
+    for (int a = 0; a < 3; ++a) w[kBX + a] = u[a] * d, w[kMX + a] = p[a];
+    w[kBB] = d * d;
+    q.valid = true;
+    return q;
+  }
+  void add(const Plane& q) {
+    if (!q.valid) return;
+    for (int k = 0; k < kQefTerms; ++k) s_[k] += q.w[k];
+    ++count_;
+  }
   void add(const double p[3], const double n[3]) { add(plane(p, n)); }
   // The planes of both (a merged cell's QEF is the sum of its children's).
-  void merge(const Qef& o);
+  void merge(const Qef& o) {
+    for (int k = 0; k < kQefTerms; ++k) s_[k] += o.s_[k];
+    count_ += o.count_;
+  }
   size_t count() const { return count_; }
   // The sum of squared distances from x to the planes.
   double error(const double x[3]) const;

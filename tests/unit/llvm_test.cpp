@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "backends/llvm_module.h"
+#include "backends/row_kernel.h"
 #include "backends/tiered/tiered.h"
 #include "tests/unit/backend_cases.h"
 #include "tests/unit/helpers.h"
@@ -69,6 +70,30 @@ TEST_CASE("llvm: auto's estimate of the first native code counts the module's lo
   double later = backends::native_compile_ns(21);
   CHECK(later == Approx(10e6 + 21 * 50e3));
   CHECK(first == Approx(later + 50e6));
+}
+
+// A row split under auto: the announced job reaches the prologue too, as rows (the points over the
+// first call's row length). Unannounced, it never reached its compile estimate and ran the whole
+// job on the VM (the gyroid mesh's 616,748 prologue rows).
+TEST_CASE("llvm: auto announces a row split's prologue its rows") {
+  auto b = test::build("function FRep(x,y,z,t){ var k = 12.5; return sin(x*k)*cos(y*k) + sin(y*k)*cos(z*k) + sin(z*k)*cos(x*k); }");
+  REQUIRE(b->ok);
+  const size_t count = 16, rows = 64;
+  std::vector<float> xs(count), y(rows), z(rows), t(rows, 0.0f), out(count * rows);
+  for (size_t i = 0; i < count; ++i) xs[i] = 0.1f * static_cast<float>(i);
+  for (size_t r = 0; r < rows; ++r) y[r] = 0.05f * static_cast<float>(r), z[r] = -y[r];
+  uint64_t before = backends::tier_stats().compiles;
+  {
+    std::string error;
+    auto k = backends::with_row_split(backends::make_backend("auto")->compile(*b->module, {}, error), "auto", *b->module, {});
+    REQUIRE(k);
+    k->expect_points(uint64_t{20} << 20);  // 1.3 M rows of 16: the prologue's VM time outlasts an SSE compile
+    const float* rest[] = {y.data(), z.data(), t.data()};
+    float* outs[] = {out.data()};
+    backends::RuntimeError err;
+    REQUIRE(k->eval_rows(xs.data(), count, rest, rows, outs, err));
+  }  // the kernels' ends wait for their compiles
+  CHECK(backends::tier_stats().compiles == before + 3);  // the full kernel, the body and the prologue
 }
 
 TEST_CASE("llvm: bounded-input code, and the general code for batches outside the bound") {

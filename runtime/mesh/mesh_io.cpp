@@ -4,6 +4,7 @@
 #include "runtime/support/files.h"
 #include "runtime/mesh/gltf.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -50,6 +51,20 @@ class Out {
   bool ok_ = true;
 };
 
+// The face records: a count of 3 and three 32-bit indices each, 13 bytes.
+void ply_faces(const Mesh& m, Out& out) {
+  constexpr size_t kFaces = 4096;
+  char buf[kFaces * 13];
+  for (size_t first = 0; first < m.triangles.size(); first += kFaces) {
+    size_t n = std::min(kFaces, m.triangles.size() - first);
+    for (size_t i = 0; i < n; ++i) {
+      buf[13 * i] = 3;
+      std::memcpy(buf + 13 * i + 1, m.triangles[first + i].data(), 12);
+    }
+    out.put(buf, 13 * n);
+  }
+}
+
 void ply(const Mesh& m, Out& out) {
   bool normals = m.normals.size() == m.positions.size() && !m.positions.empty();
   bool colours = m.colours.size() == m.positions.size() && !m.positions.empty();
@@ -63,6 +78,14 @@ void ply(const Mesh& m, Out& out) {
   size_t vertex = 12 + (normals ? 12 : 0) + (colours ? 3 : 0);
   out.reserve(h.size() + m.positions.size() * vertex + m.triangles.size() * 13);
   out.text(h);
+  // Plain positions are the file's vertex records as they lie in memory; faces go through a local
+  // buffer. A put per record was most of writing a mesh of a million triangles.
+  static_assert(sizeof(Vec3) == 12, "a vertex record is three packed floats");
+  if (!normals && !colours) {
+    out.put(m.positions.data(), m.positions.size() * sizeof(m.positions[0]));
+    ply_faces(m, out);
+    return;
+  }
   for (size_t i = 0; i < m.positions.size(); ++i) {
     char v[27];
     std::memcpy(v, m.positions[i].data(), 12);
@@ -72,12 +95,7 @@ void ply(const Mesh& m, Out& out) {
         v[vertex - 3 + c] = static_cast<char>(std::lround(std::fmin(std::fmax(m.colours[i][c], 0.0f), 1.0f) * 255));
     out.put(v, vertex);
   }
-  for (const auto& t : m.triangles) {
-    char f[13];
-    f[0] = 3;
-    std::memcpy(f + 1, t.data(), 12);
-    out.put(f, 13);
-  }
+  ply_faces(m, out);
 }
 
 void obj(const Mesh& m, Out& out) {

@@ -50,95 +50,104 @@ struct Frame {
   uint32_t lane0;    // the chunk lane of this frame's lane 0 (its arrays' lane)
 };
 
-// Batch frames keep every register as kChunkLanes lanes, 64-byte aligned, and the lane loops
-// below always run all kChunkLanes lanes (lanes past the chunk's end compute garbage that is never
-// read): a fixed trip count and known alignment give clean vector code with no peeling.
+// Batch frames keep every register as kChunkLanes lanes, 64-byte aligned; the lane loops below run
+// the chunk's lanes rounded up to whole vectors (vector_lanes), so the vector code needs no
+// peeling or remainder.
 constexpr uint32_t K = kChunkLanes;
 // Loop iterations a chunk's lanes may make together before the chunk runs again point by point
 // (a lane-by-lane iteration costs about 7 times a packed one, so only loops this long pay it).
 constexpr uint64_t kLaneByLaneAfter = uint64_t{1} << 16;
 static_assert(K % 16 == 0, "whole AVX-512 vectors per register");
 
+// The lanes a batch frame's loops run: the chunk's, rounded up to whole AVX-512 vectors. A
+// mesher's batches are often a few hundred points (a block's crossings), and running all K lanes
+// of the registers for them was up to twice the work (the lanes past the chunk compute garbage that
+// is never read, as before).
+inline uint32_t vector_lanes(uint32_t lanes) { return std::min<uint32_t>(K, (lanes + 15) / 16 * 16); }
+
 inline float* reg(float* R, uint32_t r) { return static_cast<float*>(__builtin_assume_aligned(R + size_t(r) * K, 64)); }
 
 template <class F>
-inline void binary(const VInst& v, float* R, const Mask* m, bool full, F f) {
+inline void binary(const VInst& v, float* R, const Mask* m, bool full, uint32_t n, F f) {
+  if (n % 16 != 0) __builtin_unreachable();
   float* __restrict d = reg(R, v.dst);
   const float* __restrict a = (v.kinds & 1) ? nullptr : reg(R, v.a);
   const float* __restrict b = (v.kinds & 2) ? nullptr : reg(R, v.b);
   const float ia = v.imm_a, ib = v.imm_b;
   switch (v.kinds) {
     case 0:
-      if (full) for (uint32_t i = 0; i < K; ++i) d[i] = f(a[i], b[i]);
-      else for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(a[i], b[i]) : d[i];
+      if (full) for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i], b[i]);
+      else for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i], b[i]) : d[i];
       break;
     case 1:
-      if (full) for (uint32_t i = 0; i < K; ++i) d[i] = f(ia, b[i]);
-      else for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(ia, b[i]) : d[i];
+      if (full) for (uint32_t i = 0; i < n; ++i) d[i] = f(ia, b[i]);
+      else for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(ia, b[i]) : d[i];
       break;
     case 2:
-      if (full) for (uint32_t i = 0; i < K; ++i) d[i] = f(a[i], ib);
-      else for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(a[i], ib) : d[i];
+      if (full) for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i], ib);
+      else for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i], ib) : d[i];
       break;
     default:
-      for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(ia, ib) : d[i];
+      for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(ia, ib) : d[i];
       break;
   }
 }
 
 template <class F>
-inline void unary(const VInst& v, float* R, const Mask* m, bool full, F f) {
+inline void unary(const VInst& v, float* R, const Mask* m, bool full, uint32_t n, F f) {
+  if (n % 16 != 0) __builtin_unreachable();
   float* __restrict d = reg(R, v.dst);
   const float* __restrict a = reg(R, v.a);
-  if (full) for (uint32_t i = 0; i < K; ++i) d[i] = f(a[i]);
-  else for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(a[i]) : d[i];
+  if (full) for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i]);
+  else for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i]) : d[i];
 }
 
 template <class F>
-inline void ternary(const VInst& v, float* R, const Mask* m, bool full, F f) {
+inline void ternary(const VInst& v, float* R, const Mask* m, bool full, uint32_t n, F f) {
+  if (n % 16 != 0) __builtin_unreachable();
   float* __restrict d = reg(R, v.dst);
   const float* a = reg(R, v.a);
   const float* b = reg(R, v.b);
   const float* c = reg(R, v.c);
-  if (full) for (uint32_t i = 0; i < K; ++i) d[i] = f(a[i], b[i], c[i]);
-  else for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? f(a[i], b[i], c[i]) : d[i];
+  if (full) for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i], b[i], c[i]);
+  else for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i], b[i], c[i]) : d[i];
 }
 
 // A transcendental with a SIMD batch twin: compute every lane, keep the present ones.
-inline void batched(const VInst& v, float* R, const Mask* m, bool full, void (*fn)(const float*, float*, size_t)) {
+inline void batched(const VInst& v, float* R, const Mask* m, bool full, uint32_t n, void (*fn)(const float*, float*, size_t)) {
   float* d = reg(R, v.dst);
   const float* a = reg(R, v.a);
   if (full) {
-    fn(a, d, K);
+    fn(a, d, n);
     return;
   }
   alignas(64) float tmp[K];
-  fn(a, tmp, K);
-  for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? tmp[i] : d[i];
+  fn(a, tmp, n);
+  for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? tmp[i] : d[i];
 }
 
 // sin and cos: as batched, or one of a pair (bytecode.h): the first computes both, the second
 // copies its result from the pair's register. Both run under the block's one mask.
-inline void trig(const VInst& v, float* R, const Mask* m, bool full, void (*fn)(const float*, float*, size_t)) {
-  if (v.c == kNoReg) return batched(v, R, m, full, fn);
+inline void trig(const VInst& v, float* R, const Mask* m, bool full, uint32_t n, void (*fn)(const float*, float*, size_t)) {
+  if (v.c == kNoReg) return batched(v, R, m, full, n, fn);
   float* d = reg(R, v.dst);
   float* o = reg(R, v.c);
   if (v.aux == kTrigSecond) {
-    if (full) std::copy_n(o, K, d);
+    if (full) std::copy_n(o, n, d);
     else
-      for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? o[i] : d[i];
+      for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? o[i] : d[i];
     return;
   }
   alignas(64) float tmp[K];
   float* mine = full ? d : tmp;  // the other's lanes need no mask: only the second reads them
   bool sin = v.op == Op::Sin;
-  fscript::math::FS_ISA::sincos_batch(reg(R, v.a), sin ? mine : o, sin ? o : mine, K);
+  fscript::math::FS_ISA::sincos_batch(reg(R, v.a), sin ? mine : o, sin ? o : mine, n);
   if (!full)
-    for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? tmp[i] : d[i];
+    for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? tmp[i] : d[i];
 }
 
 // The same for a binary one; an immediate operand is broadcast into a scratch lane vector.
-inline void batched2(const VInst& v, float* R, const Mask* m, bool full,
+inline void batched2(const VInst& v, float* R, const Mask* m, bool full, uint32_t n,
                      void (*fn)(const float*, const float*, float*, size_t)) {
   alignas(64) float ia[K], ib[K], tmp[K];
   const float* a = (v.kinds & 1) ? ia : reg(R, v.a);
@@ -146,32 +155,32 @@ inline void batched2(const VInst& v, float* R, const Mask* m, bool full,
   if (v.kinds & 1) std::fill_n(ia, K, v.imm_a);
   if (v.kinds & 2) std::fill_n(ib, K, v.imm_b);
   float* d = reg(R, v.dst);
-  fn(a, b, full ? d : tmp, K);
+  fn(a, b, full ? d : tmp, n);
   if (!full)
-    for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? tmp[i] : d[i];
+    for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? tmp[i] : d[i];
 }
 
 // The same for a ternary one (its operands are always registers).
-inline void batched3(const VInst& v, float* R, const Mask* m, bool full,
+inline void batched3(const VInst& v, float* R, const Mask* m, bool full, uint32_t n,
                      void (*fn)(const float*, const float*, const float*, float*, size_t)) {
   alignas(64) float tmp[K];
   float* d = reg(R, v.dst);
-  fn(reg(R, v.a), reg(R, v.b), reg(R, v.c), full ? d : tmp, K);
+  fn(reg(R, v.a), reg(R, v.b), reg(R, v.c), full ? d : tmp, n);
   if (!full)
-    for (uint32_t i = 0; i < K; ++i) d[i] = m[i] ? tmp[i] : d[i];
+    for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? tmp[i] : d[i];
 }
 
 // How each row of ir/math_ops.def runs, by its kind and arity: on the batch path (FS_VM_*) and on
 // the one-point path (FS_ONE_*), where transcendentals go through the same batch functions (n = 1)
 // so a point gives the same bits either way.
-#define FS_VM_Lane1(N, FN) case Op::N: unary(v, R, m, full, [](float a) { return M::FN(a); }); return true;
-#define FS_VM_Lane2(N, FN) case Op::N: binary(v, R, m, full, [](float a, float b) { return M::FN(a, b); }); return true;
+#define FS_VM_Lane1(N, FN) case Op::N: unary(v, R, m, full, n, [](float a) { return M::FN(a); }); return true;
+#define FS_VM_Lane2(N, FN) case Op::N: binary(v, R, m, full, n, [](float a, float b) { return M::FN(a, b); }); return true;
 #define FS_VM_Lane3(N, FN) \
-  case Op::N: ternary(v, R, m, full, [](float a, float b, float c) { return M::FN(a, b, c); }); return true;
-#define FS_VM_Batch1(N, FN) case Op::N: batched(v, R, m, full, M::FS_ISA::FN##_batch); return true;
-#define FS_VM_Batch2(N, FN) case Op::N: batched2(v, R, m, full, M::FS_ISA::FN##_batch); return true;
-#define FS_VM_Batch3(N, FN) case Op::N: batched3(v, R, m, full, M::FS_ISA::FN##_batch); return true;
-#define FS_VM_Trig1(N, FN) case Op::N: trig(v, R, m, full, M::FS_ISA::FN##_batch); return true;
+  case Op::N: ternary(v, R, m, full, n, [](float a, float b, float c) { return M::FN(a, b, c); }); return true;
+#define FS_VM_Batch1(N, FN) case Op::N: batched(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
+#define FS_VM_Batch2(N, FN) case Op::N: batched2(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
+#define FS_VM_Batch3(N, FN) case Op::N: batched3(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
+#define FS_VM_Trig1(N, FN) case Op::N: trig(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
 #define FS_ONE_Lane1(N, FN) case Op::N: *d = M::FN(a); return true;
 #define FS_ONE_Lane2(N, FN) case Op::N: *d = M::FN(a, b); return true;
 #define FS_ONE_Lane3(N, FN) case Op::N: *d = M::FN(a, b, R[v.c]); return true;
@@ -238,7 +247,8 @@ class Executor {
   uint64_t chunk_ticks_ = 0;  // loop iterations the chunk's lanes made together (batch frames only)
   static void init_frame(Frame& fr) {
     const VmFunction& f = *fr.f;
-    for (auto [r, v] : f.consts) std::fill_n(fr.regs + size_t(r) * fr.stride, fr.stride, v);
+    uint32_t n = fr.stride == 1 ? 1 : vector_lanes(fr.lanes);
+    for (auto [r, v] : f.consts) std::fill_n(fr.regs + size_t(r) * fr.stride, n, v);
   }
   // Parameter p's lanes for points [base, base + L): the points' own values, or with row parameters
   // the run of x values below them and one value per row from them on.
@@ -400,6 +410,7 @@ bool Executor::run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, 
 bool Executor::exec(Frame& fr, const VInst& v, const Mask* m, bool full, RuntimeError& err) {
   float* R = fr.regs;
   uint32_t L = fr.lanes;
+  const uint32_t n = vector_lanes(L);
   namespace M = fscript::math;
   switch (v.op) {
 #define FS_MATH(N, FN, A, HOW) FS_VM_##HOW##A(N, FN)

@@ -1,7 +1,9 @@
 // Constant folding through runtime/math (so a folded value equals the run-time one bit for bit),
-// plus identities that are exact in IEEE arithmetic up to the sign of zero, which the language
-// leaves unspecified: x*1, x/1, x+0, x-0, --x, select on a constant or on equal arms.
+// plus identities exact in IEEE arithmetic, the sign of zero included: x*1, x/1, x+(-0), x-(+0),
+// --x, select on a constant or on equal arms. Not x+0: -0 + 0 is +0, and a zero's sign shows
+// through a division (1 / (y + 0) at y = -0 is inf; folded, it was -inf).
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "ir/eval.h"
@@ -12,6 +14,10 @@ namespace fscript::ir {
 namespace {
 
 bool is_const(const Inst* i, float v) { return i->op == Op::Const && i->imm == v; }
+// The constant zero of the given sign.
+bool is_zero(const Inst* i, bool negative) {
+  return i->op == Op::Const && i->imm == 0.0f && std::signbit(i->imm) == negative;
+}
 
 // A replacement for `i` (an existing value), or nullptr.
 Inst* identity(Inst* i) {
@@ -23,10 +29,10 @@ Inst* identity(Inst* i) {
       return nullptr;
     case Op::Div: return is_const(a[1], 1.0f) ? a[0] : nullptr;
     case Op::Add:
-      if (is_const(a[1], 0.0f)) return a[0];
-      if (is_const(a[0], 0.0f)) return a[1];
+      if (is_zero(a[1], true)) return a[0];
+      if (is_zero(a[0], true)) return a[1];
       return nullptr;
-    case Op::Sub: return is_const(a[1], 0.0f) ? a[0] : nullptr;
+    case Op::Sub: return is_zero(a[1], false) ? a[0] : nullptr;
     case Op::Pow: return is_const(a[1], 1.0f) ? a[0] : nullptr;
     case Op::Neg: return a[0]->op == Op::Neg ? a[0]->args[0] : nullptr;
     case Op::Select:

@@ -1,5 +1,8 @@
 // The program generator of the differential targets: a small grammar walked by the fuzzer's
-// bytes. Names are always fresh or in scope, arities always right, loops always bounded.
+// bytes. Names are always fresh or in scope, arities always right, loops always bounded. Every
+// choice is its own statement: the operands of `+` are evaluated in an unspecified order, and
+// clang and gcc took the bytes in different orders (a campaign's input made another program in
+// the replay build).
 #include "tests/fuzz/program_gen.h"
 
 #include <cctype>
@@ -138,7 +141,9 @@ class Generator {
           out_ += "var " + target + " = " + expr(3) + ";\n";
           locals().push_back(target);
         } else {
-          out_ += target + " " + kCompound[pick(0, std::size(kCompound) - 1)] + " " + expr(3) + ";\n";
+          std::string op = kCompound[pick(0, std::size(kCompound) - 1)];
+          std::string value = expr(3);
+          out_ += target + " " + op + " " + value + ";\n";
         }
         return;
       }
@@ -171,13 +176,22 @@ class Generator {
       case 7: {
         if (arrays_.empty()) return statement_empty();
         const Array& a = arrays_[static_cast<size_t>(pick(0, static_cast<int>(arrays_.size()) - 1))];
-        out_ += a.name + "[" + index(a) + "] " + kCompound[pick(0, std::size(kCompound) - 1)] + " " + expr(2) + ";\n";
+        std::string at = index(a);
+        std::string op = kCompound[pick(0, std::size(kCompound) - 1)];
+        std::string value = expr(2);
+        out_ += a.name + "[" + at + "] " + op + " " + value + ";\n";
         return;
       }
-      case 8: out_ += "if (" + expr(2) + ") return " + expr(2) + ";\n"; return;
+      case 8: {
+        std::string cond = expr(2);
+        std::string value = expr(2);
+        out_ += "if (" + cond + ") return " + value + ";\n";
+        return;
+      }
       default:
         if (loops > 0) {
-          out_ += std::string("if (") + expr(1) + ") " + (flag() ? "break" : "continue") + ";\n";
+          std::string cond = expr(1);
+          out_ += "if (" + cond + ") " + (flag() ? "break" : "continue") + ";\n";
         } else {
           out_ += expr(3) + ";\n";
         }
@@ -235,14 +249,22 @@ class Generator {
       case 0: return leaf();
       case 1: {
         const char* u[] = {"-", "!", "+"};
-        return std::string(u[pick(0, 2)]) + "(" + expr(depth - 1) + ")";
+        std::string op = u[pick(0, 2)];
+        return op + "(" + expr(depth - 1) + ")";
       }
       case 2: case 3: {
         std::string op = kBinary[pick(0, std::size(kBinary) - 1)];
         if (op == "^" || op == "**") transcendental_ = true;
-        return "(" + expr(depth - 1) + " " + op + " " + expr(depth - 1) + ")";
+        std::string left = expr(depth - 1);
+        std::string right = expr(depth - 1);
+        return "(" + left + " " + op + " " + right + ")";
       }
-      case 4: return "(" + expr(depth - 1) + " ? " + expr(depth - 1) + " : " + expr(depth - 1) + ")";
+      case 4: {
+        std::string cond = expr(depth - 1);
+        std::string yes = expr(depth - 1);
+        std::string no = expr(depth - 1);
+        return "(" + cond + " ? " + yes + " : " + no + ")";
+      }
       case 5: case 6: {
         const Builtin& b = builtins()[static_cast<size_t>(pick(0, static_cast<int>(builtins().size()) - 1))];
         transcendental_ |= b.runtime;

@@ -30,8 +30,10 @@ function FRep(x, y, z, t) { add(x); add(y); return acc + rec(2); }
 //     v2 = param 1
 //     v3 = param 2
 //     v4 = param 3
-//     v5 = fadd v1, v2
-//     v6 = const 2
+//     v5 = const 0
+//     v6 = fadd v5, v1
+//     v7 = fadd v6, v2
+//     v8 = const 2
 //     gstore @x, v1
 //     gstore @y, v2
 //     gstore @z, v3
@@ -42,8 +44,8 @@ function FRep(x, y, z, t) { add(x); add(y); return acc + rec(2); }
 //     gstore @r, v0
 //     gstore @g, v0
 //     gstore @b, v0
-//     gstore @acc, v5
-//     v18 = call @rec(v6) !5:58
-//     v19 = fadd v5, v18
-//     ret v19
+//     gstore @acc, v7
+//     v20 = call @rec(v8) !5:58
+//     v21 = fadd v7, v20
+//     ret v21
 //   }

@@ -8,6 +8,14 @@ function e(x, y) { return x || (y - 2); }
 function f(x) { return x - 0 + (0 + x); }
 function g() { return (5 - 2) * 10 + (1 < 1) + (2 <= 2) * 100; }
 function h(x) { return -(-x) + --x; }
+// The sign of zero shows through a division: y + 0 is not y (-0 + 0 is +0); y + -0 and y - 0 are.
+function z1(y) { return 1 / (y + 0); }
+function z2(y) { return 1 / (0 + y); }
+function z3(y) { return 1 / (y - -0); }
+function z4(y) { return 1 / (y + -0); }
+function z5(y) { return 1 / (y - 0); }
+function zero(p) { return 0; }
+function z6(y) { var v = 3e38 / (y += zero(y)); return v; }  // backend_diff, 2026-12-04: inlined, y + 0
 // run: a(3) == -3
 // run: b(4) == 0.25
 // run: c(2) == 6
@@ -20,3 +28,10 @@ function h(x) { return -(-x) + --x; }
 // run: f(2.5) == 5
 // run: g() == 130
 // run: h(4) == 7
+// run: z1(-0) == inf
+// run: z2(-0) == inf
+// run: z3(-0) == inf
+// run: z4(-0) == -inf
+// run: z5(-0) == -inf
+// run: z6(-0) == inf
+// run: z6(0) == inf

@@ -122,7 +122,8 @@ void find_crossings(Block& b) {
     change[2] = k < b.m[2] ? r ^ rows[k + 1][j] : 0;
   };
   // Counted first, so the list takes exactly its room: the blocks' data is most of a big mesh's
-  // memory, and every new megabyte touched costs a millisecond here (docs/performance.md).
+  // memory, and memory touched for the first time is dear on this kind of virtual machine (0.13 ms a
+  // megabyte when the host has it at hand, up to 1 ms when not: docs/performance.md).
   size_t count = 0;
   for (int k = 0; k <= b.m[2]; ++k)
     for (int j = 0; j <= b.m[1]; ++j) {

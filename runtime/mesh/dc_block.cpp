@@ -331,15 +331,26 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
   runs.clear();
   float xs[kBlockSamples];
   for (int i = 0; i <= b.m[0]; ++i) xs[i] = float(g.coord(0, b.s0[0] + i));
+  // The bricks cut every row at the same places: the runs along x (at most three bricks a row of
+  // 17 samples) found once per block, not per row.
+  struct XRun {
+    int first, last, brick;
+  };
+  XRun xruns[kBlockSamples];
+  int nx = 0;
+  for (int i = b.s0[0] < 0 ? 1 : 0, end = std::min(b.m[0], g.n[0] - 1 - b.s0[0]); i <= end;) {
+    int si = b.s0[0] + i, run_end = std::min(end, i + B - 1 - si % B);
+    xruns[nx++] = {i, run_end, si / B};
+    i = run_end + 1;
+  }
   for (int k = 0; k <= b.m[2]; ++k)
     for (int j = 0; j <= b.m[1]; ++j) {
       int sj = b.s0[1] + j, sk = b.s0[2] + k;
       if (sj < 0 || sj >= g.n[1] || sk < 0 || sk >= g.n[2]) continue;
       float y = float(g.coord(1, sj)), z = float(g.coord(2, sk));
-      int i = b.s0[0] < 0 ? 1 : 0, end = std::min(b.m[0], g.n[0] - 1 - b.s0[0]);
-      while (i <= end) {  // a brick's run of the row at a time
-        int si = b.s0[0] + i, run_end = std::min(end, i + B - 1 - si % B);
-        BrickClass c = bricks ? bricks->at(si / B, sj / B, sk / B) : BrickClass::Open;
+      for (int r = 0; r < nx; ++r) {  // a brick's run of the row at a time
+        const int i = xruns[r].first, run_end = xruns[r].last;
+        BrickClass c = bricks ? bricks->at(xruns[r].brick, sj / B, sk / B) : BrickClass::Open;
         size_t at = Block::sample(i, j, k), n = static_cast<size_t>(run_end - i + 1);
         if (c == BrickClass::Open) {
           if (!runs.empty() && runs.back().at + runs.back().n == at) runs.back().n += n;  // the row's run goes on
@@ -350,7 +361,6 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
           std::fill_n(b.f.begin() + static_cast<std::ptrdiff_t>(at), n, c == BrickClass::Inside ? 1.0f : -1.0f);
           std::fill_n(b.decided.begin() + static_cast<std::ptrdiff_t>(at), n, uint8_t{1});
         }
-        i = run_end + 1;
       }
     }
   if (!pts.run(f, err)) return false;
@@ -625,10 +635,11 @@ void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& plan
       if (s == kNone) {
         s = static_cast<uint32_t>(b.sheets.size());
         b.sheets.push_back(Sheet{static_cast<uint32_t>(cell), info.first, Block::key(info, in, in ^ (1 << c.axis))});
-        qefs.emplace_back();
+        qefs.emplace_back(planes[e]);
         info.first = s;
+      } else {
+        qefs[s].add(planes[e]);
       }
-      qefs[s].add(planes[e]);
       id[static_cast<size_t>(q)] = static_cast<uint16_t>(s);  // s < 4 * kCells < kNoSheet
     }
     b.ids.push_back(id);

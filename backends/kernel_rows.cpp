@@ -47,14 +47,14 @@ struct Expanded {
             bool tile) {
     in.resize(1 + num_rest);
     float* x = column(0, n * count);
-    if (tile && count == 1) std::fill_n(x, n, first[0]);
-    else if (tile)
-      for (size_t r = 0; r < n; ++r) std::copy_n(first, count, x + r * count);
     in[0] = x;
     if (count == 1) {  // one point a row (a brick's last column): the rows' own arrays are the points
+      if (tile) std::fill_n(x, n, first[0]);
       for (size_t k = 0; k < num_rest; ++k) in[1 + k] = rest[k] + r0;
       return;
     }
+    if (tile)
+      for (size_t r = 0; r < n; ++r) std::copy_n(first, count, x + r * count);
     for (size_t k = 0; k < num_rest; ++k) {
       float* c = column(1 + k, n * count);
       for (size_t r = 0; r < n; ++r) fill_row(c + r * count, count, rest[k][r0 + r]);

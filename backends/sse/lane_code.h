@@ -41,6 +41,7 @@ struct Src {
 };
 
 #define FS_APPLY(method, d, s) ((s).mem ? a_.method(d, (s).m) : a_.method(d, (s).x))
+#define FS_APPLY3(method, d, s1, s) ((s).mem ? a_.method(d, s1, (s).m) : a_.method(d, s1, (s).x))
 
 class LaneCode {
  protected:
@@ -185,14 +186,20 @@ class LaneCode {
   // is already a when a is NaN; a NaN b is caught by its unordered mask, OR-ed in (the result is a
   // NaN; NaN payloads are not part of the semantics). A constant b that is a number needs no mask.
   // d may be b's own register: b is read before d is written.
+  // With VEX, d may be a's register too: both are read before d is written.
   void minmax(Xmm d, const Src& a, const Src& b, bool b_number, bool is_min) {
     if (!b_number) {
       load(Xmm::x0, b);
       a_.cmpps(Xmm::x0, Xmm::x0, Pred::Unord);
     }
-    load(d, b);
-    if (is_min) FS_APPLY(minps, d, a);
-    else FS_APPLY(maxps, d, a);
+    if (a_.vex() && !b.mem) {
+      if (is_min) FS_APPLY3(vminps, d, b.x, a);
+      else FS_APPLY3(vmaxps, d, b.x, a);
+    } else {
+      load(d, b);
+      if (is_min) FS_APPLY(minps, d, a);
+      else FS_APPLY(maxps, d, a);
+    }
     if (!b_number) a_.orps(d, Xmm::x0);
   }
   // Without value ranges only a constant is known not to be NaN.

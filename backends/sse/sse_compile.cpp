@@ -2,7 +2,9 @@
 // are assigned while emitting: a free one if there is one, else the value whose next use in the
 // block is farthest is spilled to a 16-byte stack slot (Belady's rule); spilled values and
 // constants (rip-relative, from the pool) are read straight from memory. xmm0 and xmm1 are
-// scratch (xmm0 is blendvps's implicit mask). Runtime calls (transcendentals, fmod, noise) go
+// scratch (xmm0 is blendvps's implicit mask). Where the CPU has AVX, arithmetic, min/max and the
+// sign operations take VEX's three-operand forms, which need no copy of a live first operand.
+// Runtime calls (transcendentals, fmod, noise) go
 // through runtime/math's batch functions on four lanes in stack slots, every live register saved.
 //
 // Control flow is masked, as in the VM: each block has a pending mask of the lanes waiting at it;
@@ -22,6 +24,7 @@
 #include "backends/sse/sse_backend.h"
 #include "ir/analysis.h"
 #include "ir/passes/passes.h"
+#include "runtime/math/isa.h"
 #include "runtime/math/math.h"
 
 namespace fscript::sse {
@@ -395,6 +398,17 @@ class Codegen : public detail::LaneCode {
     define(in, d);
   }
 
+  // With VEX, the result's register: a dying operand's, else a free one; no copy either way.
+  Xmm vex_dest(const ir::Inst* a, const ir::Inst* b, int pos) {
+    for (const ir::Inst* v : {a, b}) {
+      if (!dies_here(v, pos)) continue;
+      Xmm d = static_cast<Xmm>(reg_of_[v->id]);
+      drop(v->id);
+      return d;
+    }
+    return alloc(pos);
+  }
+
   void arithmetic(const ir::Inst& in, int pos) {
     using ir::Op;
     Src b = arg(in, 1);
@@ -402,6 +416,18 @@ class Codegen : public detail::LaneCode {
     // a + b and a * b are b + a and b * a, bit for bit: when only b dies here, its register
     // takes the result and no copy is needed.
     const ir::Inst *ia = in.args[0], *ib = in.args[1];
+    if (a_.vex()) {  // three operands: only a first operand in memory needs a load
+      if (a.mem && !b.mem && (in.op == Op::Add || in.op == Op::Mul)) std::swap(a, b), std::swap(ia, ib);
+      if (!a.mem) {
+        Xmm d = vex_dest(ia, ib, pos);
+        if (in.op == Op::Add) FS_APPLY3(vaddps, d, a.x, b);
+        if (in.op == Op::Sub) FS_APPLY3(vsubps, d, a.x, b);
+        if (in.op == Op::Mul) FS_APPLY3(vmulps, d, a.x, b);
+        if (in.op == Op::Div) FS_APPLY3(vdivps, d, a.x, b);
+        define(in, d);
+        return;
+      }
+    }
     if ((in.op == Op::Add || in.op == Op::Mul) && !dies_here(ia, pos) && dies_here(ib, pos) && ia != ib) {
       Xmm d = static_cast<Xmm>(reg_of_[ib->id]);
       drop(ib->id);
@@ -421,6 +447,13 @@ class Codegen : public detail::LaneCode {
 
   void sign_bit(const ir::Inst& in, int pos) {  // neg flips it, abs clears it
     Src a = arg(in, 0);
+    if (a_.vex() && !a.mem) {
+      Xmm d = vex_dest(in.args[0], in.args[0], pos);
+      if (in.op == ir::Op::Neg) a_.vxorps(d, a.x, bits(0x80000000u));
+      else a_.vandps(d, a.x, bits(0x7FFFFFFFu));
+      define(in, d);
+      return;
+    }
     Xmm d = dest_first(in, pos);
     load(d, a);
     if (in.op == ir::Op::Neg) a_.xorps(d, bits(0x80000000u));
@@ -474,6 +507,8 @@ class Codegen : public detail::LaneCode {
     if (dies_here(b, pos)) {
       d = static_cast<Xmm>(reg_of_[b->id]);  // b dies here: its register takes the result
       drop(b->id);
+    } else if (a_.vex() && !sb.mem) {
+      d = vex_dest(in.args[0], b, pos);
     } else {
       d = alloc(pos);
     }
@@ -628,6 +663,7 @@ class Codegen : public detail::LaneCode {
 };
 
 #undef FS_APPLY
+#undef FS_APPLY3
 
 // Bounded-input code only where a bound removes NaN tests (then the kernel needs its guard).
 double choose_bound(const ir::Function& fn, Codegen& gen) {
@@ -646,6 +682,8 @@ std::vector<uint8_t> generate(const ir::Module& module, const backends::Budgets&
   int kernel = jp.kernel;
   Assembler a;
   if (listing) a.enable_listing();
+  // AVX's three-operand forms where the CPU has them (FSCRIPT_ISA=base keeps the SSE encoding).
+  if (math::active_isa() != math::Isa::Base) a.enable_vex();
   const std::vector<int>& fns = jp.functions;
   Program program{m, {}, jp.num_globals, budgets.max_call_depth};
   for (size_t f = 0; f < m.functions.size(); ++f) program.entries.push_back(a.new_label());

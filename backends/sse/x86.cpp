@@ -17,9 +17,6 @@ bool fits8(int32_t v) { return v >= -128 && v <= 127; }
 
 void Assembler::emit(uint8_t prefix, bool w, std::initializer_list<uint8_t> opcode, uint8_t reg, const Operand& rm,
                      int imm_size, uint32_t imm) {
-  auto immediate = [&] {
-    for (int k = 0; k < imm_size; ++k) code_.push_back(static_cast<uint8_t>(imm >> (8 * k)));
-  };
   if (prefix) code_.push_back(prefix);
   uint8_t rex = 0x40 | (w ? 8 : 0) | ((reg >> 3) & 1) << 2;
   if (rm.is_mem && rm.mem.label < 0) {
@@ -30,6 +27,13 @@ void Assembler::emit(uint8_t prefix, bool w, std::initializer_list<uint8_t> opco
   }
   if (rex != 0x40) code_.push_back(rex);
   code_.insert(code_.end(), opcode.begin(), opcode.end());
+  modrm(reg, rm, imm_size, imm);
+}
+
+void Assembler::modrm(uint8_t reg, const Operand& rm, int imm_size, uint32_t imm) {
+  auto immediate = [&] {
+    for (int k = 0; k < imm_size; ++k) code_.push_back(static_cast<uint8_t>(imm >> (8 * k)));
+  };
   uint8_t r3 = (reg & 7) << 3;
   if (!rm.is_mem) {
     code_.push_back(0xC0 | r3 | (rm.reg & 7));
@@ -62,6 +66,25 @@ void Assembler::emit(uint8_t prefix, bool w, std::initializer_list<uint8_t> opco
 
 void Assembler::sse(uint8_t prefix, std::initializer_list<uint8_t> opcode, Xmm d, const Operand& s, int imm8) {
   emit(prefix, false, opcode, n(d), s, imm8 >= 0 ? 1 : 0, static_cast<uint32_t>(imm8));
+}
+
+// VEX (SDM vol. 2, 2.3): R, X, B and vvvv stored inverted; L = 0 (128 bits), W = 0.
+void Assembler::vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm) {
+  uint8_t r = ~n(d) >> 3 & 1, x = 1, b = 1;
+  if (rm.is_mem && rm.mem.label < 0) {
+    x = ~n(rm.mem.index) >> 3 & 1;
+    b = ~n(rm.mem.base) >> 3 & 1;
+  } else if (!rm.is_mem) {
+    b = ~rm.reg >> 3 & 1;
+  }
+  uint8_t vvvv = static_cast<uint8_t>((~n(v) & 15) << 3 | pp);
+  if (x && b) {
+    code_.insert(code_.end(), {0xC5, static_cast<uint8_t>(r << 7 | vvvv)});
+  } else {
+    code_.insert(code_.end(), {0xC4, static_cast<uint8_t>(r << 7 | x << 6 | b << 5 | 1), vvvv});
+  }
+  code_.push_back(opcode);
+  modrm(n(d), rm, 0, 0);
 }
 
 // ---- SSE ----
@@ -107,6 +130,20 @@ FS_SSE_DEFINE(subpd, 0x66, 0x0F, 0x5C)
 FS_SSE_DEFINE(mulpd, 0x66, 0x0F, 0x59)
 FS_SSE_DEFINE(punpcklqdq, 0x66, 0x0F, 0x6C)
 #undef FS_SSE_DEFINE
+
+#define FS_VEX_DEFINE(name, pp, opcode)                                                              \
+  void Assembler::name(Xmm d, Xmm s1, Xmm s2) { list(#name, d, s1, s2), vex(pp, opcode, d, s1, r(n(s2))); } \
+  void Assembler::name(Xmm d, Xmm s1, const Mem& s2) { list(#name, d, s1, s2), vex(pp, opcode, d, s1, m(s2)); }
+FS_VEX_DEFINE(vaddps, 0, 0x58)
+FS_VEX_DEFINE(vsubps, 0, 0x5C)
+FS_VEX_DEFINE(vmulps, 0, 0x59)
+FS_VEX_DEFINE(vdivps, 0, 0x5E)
+FS_VEX_DEFINE(vminps, 0, 0x5D)
+FS_VEX_DEFINE(vmaxps, 0, 0x5F)
+FS_VEX_DEFINE(vandps, 0, 0x54)
+FS_VEX_DEFINE(vorps, 0, 0x56)
+FS_VEX_DEFINE(vxorps, 0, 0x57)
+#undef FS_VEX_DEFINE
 
 void Assembler::cmpps(Xmm d, Xmm s, Pred p) { if (listing_on_) list(("cmp" + operand(p) + "ps").c_str(), d, s); sse(0, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
 void Assembler::cmpps(Xmm d, const Mem& s, Pred p) { if (listing_on_) list(("cmp" + operand(p) + "ps").c_str(), d, s); sse(0, {0x0F, 0xC2}, d, m(s), static_cast<int>(p)); }

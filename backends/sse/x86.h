@@ -56,6 +56,14 @@ class Assembler {
   FS_SSE_BINARY(cvtps2pd) FS_SSE_BINARY(cvtpd2ps) FS_SSE_BINARY(cvttpd2dq)  // low two lanes <-> doubles
   FS_SSE_BINARY(addpd) FS_SSE_BINARY(subpd) FS_SSE_BINARY(mulpd) FS_SSE_BINARY(punpcklqdq)
 #undef FS_SSE_BINARY
+  // ---- AVX (VEX.128): the same operations in three-operand form, d = s1 op s2, no copy of s1 ----
+#define FS_VEX_BINARY(name)                 \
+  void name(Xmm d, Xmm s1, Xmm s2);         \
+  void name(Xmm d, Xmm s1, const Mem& s2);
+  FS_VEX_BINARY(vaddps) FS_VEX_BINARY(vsubps) FS_VEX_BINARY(vmulps) FS_VEX_BINARY(vdivps)
+  FS_VEX_BINARY(vminps) FS_VEX_BINARY(vmaxps) FS_VEX_BINARY(vandps) FS_VEX_BINARY(vorps)
+  FS_VEX_BINARY(vxorps)
+#undef FS_VEX_BINARY
   void cmpps(Xmm d, Xmm s, Pred p);
   void cmpps(Xmm d, const Mem& s, Pred p);
   void cmpss(Xmm d, Xmm s, Pred p);
@@ -123,6 +131,9 @@ class Assembler {
   // Assembly text of everything emitted (Intel operand order), for `fscript emit-asm`: turned on
   // before emitting; after finish() it also lists the constant pool.
   void enable_listing() { listing_on_ = true; }
+  // The target runs AVX: code generators may use the three-operand VEX forms above.
+  void enable_vex() { vex_ = true; }
+  bool vex() const { return vex_; }
   std::string listing() const;
 
  private:
@@ -136,7 +147,11 @@ class Assembler {
   // [prefix] [REX] opcode... ModRM [SIB] [disp] [imm8]
   void emit(uint8_t prefix, bool w, std::initializer_list<uint8_t> opcode, uint8_t reg, const Operand& rm,
             int imm_size = 0, uint32_t imm = 0);
+  // ModRM [SIB] [disp] [imm] of an instruction whose prefixes and opcode are out.
+  void modrm(uint8_t reg, const Operand& rm, int imm_size, uint32_t imm);
   void sse(uint8_t prefix, std::initializer_list<uint8_t> opcode, Xmm d, const Operand& s, int imm8 = -1);
+  // VEX.128 in map 0F (pp: 0 none, 1 66, 2 F3, 3 F2): the 2-byte form when no X/B bit is needed.
+  void vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm);
   void rel32(Label l);
 
   // One listing line per instruction: its offset and text.
@@ -163,6 +178,7 @@ class Assembler {
   static std::string operand(uint64_t v);
 
   bool listing_on_ = false;
+  bool vex_ = false;
   std::vector<std::pair<size_t, std::string>> lines_;
   std::vector<uint8_t> code_;
   std::vector<int64_t> label_pos_;                 // -1: unbound

@@ -7,6 +7,7 @@
 #include <llvm/IR/Constants.h>
 #include <llvm/IR/IRBuilder.h>
 #include <llvm/IR/Intrinsics.h>
+#include <llvm/IR/IntrinsicsX86.h>
 #include <llvm/IR/LLVMContext.h>
 #include <llvm/IR/MDBuilder.h>
 #include <llvm/IR/Module.h>
@@ -251,10 +252,30 @@ class LlvmFunctionLowering {
   }
   llvm::Value* bool_float(llvm::Value* m) { return b_.CreateSelect(m, splat(1), splat(0)); }
   // min: b NaN ? NaN : (b < a ? b : a); max alike with >.
+  // min: b < a ? b : a (max with >), then a NaN b. The first part is x86's minps/maxps with b
+  // first, and is written as that instruction's intrinsic, not as fcmp + select: LLVM 19's
+  // InstCombine folds nested selects of this shape as if -0 and +0 were one value (min(-0,
+  // min(y, -0)) became min(y, -0): +0 at y = +0 where the language says -0; found by the
+  // backend_diff campaign). The intrinsics are opaque to it.
   llvm::Value* minmax(llvm::Value* a, const ir::Inst* bi, llvm::Value* b, bool is_min) {
-    llvm::Value* m = b_.CreateSelect(is_min ? b_.CreateFCmpOLT(b, a) : b_.CreateFCmpOGT(b, a), b, a);
+    llvm::Value* m = x86_minmax(b, a, is_min);
     if (!ir::may_be_nan(bi, ranges_)) return m;
     return b_.CreateSelect(b_.CreateFCmpUNO(b, b), b, m);
+  }
+  llvm::Value* x86_minmax(llvm::Value* first, llvm::Value* second, bool is_min) {
+    using namespace llvm::Intrinsic;
+    const int w = static_cast<int>(s_.width);
+    if (w == 16)  // the AVX-512 form takes a rounding operand: 4, the current direction
+      return b_.CreateIntrinsic(is_min ? x86_avx512_min_ps_512 : x86_avx512_max_ps_512, {},
+                                {first, second, b_.getInt32(4)});
+    if (w == 8) return b_.CreateIntrinsic(is_min ? x86_avx_min_ps_256 : x86_avx_max_ps_256, {}, {first, second});
+    ID four = is_min ? x86_sse_min_ps : x86_sse_max_ps;
+    if (w == 4) return b_.CreateIntrinsic(four, {}, {first, second});
+    // Fewer lanes (the one-point kernel's one): through the four-lane instruction, lanes past w unused.
+    std::vector<int> widen(4, -1), narrow(static_cast<size_t>(w));
+    for (int i = 0; i < w; ++i) widen[static_cast<size_t>(i)] = i, narrow[static_cast<size_t>(i)] = i;
+    llvm::Value* r = b_.CreateIntrinsic(four, {}, {b_.CreateShuffleVector(first, widen), b_.CreateShuffleVector(second, widen)});
+    return b_.CreateShuffleVector(r, narrow);
   }
   llvm::Value* unary(llvm::Intrinsic::ID id, llvm::Value* a) { return b_.CreateUnaryIntrinsic(id, a); }
 

@@ -7,6 +7,10 @@ function f_abs(x) { return abs(x) + fabs(x); }
 function f_min(a, b) { return min(a, b); }
 function f_max(a, b) { return max(a, b); }
 function f_clamp(x) { return clamp(x, 0, 1); }
+// Equal zeros: min and max return their first operand, so min(-0, min(y, -0)) is -0 at y = +0
+// (LLVM 19 folded the nested selects to min(y, -0), +0; backend_diff, 2026-12-04).
+function f_min_zeros(y) { return 1 / min(min(-0, -0), min(y, -0)); }
+function f_max_zeros(y) { return 1 / max(max(0, 0), max(y, 0)); }
 function f_pow(a, b) { return pow(a, b); }
 function f_mod(a, b) { return mod(a, b); }
 function f_sqrt(x) { return sqrt(x); }
@@ -33,6 +37,10 @@ function f_noise(x, y, z) { return noise(x, y, z); }
 // run: f_max(nan, 1) == nan
 // run: f_max(1, nan) == nan
 // run: f_max(-1, 2) == 2
+// run: f_min_zeros(0) == -inf
+// run: f_min_zeros(-0) == -inf
+// run: f_max_zeros(-0) == inf
+// run: f_max_zeros(0) == inf
 // run: f_clamp(2) == 1
 // run: f_clamp(-2) == 0
 // run: f_clamp(nan) == nan

@@ -12,6 +12,7 @@
 #include <llvm/Support/raw_ostream.h>
 #include <llvm/Target/TargetMachine.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <deque>
@@ -72,6 +73,7 @@ struct State {
   std::mutex mutex;
   uint64_t next_dylib = 0;
   std::unordered_map<std::string, std::weak_ptr<Program>> cache;
+  size_t sweep_at = 64;  // the cache's size that triggers dropping the keys of freed programs
   std::deque<std::shared_ptr<Program>> recent;  // the last programs stay compiled when unused
   CacheStats stats;
   bool cache_on = true;
@@ -212,6 +214,12 @@ std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, doub
   program->entry_ = entry->toPtr<KernelFn>();
   compile_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   ++s.stats.compiles;
+  // Keys of freed programs go, or the map grew with every distinct compile of the process (each
+  // key holds the program's IR text: a --serve session kept every saved version's).
+  if (s.cache.size() >= s.sweep_at) {
+    std::erase_if(s.cache, [](const auto& e) { return e.second.expired(); });
+    s.sweep_at = std::max<size_t>(64, 2 * s.cache.size());
+  }
   s.cache[key] = program;
   s.recent.push_back(program);
   if (s.recent.size() > kRecentPrograms) {
@@ -296,7 +304,9 @@ void set_cache_enabled(bool on) {
 CacheStats cache_stats() {
   State& s = state();
   std::lock_guard<std::mutex> lock(s.mutex);
-  return s.stats;
+  CacheStats out = s.stats;
+  out.keys = s.cache.size();
+  return out;
 }
 
 }  // namespace fscript::llvmjit

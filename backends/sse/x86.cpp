@@ -141,7 +141,6 @@ FS_VEX_DEFINE(vdivps, 0, 0x5E)
 FS_VEX_DEFINE(vminps, 0, 0x5D)
 FS_VEX_DEFINE(vmaxps, 0, 0x5F)
 FS_VEX_DEFINE(vandps, 0, 0x54)
-FS_VEX_DEFINE(vorps, 0, 0x56)
 FS_VEX_DEFINE(vxorps, 0, 0x57)
 #undef FS_VEX_DEFINE
 

@@ -61,8 +61,7 @@ class Assembler {
   void name(Xmm d, Xmm s1, Xmm s2);         \
   void name(Xmm d, Xmm s1, const Mem& s2);
   FS_VEX_BINARY(vaddps) FS_VEX_BINARY(vsubps) FS_VEX_BINARY(vmulps) FS_VEX_BINARY(vdivps)
-  FS_VEX_BINARY(vminps) FS_VEX_BINARY(vmaxps) FS_VEX_BINARY(vandps) FS_VEX_BINARY(vorps)
-  FS_VEX_BINARY(vxorps)
+  FS_VEX_BINARY(vminps) FS_VEX_BINARY(vmaxps) FS_VEX_BINARY(vandps) FS_VEX_BINARY(vxorps)
 #undef FS_VEX_BINARY
   void cmpps(Xmm d, Xmm s, Pred p);
   void cmpps(Xmm d, const Mem& s, Pred p);

@@ -83,7 +83,7 @@ const Row kRows[] = {
     {"vminps xmm11,xmm3,XMMWORD PTR [r12+0x200]", [](Assembler& a) { a.vminps(Xmm::x11, Xmm::x3, Mem::at(Gp::r12, 0x200)); }, "c4 41 60 5d 9c 24 00 02 00 00"},
     {"vmaxps xmm5,xmm14,XMMWORD PTR [r8+r9*8-0x1000]", [](Assembler& a) { a.vmaxps(Xmm::x5, Xmm::x14, Mem::at(Gp::r8, Gp::r9, 8, -0x1000)); }, "c4 81 08 5f ac c8 00 f0 ff ff"},
     {"vandps xmm2,xmm3,XMMWORD PTR [rax]", [](Assembler& a) { a.vandps(Xmm::x2, Xmm::x3, Mem::at(Gp::rax)); }, "c5 e0 54 10"},
-    {"vorps xmm8,xmm8,xmm8", [](Assembler& a) { a.vorps(Xmm::x8, Xmm::x8, Xmm::x8); }, "c4 41 38 56 c0"},
+    {"vaddps xmm8,xmm8,xmm8", [](Assembler& a) { a.vaddps(Xmm::x8, Xmm::x8, Xmm::x8); }, "c4 41 38 58 c0"},
     {"vxorps xmm7,xmm6,XMMWORD PTR [rax+rbx*2+0x4]", [](Assembler& a) { a.vxorps(Xmm::x7, Xmm::x6, Mem::at(Gp::rax, Gp::rbx, 2, 4)); }, "c5 c8 57 7c 58 04"},
     {"cmpeqps xmm1,xmm2", [](Assembler& a) { a.cmpps(Xmm::x1, Xmm::x2, Pred::Eq); }, "0f c2 ca 00"},
     {"cmpltps xmm1,xmm2", [](Assembler& a) { a.cmpps(Xmm::x1, Xmm::x2, Pred::Lt); }, "0f c2 ca 01"},

@@ -9,8 +9,8 @@ namespace fscript::llvmjit {
 namespace {
 // Changed whenever llvm_lower.cpp changes the code it makes, so the disk cache never hands back an
 // object from an older lowering (2: the lanes' mask crosses calls as an integer; 3: min and max as
-// x86's own instructions).
-constexpr int kLoweringRevision = 3;
+// x86's own instructions; 4: the one-point code's own entry).
+constexpr int kLoweringRevision = 4;
 
 // The cache key: everything the code depends on.
 std::string cache_key(const ir::Module& m, uint32_t width, const backends::Budgets& budgets, bool bounded) {
@@ -27,7 +27,7 @@ bool code_cached(const ir::Module& m, uint32_t width, const backends::Budgets& b
 std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, const backends::Budgets& budgets,
                                         bool bounded, Lowered& lowered, double& compile_ms, std::string& error) {
   compile_ms = 0;
-  std::string key = cache_key(m, width, budgets, bounded);
+  std::string key = cache_key(m, width, budgets, bounded) + (lowered.point_entry ? " point" : "");
   if (std::shared_ptr<Program> hit = cached(key)) return hit;
   if (!lower_to_llvm(m, width, budgets, bounded, lowered, error)) return nullptr;
   return llvmjit::compile(std::move(lowered), key, compile_ms, error);
@@ -83,39 +83,37 @@ bool LlvmKernel::eval_rows(const float* first, size_t count, const float* const*
   return backends::jit_eval_rows(*this, row_from_, first, count, rest, rows, outputs, err);
 }
 
-// One point: the kernel compiled again at one lane (on the first call), so a call costs one point's
-// work, not a padded group's. Its code is general (no bounded-input assumptions): no range check.
-KernelFn LlvmKernel::scalar(backends::RuntimeError& err) const {
-  if (KernelFn ready = scalar_fn_.load(std::memory_order_acquire)) return ready;  // no call_once per call
+// One point: the kernel compiled again at one lane with its own entry (on the first call), so a
+// call costs one point's work, not a padded group's. Its code is general (no bounded-input
+// assumptions): no range check.
+PointFn LlvmKernel::scalar(backends::RuntimeError& err) const {
+  if (PointFn ready = scalar_fn_.load(std::memory_order_acquire)) return ready;  // no call_once per call
   std::call_once(scalar_once_, [this] {
     Lowered lowered;
+    lowered.point_entry = true;
     double ms = 0;
     std::string error;
     scalar_ = compile_module(*module_, 1, budgets_, false, lowered, ms, error);
     if (!scalar_) scalar_error_ = "the llvm backend could not compile the kernel's one-point code: " + error;
-    else scalar_fn_.store(scalar_->entry(), std::memory_order_release);
+    else scalar_fn_.store(scalar_->point(), std::memory_order_release);
   });
   if (!scalar_) err.message = scalar_error_;
-  return scalar_ ? scalar_->entry() : nullptr;
+  return scalar_ ? scalar_->point() : nullptr;
 }
 
 bool LlvmKernel::eval(const float* inputs, float* outputs, backends::RuntimeError& err) const {
-  KernelFn f = scalar(err);
+  PointFn f = scalar(err);
   if (!f) return false;
-  backends::Scratch<const float*> in(inputs_);
-  backends::Scratch<float*> out(outputs_);
-  for (size_t k = 0; k < inputs_; ++k) in.data[k] = inputs + k;
-  for (size_t k = 0; k < outputs_; ++k) out.data[k] = outputs + k;
   // Code without arrays never touches its arrays argument: no LaneArrays to build per call (two
   // calls, not one through a std::optional: measured 15 ns a call slower).
   static const backends::LaneArrays no_arrays;
   if (arrays_.empty()) {
-    uint64_t code = backends::call_generated([&] { return f(in.data, out.data, 0, 1, nullptr, backends::stack_limit()); });
+    uint64_t code = backends::call_generated([&] { return f(inputs, outputs, nullptr, backends::stack_limit()); });
     return backends::jit_status(code, no_arrays, budgets_, err);
   }
   backends::LaneArrays arrays;
   arrays.init(1, budgets_.max_array_elements, arrays_);
-  uint64_t code = backends::call_generated([&] { return f(in.data, out.data, 0, 1, &arrays, backends::stack_limit()); });
+  uint64_t code = backends::call_generated([&] { return f(inputs, outputs, &arrays, backends::stack_limit()); });
   return backends::jit_status(code, arrays, budgets_, err);
 }
 

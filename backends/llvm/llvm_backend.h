@@ -28,7 +28,7 @@ class LlvmKernel : public backends::Kernel {
 
  private:
   KernelFn general(backends::RuntimeError& err) const;
-  KernelFn scalar(backends::RuntimeError& err) const;
+  PointFn scalar(backends::RuntimeError& err) const;
   std::shared_ptr<Program> code_;
   uint32_t width_;
   size_t inputs_, outputs_;
@@ -43,7 +43,7 @@ class LlvmKernel : public backends::Kernel {
   mutable std::string general_error_;
   mutable std::once_flag scalar_once_;
   mutable std::shared_ptr<Program> scalar_;
-  mutable std::atomic<KernelFn> scalar_fn_{nullptr};  // scalar_'s entry once compiled
+  mutable std::atomic<PointFn> scalar_fn_{nullptr};  // scalar_'s entry once compiled
   mutable std::string scalar_error_;
 };
 

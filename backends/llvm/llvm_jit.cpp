@@ -205,13 +205,14 @@ std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, doub
     lock.unlock();
     return nullptr;  // the program's destructor removes the dylib
   }
-  auto entry = s.jit->lookup(*dylib, kKernelSymbol);  // compiles
+  auto entry = s.jit->lookup(*dylib, lowered.point_entry ? kPointSymbol : kKernelSymbol);  // compiles
   if (!entry) {
     error = message(entry.takeError());
     lock.unlock();
     return nullptr;
   }
-  program->entry_ = entry->toPtr<KernelFn>();
+  if (lowered.point_entry) program->point_ = entry->toPtr<PointFn>();
+  else program->entry_ = entry->toPtr<KernelFn>();
   compile_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   ++s.stats.compiles;
   // Keys of freed programs go, or the map grew with every distinct compile of the process (each

@@ -15,8 +15,10 @@ namespace fscript::llvmjit {
 struct Program {
   ~Program();
   KernelFn entry() const { return entry_; }
+  PointFn point() const { return point_; }
   void* dylib_ = nullptr;  // the llvm::orc::JITDylib, removed with the program
-  KernelFn entry_ = nullptr;
+  KernelFn entry_ = nullptr;  // one of the two, by Lowered::point_entry
+  PointFn point_ = nullptr;
   // The kernel's shape, as lowering found it (a cache hit needs no lowering).
   uint32_t num_inputs = 0, num_outputs = 0;
   std::vector<std::string> array_names;

@@ -550,6 +550,24 @@ class LlvmFunctionLowering {
   int cur_ = 0;
 };
 
+// The one-point entry: the kernel inlined into a function that points its input and output
+// lists at the caller's plain arrays and runs one group (1 lane) of it.
+void add_point_entry(Shared& s, llvm::Function* kernel, uint32_t inputs, uint32_t outputs) {
+  auto* t = llvm::FunctionType::get(s.i64, {s.ptr, s.ptr, s.ptr, s.i64}, false);
+  auto* f = llvm::Function::Create(t, llvm::Function::ExternalLinkage, kPointSymbol, s.m);
+  llvm::IRBuilder<> b(llvm::BasicBlock::Create(s.c, "entry", f));
+  auto list = [&](llvm::Value* base, uint32_t n) {
+    llvm::Value* l = b.CreateAlloca(s.ptr, b.getInt32(std::max(1u, n)));
+    for (uint32_t k = 0; k < n; ++k)
+      b.CreateStore(b.CreateConstInBoundsGEP1_64(s.f32, base, k), b.CreateConstInBoundsGEP1_64(s.ptr, l, k));
+    return l;
+  };
+  llvm::Value *in = list(f->getArg(0), inputs), *out = list(f->getArg(1), outputs);
+  b.CreateRet(b.CreateCall(kernel, {in, out, b.getInt64(0), b.getInt64(1), f->getArg(2), f->getArg(3)}));
+  kernel->setLinkage(llvm::Function::InternalLinkage);
+  kernel->addFnAttr(llvm::Attribute::AlwaysInline);
+}
+
 }  // namespace
 
 Lowered::Lowered() = default;
@@ -602,6 +620,7 @@ bool lower_to_llvm(const ir::Module& module, uint32_t width, const backends::Bud
     out.array_names.insert(out.array_names.end(), fn.arrays.begin(), fn.arrays.end());
     if (f == kernel) out.num_inputs = fn.num_params, out.num_outputs = fn.num_results;
   }
+  if (out.point_entry) add_point_entry(s, s.fns[static_cast<size_t>(kernel)], out.num_inputs, out.num_outputs);
   return true;
 }
 

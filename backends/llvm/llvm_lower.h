@@ -27,6 +27,10 @@ namespace fscript::llvmjit {
 using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end,
                               void* arrays, uintptr_t stack_limit);
 constexpr const char* kKernelSymbol = "fs_kernel";
+// One point (Kernel::eval, a one-lane module lowered with Lowered::point_entry): the inputs and
+// outputs as plain arrays, so a call builds no lists of pointers; same return codes.
+using PointFn = uint64_t (*)(const float* inputs, float* outputs, void* arrays, uintptr_t stack_limit);
+constexpr const char* kPointSymbol = "fs_point";
 
 struct Lowered {
   Lowered();
@@ -37,6 +41,7 @@ struct Lowered {
   std::vector<std::string> array_names;  // by slot: the module's global arrays, then each function's
   uint32_t num_inputs = 0, num_outputs = 0;
   double param_bound = 0;
+  bool point_entry = false;  // set by the caller: the module exports kPointSymbol, not kKernelSymbol
 };
 
 // Lowers the module's kernel and every function it calls (after inlining the non-recursive ones).

@@ -141,6 +141,47 @@ TEST_CASE("llvm: kernels compiled and freed, and the cache of compiled code") {
   CHECK(r2 == 248.0f);
 }
 
+// The one-point code is a one-lane module with its own entry (plain input and output arrays):
+// a one-lane batch kernel of the same program is other code under another cache key.
+TEST_CASE("llvm: the one-point entry agrees with the VM on recursion, arrays and loops, next to one-lane batch code") {
+  for (const char* body : test::kRecursiveBodies) {
+    auto vm = test::build(std::string(test::kRecursivePrelude) + "function FRep(x, y, z, t) { " +
+                          test::kRecursiveSetup + body + " }");
+    REQUIRE(vm->ok);
+    auto batch = llvm_kernel(*vm->module, 1);
+    auto k = llvm_kernel(*vm->module, 16);
+    for (float x : kSpecial) {
+      float in[4] = {x, 3.0f, 0.5f, 0}, r0 = 0, r1 = 0, r2 = 0;
+      const float* cols[4] = {&in[0], &in[1], &in[2], &in[3]};
+      float* outs[1] = {&r2};
+      backends::RuntimeError e0, e1, e2;
+      INFO(body << " x = " << x);
+      REQUIRE(vm->kernel->eval(in, &r0, e0));
+      REQUIRE(k->eval(in, &r1, e1));
+      REQUIRE(batch->eval_batch(cols, outs, 1, e2));
+      CHECK(same(r1, r0));
+      CHECK(same(r2, r0));
+    }
+  }
+}
+
+TEST_CASE("llvm: a one-point call over its loop budget fails as on the VM") {
+  backends::Budgets budgets;
+  budgets.max_loop_iterations = 100;
+  auto vm = test::build("function FRep(x, y, z, t) {\n  var s = 0;\n  while (s < x) s = s + 1;\n  return s;\n}", "",
+                        true, budgets);
+  REQUIRE(vm->ok);
+  auto k = llvm_kernel(*vm->module, 16, budgets);
+  float small[4] = {50, 0, 0, 0}, big[4] = {1000, 0, 0, 0}, r = 0;
+  backends::RuntimeError e0, e1;
+  REQUIRE(k->eval(small, &r, e1));
+  CHECK(r == 50.0f);
+  REQUIRE_FALSE(vm->kernel->eval(big, &r, e0));
+  REQUIRE_FALSE(k->eval(big, &r, e1));
+  CHECK(e1.message == e0.message);
+  CHECK(e1.line == e0.line);
+}
+
 TEST_CASE("llvm: the memory cache forgets freed programs (a long session compiles without end)") {
   // 300 distinct programs, each freed at once: the cache may keep the last few and a sweep's
   // slack, never a key per program ever compiled (it did: 3,318 keys, 2.6 MB, after a fuzz run).

@@ -272,9 +272,11 @@ class LaneCode {
     SlowPath sp{a_.new_label(), a_.new_label(), t0, batch_trig(offset), t1, partner ? batch_trig(1 - offset) : nullptr};
     a_.jcc(Cond::NE, sp.entry);
     a_.cvtps2pd(t0, Xmm::x1);
-    a_.movhlps(Xmm::x1, Xmm::x1);
-    a_.cvtps2pd(t1, Xmm::x1);
-    for (auto [h, j] : {std::pair{t0, t2}, std::pair{t1, t3}}) {  // each pair of lanes in double
+    if (!uniform_) {
+      a_.movhlps(Xmm::x1, Xmm::x1);
+      a_.cvtps2pd(t1, Xmm::x1);
+    }
+    auto reduce = [&](Xmm h, Xmm j) {  // a pair of lanes in double
       a_.movaps(j, h);
       a_.mulpd(j, dbl(kTwoOverPi));
       a_.addpd(j, dbl(kRoundMagic));
@@ -287,9 +289,11 @@ class LaneCode {
       a_.subpd(h, Xmm::x0);
       a_.cvttpd2dq(j, j);
       a_.cvtpd2ps(h, h);
-    }
-    a_.movlhps(t0, t1);     // r, four lanes
-    a_.punpcklqdq(t2, t3);  // q, four lanes
+    };
+    reduce(t0, t2);
+    if (!uniform_) reduce(t1, t3);
+    a_.movlhps(t0, uniform_ ? t0 : t1);     // r, four lanes
+    a_.punpcklqdq(t2, uniform_ ? t2 : t3);  // q, four lanes
     a_.movaps(t1, t0);
     a_.mulps(t1, t0);  // z = r * r
     a_.movaps(t3, k(kSin1));  // sin: ((kSin1 z + kSin2) z - kSin3) z r + r
@@ -397,6 +401,9 @@ class LaneCode {
 
   const ir::Function& fn_;
   std::vector<ir::Range> ranges_;  // empty: no assumption about the parameters
+  // Every lane holds the same point (the one-point code): what is computed per pair of lanes in
+  // double is computed for the first pair and copied to the second.
+  bool uniform_ = false;
   int32_t budget_;
   std::vector<size_t> frame_fields_;
   Assembler& a_;  // shared by the kernel and the functions it calls

@@ -1,6 +1,8 @@
 // SSE backend glue: generate, map W^X, and run groups of four points (the tail padded).
 #include "backends/sse/sse_backend.h"
 
+#include <cmath>
+
 #include "backends/jit_support.h"
 
 namespace fscript::sse {
@@ -21,7 +23,7 @@ std::unique_ptr<backends::Kernel> SseBackend::compile(const ir::Module& m, const
   for (const auto& f : m.functions)
     if (f->kernel) fn = f.get();
   return std::make_unique<SseKernel>(std::move(memory), fn->num_params, fn->num_results, budgets, std::move(arrays),
-                                     bound, bound > 0 ? m.clone() : nullptr, fn->row_params_from);
+                                     bound, m.clone(), fn->row_params_from);
 }
 
 KernelFn SseKernel::general(backends::RuntimeError& err) const {
@@ -68,27 +70,50 @@ bool SseKernel::eval_rows(const float* first, size_t count, const float* const* 
   return backends::jit_eval_rows(*this, row_from_, first, count, rest, rows, outputs, err);
 }
 
-// One point: the four lanes of one group all hold it, straight into the code (the batch path's
-// padding copies and per-call array state cost more than a small kernel's work).
+PointFn SseKernel::point(backends::RuntimeError& err) const {
+  if (PointFn ready = point_fn_.load(std::memory_order_acquire)) return ready;  // no call_once per call
+  std::call_once(point_once_, [this] {
+    std::string error;
+    double bound = 0;
+    std::vector<uint8_t> code = generate(*module_, budgets_, error, nullptr, nullptr, &bound, true);
+    if (!code.empty() && bound == param_bound_) point_ = CodeMemory::create(code, error);
+    else if (!code.empty()) error = "its input bound differs from the batch code's";
+    if (!point_) point_error_ = "the sse backend could not compile the kernel's one-point code: " + error;
+    else point_fn_.store(reinterpret_cast<PointFn>(const_cast<uint8_t*>(point_->start())), std::memory_order_release);
+  });
+  if (!point_) err.message = point_error_;
+  return point_fn_.load(std::memory_order_acquire);
+}
+
+// One point: code made for a group whose four lanes hold it, reading and writing the caller's
+// arrays (the batch path's padding copies cost more than a small kernel's work). A point outside
+// the bounded code's range takes the general code, the point in each lane of a group.
 bool SseKernel::eval(const float* inputs, float* outputs, backends::RuntimeError& err) const {
-  constexpr size_t kMaxDirect = 16;
-  if (inputs_ > kMaxDirect || outputs_ > kMaxDirect || !arrays_.empty() || row_from_)
-    return backends::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
-  alignas(16) float in[4 * kMaxDirect], out[4 * kMaxDirect];
-  const float* ip[kMaxDirect];
-  float* op[kMaxDirect];
-  for (size_t k = 0; k < inputs_; ++k) {
-    for (size_t l = 0; l < 4; ++l) in[4 * k + l] = inputs[k];
-    ip[k] = in + 4 * k;
-  }
-  for (size_t k = 0; k < outputs_; ++k) op[k] = out + 4 * k;
-  KernelFn f = entry(*code_);
-  if (param_bound_ > 0 && !in_range(ip, 1) && !(f = general(err))) return false;
+  if (row_from_) return backends::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
+  float bound = static_cast<float>(param_bound_);
+  bool bounded = true;
+  for (size_t k = 0; k < inputs_; ++k) bounded &= std::fabs(inputs[k]) <= bound;  // NaN fails
+  if (param_bound_ > 0 && !bounded) return eval_general(inputs, outputs, err);
+  PointFn f = point(err);
+  if (!f) return false;
   static const backends::LaneArrays no_arrays;  // code without arrays never touches its argument
-  uint64_t code = backends::call_generated([&] { return f(ip, op, 0, 4, nullptr, backends::stack_limit()); });
-  if (!backends::jit_status(code, no_arrays, budgets_, err)) return false;
-  for (size_t k = 0; k < outputs_; ++k) outputs[k] = out[4 * k];
-  return true;
+  if (arrays_.empty()) {
+    uint64_t code = backends::call_generated([&] { return f(inputs, outputs, 0, 4, nullptr, backends::stack_limit()); });
+    return backends::jit_status(code, no_arrays, budgets_, err);
+  }
+  backends::LaneArrays arrays = fresh_arrays();
+  uint64_t code = backends::call_generated([&] { return f(inputs, outputs, 0, 4, &arrays, backends::stack_limit()); });
+  return backends::jit_status(code, arrays, budgets_, err);
+}
+
+bool SseKernel::eval_general(const float* inputs, float* outputs, backends::RuntimeError& err) const {
+  KernelFn f = general(err);
+  if (!f) return false;
+  backends::Scratch<const float*> in(inputs_);
+  backends::Scratch<float*> out(outputs_);
+  for (size_t k = 0; k < inputs_; ++k) in.data[k] = inputs + k;
+  for (size_t k = 0; k < outputs_; ++k) out.data[k] = outputs + k;
+  return run(f, in.data, out.data, 1, err);
 }
 
 }  // namespace fscript::sse

@@ -3,6 +3,7 @@
 // per iteration in xmm registers (packed single precision), our own encoder, register allocation
 // and W^X code memory. Branches and loops run masked (sse_compile.cpp), arrays through helpers
 // (sse_arrays.h); recursive functions are compiled too and called with the caller's lane mask.
+#include <atomic>
 #include <memory>
 #include <mutex>
 
@@ -19,10 +20,14 @@ namespace fscript::sse {
 // thread's stack allows (a called function's frame would go below `stack_limit`).
 using KernelFn = uint64_t (*)(const float* const* inputs, float* const* outputs, uint64_t begin, uint64_t end,
                               backends::LaneArrays* arrays, uintptr_t stack_limit);
+// The one-point code: the point's inputs and outputs as plain arrays, begin 0 and end 4.
+using PointFn = uint64_t (*)(const float* inputs, float* outputs, uint64_t begin, uint64_t end,
+                             backends::LaneArrays* arrays, uintptr_t stack_limit);
 
 // A kernel whose code assumes bounded inputs (param_bound > 0: every input finite with |x| <=
 // param_bound, which lets it drop NaN handling the value ranges prove useless) runs batches with
 // an input outside that range through the general code, compiled on first need from `module`.
+// One-point calls run code compiled for four equal lanes, also on first need.
 class SseKernel : public backends::Kernel {
  public:
   SseKernel(std::unique_ptr<CodeMemory> code, size_t inputs, size_t outputs, const backends::Budgets& budgets,
@@ -44,6 +49,8 @@ class SseKernel : public backends::Kernel {
   static KernelFn entry(const CodeMemory& c) { return reinterpret_cast<KernelFn>(const_cast<uint8_t*>(c.start())); }
   bool in_range(const float* const* inputs, size_t n) const;
   KernelFn general(backends::RuntimeError& err) const;
+  PointFn point(backends::RuntimeError& err) const;
+  bool eval_general(const float* inputs, float* outputs, backends::RuntimeError& err) const;
   bool run(KernelFn f, const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const;
   backends::LaneArrays fresh_arrays() const;
   std::unique_ptr<CodeMemory> code_;
@@ -57,6 +64,10 @@ class SseKernel : public backends::Kernel {
   mutable std::once_flag general_once_;
   mutable std::unique_ptr<CodeMemory> general_;
   mutable std::string general_error_;
+  mutable std::once_flag point_once_;
+  mutable std::unique_ptr<CodeMemory> point_;  // the one-point code, bounded as code_ is
+  mutable std::atomic<PointFn> point_fn_{nullptr};
+  mutable std::string point_error_;
 };
 
 class SseBackend : public backends::Backend {
@@ -68,8 +79,10 @@ class SseBackend : public backends::Backend {
 // The machine code of the module's kernel; empty with a message when the kernel uses what this
 // stage does not compile. `listing`, when given, receives the code as assembly text (emit-asm).
 // With `param_bound`, the code may assume bounded inputs and says the bound it chose (0: none).
+// With `uniform_lanes`, the one-point code (a PointFn): the four lanes of its one group hold the
+// same point, read from and written to plain arrays; work done per pair of lanes is done once.
 std::vector<uint8_t> generate(const ir::Module& m, const backends::Budgets& budgets, std::string& error,
                               std::string* listing = nullptr, std::vector<std::string>* array_names = nullptr,
-                              double* param_bound = nullptr);
+                              double* param_bound = nullptr, bool uniform_lanes = false);
 
 }  // namespace fscript::sse

@@ -117,6 +117,7 @@ class Codegen : public detail::LaneCode {
   }
 
   void set_ranges(std::vector<ir::Range> r) { ranges_ = std::move(r); }
+  void set_uniform() { uniform_ = true; }
   // The listing with this function's frame size in place of its placeholder.
   void fix_listing(std::string& text) const {
     std::string from = "rsp, " + std::to_string(placeholder_), to = "rsp, " + std::to_string(frame_bytes());
@@ -295,8 +296,7 @@ class Codegen : public detail::LaneCode {
     }
     for (uint32_t k = 0; k < fn_.num_results; ++k) {
       a_.movaps(Xmm::x0, at(out_slot_ + 16 * static_cast<int32_t>(k)));
-      a_.mov(Gp::rax, Mem::at(Gp::r12, 8 * static_cast<int32_t>(k)));
-      a_.movups(Mem::at(Gp::rax, Gp::r13, 1), Xmm::x0);
+      store_output(k, Xmm::x0);
     }
   }
 
@@ -387,6 +387,9 @@ class Codegen : public detail::LaneCode {
     Xmm d = alloc(pos);
     if (callee_) {
       a_.movaps(d, Mem::at(Gp::rbx, 16 * in.aux));
+    } else if (uniform_) {  // the one-point code: rbx is the point's array of inputs
+      a_.movss(d, Mem::at(Gp::rbx, 4 * in.aux));
+      a_.shufps(d, d, 0);
     } else if (fn_.row_params_from && static_cast<uint32_t>(in.aux) >= fn_.row_params_from) {
       a_.mov(Gp::rax, Mem::at(Gp::rbx, 8 * in.aux));  // a row parameter: one value for the call
       a_.movss(d, Mem::at(Gp::rax, 0));
@@ -551,9 +554,14 @@ class Codegen : public detail::LaneCode {
         continue;
       }
       if (s.mem) a_.movaps(Xmm::x0, s.m), s = {false, Xmm::x0, {}};
-      a_.mov(Gp::rax, Mem::at(Gp::r12, 8 * static_cast<int32_t>(o)));
-      a_.movups(Mem::at(Gp::rax, Gp::r13, 1), s.x);
+      store_output(static_cast<uint32_t>(o), s.x);
     }
+  }
+  // The one-point code writes the first lane to the point's array of outputs (r12).
+  void store_output(uint32_t k, Xmm x) {
+    if (uniform_) return a_.movss(Mem::at(Gp::r12, 4 * static_cast<int32_t>(k)), x);
+    a_.mov(Gp::rax, Mem::at(Gp::r12, 8 * static_cast<int32_t>(k)));
+    a_.movups(Mem::at(Gp::rax, Gp::r13, 1), x);
   }
 
   void jump(const ir::Inst& in) {
@@ -675,7 +683,8 @@ double choose_bound(const ir::Function& fn, Codegen& gen) {
 }  // namespace
 
 std::vector<uint8_t> generate(const ir::Module& module, const backends::Budgets& budgets, std::string& error,
-                              std::string* listing, std::vector<std::string>* array_names, double* param_bound) {
+                              std::string* listing, std::vector<std::string>* array_names, double* param_bound,
+                              bool uniform_lanes) {
   backends::JitProgram jp;
   if (!backends::prepare_program(module, jp, error)) return {};
   const ir::Module& m = *jp.module;
@@ -694,6 +703,7 @@ std::vector<uint8_t> generate(const ir::Module& module, const backends::Budgets&
     gens.push_back(std::make_unique<Codegen>(fn, a, budgets, static_cast<uint32_t>(names.size()), program,
                                              static_cast<int>(gens.size()), f != kernel));
     names.insert(names.end(), fn.arrays.begin(), fn.arrays.end());
+    if (uniform_lanes) gens.back()->set_uniform();
     if (f == kernel && param_bound) *param_bound = choose_bound(fn, *gens.back());
     a.bind(program.entries[static_cast<size_t>(f)]);
     if (!gens.back()->run(error)) return {};

@@ -13,6 +13,7 @@ namespace fscript::backends {
 struct LlvmCacheStats {
   uint64_t hits = 0, compiles = 0, disk_hits = 0;  // disk hits are also counted in compiles
   uint64_t keys = 0;  // programs the memory cache knows by key (live ones, and expired ones not yet swept)
+  uint64_t quick_compiles = 0;  // compiles of modules with too many blocks for LLVM's full pipeline
 };
 
 class LlvmModule {

@@ -81,11 +81,32 @@ class DiskCache : public llvm::ObjectCache {
   }
 };
 
+namespace {
+// Code generation at the builder's level, or with no optimisation (the fast register allocator)
+// for a module that carries kQuickFlag: the greedy allocator's time grows faster than linearly in
+// the size of a function with many blocks (llvm_jit.cpp, quick compiles).
+class TwoLevelCompiler : public llvm::orc::IRCompileLayer::IRCompiler {
+ public:
+  TwoLevelCompiler(std::unique_ptr<llvm::TargetMachine> full, std::unique_ptr<llvm::TargetMachine> quick, DiskCache* cache)
+      : IRCompiler(llvm::orc::irManglingOptionsFromTargetOptions(full->Options)),
+        full_(std::move(full), cache), quick_(std::move(quick), cache) {}
+  llvm::Expected<std::unique_ptr<llvm::MemoryBuffer>> operator()(llvm::Module& m) override {
+    return m.getModuleFlag(kQuickFlag) ? quick_(m) : full_(m);
+  }
+
+ private:
+  llvm::orc::TMOwningSimpleCompiler full_, quick_;
+};
+}  // namespace
+
 llvm::Expected<std::unique_ptr<llvm::orc::IRCompileLayer::IRCompiler>> make_compiler(
     llvm::orc::JITTargetMachineBuilder jtmb, DiskCache* cache) {
-  auto tm = jtmb.createTargetMachine();
-  if (!tm) return tm.takeError();
-  return std::make_unique<llvm::orc::TMOwningSimpleCompiler>(std::move(*tm), cache);
+  auto full = jtmb.createTargetMachine();
+  if (!full) return full.takeError();
+  jtmb.setCodeGenOptLevel(llvm::CodeGenOptLevel::None);
+  auto quick = jtmb.createTargetMachine();
+  if (!quick) return quick.takeError();
+  return std::make_unique<TwoLevelCompiler>(std::move(*full), std::move(*quick), cache);
 }
 
 DiskCache* make_disk_cache() { return new DiskCache; }

@@ -13,7 +13,11 @@ namespace fscript::llvmjit {
 
 class DiskCache;
 
-// The compiler the LLJIT uses: LLVM's, consulting `cache` (compiled without RTTI, as LLVM is).
+// The module flag that asks for code generation without optimisation (a quick compile).
+constexpr const char* kQuickFlag = "fs.quick";
+
+// The compiler the LLJIT uses: LLVM's, consulting `cache` (compiled without RTTI, as LLVM is);
+// modules with kQuickFlag are compiled with CodeGenOptLevel::None.
 llvm::Expected<std::unique_ptr<llvm::orc::IRCompileLayer::IRCompiler>> make_compiler(
     llvm::orc::JITTargetMachineBuilder jtmb, DiskCache* cache);
 

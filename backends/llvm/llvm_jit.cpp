@@ -126,6 +126,42 @@ void prepare(Lowered& l, State& s) {
   l.module->setTargetTriple(s.tm->getTargetTriple().str());
 }
 
+// Past this many basic blocks a module is compiled quickly: cheap clean-ups and code generation
+// without optimisation. LLVM's pipeline and greedy register allocation grow faster than linearly
+// with the blocks of one function: a 230-byte generated program whose inlined calls made 5,172
+// blocks took 45 s to compile at one lane; 884 blocks take 0.9 s, 1,752 about 3 s (docs/
+// performance.md). Our lowering makes a block for a few of the script's branches and loops
+// (the benchmarks: 6 to 18; the corpus and examples: under 30), so only scripts with hundreds of
+// loops and branches after inlining get here, where a bounded compile matters more than fast code.
+constexpr size_t kQuickCompileBlocks = 1000;
+
+bool quick_compile(const llvm::Module& m) {
+  size_t blocks = 0;
+  for (const llvm::Function& f : m) blocks += f.size();
+  return blocks > kQuickCompileBlocks;
+}
+
+// The quick compile's pipeline: cheap clean-ups only. Values used across blocks stay in their
+// allocas: turning them into SSA values (SROA) builds phi webs that grow with blocks times
+// allocas (the pending lane mask of every block is one), slower to compile than the rest.
+void optimize_quickly(llvm::Module& m, llvm::TargetMachine* tm) {
+  llvm::LoopAnalysisManager lam;
+  llvm::FunctionAnalysisManager fam;
+  llvm::CGSCCAnalysisManager cgam;
+  llvm::ModuleAnalysisManager mam;
+  llvm::PassBuilder pb(tm);
+  pb.registerModuleAnalyses(mam);
+  pb.registerCGSCCAnalyses(cgam);
+  pb.registerFunctionAnalyses(fam);
+  pb.registerLoopAnalyses(lam);
+  pb.crossRegisterProxies(lam, fam, cgam, mam);
+  llvm::ModulePassManager mpm;
+  if (llvm::Error e = pb.parsePassPipeline(mpm, "function(early-cse,instcombine,simplifycfg)"))
+    llvm::consumeError(std::move(e));  // a fixed pipeline LLVM 19 knows; without it, unoptimised code
+  mpm.run(m, mam);
+  m.addModuleFlag(llvm::Module::Warning, kQuickFlag, 1);
+}
+
 void optimize(llvm::Module& m, llvm::TargetMachine* tm) {
   llvm::LoopAnalysisManager lam;
   llvm::FunctionAnalysisManager fam;
@@ -181,7 +217,10 @@ std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, doub
   prepare(lowered, s);
   lowered.module->setModuleIdentifier(disk_name(key));
   disk_expect(s.disk, key);
+  bool quick = quick_compile(*lowered.module);
+  if (quick) ++s.stats.quick_compiles;
   if (disk_has(s.disk, key)) ++s.stats.disk_hits;  // the object is loaded instead of compiled
+  else if (quick) optimize_quickly(*lowered.module, s.tm.get());
   else optimize(*lowered.module, s.tm.get());
   auto dylib = s.jit->createJITDylib("fs_program_" + std::to_string(s.next_dylib++));
   if (!dylib) {

@@ -48,6 +48,7 @@ std::string assembly(Lowered& lowered, std::string& error);
 // Compiled programs kept (cache hits) and compiles done, for tests and `--stats`.
 struct CacheStats {
   uint64_t hits = 0, compiles = 0, disk_hits = 0;  // disk hits are also counted in compiles
+  uint64_t quick_compiles = 0;  // modules with too many blocks for the full pipeline (also in compiles)
   uint64_t keys = 0;  // entries of the memory cache
 };
 CacheStats cache_stats();

@@ -21,7 +21,7 @@ class Module final : public backends::LlvmModule {
   }
   backends::LlvmCacheStats cache_stats() const override {
     CacheStats s = llvmjit::cache_stats();
-    return {s.hits, s.compiles, s.disk_hits, s.keys};
+    return {s.hits, s.compiles, s.disk_hits, s.keys, s.quick_compiles};
   }
   void set_cache_enabled(bool on) const override { llvmjit::set_cache_enabled(on); }
   std::string set_disk_cache_enabled(bool on) const override { return llvmjit::set_disk_cache_enabled(on); }

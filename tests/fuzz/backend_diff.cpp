@@ -4,10 +4,13 @@
 // bit for bit (NaN payloads aside) and fail on the same points with the same message
 // (docs/language.md, "Accuracy"; docs/reliability.md). Without transcendentals, the optimised
 // and the unoptimised module must agree as well, zero signs included (constant folding and the
-// identities are exact there; x + 0 -> x was not, for x = -0: found by this target).
+// identities are exact there; x + 0 -> x was not, for x = -0: found by this target). The
+// one-point call is compared too, on every fifth point.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 
@@ -74,6 +77,28 @@ void compare(const std::string& name, const backends::Kernel& want, const backen
   }
 }
 
+// The one-point call (Kernel::eval: the REPL, root finding) is code of its own on the JIT
+// backends (one lane, equal lanes): every fifth point against `want`'s batch of that point alone.
+void compare_points(const std::string& name, const backends::Kernel& want, const backends::Kernel& got,
+                    const Columns& cols, const std::string& text) {
+  for (size_t p = 0; p < kPoints; p += 5) {
+    Run x = run_batch(want, cols, p, 1);
+    std::vector<float> in(cols.size()), out(got.num_outputs(), 0.0f);
+    for (size_t c = 0; c < cols.size(); ++c) in[c] = cols[c][p];
+    backends::RuntimeError err;
+    bool ok = got.eval(in.data(), out.data(), err);
+    if (x.ok != ok || x.error != err.message)
+      fuzz::finding(name + " one point fails differently at " + describe(cols, p) + ": '" + x.error + "' vs '" +
+                        err.message + "'",
+                    text);
+    for (size_t i = 0; ok && x.ok && i < out.size(); ++i)
+      if (!fuzz::same(x.out[i], out[i]))
+        fuzz::finding(name + " one point differs at " + describe(cols, p) + ": " + std::to_string(x.out[i]) + " vs " +
+                          std::to_string(out[i]),
+                      text);
+  }
+}
+
 std::unique_ptr<ir::Module> build(const std::string& text, bool optimize, std::unique_ptr<backends::Kernel>& vm) {
   driver::CompileOptions o = fuzz::compile_options(optimize);
   frontend::DiagnosticSink diag;
@@ -90,6 +115,7 @@ std::unique_ptr<ir::Module> build(const std::string& text, bool optimize, std::u
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FuzzedDataProvider in(data, size);
   fuzz::GeneratedProgram prog = fuzz::generate_program(in);
+  if (std::getenv("FS_FUZZ_SHOW")) std::fprintf(stderr, "---- program ----\n%s\n---- end ----\n", prog.text.c_str());
   std::unique_ptr<backends::Kernel> vm;
   auto module = build(prog.text, true, vm);
   Columns cols(vm->num_inputs(), std::vector<float>(kPoints));
@@ -97,6 +123,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (size_t p = 0; p < kPoints; ++p) cols[c][p] = kValues[(p * (2 * c + 1) + c * 5) % std::size(kValues)];
   // Every backend this build has: one that cannot start (the llvm module not built or not
   // loadable) is a finding, or a campaign would compare the VM with the SSE code alone unseen.
+  compare_points("vm batch against vm", *vm, *vm, cols, prog.text);
   for (const std::string& name : backends::available_backends()) {
     if (name == "vm") continue;
     auto backend = backends::make_backend(name);
@@ -105,6 +132,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     auto k = backend->compile(*module, fuzz::small_budgets(), error);
     if (!k) fuzz::finding(name + " cannot compile: " + error, prog.text);
     compare("vm against " + name, *vm, *k, cols, prog.text);
+    compare_points("vm batch against " + name, *vm, *k, cols, prog.text);
   }
   if (!prog.transcendental) {
     std::unique_ptr<backends::Kernel> plain;

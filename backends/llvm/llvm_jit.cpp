@@ -141,38 +141,37 @@ bool quick_compile(const llvm::Module& m) {
   return blocks > kQuickCompileBlocks;
 }
 
+// Runs the module pipeline `make` builds, with every analysis registered.
+template <typename Make>
+void run_pipeline(llvm::Module& m, llvm::TargetMachine* tm, const Make& make) {
+  llvm::LoopAnalysisManager lam;
+  llvm::FunctionAnalysisManager fam;
+  llvm::CGSCCAnalysisManager cgam;
+  llvm::ModuleAnalysisManager mam;
+  llvm::PassBuilder pb(tm);
+  pb.registerModuleAnalyses(mam);
+  pb.registerCGSCCAnalyses(cgam);
+  pb.registerFunctionAnalyses(fam);
+  pb.registerLoopAnalyses(lam);
+  pb.crossRegisterProxies(lam, fam, cgam, mam);
+  llvm::ModulePassManager mpm = make(pb);
+  mpm.run(m, mam);
+}
+
 // The quick compile's pipeline: cheap clean-ups only. Values used across blocks stay in their
 // allocas: turning them into SSA values (SROA) builds phi webs that grow with blocks times
 // allocas (the pending lane mask of every block is one), slower to compile than the rest.
 void optimize_quickly(llvm::Module& m, llvm::TargetMachine* tm) {
-  llvm::LoopAnalysisManager lam;
-  llvm::FunctionAnalysisManager fam;
-  llvm::CGSCCAnalysisManager cgam;
-  llvm::ModuleAnalysisManager mam;
-  llvm::PassBuilder pb(tm);
-  pb.registerModuleAnalyses(mam);
-  pb.registerCGSCCAnalyses(cgam);
-  pb.registerFunctionAnalyses(fam);
-  pb.registerLoopAnalyses(lam);
-  pb.crossRegisterProxies(lam, fam, cgam, mam);
-  llvm::ModulePassManager mpm;
-  if (llvm::Error e = pb.parsePassPipeline(mpm, "function(early-cse,instcombine,simplifycfg)"))
-    llvm::consumeError(std::move(e));  // a fixed pipeline LLVM 19 knows; without it, unoptimised code
-  mpm.run(m, mam);
+  run_pipeline(m, tm, [](llvm::PassBuilder& pb) {
+    llvm::ModulePassManager mpm;
+    if (llvm::Error e = pb.parsePassPipeline(mpm, "function(early-cse,instcombine,simplifycfg)"))
+      llvm::consumeError(std::move(e));  // a fixed pipeline LLVM 19 knows; without it, unoptimised code
+    return mpm;
+  });
   m.addModuleFlag(llvm::Module::Warning, kQuickFlag, 1);
 }
 
 void optimize(llvm::Module& m, llvm::TargetMachine* tm) {
-  llvm::LoopAnalysisManager lam;
-  llvm::FunctionAnalysisManager fam;
-  llvm::CGSCCAnalysisManager cgam;
-  llvm::ModuleAnalysisManager mam;
-  llvm::PassBuilder pb(tm);
-  pb.registerModuleAnalyses(mam);
-  pb.registerCGSCCAnalyses(cgam);
-  pb.registerFunctionAnalyses(fam);
-  pb.registerLoopAnalyses(lam);
-  pb.crossRegisterProxies(lam, fam, cgam, mam);
   // FSCRIPT_LLVM_OPT=1|2|3 overrides the level, to measure the choice (docs/performance.md).
   static const int opt = [] {
     const char* v = std::getenv("FSCRIPT_LLVM_OPT");
@@ -181,7 +180,7 @@ void optimize(llvm::Module& m, llvm::TargetMachine* tm) {
   llvm::OptimizationLevel level = opt == 3   ? llvm::OptimizationLevel::O3
                                   : opt == 1 ? llvm::OptimizationLevel::O1
                                              : llvm::OptimizationLevel::O2;
-  pb.buildPerModuleDefaultPipeline(level).run(m, mam);
+  run_pipeline(m, tm, [&](llvm::PassBuilder& pb) { return pb.buildPerModuleDefaultPipeline(level); });
 }
 
 }  // namespace

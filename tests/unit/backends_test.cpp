@@ -252,6 +252,45 @@ TEST_CASE("backends: every batch length, the one-point call, and several outputs
   }
 }
 
+// Kernel::eval is code of its own on the JIT backends (llvm: one lane, sse: four equal lanes, both
+// reading the point's arrays): recursion, arrays, loops and a loop-budget trap as on the VM.
+TEST_CASE("backends: the one-point call runs recursion, arrays, loops and budgets as the VM does") {
+  for (const char* body : test::kRecursiveBodies) {
+    auto vm = test::build(std::string(test::kRecursivePrelude) + "function FRep(x, y, z, t) { " +
+                          test::kRecursiveSetup + body + " }");
+    REQUIRE(vm->ok);
+    for (const Variant& v : variants()) {
+      auto k = compile_on(v, *vm->module);
+      for (float x : test::kSpecial) {
+        float in[4] = {x, 3.0f, 0.5f, 0}, r0 = 0, r1 = 0;
+        backends::RuntimeError e0, e1;
+        INFO(v.name << ": " << body << " x = " << x);
+        REQUIRE(vm->kernel->eval(in, &r0, e0));
+        REQUIRE(k->eval(in, &r1, e1));
+        CHECK(same(r1, r0));
+      }
+    }
+  }
+  backends::Budgets budgets;
+  budgets.max_loop_iterations = 100;
+  auto vm = test::build("function FRep(x, y, z, t) {\n  var s = 0;\n  while (s < x) s = s + 1;\n  return s;\n}", "",
+                        true, budgets);
+  REQUIRE(vm->ok);
+  float small[4] = {50, 0, 0, 0}, big[4] = {1000, 0, 0, 0}, r = 0;
+  backends::RuntimeError e0;
+  REQUIRE_FALSE(vm->kernel->eval(big, &r, e0));
+  for (const Variant& v : variants()) {
+    INFO(v.name);
+    auto k = compile_on(v, *vm->module, budgets);
+    backends::RuntimeError e1;
+    REQUIRE(k->eval(small, &r, e1));
+    CHECK(r == 50.0f);
+    REQUIRE_FALSE(k->eval(big, &r, e1));
+    CHECK(e1.message == e0.message);
+    CHECK(e1.line == e0.line);
+  }
+}
+
 TEST_CASE("backends: globals start as NaN in every evaluation and follow the lanes' paths") {
   agree_with_vm("g = 0; if (x > 0) g = y; return g + 1;");
   agree_with_vm("if (x > 0) h = 1; return h;");  // NaN where x <= 0: the global was never set

@@ -165,23 +165,6 @@ TEST_CASE("llvm: the one-point entry agrees with the VM on recursion, arrays and
   }
 }
 
-TEST_CASE("llvm: a one-point call over its loop budget fails as on the VM") {
-  backends::Budgets budgets;
-  budgets.max_loop_iterations = 100;
-  auto vm = test::build("function FRep(x, y, z, t) {\n  var s = 0;\n  while (s < x) s = s + 1;\n  return s;\n}", "",
-                        true, budgets);
-  REQUIRE(vm->ok);
-  auto k = llvm_kernel(*vm->module, 16, budgets);
-  float small[4] = {50, 0, 0, 0}, big[4] = {1000, 0, 0, 0}, r = 0;
-  backends::RuntimeError e0, e1;
-  REQUIRE(k->eval(small, &r, e1));
-  CHECK(r == 50.0f);
-  REQUIRE_FALSE(vm->kernel->eval(big, &r, e0));
-  REQUIRE_FALSE(k->eval(big, &r, e1));
-  CHECK(e1.message == e0.message);
-  CHECK(e1.line == e0.line);
-}
-
 // Calls inlined into hundreds of loops and branches: a module of thousands of blocks gets the quick
 // compile (the full one took 45 s for a generated program like this), and the same answers.
 TEST_CASE("llvm: a kernel of thousands of blocks is compiled quickly and agrees with the VM") {

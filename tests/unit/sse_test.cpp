@@ -223,38 +223,3 @@ TEST_CASE("sse: the one-point code agrees with the VM, and reduces sin/cos for o
   CHECK(count(batch_asm, "cvtps2pd") == 2 * count(point_asm, "cvtps2pd"));
   CHECK(count(point_asm, "cvtps2pd") >= 3);
 }
-
-TEST_CASE("sse: the one-point code runs arrays, recursion and loop budgets as the VM does") {
-  for (const char* body : test::kRecursiveBodies) {
-    auto vm = test::build(std::string(test::kRecursivePrelude) + "function FRep(x, y, z, t) { " +
-                          test::kRecursiveSetup + body + " }");
-    REQUIRE(vm->ok);
-    std::string error;
-    auto k = sse::SseBackend().compile(*vm->module, {}, error);
-    REQUIRE(k);
-    for (float x : kSpecial) {
-      float in[4] = {x, 3.0f, 0.5f, 0}, r0 = 0, r1 = 0;
-      backends::RuntimeError e0, e1;
-      INFO(body << " x = " << x);
-      REQUIRE(vm->kernel->eval(in, &r0, e0));
-      REQUIRE(k->eval(in, &r1, e1));
-      CHECK(same(r1, r0));
-    }
-  }
-  backends::Budgets budgets;
-  budgets.max_loop_iterations = 100;
-  auto vm = test::build("function FRep(x, y, z, t) {\n  var s = 0;\n  while (s < x) s = s + 1;\n  return s;\n}", "",
-                        true, budgets);
-  REQUIRE(vm->ok);
-  std::string error;
-  auto k = sse::SseBackend().compile(*vm->module, budgets, error);
-  REQUIRE(k);
-  float small[4] = {50, 0, 0, 0}, big[4] = {1000, 0, 0, 0}, r = 0;
-  backends::RuntimeError e0, e1;
-  REQUIRE(k->eval(small, &r, e1));
-  CHECK(r == 50.0f);
-  REQUIRE_FALSE(vm->kernel->eval(big, &r, e0));
-  REQUIRE_FALSE(k->eval(big, &r, e1));
-  CHECK(e1.message == e0.message);
-  CHECK(e1.line == e0.line);
-}

@@ -72,6 +72,15 @@ inline backends::Budgets input_dependent_budgets() {
   return b;
 }
 
+// `k`'s batch over four input columns x, y, z, t (one output); false with the error in `err`.
+inline bool eval_columns(const backends::Kernel& k, const std::vector<float> (&cols)[4], std::vector<float>& out,
+                         backends::RuntimeError& err) {
+  out.assign(cols[0].size(), 0.0f);
+  const float* in[4] = {cols[0].data(), cols[1].data(), cols[2].data(), cols[3].data()};
+  float* o[1] = {out.data()};
+  return k.eval_batch(in, o, out.size(), err);
+}
+
 // "" when `jit` gives the VM's results for x = 1, 2, ... n (y = z = t = 0) at every batch length
 // n up to `max_n`, else what differed.
 inline std::string partial_group_mismatch(const backends::Kernel& vm, const backends::Kernel& jit, size_t max_n) {

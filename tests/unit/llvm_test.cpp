@@ -178,18 +178,14 @@ TEST_CASE("llvm: a kernel of thousands of blocks is compiled quickly and agrees 
   REQUIRE(vm->ok);
   backends::LlvmCacheStats before = llvm().cache_stats();
   auto k = llvm_kernel(*vm->module, 16);
-  std::vector<float> x, y, z, t;
+  std::vector<float> cols[4], o1, o2;
+  auto& [x, y, z, t] = cols;
   for (float a : kSpecial)
     for (float b : {0.5f, -2.0f, 3.25f}) x.push_back(a), y.push_back(b), z.push_back(a * 0.25f), t.push_back(0);
-  size_t n = x.size();
-  std::vector<float> o1(n), o2(n);
-  const float* in[4] = {x.data(), y.data(), z.data(), t.data()};
-  float* out1[1] = {o1.data()};
-  float* out2[1] = {o2.data()};
   backends::RuntimeError err;
-  REQUIRE(vm->kernel->eval_batch(in, out1, n, err));
-  REQUIRE(k->eval_batch(in, out2, n, err));
-  for (size_t i = 0; i < n; ++i) {
+  REQUIRE(test::eval_columns(*vm->kernel, cols, o1, err));
+  REQUIRE(test::eval_columns(*k, cols, o2, err));
+  for (size_t i = 0; i < x.size(); ++i) {
     INFO("x = " << x[i] << ", y = " << y[i]);
     CHECK(same(o1[i], o2[i]));
     float p[4] = {x[i], y[i], z[i], 0}, r = 0;

@@ -30,17 +30,14 @@ void agree(const std::string& body, const std::string& prelude = "") {
   INFO(body << "\n" << test::messages(vm->diag));
   REQUIRE(vm->ok);
   REQUIRE(sse->ok);
-  std::vector<float> x, y, z, t;
+  std::vector<float> cols[4], o1, o2;
+  auto& [x, y, z, t] = cols;
   for (float a : kSpecial)
     for (float b : kSpecial) x.push_back(a), y.push_back(b), z.push_back(kSpecial[(x.size() * 7) % kSpecial.size()]), t.push_back(0);
   size_t n = x.size();
-  std::vector<float> o1(n), o2(n);
-  const float* in[4] = {x.data(), y.data(), z.data(), t.data()};
-  float* out1[1] = {o1.data()};
-  float* out2[1] = {o2.data()};
   backends::RuntimeError err;
-  REQUIRE(vm->kernel->eval_batch(in, out1, n, err));
-  REQUIRE(sse->kernel->eval_batch(in, out2, n, err));
+  REQUIRE(test::eval_columns(*vm->kernel, cols, o1, err));
+  REQUIRE(test::eval_columns(*sse->kernel, cols, o2, err));
   int bad = 0;
   for (size_t i = 0; i < n && bad < 5; ++i)
     if (!same(o1[i], o2[i])) {

@@ -4,6 +4,7 @@
 #include <llvm/ExecutionEngine/Orc/JITTargetMachineBuilder.h>
 #include <llvm/ExecutionEngine/Orc/LLJIT.h>
 #include <llvm/ExecutionEngine/Orc/ThreadSafeModule.h>
+#include <llvm/IR/Instructions.h>
 #include <llvm/IR/LLVMContext.h>
 #include <llvm/IR/LegacyPassManager.h>
 #include <llvm/IR/Module.h>
@@ -16,6 +17,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <deque>
+#include <iterator>
 #include <mutex>
 #include <unordered_map>
 
@@ -126,19 +128,46 @@ void prepare(Lowered& l, State& s) {
   l.module->setTargetTriple(s.tm->getTargetTriple().str());
 }
 
-// Past this many basic blocks a module is compiled quickly: cheap clean-ups and code generation
-// without optimisation. LLVM's pipeline and greedy register allocation grow faster than linearly
-// with the blocks of one function: a 230-byte generated program whose inlined calls made 5,172
-// blocks took 45 s to compile at one lane; 884 blocks take 0.9 s, 1,752 about 3 s (docs/
-// performance.md). Our lowering makes a block for a few of the script's branches and loops
-// (the benchmarks: 6 to 18; the corpus and examples: under 30), so only scripts with hundreds of
-// loops and branches after inlining get here, where a bounded compile matters more than fast code.
+// Past this many basic blocks or instructions a module is compiled quickly: cheap clean-ups and
+// code generation without optimisation. LLVM's pipeline and greedy register allocation grow
+// faster than linearly with the blocks and the length of one function: a 230-byte generated
+// program whose inlined calls made 5,172 blocks took 45 s to compile at one lane (884 blocks
+// 0.9 s, 1,752 about 3 s), a straight-line script of 100,000 operations 196 s (20,000: 5.5 s for
+// its two compiles of 20,032 and 36,721 instructions; docs/performance.md). Our lowering makes a
+// block for a few of the script's branches and loops (the benchmarks: 6 to 18; the corpus and
+// examples: under 30), and prospero's 7,866 operations make 6,382 instructions (20,788 in its
+// one-point code, with the NaN tests): only scripts of hundreds of loops and branches, or tens of
+// thousands of operations, get here, where a bounded compile matters more than fast code.
 constexpr size_t kQuickCompileBlocks = 1000;
+constexpr size_t kQuickCompileInstructions = 25000;
 
 bool quick_compile(const llvm::Module& m) {
-  size_t blocks = 0;
-  for (const llvm::Function& f : m) blocks += f.size();
-  return blocks > kQuickCompileBlocks;
+  size_t blocks = 0, instructions = 0;
+  for (const llvm::Function& f : m) blocks += f.size(), instructions += f.getInstructionCount();
+  return blocks > kQuickCompileBlocks || instructions > kQuickCompileInstructions;
+}
+
+// Instruction selection builds one DAG per basic block, and its combiner grows faster than
+// linearly with the block (a straight-line script of 100,000 operations: 97 s, mostly in
+// SelectionDAG::Combine). Blocks longer than this are cut into blocks of this length, joined by
+// unconditional branches, after the optimiser (which would merge them again); prospero's
+// 6,382-instruction block is left whole.
+constexpr size_t kMaxBlockInstructions = 8192;
+
+void split_long_blocks(llvm::Module& m) {
+  for (llvm::Function& f : m) {
+    std::vector<llvm::BasicBlock*> work;
+    for (llvm::BasicBlock& b : f) work.push_back(&b);
+    while (!work.empty()) {
+      llvm::BasicBlock* b = work.back();
+      work.pop_back();
+      if (b->size() <= kMaxBlockInstructions) continue;
+      auto cut = b->begin();
+      std::advance(cut, kMaxBlockInstructions);
+      while (llvm::isa<llvm::PHINode>(*cut)) ++cut;  // phis stay at the head
+      work.push_back(b->splitBasicBlock(cut));
+    }
+  }
 }
 
 // Runs the module pipeline `make` builds, with every analysis registered.
@@ -183,6 +212,16 @@ void optimize(llvm::Module& m, llvm::TargetMachine* tm) {
   run_pipeline(m, tm, [&](llvm::PassBuilder& pb) { return pb.buildPerModuleDefaultPipeline(level); });
 }
 
+// The module as code generation gets it: the full or the quick pipeline, long blocks cut. True
+// for a quick compile (the module then carries kQuickFlag).
+bool optimize_for_codegen(llvm::Module& m, llvm::TargetMachine* tm) {
+  bool quick = quick_compile(m);
+  if (quick) optimize_quickly(m, tm);
+  else optimize(m, tm);
+  split_long_blocks(m);
+  return quick;
+}
+
 }  // namespace
 
 Program::~Program() {
@@ -216,11 +255,8 @@ std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, doub
   prepare(lowered, s);
   lowered.module->setModuleIdentifier(disk_name(key));
   disk_expect(s.disk, key);
-  bool quick = quick_compile(*lowered.module);
-  if (quick) ++s.stats.quick_compiles;
   if (disk_has(s.disk, key)) ++s.stats.disk_hits;  // the object is loaded instead of compiled
-  else if (quick) optimize_quickly(*lowered.module, s.tm.get());
-  else optimize(*lowered.module, s.tm.get());
+  else if (optimize_for_codegen(*lowered.module, s.tm.get())) ++s.stats.quick_compiles;
   auto dylib = s.jit->createJITDylib("fs_program_" + std::to_string(s.next_dylib++));
   if (!dylib) {
     error = message(dylib.takeError());
@@ -300,7 +336,7 @@ std::string with_optimized(Lowered& lowered, std::string& error, Use use) {
   }
   std::lock_guard<std::mutex> lock(s.mutex);
   prepare(lowered, s);
-  optimize(*lowered.module, s.tm.get());
+  optimize_for_codegen(*lowered.module, s.tm.get());
   return use(s);
 }
 }  // namespace
@@ -319,12 +355,14 @@ std::string assembly(Lowered& lowered, std::string& error) {
     llvm::SmallString<0> buffer;
     llvm::raw_svector_ostream os(buffer);
     llvm::legacy::PassManager pm;
-    if (s.tm->addPassesToEmitFile(pm, os, nullptr, llvm::CodeGenFileType::AssemblyFile)) {
-      error = "LLVM cannot print assembly for this target";
-      return "";
-    }
-    pm.run(*lowered.module);
-    return std::string(buffer.str());
+    // A quick compile's code comes from the unoptimised code generator: print that.
+    llvm::CodeGenOptLevel level = s.tm->getOptLevel();
+    if (lowered.module->getModuleFlag(kQuickFlag)) s.tm->setOptLevel(llvm::CodeGenOptLevel::None);
+    bool refused = s.tm->addPassesToEmitFile(pm, os, nullptr, llvm::CodeGenFileType::AssemblyFile);
+    if (!refused) pm.run(*lowered.module);
+    s.tm->setOptLevel(level);
+    if (refused) error = "LLVM cannot print assembly for this target";
+    return refused ? "" : std::string(buffer.str());
   });
 }
 

@@ -21,6 +21,7 @@ class Out {
   explicit Out(std::string& s) : s_(&s) {}
   explicit Out(std::FILE* f) : f_(f), buf_(kChunk) {}
   void put(const void* p, size_t n) {
+    if (n == 0) return;  // an empty mesh's arrays have no data (memcpy from null is undefined)
     if (s_) return void(s_->append(static_cast<const char*>(p), n));
     if (used_ + n > buf_.size()) flush();
     if (n > buf_.size()) return void(ok_ = ok_ && std::fwrite(p, 1, n, f_) == n);

@@ -72,7 +72,7 @@ class LaneCode {
   void spill(int reg) {
     uint32_t v = static_cast<uint32_t>(held_[reg]);
     if (slot_of_[v] < 0) {
-      slot_of_[v] = spill_base_ + 16 * next_slot_++;
+      slot_of_[v] = spill_base_ + slot_bytes_ * next_slot_++;
       a_.movaps(at(slot_of_[v]), static_cast<Xmm>(reg));
     }
     drop(v);
@@ -226,6 +226,7 @@ class LaneCode {
   }
 
   bool call(const ir::Inst& in, int pos, const void* fn) {
+    a_.refuse_wide("a call of a batch function");
     for (size_t i = 0; i < in.args.size(); ++i) {  // arguments to the scratch slots
       load(Xmm::x0, src(in.args[i]));
       a_.movaps(Mem::at(Gp::rsp, kScratch + 16 * static_cast<int32_t>(i)), Xmm::x0);
@@ -259,6 +260,7 @@ class LaneCode {
   // here too, from the same reduction, and skipped when its turn comes.
   void trig(const ir::Inst& in, int pos, int offset) {
     using namespace math::trig;
+    a_.refuse_wide("sin/cos");
     const ir::Inst* partner = trig_partner(in, pos, offset);
     Src a = src(in.args[0]);
     Xmm t0 = temp(pos), t1 = temp(pos), t2 = temp(pos), t3 = temp(pos), cp = temp(pos);
@@ -355,6 +357,7 @@ class LaneCode {
   // An array operation: its operands to the scratch slots, every register saved, the helper called
   // with (state, slot, operands..., lane mask); a helper's 1 is a runtime error with its message.
   void array_op(const ir::Inst& in, int pos) {
+    a_.refuse_wide("an array operation");
     for (size_t i = 0; i < in.args.size(); ++i) {
       load(Xmm::x0, src(in.args[i]));
       a_.movaps(at(kScratch + 16 * static_cast<int32_t>(i)), Xmm::x0);
@@ -404,6 +407,8 @@ class LaneCode {
   // Every lane holds the same point (the one-point code): what is computed per pair of lanes in
   // double is computed for the first pair and copied to the second.
   bool uniform_ = false;
+  // Eight lanes (Assembler::enable_wide): spill slots of 32 bytes in a frame aligned to 32.
+  int32_t slot_bytes_ = 16;
   int32_t budget_;
   std::vector<size_t> frame_fields_;
   Assembler& a_;  // shared by the kernel and the functions it calls

@@ -1,4 +1,4 @@
-// SSE backend glue: generate, map W^X, and run groups of four points (the tail padded).
+// SSE backend glue: generate, map W^X, and run groups of four or eight points (the tail padded).
 #include "backends/sse/sse_backend.h"
 
 #include <cmath>
@@ -15,7 +15,8 @@ std::unique_ptr<backends::Kernel> SseBackend::compile(const ir::Module& m, const
   }
   std::vector<std::string> arrays;
   double bound = 0;
-  std::vector<uint8_t> code = generate(m, budgets, error, nullptr, &arrays, &bound);
+  uint32_t lanes = 4;
+  std::vector<uint8_t> code = generate(m, budgets, error, nullptr, &arrays, &bound, false, &lanes);
   if (code.empty()) return nullptr;
   auto memory = CodeMemory::create(code, error);
   if (!memory) return nullptr;
@@ -23,13 +24,13 @@ std::unique_ptr<backends::Kernel> SseBackend::compile(const ir::Module& m, const
   for (const auto& f : m.functions)
     if (f->kernel) fn = f.get();
   return std::make_unique<SseKernel>(std::move(memory), fn->num_params, fn->num_results, budgets, std::move(arrays),
-                                     bound, m.clone(), fn->row_params_from);
+                                     bound, m.clone(), fn->row_params_from, lanes);
 }
 
 KernelFn SseKernel::general(backends::RuntimeError& err) const {
   std::call_once(general_once_, [this] {
     std::string error;
-    std::vector<uint8_t> code = generate(*module_, budgets_, error);
+    std::vector<uint8_t> code = generate(*module_, budgets_, error, nullptr, nullptr, nullptr, false, &general_lanes_);
     if (!code.empty()) general_ = CodeMemory::create(code, error);
     if (!general_) general_error_ = "the sse backend could not compile the kernel's general code: " + error;
   });
@@ -49,17 +50,19 @@ backends::LaneArrays SseKernel::fresh_arrays() const {
 }
 
 bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const {
-  KernelFn f = entry(*code_);
-  if (param_bound_ > 0 && !in_range(inputs, n) && !(f = general(err))) return false;
-  return run(f, inputs, outputs, n, err);
+  if (param_bound_ > 0 && !in_range(inputs, n)) {
+    KernelFn g = general(err);
+    return g && run(g, general_lanes_, inputs, outputs, n, err);
+  }
+  return run(entry(*code_), lanes_, inputs, outputs, n, err);
 }
 
-bool SseKernel::run(KernelFn f, const float* const* inputs, float* const* outputs, size_t n,
+bool SseKernel::run(KernelFn f, uint32_t lanes, const float* const* inputs, float* const* outputs, size_t n,
                     backends::RuntimeError& err) const {
   // Per call: batches may run on several threads at once. Only kernels with arrays need it.
   backends::LaneArrays arrays;
   if (!arrays_.empty()) arrays = fresh_arrays();
-  return backends::run_padded(4, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
+  return backends::run_padded(lanes, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
     uint64_t code = backends::call_generated([&] { return f(in, out, 0, count, &arrays, backends::stack_limit()); });
     return backends::jit_status(code, arrays, budgets_, err);
   }, row_from_);
@@ -113,7 +116,7 @@ bool SseKernel::eval_general(const float* inputs, float* outputs, backends::Runt
   backends::Scratch<float*> out(outputs_);
   for (size_t k = 0; k < inputs_; ++k) in.data[k] = inputs + k;
   for (size_t k = 0; k < outputs_; ++k) out.data[k] = outputs + k;
-  return run(f, in.data, out.data, 1, err);
+  return run(f, general_lanes_, in.data, out.data, 1, err);
 }
 
 }  // namespace fscript::sse

@@ -1,6 +1,7 @@
 #pragma once
 // The SSE backend: the kernel function compiled to x86-64 machine code that evaluates four points
-// per iteration in xmm registers (packed single precision), our own encoder, register allocation
+// per iteration in xmm registers (packed single precision; eight in ymm registers for straight-line
+// lane arithmetic where the CPU has AVX), our own encoder, register allocation
 // and W^X code memory. Branches and loops run masked (sse_compile.cpp), arrays through helpers
 // (sse_arrays.h); recursive functions are compiled too and called with the caller's lane mask.
 #include <atomic>
@@ -14,7 +15,8 @@
 
 namespace fscript::sse {
 
-// The generated function: points [begin, end) of the batch, end - begin a multiple of 4. Returns 0,
+// The generated function: points [begin, end) of the batch, end - begin a multiple of its lanes (4
+// or 8, from generate). Returns 0,
 // or a runtime error: backends::trap_code(kind, source position), kind 1 = the loop budget, 2 = an
 // array error (its message in `arrays`), 3 = the call depth budget, 4 = recursion deeper than the
 // thread's stack allows (a called function's frame would go below `stack_limit`).
@@ -32,9 +34,9 @@ class SseKernel : public backends::Kernel {
  public:
   SseKernel(std::unique_ptr<CodeMemory> code, size_t inputs, size_t outputs, const backends::Budgets& budgets,
             std::vector<std::string> array_names, double param_bound, std::unique_ptr<ir::Module> module,
-            uint32_t row_from)
+            uint32_t row_from, uint32_t lanes)
       : code_(std::move(code)), inputs_(inputs), outputs_(outputs), budgets_(budgets), arrays_(std::move(array_names)),
-        param_bound_(param_bound), module_(std::move(module)), row_from_(row_from) {
+        param_bound_(param_bound), module_(std::move(module)), row_from_(row_from), lanes_(lanes) {
     if (module_ && param_bound_ > 0) row_ranges_ = backends::row_ranges_for(module_->kernel_function(), param_bound_);
   }
   size_t num_inputs() const override { return inputs_; }
@@ -44,6 +46,7 @@ class SseKernel : public backends::Kernel {
   bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
                  backends::RuntimeError& err) const override;
   const CodeMemory& code() const { return *code_; }
+  uint32_t lanes() const { return lanes_; }  // points per iteration of the batch code
 
  private:
   static KernelFn entry(const CodeMemory& c) { return reinterpret_cast<KernelFn>(const_cast<uint8_t*>(c.start())); }
@@ -51,7 +54,8 @@ class SseKernel : public backends::Kernel {
   KernelFn general(backends::RuntimeError& err) const;
   PointFn point(backends::RuntimeError& err) const;
   bool eval_general(const float* inputs, float* outputs, backends::RuntimeError& err) const;
-  bool run(KernelFn f, const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const;
+  bool run(KernelFn f, uint32_t lanes, const float* const* inputs, float* const* outputs, size_t n,
+           backends::RuntimeError& err) const;
   backends::LaneArrays fresh_arrays() const;
   std::unique_ptr<CodeMemory> code_;
   size_t inputs_, outputs_;
@@ -60,9 +64,11 @@ class SseKernel : public backends::Kernel {
   double param_bound_;
   std::unique_ptr<ir::Module> module_;
   uint32_t row_from_;  // the kernel's row parameters (ir::Function::row_params_from)
+  uint32_t lanes_;
   std::vector<ir::ParamRange> row_ranges_;  // what the bounded code assumes of them
   mutable std::once_flag general_once_;
   mutable std::unique_ptr<CodeMemory> general_;
+  mutable uint32_t general_lanes_ = 4;
   mutable std::string general_error_;
   mutable std::once_flag point_once_;
   mutable std::unique_ptr<CodeMemory> point_;  // the one-point code, bounded as code_ is
@@ -81,8 +87,10 @@ class SseBackend : public backends::Backend {
 // With `param_bound`, the code may assume bounded inputs and says the bound it chose (0: none).
 // With `uniform_lanes`, the one-point code (a PointFn): the four lanes of its one group hold the
 // same point, read from and written to plain arrays; work done per pair of lanes is done once.
+// `lanes` receives the points per iteration of the code: 8 for a kernel of straight-line lane
+// arithmetic where the CPU has AVX (not FSCRIPT_ISA=base), else 4.
 std::vector<uint8_t> generate(const ir::Module& m, const backends::Budgets& budgets, std::string& error,
                               std::string* listing = nullptr, std::vector<std::string>* array_names = nullptr,
-                              double* param_bound = nullptr, bool uniform_lanes = false);
+                              double* param_bound = nullptr, bool uniform_lanes = false, uint32_t* lanes = nullptr);
 
 }  // namespace fscript::sse

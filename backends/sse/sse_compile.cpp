@@ -1,4 +1,5 @@
-// SSA to x86-64, four points per iteration, one value per xmm register. Within a block, registers
+// SSA to x86-64, four points per iteration, one value per xmm register (eight per ymm register
+// for a straight-line kernel of lane operations where the CPU has AVX: see wide_kernel). Within a block, registers
 // are assigned while emitting: a free one if there is one, else the value whose next use in the
 // block is farthest is spilled to a 16-byte stack slot (Belady's rule); spilled values and
 // constants (rip-relative, from the pool) are read straight from memory. xmm0 and xmm1 are
@@ -74,7 +75,7 @@ class Codegen : public detail::LaneCode {
     a_.bind(block_label_[order_.size()]);
     if (!straight_) finish_group();
     if (!callee_) {
-      a_.add(Gp::r13, 16);
+      a_.add(Gp::r13, slot_bytes_);  // byte offsets of 4-byte floats: one slot's width of points
       a_.jmp(top);
       a_.bind(done);
     }
@@ -118,6 +119,7 @@ class Codegen : public detail::LaneCode {
 
   void set_ranges(std::vector<ir::Range> r) { ranges_ = std::move(r); }
   void set_uniform() { uniform_ = true; }
+  void set_wide() { slot_bytes_ = 32; }
   // The listing with this function's frame size in place of its placeholder.
   void fix_listing(std::string& text) const {
     std::string from = "rsp, " + std::to_string(placeholder_), to = "rsp, " + std::to_string(frame_bytes());
@@ -191,19 +193,23 @@ class Codegen : public detail::LaneCode {
       if (cross_[v] && !straight_) home_[v] = at, at += 16;
     temp_slot_ = at, at += 16 * max_phis_;
     save_slot_ = at, at += 16 * kNumRegs;
-    spill_base_ = at;
+    spill_base_ = (at + slot_bytes_ - 1) / slot_bytes_ * slot_bytes_;
     (void)error;
     return true;
   }
 
   // The frame's size is known only once every spill slot is counted: the prologue and epilogue
   // take a 32-bit placeholder that finish() patches.
-  int32_t frame_bytes() const { return spill_base_ + 16 * next_slot_ + 8; }  // + 8 realigns after six pushes
+  int32_t frame_bytes() const { return spill_base_ + slot_bytes_ * next_slot_ + 8; }  // + 8 realigns after six pushes
   static constexpr int32_t kPlaceholder = 0x10000;
+  // Eight lanes: the frame is aligned to 32 bytes below the pushes, rbp keeps where they end (a
+  // straight-line kernel has no call context in rbp).
   void prologue() {
     for (Gp g : {Gp::rbx, Gp::rbp, Gp::r12, Gp::r13, Gp::r14, Gp::r15}) a_.push(g);
+    if (a_.wide()) a_.mov(Gp::rbp, Gp::rsp);
     a_.sub(Gp::rsp, placeholder_);
     frame_fields_.push_back(a_.size() - 4);
+    if (a_.wide()) a_.and_(Gp::rsp, -32);
     if (callee_) return callee_prologue();
     if (calls_) kernel_context();
     a_.mov(Gp::rbx, Gp::rdi);
@@ -240,9 +246,14 @@ class Codegen : public detail::LaneCode {
     a_.lea(Gp::rbp, at(kCtx));
   }
   void epilogue() {
-    a_.add(Gp::rsp, placeholder_);
-    frame_fields_.push_back(a_.size() - 4);
+    if (a_.wide()) {
+      a_.mov(Gp::rsp, Gp::rbp);
+    } else {
+      a_.add(Gp::rsp, placeholder_);
+      frame_fields_.push_back(a_.size() - 4);
+    }
     for (Gp g : {Gp::r15, Gp::r14, Gp::r13, Gp::r12, Gp::rbp, Gp::rbx}) a_.pop(g);
+    if (a_.wide()) a_.vzeroupper();  // no dirty upper halves for the SSE code after us
     a_.ret();
   }
 
@@ -392,8 +403,12 @@ class Codegen : public detail::LaneCode {
       a_.shufps(d, d, 0);
     } else if (fn_.row_params_from && static_cast<uint32_t>(in.aux) >= fn_.row_params_from) {
       a_.mov(Gp::rax, Mem::at(Gp::rbx, 8 * in.aux));  // a row parameter: one value for the call
-      a_.movss(d, Mem::at(Gp::rax, 0));
-      a_.shufps(d, d, 0);
+      if (a_.wide()) {
+        a_.vbroadcastss(d, Mem::at(Gp::rax, 0));
+      } else {
+        a_.movss(d, Mem::at(Gp::rax, 0));
+        a_.shufps(d, d, 0);
+      }
     } else {
       a_.mov(Gp::rax, Mem::at(Gp::rbx, 8 * in.aux));
       a_.movups(d, Mem::at(Gp::rax, Gp::r13, 1));
@@ -618,6 +633,7 @@ class Codegen : public detail::LaneCode {
   // the depth budget (recursive callees only, as in the VM) checked around it; an error it
   // returns (rax != 0) ends this function too.
   void call_function(const ir::Inst& in, int pos) {
+    a_.refuse_wide("a function call");
     for (size_t i = 0; i < in.args.size(); ++i) {
       load(Xmm::x0, src(in.args[i]));
       a_.movaps(at(call_slot_ + 16 * static_cast<int32_t>(i)), Xmm::x0);
@@ -682,17 +698,26 @@ double choose_bound(const ir::Function& fn, Codegen& gen) {
 
 }  // namespace
 
-std::vector<uint8_t> generate(const ir::Module& module, const backends::Budgets& budgets, std::string& error,
-                              std::string* listing, std::vector<std::string>* array_names, double* param_bound,
-                              bool uniform_lanes) {
-  backends::JitProgram jp;
-  if (!backends::prepare_program(module, jp, error)) return {};
+namespace {
+
+// Eight lanes where the kernel is lane arithmetic from end to end: the one function of its
+// program, one block (no masks), no calls, arrays or sin/cos (those run four lanes: the code
+// generator refuses wide mode for them and the kernel is generated again on four).
+bool try_wide(const backends::JitProgram& jp, bool uniform_lanes) {
+  if (uniform_lanes || math::active_isa() == math::Isa::Base || jp.functions.size() != 1) return false;
+  return jp.module->functions[static_cast<size_t>(jp.kernel)]->blocks.size() == 1;
+}
+
+std::vector<uint8_t> emit_program(const backends::JitProgram& jp, const backends::Budgets& budgets, bool wide,
+                                  std::string& error, std::string* listing, std::vector<std::string>* array_names,
+                                  double* param_bound, bool uniform_lanes, bool& refused) {
   const ir::Module& m = *jp.module;
   int kernel = jp.kernel;
   Assembler a;
   if (listing) a.enable_listing();
   // AVX's three-operand forms where the CPU has them (FSCRIPT_ISA=base keeps the SSE encoding).
   if (math::active_isa() != math::Isa::Base) a.enable_vex();
+  if (wide) a.enable_wide();
   const std::vector<int>& fns = jp.functions;
   Program program{m, {}, jp.num_globals, budgets.max_call_depth};
   for (size_t f = 0; f < m.functions.size(); ++f) program.entries.push_back(a.new_label());
@@ -704,10 +729,13 @@ std::vector<uint8_t> generate(const ir::Module& module, const backends::Budgets&
                                              static_cast<int>(gens.size()), f != kernel));
     names.insert(names.end(), fn.arrays.begin(), fn.arrays.end());
     if (uniform_lanes) gens.back()->set_uniform();
+    if (wide) gens.back()->set_wide();
     if (f == kernel && param_bound) *param_bound = choose_bound(fn, *gens.back());
     a.bind(program.entries[static_cast<size_t>(f)]);
     if (!gens.back()->run(error)) return {};
   }
+  refused = !a.wide_refused().empty();
+  if (refused) return {};
   if (array_names) *array_names = names;
   for (const auto& g : gens) g->patch_frame();
   std::vector<uint8_t> code = a.finish();
@@ -716,6 +744,25 @@ std::vector<uint8_t> generate(const ir::Module& module, const backends::Budgets&
     for (const auto& g : gens) g->fix_listing(*listing);
   }
   return code;
+}
+
+}  // namespace
+
+std::vector<uint8_t> generate(const ir::Module& module, const backends::Budgets& budgets, std::string& error,
+                              std::string* listing, std::vector<std::string>* array_names, double* param_bound,
+                              bool uniform_lanes, uint32_t* lanes) {
+  backends::JitProgram jp;
+  if (!backends::prepare_program(module, jp, error)) return {};
+  bool refused = false;
+  if (try_wide(jp, uniform_lanes)) {
+    std::vector<uint8_t> code = emit_program(jp, budgets, true, error, listing, array_names, param_bound, false, refused);
+    if (!refused) {
+      if (lanes) *lanes = 8;
+      return code;
+    }
+  }
+  if (lanes) *lanes = 4;
+  return emit_program(jp, budgets, false, error, listing, array_names, param_bound, uniform_lanes, refused);
 }
 
 }  // namespace fscript::sse

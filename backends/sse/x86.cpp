@@ -68,8 +68,8 @@ void Assembler::sse(uint8_t prefix, std::initializer_list<uint8_t> opcode, Xmm d
   emit(prefix, false, opcode, n(d), s, imm8 >= 0 ? 1 : 0, static_cast<uint32_t>(imm8));
 }
 
-// VEX (SDM vol. 2, 2.3): R, X, B and vvvv stored inverted; L = 0 (128 bits), W = 0.
-void Assembler::vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm) {
+// VEX (SDM vol. 2, 2.3): R, X, B and vvvv stored inverted; L = 1 (256 bits) in wide mode, W = 0.
+void Assembler::vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm, uint8_t map, int imm8) {
   uint8_t r = ~n(d) >> 3 & 1, x = 1, b = 1;
   if (rm.is_mem && rm.mem.label < 0) {
     x = ~n(rm.mem.index) >> 3 & 1;
@@ -77,31 +77,55 @@ void Assembler::vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm)
   } else if (!rm.is_mem) {
     b = ~rm.reg >> 3 & 1;
   }
-  uint8_t vvvv = static_cast<uint8_t>((~n(v) & 15) << 3 | pp);
-  if (x && b) {
+  uint8_t vvvv = static_cast<uint8_t>((~n(v) & 15) << 3 | (wide_ ? 4 : 0) | pp);
+  if (x && b && map == 1) {
     code_.insert(code_.end(), {0xC5, static_cast<uint8_t>(r << 7 | vvvv)});
   } else {
-    code_.insert(code_.end(), {0xC4, static_cast<uint8_t>(r << 7 | x << 6 | b << 5 | 1), vvvv});
+    code_.insert(code_.end(), {0xC4, static_cast<uint8_t>(r << 7 | x << 6 | b << 5 | map), vvvv});
   }
   code_.push_back(opcode);
-  modrm(n(d), rm, 0, 0);
+  modrm(n(d), rm, imm8 >= 0 ? 1 : 0, static_cast<uint32_t>(imm8));
+}
+
+void Assembler::wide_op(const char* name, uint8_t pp, uint8_t map, uint8_t opcode, Xmm d, const Operand& s,
+                        bool unary, int imm8) {
+  if (listing_on_) {
+    std::string text = std::string(name) + " " + operand(d) + (unary ? "" : ", " + operand(d)) + ", " +
+                       (s.is_mem ? operand(s.mem) : operand(static_cast<Xmm>(s.reg))) +
+                       (opcode == 0x4A && map == 3 ? ", ymm0" : "");  // vblendvps's mask register
+    lines_.push_back({code_.size(), text});
+  }
+  vex(pp, opcode, d, unary ? Xmm::x0 : d, s, map, imm8);
 }
 
 // ---- SSE ----
+// Packed single operations with an eight-lane form: VEX.256 in map 0F in wide mode.
+#define FS_PS_DEFINE(name, opcode, unary)                                                                  \
+  void Assembler::name(Xmm d, Xmm s) {                                                                     \
+    if (wide_) return wide_op("v" #name, 0, 1, opcode, d, r(n(s)), unary);                               \
+    list(#name, d, s), sse(0, {0x0F, opcode}, d, r(n(s)));                                                 \
+  }                                                                                                        \
+  void Assembler::name(Xmm d, const Mem& s) {                                                              \
+    if (wide_) return wide_op("v" #name, 0, 1, opcode, d, m(s), unary);                                  \
+    list(#name, d, s), sse(0, {0x0F, opcode}, d, m(s));                                                      \
+  }
+FS_PS_DEFINE(addps, 0x58, false)
+FS_PS_DEFINE(subps, 0x5C, false)
+FS_PS_DEFINE(mulps, 0x59, false)
+FS_PS_DEFINE(divps, 0x5E, false)
+FS_PS_DEFINE(minps, 0x5D, false)
+FS_PS_DEFINE(maxps, 0x5F, false)
+FS_PS_DEFINE(sqrtps, 0x51, true)
+FS_PS_DEFINE(andps, 0x54, false)
+FS_PS_DEFINE(andnps, 0x55, false)
+FS_PS_DEFINE(orps, 0x56, false)
+FS_PS_DEFINE(xorps, 0x57, false)
+#undef FS_PS_DEFINE
+
+// The rest have no eight-lane form here: refused in wide mode.
 #define FS_SSE_DEFINE(name, prefix, ...)                                                          \
-  void Assembler::name(Xmm d, Xmm s) { list(#name, d, s), sse(prefix, {__VA_ARGS__}, d, r(n(s))); }       \
-  void Assembler::name(Xmm d, const Mem& s) { list(#name, d, s), sse(prefix, {__VA_ARGS__}, d, m(s)); }
-FS_SSE_DEFINE(addps, 0, 0x0F, 0x58)
-FS_SSE_DEFINE(subps, 0, 0x0F, 0x5C)
-FS_SSE_DEFINE(mulps, 0, 0x0F, 0x59)
-FS_SSE_DEFINE(divps, 0, 0x0F, 0x5E)
-FS_SSE_DEFINE(minps, 0, 0x0F, 0x5D)
-FS_SSE_DEFINE(maxps, 0, 0x0F, 0x5F)
-FS_SSE_DEFINE(sqrtps, 0, 0x0F, 0x51)
-FS_SSE_DEFINE(andps, 0, 0x0F, 0x54)
-FS_SSE_DEFINE(andnps, 0, 0x0F, 0x55)
-FS_SSE_DEFINE(orps, 0, 0x0F, 0x56)
-FS_SSE_DEFINE(xorps, 0, 0x0F, 0x57)
+  void Assembler::name(Xmm d, Xmm s) { narrow(#name), list(#name, d, s), sse(prefix, {__VA_ARGS__}, d, r(n(s))); } \
+  void Assembler::name(Xmm d, const Mem& s) { narrow(#name), list(#name, d, s), sse(prefix, {__VA_ARGS__}, d, m(s)); }
 FS_SSE_DEFINE(addss, 0xF3, 0x0F, 0x58)
 FS_SSE_DEFINE(subss, 0xF3, 0x0F, 0x5C)
 FS_SSE_DEFINE(mulss, 0xF3, 0x0F, 0x59)
@@ -109,7 +133,6 @@ FS_SSE_DEFINE(divss, 0xF3, 0x0F, 0x5E)
 FS_SSE_DEFINE(minss, 0xF3, 0x0F, 0x5D)
 FS_SSE_DEFINE(maxss, 0xF3, 0x0F, 0x5F)
 FS_SSE_DEFINE(sqrtss, 0xF3, 0x0F, 0x51)
-FS_SSE_DEFINE(blendvps, 0x66, 0x0F, 0x38, 0x14)
 FS_SSE_DEFINE(cvtdq2ps, 0, 0x0F, 0x5B)
 FS_SSE_DEFINE(cvttps2dq, 0xF3, 0x0F, 0x5B)
 FS_SSE_DEFINE(cvtps2dq, 0x66, 0x0F, 0x5B)
@@ -144,29 +167,70 @@ FS_VEX_DEFINE(vandps, 0, 0x54)
 FS_VEX_DEFINE(vxorps, 0, 0x57)
 #undef FS_VEX_DEFINE
 
-void Assembler::cmpps(Xmm d, Xmm s, Pred p) { if (listing_on_) list(("cmp" + operand(p) + "ps").c_str(), d, s); sse(0, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
-void Assembler::cmpps(Xmm d, const Mem& s, Pred p) { if (listing_on_) list(("cmp" + operand(p) + "ps").c_str(), d, s); sse(0, {0x0F, 0xC2}, d, m(s), static_cast<int>(p)); }
-void Assembler::cmpss(Xmm d, Xmm s, Pred p) { if (listing_on_) list(("cmp" + operand(p) + "ss").c_str(), d, s); sse(0xF3, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
-void Assembler::roundps(Xmm d, Xmm s, Rounding k) { list("roundps", d, s, k); sse(0x66, {0x0F, 0x3A, 0x08}, d, r(n(s)), static_cast<int>(k)); }
-void Assembler::roundss(Xmm d, Xmm s, Rounding k) { list("roundss", d, s, k); sse(0x66, {0x0F, 0x3A, 0x0A}, d, r(n(s)), static_cast<int>(k)); }
-void Assembler::shufps(Xmm d, Xmm s, uint8_t imm) { list("shufps", d, s, imm); sse(0, {0x0F, 0xC6}, d, r(n(s)), imm); }
-void Assembler::pslld(Xmm d, uint8_t imm) { list("pslld", d, imm); emit(0x66, false, {0x0F, 0x72}, 6, r(n(d)), 1, imm); }
-void Assembler::psrld(Xmm d, uint8_t imm) { list("psrld", d, imm); emit(0x66, false, {0x0F, 0x72}, 2, r(n(d)), 1, imm); }
-void Assembler::psrad(Xmm d, uint8_t imm) { list("psrad", d, imm); emit(0x66, false, {0x0F, 0x72}, 4, r(n(d)), 1, imm); }
-void Assembler::movhlps(Xmm d, Xmm s) { list("movhlps", d, s); sse(0, {0x0F, 0x12}, d, r(n(s))); }
-void Assembler::movlhps(Xmm d, Xmm s) { list("movlhps", d, s); sse(0, {0x0F, 0x16}, d, r(n(s))); }
-void Assembler::movaps(Xmm d, Xmm s) { list("movaps", d, s); sse(0, {0x0F, 0x28}, d, r(n(s))); }
-void Assembler::movaps(Xmm d, const Mem& s) { list("movaps", d, s); sse(0, {0x0F, 0x28}, d, m(s)); }
-void Assembler::movaps(const Mem& d, Xmm s) { list("movaps", d, s); sse(0, {0x0F, 0x29}, s, m(d)); }
-void Assembler::movups(Xmm d, const Mem& s) { list("movups", d, s); sse(0, {0x0F, 0x10}, d, m(s)); }
-void Assembler::movups(const Mem& d, Xmm s) { list("movups", d, s); sse(0, {0x0F, 0x11}, s, m(d)); }
-void Assembler::movss(Xmm d, const Mem& s) { list("movss", d, s); sse(0xF3, {0x0F, 0x10}, d, m(s)); }
-void Assembler::movss(const Mem& d, Xmm s) { list("movss", d, s); sse(0xF3, {0x0F, 0x11}, s, m(d)); }
-void Assembler::movd(Xmm d, Gp s) { list("movd", d, s); emit(0x66, false, {0x0F, 0x6E}, n(d), r(n(s))); }
-void Assembler::movd(Gp d, Xmm s) { list("movd", d, s); emit(0x66, false, {0x0F, 0x7E}, n(s), r(n(d))); }
-void Assembler::movmskps(Gp d, Xmm s) { list("movmskps", d, s); emit(0, false, {0x0F, 0x50}, n(d), r(n(s))); }
-void Assembler::cvtsi2ss(Xmm d, Gp s) { list("cvtsi2ss", d, s); emit(0xF3, true, {0x0F, 0x2A}, n(d), r(n(s))); }
-void Assembler::cvttss2si(Gp d, Xmm s) { list("cvttss2si", d, s); emit(0xF3, true, {0x0F, 0x2C}, n(d), r(n(s))); }
+void Assembler::blendvps(Xmm d, Xmm s) {  // wide: vblendvps d, d, s, ymm0 (the mask register in imm8[7:4])
+  if (wide_) return wide_op("vblendvps", 1, 3, 0x4A, d, r(n(s)), false, 0x00);
+  list("blendvps", d, s), sse(0x66, {0x0F, 0x38, 0x14}, d, r(n(s)));
+}
+void Assembler::blendvps(Xmm d, const Mem& s) {
+  if (wide_) return wide_op("vblendvps", 1, 3, 0x4A, d, m(s), false, 0x00);
+  list("blendvps", d, s), sse(0x66, {0x0F, 0x38, 0x14}, d, m(s));
+}
+void Assembler::cmpps(Xmm d, Xmm s, Pred p) {
+  if (wide_) return wide_op(("vcmp" + operand(p) + "ps").c_str(), 0, 1, 0xC2, d, r(n(s)), false, static_cast<int>(p));
+  if (listing_on_) list(("cmp" + operand(p) + "ps").c_str(), d, s);
+  sse(0, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p));
+}
+void Assembler::cmpps(Xmm d, const Mem& s, Pred p) {
+  if (wide_) return wide_op(("vcmp" + operand(p) + "ps").c_str(), 0, 1, 0xC2, d, m(s), false, static_cast<int>(p));
+  if (listing_on_) list(("cmp" + operand(p) + "ps").c_str(), d, s);
+  sse(0, {0x0F, 0xC2}, d, m(s), static_cast<int>(p));
+}
+void Assembler::cmpss(Xmm d, Xmm s, Pred p) {
+  narrow("cmpss"); if (listing_on_) list(("cmp" + operand(p) + "ss").c_str(), d, s); sse(0xF3, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
+void Assembler::roundps(Xmm d, Xmm s, Rounding k) {
+  if (wide_) {
+    list("vroundps", d, s, k);
+    return vex(1, 0x08, d, Xmm::x0, r(n(s)), 3, static_cast<int>(k));
+  }
+  list("roundps", d, s, k);
+  sse(0x66, {0x0F, 0x3A, 0x08}, d, r(n(s)), static_cast<int>(k));
+}
+void Assembler::roundss(Xmm d, Xmm s, Rounding k) { narrow("roundss"); list("roundss", d, s, k); sse(0x66, {0x0F, 0x3A, 0x0A}, d, r(n(s)), static_cast<int>(k)); }
+void Assembler::shufps(Xmm d, Xmm s, uint8_t imm) { narrow("shufps"); list("shufps", d, s, imm); sse(0, {0x0F, 0xC6}, d, r(n(s)), imm); }
+void Assembler::pslld(Xmm d, uint8_t imm) { narrow("pslld"); list("pslld", d, imm); emit(0x66, false, {0x0F, 0x72}, 6, r(n(d)), 1, imm); }
+void Assembler::psrld(Xmm d, uint8_t imm) { narrow("psrld"); list("psrld", d, imm); emit(0x66, false, {0x0F, 0x72}, 2, r(n(d)), 1, imm); }
+void Assembler::psrad(Xmm d, uint8_t imm) { narrow("psrad"); list("psrad", d, imm); emit(0x66, false, {0x0F, 0x72}, 4, r(n(d)), 1, imm); }
+void Assembler::movhlps(Xmm d, Xmm s) { narrow("movhlps"); list("movhlps", d, s); sse(0, {0x0F, 0x12}, d, r(n(s))); }
+void Assembler::movlhps(Xmm d, Xmm s) { narrow("movlhps"); list("movlhps", d, s); sse(0, {0x0F, 0x16}, d, r(n(s))); }
+// Moves: VEX.256 vmovaps / vmovups in wide mode (an aligned move needs 32-byte alignment there).
+#define FS_MOVE(name, load, store)                                                              \
+  void Assembler::name(Xmm d, const Mem& s) {                                                   \
+    list(wide_ ? "v" #name : #name, d, s);                                                      \
+    if (wide_) return vex(0, load, d, Xmm::x0, m(s));                                           \
+    sse(0, {0x0F, load}, d, m(s));                                                              \
+  }                                                                                             \
+  void Assembler::name(const Mem& d, Xmm s) {                                                   \
+    list(wide_ ? "v" #name : #name, d, s);                                                      \
+    if (wide_) return vex(0, store, s, Xmm::x0, m(d));                                          \
+    sse(0, {0x0F, store}, s, m(d));                                                             \
+  }
+FS_MOVE(movaps, 0x28, 0x29)
+FS_MOVE(movups, 0x10, 0x11)
+#undef FS_MOVE
+void Assembler::movaps(Xmm d, Xmm s) {
+  list(wide_ ? "vmovaps" : "movaps", d, s);
+  if (wide_) return vex(0, 0x28, d, Xmm::x0, r(n(s)));
+  sse(0, {0x0F, 0x28}, d, r(n(s)));
+}
+void Assembler::movss(Xmm d, const Mem& s) { narrow("movss"); list("movss", d, s); sse(0xF3, {0x0F, 0x10}, d, m(s)); }
+void Assembler::movss(const Mem& d, Xmm s) { narrow("movss"); list("movss", d, s); sse(0xF3, {0x0F, 0x11}, s, m(d)); }
+void Assembler::movd(Xmm d, Gp s) { narrow("movd"); list("movd", d, s); emit(0x66, false, {0x0F, 0x6E}, n(d), r(n(s))); }
+void Assembler::movd(Gp d, Xmm s) { narrow("movd"); list("movd", d, s); emit(0x66, false, {0x0F, 0x7E}, n(s), r(n(d))); }
+void Assembler::movmskps(Gp d, Xmm s) { narrow("movmskps"); list("movmskps", d, s); emit(0, false, {0x0F, 0x50}, n(d), r(n(s))); }
+void Assembler::cvtsi2ss(Xmm d, Gp s) { narrow("cvtsi2ss"); list("cvtsi2ss", d, s); emit(0xF3, true, {0x0F, 0x2A}, n(d), r(n(s))); }
+void Assembler::vbroadcastss(Xmm d, const Mem& s) { list("vbroadcastss", d, s), vex(1, 0x18, d, Xmm::x0, m(s), 2); }
+void Assembler::vzeroupper() { list("vzeroupper"), code_.insert(code_.end(), {0xC5, 0xF8, 0x77}); }
+void Assembler::cvttss2si(Gp d, Xmm s) { narrow("cvttss2si"); list("cvttss2si", d, s); emit(0xF3, true, {0x0F, 0x2C}, n(d), r(n(s))); }
 
 // ---- general purpose ----
 void Assembler::mov(Gp d, Gp s) { list("mov", d, s); emit(0, true, {0x89}, n(s), r(n(d))); }
@@ -216,6 +280,11 @@ FS_GROUP1(add, kAdd)
 FS_GROUP1(sub, kSub)
 FS_GROUP1(cmp, kCmp)
 #undef FS_GROUP1
+void Assembler::and_(Gp d, int32_t imm) {
+  list("and", d, imm);
+  bool small = fits8(imm);
+  emit(0, true, {static_cast<uint8_t>(small ? 0x83 : 0x81)}, 4, r(n(d)), small ? 1 : 4, static_cast<uint32_t>(imm));
+}
 
 void Assembler::push(Gp g) {
   list("push", g);
@@ -276,11 +345,13 @@ Label Assembler::constant_ps(float v) {
 }
 
 std::vector<uint8_t> Assembler::finish() {
-  while (code_.size() % 16) code_.push_back(0xCC);  // int3 padding: never executed
+  int copies = wide_ ? 2 : 1;  // a wide constant is its four words twice: eight lanes
+  while (code_.size() % (16 * copies)) code_.push_back(0xCC);  // int3 padding: never executed
   for (const auto& [value, label] : pool_) {
     label_pos_[label] = static_cast<int64_t>(code_.size());
-    for (uint32_t word : value)
-      for (int k = 0; k < 4; ++k) code_.push_back(static_cast<uint8_t>(word >> (8 * k)));
+    for (int c = 0; c < copies; ++c)
+      for (uint32_t word : value)
+        for (int k = 0; k < 4; ++k) code_.push_back(static_cast<uint8_t>(word >> (8 * k)));
   }
   for (const auto& f : fixups_) {
     int32_t rel = static_cast<int32_t>(label_pos_[f.label] - static_cast<int64_t>(f.end));
@@ -290,7 +361,7 @@ std::vector<uint8_t> Assembler::finish() {
 }
 
 // ---- listing ----
-std::string Assembler::operand(Xmm x) { return "xmm" + std::to_string(n(x)); }
+std::string Assembler::operand(Xmm x) const { return (wide_ ? "ymm" : "xmm") + std::to_string(n(x)); }
 std::string Assembler::operand(Gp g) {
   static const char* kNames[] = {"rax", "rcx", "rdx", "rbx", "rsp", "rbp", "rsi", "rdi",
                                  "r8",  "r9",  "r10", "r11", "r12", "r13", "r14", "r15"};
@@ -342,9 +413,9 @@ std::string Assembler::listing() const {
     std::memcpy(f, value.data(), 16);
     std::snprintf(buf, sizeof buf, "%6llx  ", static_cast<unsigned long long>(label_pos_[label]));
     out += "L" + std::to_string(label) + ":\n" + buf + "  .float";
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < (wide_ ? 8 : 4); ++k) {
       char num[40];
-      std::snprintf(num, sizeof num, "%s %.9g", k ? "," : "", f[k]);
+      std::snprintf(num, sizeof num, "%s %.9g", k ? "," : "", f[k % 4]);
       out += num;
     }
     out += "\n";

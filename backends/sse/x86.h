@@ -2,7 +2,8 @@
 // An x86-64 encoder for the instructions the SSE backend emits: SSE/SSE2/SSE4.1 packed and scalar
 // single precision, the integer moves, arithmetic, compares, jumps and calls around them, with
 // REX prefixes and every ModRM/SIB/displacement form including rip-relative constants. Bytes go
-// into a buffer; labels are resolved and the 16-byte-aligned constant pool appended by finish().
+// into a buffer; labels are resolved and the aligned constant pool appended by finish(). In wide
+// mode the packed single operations are encoded as AVX's eight-lane VEX.256 forms (see enable_wide).
 #include <array>
 #include <cstdint>
 #include <string>
@@ -84,6 +85,8 @@ class Assembler {
   void movd(Xmm d, Gp s);    // 32 bits
   void movd(Gp d, Xmm s);
   void movmskps(Gp d, Xmm s);
+  void vbroadcastss(Xmm d, const Mem& s);  // every lane = the float at s (VEX; eight lanes when wide)
+  void vzeroupper();
   void cvtsi2ss(Xmm d, Gp s);   // 64-bit integer source
   void cvttss2si(Gp d, Xmm s);  // 64-bit integer result
 
@@ -103,6 +106,7 @@ class Assembler {
   void add(Gp d, int32_t imm);
   void sub(Gp d, int32_t imm);
   void cmp(Gp a, int32_t imm);
+  void and_(Gp d, int32_t imm);
   void add(const Mem& d, int32_t imm);  // qword
   void sub(const Mem& d, int32_t imm);
   void cmp(const Mem& a, int32_t imm);
@@ -117,7 +121,8 @@ class Assembler {
   // ---- labels and constants ----
   Label new_label();
   void bind(Label l);
-  // A 16-byte constant in the pool (deduplicated); use with Mem::rip.
+  // A 16-byte constant in the pool (deduplicated; 32 bytes, the four words twice, in wide mode);
+  // use with Mem::rip.
   Label constant(const std::array<uint32_t, 4>& bits);
   Label constant_ps(float v);  // four lanes of v
   size_t size() const { return code_.size(); }
@@ -133,6 +138,16 @@ class Assembler {
   // The target runs AVX: code generators may use the three-operand VEX forms above.
   void enable_vex() { vex_ = true; }
   bool vex() const { return vex_; }
+  // Eight lanes: the packed single operations above (moves, arithmetic, min/max, logic, sqrt,
+  // compares, roundps, blendvps with ymm0 as its mask, and the three-operand forms) are emitted
+  // as their VEX.256 forms on ymm registers, the two-operand ones as d = d op s. An instruction
+  // with no eight-lane meaning here (scalar, double, integer, shuffles) is refused: the first
+  // such mnemonic is kept in wide_refused(), and the code must not be used.
+  void enable_wide() { wide_ = vex_ = true; }
+  bool wide() const { return wide_; }
+  const std::string& wide_refused() const { return wide_refused_; }
+  // Code that runs a fixed count of four lanes (calls of batch functions, lane helpers) says so.
+  void refuse_wide(const char* what) { narrow(what); }
   std::string listing() const;
 
  private:
@@ -149,8 +164,15 @@ class Assembler {
   // ModRM [SIB] [disp] [imm] of an instruction whose prefixes and opcode are out.
   void modrm(uint8_t reg, const Operand& rm, int imm_size, uint32_t imm);
   void sse(uint8_t prefix, std::initializer_list<uint8_t> opcode, Xmm d, const Operand& s, int imm8 = -1);
-  // VEX.128 in map 0F (pp: 0 none, 1 66, 2 F3, 3 F2): the 2-byte form when no X/B bit is needed.
-  void vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm);
+  // VEX in map 1 (0F), 2 (0F38) or 3 (0F3A) (pp: 0 none, 1 66, 2 F3, 3 F2), L = 1 in wide mode:
+  // the 2-byte form when the map is 0F and no X/B bit is needed. v = x0 where vvvv is unused.
+  void vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm, uint8_t map = 1, int imm8 = -1);
+  // A packed single two-operand operation in wide mode: d = d op s (v = d), or d = op s when unary.
+  void wide_op(const char* name, uint8_t pp, uint8_t map, uint8_t opcode, Xmm d, const Operand& s, bool unary,
+               int imm8 = -1);
+  void narrow(const char* name) {
+    if (wide_ && wide_refused_.empty()) wide_refused_ = name;
+  }
   void rel32(Label l);
 
   // One listing line per instruction: its offset and text.
@@ -164,7 +186,7 @@ class Assembler {
     }
     lines_.push_back({code_.size(), text});
   }
-  static std::string operand(Xmm x);
+  std::string operand(Xmm x) const;
   static std::string operand(Gp g);
   static std::string operand(const Mem& m);
   static std::string operand(Pred p);
@@ -177,7 +199,8 @@ class Assembler {
   static std::string operand(uint64_t v);
 
   bool listing_on_ = false;
-  bool vex_ = false;
+  bool vex_ = false, wide_ = false;
+  std::string wide_refused_;
   std::vector<std::pair<size_t, std::string>> lines_;
   std::vector<uint8_t> code_;
   std::vector<int64_t> label_pos_;                 // -1: unbound

@@ -9,6 +9,7 @@
 
 #include "backends/jit_support.h"
 #include "backends/sse/sse_backend.h"
+#include "runtime/math/isa.h"
 #include "tests/unit/backend_cases.h"
 #include "tests/unit/helpers.h"
 
@@ -219,4 +220,63 @@ TEST_CASE("sse: the one-point code agrees with the VM, and reduces sin/cos for o
   };
   CHECK(count(batch_asm, "cvtps2pd") == 2 * count(point_asm, "cvtps2pd"));
   CHECK(count(point_asm, "cvtps2pd") >= 3);
+}
+
+// A kernel of straight-line lane arithmetic runs eight lanes in ymm registers where the CPU has
+// AVX (four with FSCRIPT_ISA=base, and wherever a call, an array, sin/cos or a branch is in it):
+// every such op on special values, spills of 32-byte slots, and batches of every length around
+// whole groups of eight give the VM's bits.
+TEST_CASE("sse: straight-line lane arithmetic runs eight lanes and agrees with the VM") {
+  bool avx = math::active_isa() != math::Isa::Base;
+  auto lanes_of = [](const std::string& body) {
+    auto vm = test::build("function FRep(x, y, z, t) { " + body + " }", "", true, {}, "vm");
+    REQUIRE(vm->ok);
+    std::string error;
+    auto k = sse::SseBackend().compile(*vm->module, {}, error);
+    REQUIRE(k);
+    return dynamic_cast<const sse::SseKernel&>(*k).lanes();
+  };
+  const char* wide[] = {
+      "return (x + y) * z - x / y;",
+      "return -x + abs(y) * sqrt(abs(z));",
+      "return floor(x) + ceil(y) * 2 + round(z) - sign(x - y);",
+      "return min(x, y) + max(y, z) - clamp(x, y, z) + min(x, 1) + max(2, y);",
+      "return (x < y) + (x <= z) * 2 + (y > z) * 4 + (x >= y) * 8 + (x == z) * 16 + (y != z) * 32;",
+      "return !x + (y && z) + (x || 0) + (x ? y : z);",
+  };
+  for (const char* body : wide) {
+    CHECK(lanes_of(body) == (avx ? 8u : 4u));
+    agree(body);
+  }
+  // 24 values live at once: spilled to 32-byte slots and read back from them.
+  std::string spills;
+  for (int k = 0; k < 24; ++k) spills += "var a" + std::to_string(k) + " = x * " + std::to_string(k + 1) + " + y;";
+  spills += "var s = 0;";
+  for (int k = 0; k < 24; ++k) spills += "s = s + a" + std::to_string(k) + " * a" + std::to_string(23 - k) + ";";
+  spills += "return s - z;";
+  CHECK(lanes_of(spills) == (avx ? 8u : 4u));
+  agree(spills);
+  for (const char* body : {"return sin(x) + y;", "return pow(x, y);", "return x % y;",
+                           "var s = 0; for (var i = 0; i < 3; i++) { s = s + x; } return s;"})
+    CHECK(lanes_of(body) == 4u);
+
+  // Batches of 1 to 19 points: the tail of a batch is a padded group of eight.
+  std::string text = "function FRep(x, y, z, t) { return max(sqrt(x * x + y * y) - 0.5, z * t); }";
+  auto vm = test::build(text, "", true, {}, "vm");
+  auto sse = test::build(text, "", true, {}, "sse");
+  REQUIRE(vm->ok);
+  REQUIRE(sse->ok);
+  for (size_t n = 1; n < 20; ++n) {
+    std::vector<float> cols[4], o1, o2;
+    for (size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 4; ++c) cols[c].push_back(kSpecial[(i * 5 + static_cast<size_t>(c) * 3) % kSpecial.size()]);
+    backends::RuntimeError err;
+    REQUIRE(test::eval_columns(*vm->kernel, cols, o1, err));
+    REQUIRE(test::eval_columns(*sse->kernel, cols, o2, err));
+    REQUIRE(o2.size() == n);
+    for (size_t i = 0; i < n; ++i) {
+      INFO("n = " << n << ", point " << i);
+      CHECK(same(o1[i], o2[i]));
+    }
+  }
 }

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -144,6 +145,43 @@ const Row kRows[] = {
     {"call r11", [](Assembler& a) { a.call(Gp::r11); }, "41 ff d3"},
     {"call QWORD PTR [rbx+0x8]", [](Assembler& a) { a.call(Mem::at(Gp::rbx, 8)); }, "ff 53 08"},
     {"ret", [](Assembler& a) { a.ret(); }, "c3"},
+    {"vbroadcastss xmm3,DWORD PTR [rax]", [](Assembler& a) { a.vbroadcastss(Xmm::x3, Mem::at(Gp::rax)); }, "c4 e2 79 18 18"},
+};
+
+// Wide mode (Assembler::enable_wide): the packed single forms as VEX.256 on ymm registers, d = d op s.
+const Row kWideRows[] = {
+    {"vaddps ymm0,ymm0,ymm1", [](Assembler& a) { a.addps(Xmm::x0, Xmm::x1); }, "c5 fc 58 c1"},
+    {"vaddps ymm8,ymm8,ymm15", [](Assembler& a) { a.addps(Xmm::x8, Xmm::x15); }, "c4 41 3c 58 c7"},
+    {"vsubps ymm3,ymm3,YMMWORD PTR [rsp+0x20]", [](Assembler& a) { a.subps(Xmm::x3, Mem::at(Gp::rsp, 32)); }, "c5 e4 5c 5c 24 20"},
+    {"vmulps ymm2,ymm2,YMMWORD PTR [rdx]", [](Assembler& a) { a.mulps(Xmm::x2, Mem::at(Gp::rdx)); }, "c5 ec 59 12"},
+    {"vdivps ymm9,ymm9,ymm2", [](Assembler& a) { a.divps(Xmm::x9, Xmm::x2); }, "c5 34 5e ca"},
+    {"vminps ymm4,ymm4,YMMWORD PTR [r12+0x200]", [](Assembler& a) { a.minps(Xmm::x4, Mem::at(Gp::r12, 0x200)); }, "c4 c1 5c 5d a4 24 00 02 00 00"},
+    {"vmaxps ymm5,ymm5,YMMWORD PTR [r8+r9*8-0x1000]", [](Assembler& a) { a.maxps(Xmm::x5, Mem::at(Gp::r8, Gp::r9, 8, -0x1000)); }, "c4 81 54 5f ac c8 00 f0 ff ff"},
+    {"vsqrtps ymm6,ymm7", [](Assembler& a) { a.sqrtps(Xmm::x6, Xmm::x7); }, "c5 fc 51 f7"},
+    {"vsqrtps ymm10,YMMWORD PTR [rax]", [](Assembler& a) { a.sqrtps(Xmm::x10, Mem::at(Gp::rax)); }, "c5 7c 51 10"},
+    {"vandps ymm0,ymm0,ymm1", [](Assembler& a) { a.andps(Xmm::x0, Xmm::x1); }, "c5 fc 54 c1"},
+    {"vandnps ymm11,ymm11,ymm3", [](Assembler& a) { a.andnps(Xmm::x11, Xmm::x3); }, "c5 24 55 db"},
+    {"vorps ymm1,ymm1,ymm13", [](Assembler& a) { a.orps(Xmm::x1, Xmm::x13); }, "c4 c1 74 56 cd"},
+    {"vxorps ymm13,ymm13,YMMWORD PTR [r13+rax*2+0x0]", [](Assembler& a) { a.xorps(Xmm::x13, Mem::at(Gp::r13, Gp::rax, 2)); }, "c4 41 14 57 6c 45 00"},
+    {"vblendvps ymm3,ymm3,ymm4,ymm0", [](Assembler& a) { a.blendvps(Xmm::x3, Xmm::x4); }, "c4 e3 65 4a dc 00"},
+    {"vblendvps ymm9,ymm9,YMMWORD PTR [r15+0x20],ymm0", [](Assembler& a) { a.blendvps(Xmm::x9, Mem::at(Gp::r15, 32)); }, "c4 43 35 4a 4f 20 00"},
+    {"vcmpltps ymm1,ymm1,ymm2", [](Assembler& a) { a.cmpps(Xmm::x1, Xmm::x2, Pred::Lt); }, "c5 f4 c2 ca 01"},
+    {"vcmpunordps ymm9,ymm9,ymm10", [](Assembler& a) { a.cmpps(Xmm::x9, Xmm::x10, Pred::Unord); }, "c4 41 34 c2 ca 03"},
+    {"vcmpneqps ymm1,ymm1,YMMWORD PTR [rcx+0x40]", [](Assembler& a) { a.cmpps(Xmm::x1, Mem::at(Gp::rcx, 64), Pred::Neq); }, "c5 f4 c2 49 40 04"},
+    {"vroundps ymm1,ymm2,0x9", [](Assembler& a) { a.roundps(Xmm::x1, Xmm::x2, Rounding::Down); }, "c4 e3 7d 08 ca 09"},
+    {"vroundps ymm9,ymm10,0xa", [](Assembler& a) { a.roundps(Xmm::x9, Xmm::x10, Rounding::Up); }, "c4 43 7d 08 ca 0a"},
+    {"vmovaps ymm8,ymm0", [](Assembler& a) { a.movaps(Xmm::x8, Xmm::x0); }, "c5 7c 28 c0"},
+    {"vmovaps ymm1,YMMWORD PTR [rsp]", [](Assembler& a) { a.movaps(Xmm::x1, Mem::at(Gp::rsp)); }, "c5 fc 28 0c 24"},
+    {"vmovaps YMMWORD PTR [rsp+0x80],ymm9", [](Assembler& a) { a.movaps(Mem::at(Gp::rsp, 0x80), Xmm::x9); }, "c5 7c 29 8c 24 80 00 00 00"},
+    {"vmovups ymm2,YMMWORD PTR [rsi+rax*4]", [](Assembler& a) { a.movups(Xmm::x2, Mem::at(Gp::rsi, Gp::rax, 4)); }, "c5 fc 10 14 86"},
+    {"vmovups YMMWORD PTR [r11+r14*4+0x4],ymm12", [](Assembler& a) { a.movups(Mem::at(Gp::r11, Gp::r14, 4, 4), Xmm::x12); }, "c4 01 7c 11 64 b3 04"},
+    {"vaddps ymm1,ymm2,ymm3", [](Assembler& a) { a.vaddps(Xmm::x1, Xmm::x2, Xmm::x3); }, "c5 ec 58 cb"},
+    {"vxorps ymm7,ymm6,YMMWORD PTR [rax+rbx*2+0x4]", [](Assembler& a) { a.vxorps(Xmm::x7, Xmm::x6, Mem::at(Gp::rax, Gp::rbx, 2, 4)); }, "c5 cc 57 7c 58 04"},
+    {"vbroadcastss ymm3,DWORD PTR [rax]", [](Assembler& a) { a.vbroadcastss(Xmm::x3, Mem::at(Gp::rax)); }, "c4 e2 7d 18 18"},
+    {"vbroadcastss ymm12,DWORD PTR [r13+0x8]", [](Assembler& a) { a.vbroadcastss(Xmm::x12, Mem::at(Gp::r13, 8)); }, "c4 42 7d 18 65 08"},
+    {"vzeroupper", [](Assembler& a) { a.vzeroupper(); }, "c5 f8 77"},
+    {"and rsp,0xffffffffffffffe0", [](Assembler& a) { a.and_(Gp::rsp, -32); }, "48 83 e4 e0"},
+    {"and r10,0x100", [](Assembler& a) { a.and_(Gp::r10, 0x100); }, "49 81 e2 00 01 00 00"},
 };
 
 std::string hex(const std::vector<uint8_t>& b) {
@@ -172,6 +210,35 @@ TEST_CASE("x86: every instruction form encodes to the bytes of the reference ass
     INFO(row.text);
     CHECK(hex(a.bytes()) == row.bytes);
   }
+  for (const auto& row : kWideRows) {
+    Assembler a;
+    a.enable_wide();
+    row.emit(a);
+    INFO(row.text);
+    CHECK(hex(a.bytes()) == row.bytes);
+    CHECK(a.wide_refused().empty());
+  }
+}
+
+TEST_CASE("x86: wide mode refuses what has no eight-lane form, and its constants are 32 bytes") {
+  Assembler a;
+  a.enable_wide();
+  a.addps(Xmm::x1, Xmm::x2);
+  CHECK(a.wide_refused().empty());
+  a.cvtps2pd(Xmm::x1, Xmm::x2);  // four lanes to two doubles: no eight-lane meaning here
+  a.movss(Xmm::x1, Mem::at(Gp::rax));
+  CHECK(a.wide_refused() == "cvtps2pd");  // the first one
+  Assembler w;
+  w.enable_wide();
+  w.enable_listing();
+  w.movaps(Xmm::x3, Mem::rip(w.constant_ps(2.5f)));
+  std::vector<uint8_t> code = w.finish();
+  REQUIRE(code.size() == 32 + 32);  // the load padded to 32 bytes, then one constant of eight lanes
+  float lanes[8];
+  std::memcpy(lanes, code.data() + 32, 32);
+  for (float f : lanes) CHECK(f == 2.5f);
+  CHECK(w.listing().find("vmovaps ymm3, [rip+L0]") != std::string::npos);
+  CHECK(w.listing().find(".float 2.5, 2.5, 2.5, 2.5, 2.5, 2.5, 2.5, 2.5") != std::string::npos);
 }
 
 TEST_CASE("x86: objdump decodes the encoder's bytes back to the same instructions") {
@@ -179,13 +246,17 @@ TEST_CASE("x86: objdump decodes the encoder's bytes back to the same instruction
     fscript::test::skip(fscript::test::SkipKind::Missing, "objdump is not installed (Debian binutils): no cross-check");
     return;
   }
-  Assembler a;
+  Assembler a, w;
   for (const auto& row : kRows) row.emit(a);
+  w.enable_wide();
+  for (const auto& row : kWideRows) row.emit(w);
+  std::vector<uint8_t> bytes = a.bytes();
+  bytes.insert(bytes.end(), w.bytes().begin(), w.bytes().end());
   char path[] = "/tmp/fs_x86_XXXXXX";
   int fd = mkstemp(path);
   REQUIRE(fd >= 0);
   close(fd);
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(a.bytes().data()), a.bytes().size());
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   std::string cmd = std::string("objdump -D -b binary -m i386:x86-64 -M intel ") + path;
   FILE* p = popen(cmd.c_str(), "r");
   REQUIRE(p);
@@ -198,10 +269,10 @@ TEST_CASE("x86: objdump decodes the encoder's bytes back to the same instruction
   }
   pclose(p);
   std::remove(path);
-  REQUIRE(texts.size() == std::size(kRows));
+  REQUIRE(texts.size() == std::size(kRows) + std::size(kWideRows));
   for (size_t i = 0; i < texts.size(); ++i) {
     INFO("row " << i);
-    CHECK(texts[i] == kRows[i].text);
+    CHECK(texts[i] == (i < std::size(kRows) ? kRows[i].text : kWideRows[i - std::size(kRows)].text));
   }
 }
 

@@ -208,7 +208,9 @@ std::string backend_listing(const std::string& name, const ir::Module& m, const 
   if (name == "sse") {
     std::string text;
     double bound = 0;
-    if (sse::generate(m, budgets, error, &text, nullptr, &bound).empty()) return "";
+    uint32_t lanes = 4;
+    if (sse::generate(m, budgets, error, &text, nullptr, &bound, false, &lanes).empty()) return "";
+    text = "; " + std::to_string(lanes) + " points per iteration (" + (lanes == 8 ? "ymm" : "xmm") + " registers)\n" + text;
     if (bound > 0)  // the code that runs a batch whose inputs are all in range
       text = "; inputs finite with |x| <= " + std::to_string(static_cast<int>(bound)) +
              " (other batches run the general code)\n" + text;

@@ -8,7 +8,8 @@
 //
 // Blocks are laid out in reverse post-order; each ends in a terminator whose edges carry the
 // phi moves (a parallel copy) for the lanes that take them. A batch runs a chunk of up to
-// kChunkLanes points: it executes the lowest-numbered block that has waiting lanes, once per
+// kChunkLanes points (kBranchyChunkLanes for a kernel of more than one block: a chunk runs until
+// its slowest lane is done): it executes the lowest-numbered block that has waiting lanes, once per
 // instruction over all those lanes (masked writes when only some lanes are present), until every
 // lane has returned. Straight-line kernels are therefore one pass over the code per chunk.
 #include <cstdint>
@@ -19,7 +20,10 @@
 
 namespace fscript::vm {
 
-constexpr uint32_t kChunkLanes = 512;
+// Measured (docs/performance.md, tenth session): 2,048 beats 512 and 1,024 on straight-line
+// kernels (csg8, prospero) and 4,096 is far worse (out of L2); 512 beats 2,048 on a divergent loop.
+constexpr uint32_t kChunkLanes = 2048;
+constexpr uint32_t kBranchyChunkLanes = 512;
 constexpr uint32_t kNoReg = UINT32_MAX;
 
 struct VInst {

@@ -306,7 +306,7 @@ bool Executor::run_chunk(const float* const* in, float* const* out, size_t base,
   init_frame(fr);
   for (uint32_t p = 0; p < k.num_params; ++p)
     if (k.param_regs[p] != kNoReg) load_param(p, in[p], base, L, fr.regs + size_t(k.param_regs[p]) * S);
-  start.assign(S, 0);
+  start.assign(S == 1 ? 1 : vector_lanes(L), 0);  // the lanes run() and the ops cover
   std::fill_n(start.begin(), L, ~Mask{0});
   if (k.blocks.size() == 1) {  // straight-line kernel: one pass over the code, all lanes present
     const VBlock& vb = k.blocks[0];
@@ -321,15 +321,15 @@ bool Executor::run_chunk(const float* const* in, float* const* out, size_t base,
 
 void Executor::edge_moves(Frame& fr, const Edge& e, const Mask* m) {
   if (e.moves.empty()) return;
-  uint32_t S = fr.stride;
+  uint32_t S = fr.stride, n = S == 1 ? 1 : vector_lanes(fr.lanes);  // the lanes present, as in run()
   thread_local std::vector<float> tmp;
-  tmp.resize(e.moves.size() * S);
+  tmp.resize(e.moves.size() * n);
   for (size_t k = 0; k < e.moves.size(); ++k)
-    std::memcpy(tmp.data() + k * S, fr.regs + size_t(e.moves[k].src) * S, S * sizeof(float));
+    std::memcpy(tmp.data() + k * n, fr.regs + size_t(e.moves[k].src) * S, n * sizeof(float));
   for (size_t k = 0; k < e.moves.size(); ++k) {
     float* d = fr.regs + size_t(e.moves[k].dst) * S;
-    const float* s = tmp.data() + k * S;
-    for (uint32_t i = 0; i < S; ++i) d[i] = m[i] ? s[i] : d[i];
+    const float* s = tmp.data() + k * n;
+    for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? s[i] : d[i];
   }
 }
 
@@ -338,12 +338,15 @@ void Executor::edge_moves(Frame& fr, const Edge& e, const Mask* m) {
 bool Executor::run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, size_t base, float* result,
                    RuntimeError& err) {
   const VmFunction& f = *fr.f;
-  uint32_t L = fr.stride;  // mask vectors cover every lane slot; slots past the chunk stay 0
+  uint32_t S = fr.stride;
+  // Masks cover the chunk's lanes rounded up to whole vectors, as the ops run them (slots past the
+  // chunk stay 0): a short batch in a K-lane frame costs its own lanes, not K.
+  uint32_t L = S == 1 ? 1 : vector_lanes(fr.lanes);
   size_t nb = f.blocks.size();
   std::vector<Mask> pending(nb * L, 0);
   std::vector<uint32_t> count(nb, 0);
-  std::copy(start_mask.begin(), start_mask.end(), pending.begin());
-  count[0] = static_cast<uint32_t>(std::count(start_mask.begin(), start_mask.end(), ~Mask{0}));
+  std::copy_n(start_mask.begin(), L, pending.begin());
+  count[0] = static_cast<uint32_t>(std::count(start_mask.begin(), start_mask.begin() + L, ~Mask{0}));
   std::vector<Mask> m(L), mt(L), mf(L);
   auto send = [&](const Edge& e, const Mask* mask, uint32_t n) {
     if (n == 0) return;
@@ -377,7 +380,7 @@ bool Executor::run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, 
         next = std::min<size_t>(next, vb.edges[0].block);
         break;
       case Op::Branch: {
-        const float* c = fr.regs + size_t(vb.cond) * L;
+        const float* c = fr.regs + size_t(vb.cond) * S;
         uint32_t nt = 0;
         for (uint32_t i = 0; i < L; ++i) {
           bool t = math::truthy(c[i]);
@@ -394,7 +397,7 @@ bool Executor::run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, 
         for (uint32_t i = 0; i < fr.lanes; ++i) {
           if (!m[i]) continue;
           for (size_t o = 0; o < vb.results.size(); ++o) {
-            float v = fr.regs[size_t(vb.results[o]) * L + i];
+            float v = fr.regs[size_t(vb.results[o]) * S + i];
             if (result) *result = v;
             else out[o][base + i] = v;
           }
@@ -530,11 +533,12 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
 bool run_batch(const VmProgram& p, const Budgets& budgets, const float* const* inputs, float* const* outputs,
                size_t n, size_t row_length, RuntimeError& err, bool& out_of_stack) {
   Executor ex(p, budgets, row_length);
-  for (size_t base = 0; base < n; base += kChunkLanes) {
-    uint32_t L = static_cast<uint32_t>(std::min<size_t>(kChunkLanes, n - base));
+  size_t chunk = p.functions[p.kernel].blocks.size() == 1 ? kChunkLanes : kBranchyChunkLanes;
+  for (size_t base = 0; base < n; base += chunk) {
+    uint32_t L = static_cast<uint32_t>(std::min<size_t>(chunk, n - base));
     if (ex.run_chunk(inputs, outputs, base, L, err)) continue;
     // A loop that runs long costs every lane of the chunk each iteration, and a runaway one would
-    // take kChunkLanes times its budget to fail: run the chunk again one point at a time (the
+    // take a chunk's points times its budget to fail: run the chunk again one point at a time (the
     // evaluation is a function of the inputs), so a runaway point stops after its own budget.
     if (!ex.long_loop()) return out_of_stack = ex.out_of_stack(), false;
     for (uint32_t i = 0; i < L; ++i)

@@ -12,7 +12,7 @@
 namespace fscript::backends {
 namespace {
 
-// Smaller jobs go through the full kernel: the prologue's own call (a whole 512-lane chunk on the
+// Smaller jobs go through the full kernel: the prologue's own call (a chunk of its own on the
 // VM, however few rows) would cost more than the split saves.
 constexpr size_t kMinRowPoints = 256, kMinRowLength = 4;
 

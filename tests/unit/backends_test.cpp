@@ -407,6 +407,9 @@ TEST_CASE("backends: grid rows through the row split agree with the points, bit 
       "var k = 12.566370614359172; return sin(x * k + t) * cos(y * k) + sin(y * k) * cos(z * k) + sin(z * k) * cos(x * k);",
       "return x * exp(y) * log(z * z + 1) - sqrt(abs(y)) * atan2(z, y) + min(x, pow(y, 2));",
       "return sin(y) * cos(z) * exp(t) + tanh(y - z);",  // nothing depends on x
+      // Lane arithmetic only: sse runs it on eight lanes, row values broadcast (vbroadcastss).
+      "var r = sqrt(y * y + z * z + 1) * (abs(z) + 2) - min(y, t) / 3 + ceil(y * z) * (y < z);"
+      "return max(sqrt(x * x + r) - 0.5, min(abs(x) - r, x * y - z)) + floor(x * 3) * (x < r);",
   };
   std::vector<float> xs;
   for (float v : test::kSpecial) xs.push_back(v);

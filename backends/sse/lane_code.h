@@ -49,6 +49,9 @@ class LaneCode {
       : fn_(fn), budget_(budget), a_(a), global_arrays_(global_arrays), callee_(callee) {}
 
   Mem at(int32_t offset) const { return Mem::at(Gp::rsp, offset); }
+  // Scratch slot k of a runtime call: arguments 0 to 2, the result 3 (slots of the lanes' width).
+  Mem scratch(int k) const { return at(kScratch + slot_bytes_ * k); }
+  int lanes() const { return slot_bytes_ / 4; }
   Mem pending(int b) const { return at(pending_slot_ + 16 * b); }
 
   // ---- uses and liveness (within the current block) ----
@@ -226,21 +229,20 @@ class LaneCode {
   }
 
   bool call(const ir::Inst& in, int pos, const void* fn) {
-    a_.refuse_wide("a call of a batch function");
     for (size_t i = 0; i < in.args.size(); ++i) {  // arguments to the scratch slots
       load(Xmm::x0, src(in.args[i]));
-      a_.movaps(Mem::at(Gp::rsp, kScratch + 16 * static_cast<int32_t>(i)), Xmm::x0);
+      a_.movaps(scratch(static_cast<int>(i)), Xmm::x0);
     }
     flush_registers(pos);
     Gp arg_regs[4] = {Gp::rdi, Gp::rsi, Gp::rdx, Gp::rcx};
     size_t n = in.args.size();
-    for (size_t i = 0; i < n; ++i) a_.lea(arg_regs[i], Mem::at(Gp::rsp, kScratch + 16 * static_cast<int32_t>(i)));
-    a_.lea(arg_regs[n], Mem::at(Gp::rsp, kScratch + 48));
-    a_.mov_imm(n + 1 < 4 ? arg_regs[n + 1] : Gp::r8, 4);
+    for (size_t i = 0; i < n; ++i) a_.lea(arg_regs[i], scratch(static_cast<int>(i)));
+    a_.lea(arg_regs[n], scratch(3));
+    a_.mov_imm(n + 1 < 4 ? arg_regs[n + 1] : Gp::r8, static_cast<uint64_t>(lanes()));
     a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(fn));
     a_.call(Gp::rax);
     Xmm d = alloc(pos);
-    a_.movaps(d, Mem::at(Gp::rsp, kScratch + 48));
+    a_.movaps(d, scratch(3));
     define(in, d);
     return true;
   }
@@ -258,23 +260,28 @@ class LaneCode {
   // NaN) takes the batch function itself, out of line. Both polynomials are computed whatever the
   // quadrant, so a later sin or cos of the same value in the block (the gyroid's pairs) is made
   // here too, from the same reduction, and skipped when its turn comes.
+  // Eight lanes (wide mode): the same steps on four doubles per ymm register, the halves split
+  // with vextractf128 and joined with vinsertf128.
   void trig(const ir::Inst& in, int pos, int offset) {
     using namespace math::trig;
-    a_.refuse_wide("sin/cos");
     const ir::Inst* partner = trig_partner(in, pos, offset);
     Src a = src(in.args[0]);
     Xmm t0 = temp(pos), t1 = temp(pos), t2 = temp(pos), t3 = temp(pos), cp = temp(pos);
+    bool wide = a_.wide();
     load(Xmm::x1, a);
-    a_.movaps(at(kScratch), Xmm::x1);
+    a_.movaps(scratch(0), Xmm::x1);
     a_.movaps(Xmm::x0, Xmm::x1);
     a_.andps(Xmm::x0, bits(0x7FFFFFFFu));
     a_.cmpps(Xmm::x0, k(kFastLimit), Pred::Le);
     a_.movmskps(Gp::rax, Xmm::x0);
-    a_.cmp(Gp::rax, 15);
+    a_.cmp(Gp::rax, (1 << lanes()) - 1);
     SlowPath sp{a_.new_label(), a_.new_label(), t0, batch_trig(offset), t1, partner ? batch_trig(1 - offset) : nullptr};
     a_.jcc(Cond::NE, sp.entry);
     a_.cvtps2pd(t0, Xmm::x1);
-    if (!uniform_) {
+    if (wide) {
+      a_.vextractf128(Xmm::x1, Xmm::x1, 1);
+      a_.cvtps2pd(t1, Xmm::x1);
+    } else if (!uniform_) {
       a_.movhlps(Xmm::x1, Xmm::x1);
       a_.cvtps2pd(t1, Xmm::x1);
     }
@@ -294,8 +301,13 @@ class LaneCode {
     };
     reduce(t0, t2);
     if (!uniform_) reduce(t1, t3);
-    a_.movlhps(t0, uniform_ ? t0 : t1);     // r, four lanes
-    a_.punpcklqdq(t2, uniform_ ? t2 : t3);  // q, four lanes
+    if (wide) {
+      a_.vinsertf128(t0, t0, t1, 1);  // r, eight lanes
+      a_.vinsertf128(t2, t2, t3, 1);  // q, eight lanes
+    } else {
+      a_.movlhps(t0, uniform_ ? t0 : t1);     // r, four lanes
+      a_.punpcklqdq(t2, uniform_ ? t2 : t3);  // q, four lanes
+    }
     a_.movaps(t1, t0);
     a_.mulps(t1, t0);  // z = r * r
     a_.movaps(t3, k(kSin1));  // sin: ((kSin1 z + kSin2) z - kSin3) z r + r

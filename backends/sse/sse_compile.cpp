@@ -60,6 +60,7 @@ class Codegen : public detail::LaneCode {
 
   bool run(std::string& error) {
     if (!layout(error)) return false;
+    if (!straight_) a_.refuse_wide("masked control flow");  // its masks and slots are four lanes
     exit_ = a_.new_label();
     prologue();
     Label top = a_.new_label(), done = a_.new_label();
@@ -90,27 +91,27 @@ class Codegen : public detail::LaneCode {
     for (const auto& c : carries_) carry(c);
     for (const auto& sp : slow_) {  // the argument is in the first scratch slot
       a_.bind(sp.entry);
-      for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(at(save_slot_ + 16 * r), static_cast<Xmm>(r));
-      a_.lea(Gp::rdi, at(kScratch));
-      a_.lea(Gp::rsi, at(kScratch + 48));
-      a_.mov_imm(Gp::rdx, 4);
+      for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(at(save_slot_ + slot_bytes_ * r), static_cast<Xmm>(r));
+      a_.lea(Gp::rdi, scratch(0));
+      a_.lea(Gp::rsi, scratch(3));
+      a_.mov_imm(Gp::rdx, static_cast<uint64_t>(lanes()));
       a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(sp.fn));
       a_.call(Gp::rax);
-      if (sp.fn2) {  // the pair's second function of the same argument; the first's result to slot 32
-        a_.movaps(Xmm::x0, at(kScratch + 48));
-        a_.movaps(at(kScratch + 32), Xmm::x0);
-        a_.lea(Gp::rdi, at(kScratch));
-        a_.lea(Gp::rsi, at(kScratch + 48));
-        a_.mov_imm(Gp::rdx, 4);
+      if (sp.fn2) {  // the pair's second function of the same argument; the first's result to slot 2
+        a_.movaps(Xmm::x0, scratch(3));
+        a_.movaps(scratch(2), Xmm::x0);
+        a_.lea(Gp::rdi, scratch(0));
+        a_.lea(Gp::rsi, scratch(3));
+        a_.mov_imm(Gp::rdx, static_cast<uint64_t>(lanes()));
         a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(sp.fn2));
         a_.call(Gp::rax);
       }
-      for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(static_cast<Xmm>(r), at(save_slot_ + 16 * r));
+      for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(static_cast<Xmm>(r), at(save_slot_ + slot_bytes_ * r));
       if (sp.fn2) {
-        a_.movaps(sp.result, at(kScratch + 32));
-        a_.movaps(sp.result2, at(kScratch + 48));
+        a_.movaps(sp.result, scratch(2));
+        a_.movaps(sp.result2, scratch(3));
       } else {
-        a_.movaps(sp.result, at(kScratch + 48));
+        a_.movaps(sp.result, scratch(3));
       }
       a_.jmp(sp.back);
     }
@@ -192,8 +193,9 @@ class Codegen : public detail::LaneCode {
     for (uint32_t v = 0; v < fn_.next_value; ++v)
       if (cross_[v] && !straight_) home_[v] = at, at += 16;
     temp_slot_ = at, at += 16 * max_phis_;
-    save_slot_ = at, at += 16 * kNumRegs;
-    spill_base_ = (at + slot_bytes_ - 1) / slot_bytes_ * slot_bytes_;
+    auto aligned = [&](int32_t v) { return (v + slot_bytes_ - 1) / slot_bytes_ * slot_bytes_; };
+    save_slot_ = aligned(at), at = save_slot_ + slot_bytes_ * kNumRegs;
+    spill_base_ = aligned(at);
     (void)error;
     return true;
   }
@@ -700,9 +702,9 @@ double choose_bound(const ir::Function& fn, Codegen& gen) {
 
 namespace {
 
-// Eight lanes where the kernel is lane arithmetic from end to end: the one function of its
-// program, one block (no masks), no calls, arrays or sin/cos (those run four lanes: the code
-// generator refuses wide mode for them and the kernel is generated again on four).
+// Eight lanes where the kernel is straight-line code: the one function of its program, one block,
+// no globals, arrays or loop counters (those run four lanes: the code generator refuses wide
+// mode for them and the kernel is generated again on four).
 bool try_wide(const backends::JitProgram& jp, bool uniform_lanes) {
   if (uniform_lanes || math::active_isa() == math::Isa::Base || jp.functions.size() != 1) return false;
   return jp.module->functions[static_cast<size_t>(jp.kernel)]->blocks.size() == 1;

@@ -69,7 +69,7 @@ void Assembler::sse(uint8_t prefix, std::initializer_list<uint8_t> opcode, Xmm d
 }
 
 // VEX (SDM vol. 2, 2.3): R, X, B and vvvv stored inverted; L = 1 (256 bits) in wide mode, W = 0.
-void Assembler::vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm, uint8_t map, int imm8) {
+void Assembler::vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm, uint8_t map, int imm8, int l) {
   uint8_t r = ~n(d) >> 3 & 1, x = 1, b = 1;
   if (rm.is_mem && rm.mem.label < 0) {
     x = ~n(rm.mem.index) >> 3 & 1;
@@ -77,7 +77,7 @@ void Assembler::vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm,
   } else if (!rm.is_mem) {
     b = ~rm.reg >> 3 & 1;
   }
-  uint8_t vvvv = static_cast<uint8_t>((~n(v) & 15) << 3 | (wide_ ? 4 : 0) | pp);
+  uint8_t vvvv = static_cast<uint8_t>((~n(v) & 15) << 3 | ((l < 0 ? wide_ : l == 1) ? 4 : 0) | pp);
   if (x && b && map == 1) {
     code_.insert(code_.end(), {0xC5, static_cast<uint8_t>(r << 7 | vvvv)});
   } else {
@@ -136,23 +136,64 @@ FS_SSE_DEFINE(sqrtss, 0xF3, 0x0F, 0x51)
 FS_SSE_DEFINE(cvtdq2ps, 0, 0x0F, 0x5B)
 FS_SSE_DEFINE(cvttps2dq, 0xF3, 0x0F, 0x5B)
 FS_SSE_DEFINE(cvtps2dq, 0x66, 0x0F, 0x5B)
-FS_SSE_DEFINE(pand, 0x66, 0x0F, 0xDB)
 FS_SSE_DEFINE(pandn, 0x66, 0x0F, 0xDF)
 FS_SSE_DEFINE(por, 0x66, 0x0F, 0xEB)
 FS_SSE_DEFINE(pxor, 0x66, 0x0F, 0xEF)
-FS_SSE_DEFINE(pcmpeqd, 0x66, 0x0F, 0x76)
 FS_SSE_DEFINE(pcmpgtd, 0x66, 0x0F, 0x66)
-FS_SSE_DEFINE(paddd, 0x66, 0x0F, 0xFE)
 FS_SSE_DEFINE(psubd, 0x66, 0x0F, 0xFA)
 FS_SSE_DEFINE(ucomiss, 0, 0x0F, 0x2E)
-FS_SSE_DEFINE(cvtps2pd, 0, 0x0F, 0x5A)
-FS_SSE_DEFINE(cvtpd2ps, 0x66, 0x0F, 0x5A)
-FS_SSE_DEFINE(cvttpd2dq, 0x66, 0x0F, 0xE6)
-FS_SSE_DEFINE(addpd, 0x66, 0x0F, 0x58)
-FS_SSE_DEFINE(subpd, 0x66, 0x0F, 0x5C)
-FS_SSE_DEFINE(mulpd, 0x66, 0x0F, 0x59)
 FS_SSE_DEFINE(punpcklqdq, 0x66, 0x0F, 0x6C)
 #undef FS_SSE_DEFINE
+
+// Packed double and integer operations of the inline sin/cos, with an eight-lane form (VEX.256,
+// 66 prefix): doubles four to a ymm register, integers eight (AVX2).
+#define FS_PD_DEFINE(name, opcode)                                                                 \
+  void Assembler::name(Xmm d, Xmm s) {                                                            \
+    if (wide_) return wide_op("v" #name, 1, 1, opcode, d, r(n(s)), false);                       \
+    list(#name, d, s), sse(0x66, {0x0F, opcode}, d, r(n(s)));                                      \
+  }                                                                                               \
+  void Assembler::name(Xmm d, const Mem& s) {                                                     \
+    if (wide_) return wide_op("v" #name, 1, 1, opcode, d, m(s), false);                          \
+    list(#name, d, s), sse(0x66, {0x0F, opcode}, d, m(s));                                         \
+  }
+FS_PD_DEFINE(addpd, 0x58)
+FS_PD_DEFINE(subpd, 0x5C)
+FS_PD_DEFINE(mulpd, 0x59)
+FS_PD_DEFINE(pand, 0xDB)
+FS_PD_DEFINE(pcmpeqd, 0x76)
+FS_PD_DEFINE(paddd, 0xFE)
+#undef FS_PD_DEFINE
+
+// Conversions between four floats or int32s (an xmm register) and four doubles (a ymm register)
+// in wide mode; the two-lane forms otherwise.
+void Assembler::cvtps2pd(Xmm d, Xmm s) {
+  if (wide_) return half("vcvtps2pd", d, true, s, false), vex(0, 0x5A, d, Xmm::x0, r(n(s)));
+  list("cvtps2pd", d, s), sse(0, {0x0F, 0x5A}, d, r(n(s)));
+}
+void Assembler::cvtps2pd(Xmm d, const Mem& s) { narrow("cvtps2pd"), list("cvtps2pd", d, s), sse(0, {0x0F, 0x5A}, d, m(s)); }
+void Assembler::cvtpd2ps(Xmm d, Xmm s) {
+  if (wide_) return half("vcvtpd2ps", d, false, s, true), vex(1, 0x5A, d, Xmm::x0, r(n(s)));
+  list("cvtpd2ps", d, s), sse(0x66, {0x0F, 0x5A}, d, r(n(s)));
+}
+void Assembler::cvtpd2ps(Xmm d, const Mem& s) { narrow("cvtpd2ps"), list("cvtpd2ps", d, s), sse(0x66, {0x0F, 0x5A}, d, m(s)); }
+void Assembler::cvttpd2dq(Xmm d, Xmm s) {
+  if (wide_) return half("vcvttpd2dq", d, false, s, true), vex(1, 0xE6, d, Xmm::x0, r(n(s)));
+  list("cvttpd2dq", d, s), sse(0x66, {0x0F, 0xE6}, d, r(n(s)));
+}
+void Assembler::cvttpd2dq(Xmm d, const Mem& s) { narrow("cvttpd2dq"), list("cvttpd2dq", d, s), sse(0x66, {0x0F, 0xE6}, d, m(s)); }
+void Assembler::vextractf128(Xmm d, Xmm s, uint8_t imm) {  // d (xmm) = half imm of s (ymm)
+  if (listing_on_) lines_.push_back({code_.size(), "vextractf128 xmm" + std::to_string(n(d)) + ", ymm" + std::to_string(n(s)) + ", " + std::to_string(imm)});
+  vex(1, 0x19, s, Xmm::x0, r(n(d)), 3, imm, 1);
+}
+void Assembler::vinsertf128(Xmm d, Xmm s1, Xmm s2, uint8_t imm) {  // d = s1 with half imm from s2 (xmm)
+  if (listing_on_) lines_.push_back({code_.size(), "vinsertf128 ymm" + std::to_string(n(d)) + ", ymm" + std::to_string(n(s1)) + ", xmm" + std::to_string(n(s2)) + ", " + std::to_string(imm)});
+  vex(1, 0x18, d, s1, r(n(s2)), 3, imm, 1);
+}
+void Assembler::half(const char* name, Xmm d, bool d_wide, Xmm s, bool s_wide) {
+  if (!listing_on_) return;
+  auto reg = [](Xmm x, bool w) { return (w ? "ymm" : "xmm") + std::to_string(n(x)); };
+  lines_.push_back({code_.size(), std::string(name) + " " + reg(d, d_wide) + ", " + reg(s, s_wide)});
+}
 
 #define FS_VEX_DEFINE(name, pp, opcode)                                                              \
   void Assembler::name(Xmm d, Xmm s1, Xmm s2) { list(#name, d, s1, s2), vex(pp, opcode, d, s1, r(n(s2))); } \
@@ -197,7 +238,11 @@ void Assembler::roundps(Xmm d, Xmm s, Rounding k) {
 }
 void Assembler::roundss(Xmm d, Xmm s, Rounding k) { narrow("roundss"); list("roundss", d, s, k); sse(0x66, {0x0F, 0x3A, 0x0A}, d, r(n(s)), static_cast<int>(k)); }
 void Assembler::shufps(Xmm d, Xmm s, uint8_t imm) { narrow("shufps"); list("shufps", d, s, imm); sse(0, {0x0F, 0xC6}, d, r(n(s)), imm); }
-void Assembler::pslld(Xmm d, uint8_t imm) { narrow("pslld"); list("pslld", d, imm); emit(0x66, false, {0x0F, 0x72}, 6, r(n(d)), 1, imm); }
+void Assembler::pslld(Xmm d, uint8_t imm) {  // wide: vpslld d, d, imm (the destination in vvvv, /6)
+  list(wide_ ? "vpslld" : "pslld", d, imm);
+  if (wide_) return vex(1, 0x72, static_cast<Xmm>(6), d, r(n(d)), 1, imm);
+  emit(0x66, false, {0x0F, 0x72}, 6, r(n(d)), 1, imm);
+}
 void Assembler::psrld(Xmm d, uint8_t imm) { narrow("psrld"); list("psrld", d, imm); emit(0x66, false, {0x0F, 0x72}, 2, r(n(d)), 1, imm); }
 void Assembler::psrad(Xmm d, uint8_t imm) { narrow("psrad"); list("psrad", d, imm); emit(0x66, false, {0x0F, 0x72}, 4, r(n(d)), 1, imm); }
 void Assembler::movhlps(Xmm d, Xmm s) { narrow("movhlps"); list("movhlps", d, s); sse(0, {0x0F, 0x12}, d, r(n(s))); }
@@ -226,7 +271,11 @@ void Assembler::movss(Xmm d, const Mem& s) { narrow("movss"); list("movss", d, s
 void Assembler::movss(const Mem& d, Xmm s) { narrow("movss"); list("movss", d, s); sse(0xF3, {0x0F, 0x11}, s, m(d)); }
 void Assembler::movd(Xmm d, Gp s) { narrow("movd"); list("movd", d, s); emit(0x66, false, {0x0F, 0x6E}, n(d), r(n(s))); }
 void Assembler::movd(Gp d, Xmm s) { narrow("movd"); list("movd", d, s); emit(0x66, false, {0x0F, 0x7E}, n(s), r(n(d))); }
-void Assembler::movmskps(Gp d, Xmm s) { narrow("movmskps"); list("movmskps", d, s); emit(0, false, {0x0F, 0x50}, n(d), r(n(s))); }
+void Assembler::movmskps(Gp d, Xmm s) {  // wide: eight sign bits
+  list(wide_ ? "vmovmskps" : "movmskps", d, s);
+  if (wide_) return vex(0, 0x50, static_cast<Xmm>(n(d)), Xmm::x0, r(n(s)));
+  emit(0, false, {0x0F, 0x50}, n(d), r(n(s)));
+}
 void Assembler::cvtsi2ss(Xmm d, Gp s) { narrow("cvtsi2ss"); list("cvtsi2ss", d, s); emit(0xF3, true, {0x0F, 0x2A}, n(d), r(n(s))); }
 void Assembler::vbroadcastss(Xmm d, const Mem& s) { list("vbroadcastss", d, s), vex(1, 0x18, d, Xmm::x0, m(s), 2); }
 void Assembler::vzeroupper() { list("vzeroupper"), code_.insert(code_.end(), {0xC5, 0xF8, 0x77}); }

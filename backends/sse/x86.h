@@ -86,6 +86,9 @@ class Assembler {
   void movd(Gp d, Xmm s);
   void movmskps(Gp d, Xmm s);
   void vbroadcastss(Xmm d, const Mem& s);  // every lane = the float at s (VEX; eight lanes when wide)
+  // AVX (VEX.256 whatever the mode): a 128-bit half of a ymm register out, or in.
+  void vextractf128(Xmm d, Xmm s, uint8_t imm);
+  void vinsertf128(Xmm d, Xmm s1, Xmm s2, uint8_t imm);
   void vzeroupper();
   void cvtsi2ss(Xmm d, Gp s);   // 64-bit integer source
   void cvttss2si(Gp d, Xmm s);  // 64-bit integer result
@@ -139,10 +142,13 @@ class Assembler {
   void enable_vex() { vex_ = true; }
   bool vex() const { return vex_; }
   // Eight lanes: the packed single operations above (moves, arithmetic, min/max, logic, sqrt,
-  // compares, roundps, blendvps with ymm0 as its mask, and the three-operand forms) are emitted
-  // as their VEX.256 forms on ymm registers, the two-operand ones as d = d op s. An instruction
-  // with no eight-lane meaning here (scalar, double, integer, shuffles) is refused: the first
-  // such mnemonic is kept in wide_refused(), and the code must not be used.
+  // compares, roundps, blendvps with ymm0 as its mask, movmskps, and the three-operand forms),
+  // and the double and integer ones the inline sin/cos uses (addpd, subpd, mulpd on four doubles;
+  // pand, pcmpeqd, paddd, pslld on eight int32s: AVX2; cvtps2pd from, cvtpd2ps and cvttpd2dq to
+  // an xmm half) are emitted as their VEX.256 forms on ymm registers, the two-operand ones as
+  // d = d op s. An instruction with no eight-lane meaning here (scalar, shuffles, the two-lane
+  // moves) is refused: the first such mnemonic is kept in wide_refused(), and the code must not
+  // be used.
   void enable_wide() { wide_ = vex_ = true; }
   bool wide() const { return wide_; }
   const std::string& wide_refused() const { return wide_refused_; }
@@ -166,7 +172,10 @@ class Assembler {
   void sse(uint8_t prefix, std::initializer_list<uint8_t> opcode, Xmm d, const Operand& s, int imm8 = -1);
   // VEX in map 1 (0F), 2 (0F38) or 3 (0F3A) (pp: 0 none, 1 66, 2 F3, 3 F2), L = 1 in wide mode:
   // the 2-byte form when the map is 0F and no X/B bit is needed. v = x0 where vvvv is unused.
-  void vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm, uint8_t map = 1, int imm8 = -1);
+  // l: 0 or 1 forces VEX.L (the 128-bit halves' instructions), -1 takes it from the mode.
+  void vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm, uint8_t map = 1, int imm8 = -1, int l = -1);
+  // A listing line whose operands are halves (xmm) or wholes (ymm) as the instruction has them.
+  void half(const char* name, Xmm d, bool d_wide, Xmm s, bool s_wide);
   // A packed single two-operand operation in wide mode: d = d op s (v = d), or d = op s when unary.
   void wide_op(const char* name, uint8_t pp, uint8_t map, uint8_t opcode, Xmm d, const Operand& s, bool unary,
                int imm8 = -1);

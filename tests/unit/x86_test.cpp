@@ -148,7 +148,8 @@ const Row kRows[] = {
     {"vbroadcastss xmm3,DWORD PTR [rax]", [](Assembler& a) { a.vbroadcastss(Xmm::x3, Mem::at(Gp::rax)); }, "c4 e2 79 18 18"},
 };
 
-// Wide mode (Assembler::enable_wide): the packed single forms as VEX.256 on ymm registers, d = d op s.
+// Wide mode (Assembler::enable_wide): the packed single forms as VEX.256 on ymm registers, d = d op s;
+// the double, integer and conversion forms of the inline sin/cos.
 const Row kWideRows[] = {
     {"vaddps ymm0,ymm0,ymm1", [](Assembler& a) { a.addps(Xmm::x0, Xmm::x1); }, "c5 fc 58 c1"},
     {"vaddps ymm8,ymm8,ymm15", [](Assembler& a) { a.addps(Xmm::x8, Xmm::x15); }, "c4 41 3c 58 c7"},
@@ -181,7 +182,26 @@ const Row kWideRows[] = {
     {"vbroadcastss ymm12,DWORD PTR [r13+0x8]", [](Assembler& a) { a.vbroadcastss(Xmm::x12, Mem::at(Gp::r13, 8)); }, "c4 42 7d 18 65 08"},
     {"vzeroupper", [](Assembler& a) { a.vzeroupper(); }, "c5 f8 77"},
     {"and rsp,0xffffffffffffffe0", [](Assembler& a) { a.and_(Gp::rsp, -32); }, "48 83 e4 e0"},
-    {"and r10,0x100", [](Assembler& a) { a.and_(Gp::r10, 0x100); }, "49 81 e2 00 01 00 00"},
+    {"and r10,0x100", [](Assembler& a) { a.and_(Gp::r10, 0x100); }, "49 81 e2 00 01 00 00"},    {"vaddpd ymm1,ymm1,ymm2", [](Assembler& a) { a.addpd(Xmm::x1, Xmm::x2); }, "c5 f5 58 ca"},
+    {"vsubpd ymm9,ymm9,YMMWORD PTR [rsp+0x40]", [](Assembler& a) { a.subpd(Xmm::x9, Mem::at(Gp::rsp, 64)); }, "c5 35 5c 4c 24 40"},
+    {"vmulpd ymm3,ymm3,YMMWORD PTR [rax+0x20]", [](Assembler& a) { a.mulpd(Xmm::x3, Mem::at(Gp::rax, 32)); }, "c5 e5 59 58 20"},
+    {"vpand ymm1,ymm1,ymm10", [](Assembler& a) { a.pand(Xmm::x1, Xmm::x10); }, "c4 c1 75 db ca"},
+    {"vpcmpeqd ymm0,ymm0,YMMWORD PTR [rdx]", [](Assembler& a) { a.pcmpeqd(Xmm::x0, Mem::at(Gp::rdx)); }, "c5 fd 76 02"},
+    {"vpaddd ymm12,ymm12,ymm3", [](Assembler& a) { a.paddd(Xmm::x12, Xmm::x3); }, "c5 1d fe e3"},
+    {"vpslld ymm1,ymm1,0x1e", [](Assembler& a) { a.pslld(Xmm::x1, 30); }, "c5 f5 72 f1 1e"},
+    {"vpslld ymm11,ymm11,0x1f", [](Assembler& a) { a.pslld(Xmm::x11, 31); }, "c4 c1 25 72 f3 1f"},
+    {"vmovmskps eax,ymm0", [](Assembler& a) { a.movmskps(Gp::rax, Xmm::x0); }, "c5 fc 50 c0"},
+    {"vmovmskps r9d,ymm12", [](Assembler& a) { a.movmskps(Gp::r9, Xmm::x12); }, "c4 41 7c 50 cc"},
+    {"vcvtps2pd ymm2,xmm1", [](Assembler& a) { a.cvtps2pd(Xmm::x2, Xmm::x1); }, "c5 fc 5a d1"},
+    {"vcvtps2pd ymm10,xmm13", [](Assembler& a) { a.cvtps2pd(Xmm::x10, Xmm::x13); }, "c4 41 7c 5a d5"},
+    {"vcvtpd2ps xmm3,ymm4", [](Assembler& a) { a.cvtpd2ps(Xmm::x3, Xmm::x4); }, "c5 fd 5a dc"},
+    {"vcvtpd2ps xmm11,ymm2", [](Assembler& a) { a.cvtpd2ps(Xmm::x11, Xmm::x2); }, "c5 7d 5a da"},
+    {"vcvttpd2dq xmm5,ymm6", [](Assembler& a) { a.cvttpd2dq(Xmm::x5, Xmm::x6); }, "c5 fd e6 ee"},
+    {"vcvttpd2dq xmm13,ymm14", [](Assembler& a) { a.cvttpd2dq(Xmm::x13, Xmm::x14); }, "c4 41 7d e6 ee"},
+    {"vextractf128 xmm1,ymm2,0x1", [](Assembler& a) { a.vextractf128(Xmm::x1, Xmm::x2, 1); }, "c4 e3 7d 19 d1 01"},
+    {"vextractf128 xmm9,ymm12,0x1", [](Assembler& a) { a.vextractf128(Xmm::x9, Xmm::x12, 1); }, "c4 43 7d 19 e1 01"},
+    {"vinsertf128 ymm3,ymm3,xmm4,0x1", [](Assembler& a) { a.vinsertf128(Xmm::x3, Xmm::x3, Xmm::x4, 1); }, "c4 e3 65 18 dc 01"},
+    {"vinsertf128 ymm10,ymm2,xmm11,0x1", [](Assembler& a) { a.vinsertf128(Xmm::x10, Xmm::x2, Xmm::x11, 1); }, "c4 43 6d 18 d3 01"},
 };
 
 std::string hex(const std::vector<uint8_t>& b) {
@@ -225,9 +245,11 @@ TEST_CASE("x86: wide mode refuses what has no eight-lane form, and its constants
   a.enable_wide();
   a.addps(Xmm::x1, Xmm::x2);
   CHECK(a.wide_refused().empty());
-  a.cvtps2pd(Xmm::x1, Xmm::x2);  // four lanes to two doubles: no eight-lane meaning here
+  a.cvtps2pd(Xmm::x1, Xmm::x2);  // four floats to four doubles: a wide form
+  CHECK(a.wide_refused().empty());
+  a.movhlps(Xmm::x1, Xmm::x2);  // the two-lane moves of the four-lane sin/cos: none
   a.movss(Xmm::x1, Mem::at(Gp::rax));
-  CHECK(a.wide_refused() == "cvtps2pd");  // the first one
+  CHECK(a.wide_refused() == "movhlps");  // the first one
   Assembler w;
   w.enable_wide();
   w.enable_listing();

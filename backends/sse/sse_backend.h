@@ -1,7 +1,7 @@
 #pragma once
 // The SSE backend: the kernel function compiled to x86-64 machine code that evaluates four points
 // per iteration in xmm registers (packed single precision; eight in ymm registers for straight-line
-// lane arithmetic where the CPU has AVX), our own encoder, register allocation
+// kernels where the CPU has AVX2), our own encoder, register allocation
 // and W^X code memory. Branches and loops run masked (sse_compile.cpp), arrays through helpers
 // (sse_arrays.h); recursive functions are compiled too and called with the caller's lane mask.
 #include <atomic>
@@ -87,8 +87,8 @@ class SseBackend : public backends::Backend {
 // With `param_bound`, the code may assume bounded inputs and says the bound it chose (0: none).
 // With `uniform_lanes`, the one-point code (a PointFn): the four lanes of its one group hold the
 // same point, read from and written to plain arrays; work done per pair of lanes is done once.
-// `lanes` receives the points per iteration of the code: 8 for a kernel of straight-line lane
-// arithmetic where the CPU has AVX (not FSCRIPT_ISA=base), else 4.
+// `lanes` receives the points per iteration of the code: 8 for a straight-line kernel (no globals,
+// arrays, loops or user calls) where the CPU has AVX2 (not FSCRIPT_ISA=base), else 4.
 std::vector<uint8_t> generate(const ir::Module& m, const backends::Budgets& budgets, std::string& error,
                               std::string* listing = nullptr, std::vector<std::string>* array_names = nullptr,
                               double* param_bound = nullptr, bool uniform_lanes = false, uint32_t* lanes = nullptr);

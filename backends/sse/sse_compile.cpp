@@ -1,5 +1,5 @@
 // SSA to x86-64, four points per iteration, one value per xmm register (eight per ymm register
-// for a straight-line kernel of lane operations where the CPU has AVX: see wide_kernel). Within a block, registers
+// for a straight-line kernel where the CPU has AVX2: see try_wide). Within a block, registers
 // are assigned while emitting: a free one if there is one, else the value whose next use in the
 // block is farthest is spilled to a 16-byte stack slot (Belady's rule); spilled values and
 // constants (rip-relative, from the pool) are read straight from memory. xmm0 and xmm1 are

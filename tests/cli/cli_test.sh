@@ -68,8 +68,8 @@ check run-no-entry 1 'no entry point' -- "$F" run "$T/two.fs"
 check run-unknown-entry 1 "no function named 'nope'" -- "$F" run "$T/rec.fs" --entry nope
 check backend-sse 0 '^0$' -- "$F" run "$T/sphere.fs" --backend sse 1 0 0
 check emit-asm-sse 0 'mulps [xy]mm[0-9]+, [xy]mm[0-9]+' -- "$F" emit-asm "$T/sphere.fs" --backend sse
-# Straight-line lane arithmetic runs eight lanes where the CPU has AVX; four at FSCRIPT_ISA=base.
-if grep -q ' avx ' /proc/cpuinfo; then
+# A straight-line kernel runs eight lanes where the CPU has AVX2; four at FSCRIPT_ISA=base.
+if grep -q ' avx2 ' /proc/cpuinfo; then
   check emit-asm-sse-wide 0 '; 8 points per iteration \(ymm registers\)' -- "$F" emit-asm "$T/sphere.fs" --backend sse
 fi
 check emit-asm-sse-base 0 '; 4 points per iteration \(xmm registers\)' -- env FSCRIPT_ISA=base "$F" emit-asm "$T/sphere.fs" --backend sse

@@ -144,6 +144,11 @@ class LaneCode {
     return {true, Xmm::x0, at(slot_of_[v->id])};
   }
   Mem k(float v) { return Mem::rip(a_.constant_ps(v)); }
+  // Before a call out of wide code (every live register is in memory by then): clean upper halves,
+  // so callee code in the legacy SSE encoding pays no AVX transition on the CPUs that charge one.
+  void call_out() {
+    if (a_.wide()) a_.vzeroupper();
+  }
   Mem bits(uint32_t b) { return Mem::rip(a_.constant({b, b, b, b})); }
   void load(Xmm d, const Src& s) {
     if (s.mem || s.x != d) FS_APPLY(movaps, d, s);
@@ -240,6 +245,7 @@ class LaneCode {
     a_.lea(arg_regs[n], scratch(3));
     a_.mov_imm(n + 1 < 4 ? arg_regs[n + 1] : Gp::r8, static_cast<uint64_t>(lanes()));
     a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(fn));
+    call_out();
     a_.call(Gp::rax);
     Xmm d = alloc(pos);
     a_.movaps(d, scratch(3));

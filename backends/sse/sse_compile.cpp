@@ -96,6 +96,7 @@ class Codegen : public detail::LaneCode {
       a_.lea(Gp::rsi, scratch(3));
       a_.mov_imm(Gp::rdx, static_cast<uint64_t>(lanes()));
       a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(sp.fn));
+      call_out();
       a_.call(Gp::rax);
       if (sp.fn2) {  // the pair's second function of the same argument; the first's result to slot 2
         a_.movaps(Xmm::x0, scratch(3));
@@ -104,6 +105,7 @@ class Codegen : public detail::LaneCode {
         a_.lea(Gp::rsi, scratch(3));
         a_.mov_imm(Gp::rdx, static_cast<uint64_t>(lanes()));
         a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(sp.fn2));
+        call_out();
         a_.call(Gp::rax);
       }
       for (int r = kFirstReg; r < kNumRegs; ++r) a_.movaps(static_cast<Xmm>(r), at(save_slot_ + slot_bytes_ * r));

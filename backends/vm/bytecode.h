@@ -26,8 +26,37 @@ constexpr uint32_t kChunkLanes = 2048;
 constexpr uint32_t kBranchyChunkLanes = 512;
 constexpr uint32_t kNoReg = UINT32_MAX;
 
+// Fused pairs (straight-line functions only, vm_compile.cpp): an instruction whose value is read
+// by the next one only, and by nothing else, runs together with it as one instruction, its value
+// kept in a vector register instead of a register's lanes in memory: dst = op2(op(a, b), c)
+// (kFuseCLast), op2(c, op(a, b)) (kFuseCFirst), with unary ops ignoring their second operand.
+// The operands are registers (constants take registers filled once per run). The ops that fuse:
+#define FS_VM_FUSE_FIRST(X) X(Add) X(Sub) X(Mul) X(Abs) X(Neg) X(Sqrt)
+#define FS_VM_FUSE_SECOND(X) X(Add) X(Sub) X(Mul) X(Div) X(Abs) X(Neg) X(Sqrt)
+constexpr uint8_t kFuseNone = 0, kFuseCLast = 1, kFuseCFirst = 2;
+#define FS_VM_FUSE_COUNT(N) +1
+constexpr int kFuseFirstOps = 0 FS_VM_FUSE_FIRST(FS_VM_FUSE_COUNT), kFuseSecondOps = 0 FS_VM_FUSE_SECOND(FS_VM_FUSE_COUNT);
+#undef FS_VM_FUSE_COUNT
+// The op's place in each list, or -1.
+constexpr int fuse_first_index(ir::Op op) {
+  int k = 0;
+#define FS_VM_FUSE_AT(N) \
+  if (op == ir::Op::N) return k; \
+  ++k;
+  FS_VM_FUSE_FIRST(FS_VM_FUSE_AT)
+  return -1;
+}
+constexpr int fuse_second_index(ir::Op op) {
+  int k = 0;
+  FS_VM_FUSE_SECOND(FS_VM_FUSE_AT)
+#undef FS_VM_FUSE_AT
+  return -1;
+}
+
 struct VInst {
   ir::Op op = ir::Op::Const;
+  ir::Op op2 = ir::Op::Const;  // a fused pair's second op
+  uint8_t fused = kFuseNone;
   uint8_t kinds = 0;
   uint32_t dst = kNoReg;
   uint32_t a = kNoReg, b = kNoReg, c = kNoReg;

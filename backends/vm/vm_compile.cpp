@@ -1,5 +1,7 @@
 // IR -> VM bytecode: register assignment by linear scan, constants as immediates of binary ops
-// (or registers filled once per run), phis as parallel copies on the edges.
+// (or registers filled once per run), phis as parallel copies on the edges, and in straight-line
+// functions pairs of lane ops fused (bytecode.h).
+#include <algorithm>
 #include <unordered_map>
 
 #include "backends/regalloc.h"
@@ -32,6 +34,7 @@ class FunctionCompiler {
     reg_ = backends::linear_scan(fn_, lo_, [&](const Inst* i) { return i->op == Op::Const; }, out_.num_regs);
     out_.param_regs.assign(fn_.num_params, kNoReg);
     for (size_t k = 0; k < lo_.blocks.size(); ++k) block_index_[lo_.blocks[k]] = static_cast<uint32_t>(k);
+    count_uses();
     for (ir::Block* b : lo_.blocks) emit_block(b);
   }
 
@@ -65,14 +68,50 @@ class FunctionCompiler {
     }
   }
 
+  void count_uses() {
+    uses_.assign(fn_.next_value, 0);
+    for (const auto& b : fn_.blocks)
+      for (const Inst* i : b->insts)
+        for (const Inst* a : i->args) ++uses_[a->id];
+  }
+
+  // i's value, read by j alone and once, where both ops fuse (straight-line functions only: a
+  // fused instruction runs every lane).
+  bool fuses(const Inst* i, const Inst* j) const {
+    if (fn_.blocks.size() != 1 || fuse_first_index(i->op) < 0 || fuse_second_index(j->op) < 0) return false;
+    if (uses_[i->id] != 1 || std::count(j->args.begin(), j->args.end(), i) != 1) return false;
+    auto constant = [](const Inst* a) { return a->op == Op::Const; };
+    return std::none_of(i->args.begin(), i->args.end(), constant) && std::none_of(j->args.begin(), j->args.end(), constant);
+  }
+  void emit_fused(const Inst& i, const Inst& j) {
+    VInst v;
+    v.op = i.op, v.op2 = j.op;
+    v.line = j.line, v.col = j.col;
+    v.dst = reg_[j.id];
+    v.a = r(i.args[0]);
+    if (i.args.size() > 1) v.b = r(i.args[1]);
+    v.fused = j.args[0] == &i ? kFuseCLast : kFuseCFirst;
+    if (j.args.size() > 1) v.c = r(j.args[j.args[0] == &i ? 1 : 0]);
+    out_.code.push_back(v);
+  }
+
   void emit_block(ir::Block* b) {
     VBlock vb;
     vb.begin = static_cast<uint32_t>(out_.code.size());
     pair_trig(b);
+    std::vector<const Inst*> seq;
     for (const Inst* i : b->insts) {
       if (i->op == Op::Phi || i->op == Op::Const) continue;
       if (ir::has_flag(i->op, ir::Terminator)) break;
-      emit(*i);
+      seq.push_back(i);
+    }
+    for (size_t k = 0; k < seq.size(); ++k) {
+      if (k + 1 < seq.size() && fuses(seq[k], seq[k + 1])) {
+        emit_fused(*seq[k], *seq[k + 1]);
+        ++k;
+        continue;
+      }
+      emit(*seq[k]);
     }
     vb.end = static_cast<uint32_t>(out_.code.size());
     const Inst* t = b->terminator();
@@ -143,6 +182,7 @@ class FunctionCompiler {
   std::unordered_map<const Inst*, uint32_t> const_regs_;
   std::unordered_map<const ir::Block*, uint32_t> block_index_;
   std::unordered_map<const Inst*, std::pair<int32_t, uint32_t>> trig_;  // pair_trig's, for this block
+  std::vector<uint32_t> uses_;  // by value id: how many operands read it
 };
 
 }  // namespace
@@ -188,11 +228,20 @@ std::string disassemble(const VmProgram& p) {
         const VInst& v = f.code[k];
         s += "  ";
         if (v.dst != kNoReg) s += "r" + std::to_string(v.dst) + " = ";
-        s += ir::mnemonic(v.op);
         auto operand = [&](int idx, uint32_t reg, float imm) {
           if (v.kinds & (1u << idx)) s += " #" + ir::format_float(imm);
           else if (reg != kNoReg) s += " r" + std::to_string(reg);
         };
+        if (v.fused) {  // e.g. r5 = fmul r1 r1 -> fadd r3 _ (the first op's value in the place of _)
+          s += ir::mnemonic(v.op);
+          operand(0, v.a, 0);
+          operand(1, v.b, 0);
+          s += std::string(" -> ") + ir::mnemonic(v.op2);
+          if (v.c != kNoReg) s += v.fused == kFuseCFirst ? " r" + std::to_string(v.c) + " _" : " _ r" + std::to_string(v.c);
+          s += "\n";
+          continue;
+        }
+        s += ir::mnemonic(v.op);
         operand(0, v.a, v.imm_a);
         operand(1, v.b, v.imm_b);
         if ((v.op == ir::Op::Sin || v.op == ir::Op::Cos) && v.c != kNoReg)  // a pair (bytecode.h)

@@ -5,6 +5,7 @@
 #include "backends/vm/vm_exec.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -169,6 +170,8 @@ inline void batched3(const VInst& v, float* R, const Mask* m, bool full, uint32_
   if (!full)
     for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? tmp[i] : d[i];
 }
+
+#include "backends/vm/vm_fused.inc"
 
 // How each row of ir/math_ops.def runs, by its kind and arity: on the batch path (FS_VM_*) and on
 // the one-point path (FS_ONE_*), where transcendentals go through the same batch functions (n = 1)
@@ -415,6 +418,7 @@ bool Executor::exec(Frame& fr, const VInst& v, const Mask* m, bool full, Runtime
   uint32_t L = fr.lanes;
   const uint32_t n = vector_lanes(L);
   namespace M = fscript::math;
+  if (v.fused) return run_fused(v, R, K, n), true;  // straight-line functions: every lane present
   switch (v.op) {
 #define FS_MATH(N, FN, A, HOW) FS_VM_##HOW##A(N, FN)
 #include "ir/math_ops.def"
@@ -441,6 +445,7 @@ bool Executor::exec_one(Frame& fr, const VInst& v, RuntimeError& err) {
   const float a = (v.kinds & 1) ? v.imm_a : (v.a != kNoReg ? R[v.a] : 0.0f);
   const float b = (v.kinds & 2) ? v.imm_b : (v.b != kNoReg ? R[v.b] : 0.0f);
   float* d = v.dst != kNoReg ? &R[v.dst] : nullptr;
+  if (v.fused) return run_fused(v, R, 1, 1), true;
   switch (v.op) {
 #define FS_MATH(N, FN, A, HOW) FS_ONE_##HOW##A(N, FN)
 #include "ir/math_ops.def"

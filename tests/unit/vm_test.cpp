@@ -144,3 +144,60 @@ TEST_CASE("vm: paired sin and cos give the bits of sin and cos alone") {
   CHECK(batch == 0);
   CHECK(one == 0);
 }
+
+// Straight-line functions run pairs of lane ops as one fused instruction (bytecode.h): every pair
+// of fusable ops, in both operand positions, on pairs of special values, gives the bits of the two
+// ops applied one after the other by the reference evaluator, in a batch and one point at a time.
+TEST_CASE("vm: fused pairs of lane ops give the bits of the two ops") {
+  struct OpText {
+    ir::Op op;
+    const char* form;  // A and B stand for the operands
+  };
+  const OpText first[] = {{ir::Op::Add, "(A + B)"}, {ir::Op::Sub, "(A - B)"}, {ir::Op::Mul, "(A * B)"},
+                          {ir::Op::Abs, "abs(A)"},   {ir::Op::Neg, "(-A)"},    {ir::Op::Sqrt, "sqrt(A)"}};
+  const OpText second[] = {{ir::Op::Add, "(A + B)"}, {ir::Op::Sub, "(A - B)"}, {ir::Op::Mul, "(A * B)"},
+                           {ir::Op::Div, "(A / B)"}, {ir::Op::Abs, "abs(A)"},   {ir::Op::Neg, "(-A)"},
+                           {ir::Op::Sqrt, "sqrt(A)"}};
+  auto fill = [](std::string form, const std::string& a, const std::string& b) {
+    form.replace(form.find('A'), 1, a);
+    if (size_t at = form.find('B'); at != std::string::npos) form.replace(at, 1, b);
+    return form;
+  };
+  const float special[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, 3e38f, -3e38f, 1e-40f, INFINITY, -INFINITY, NAN, 7.25f};
+  const size_t k = std::size(special), n = k * k;  // 169 points: a padded tail too
+  std::vector<float> xs(n), ys(n), zs(n), ts(n, 0), out(n);
+  for (size_t i = 0; i < n; ++i) xs[i] = special[i % k], ys[i] = special[i / k], zs[i] = special[(i * 5 + 2) % k];
+  int fused = 0, programs = 0;
+  for (const OpText& o1 : first)
+    for (const OpText& o2 : second)
+      for (bool t_first : {true, false}) {
+        if (ir::op_info(o2.op).arity == 1 && !t_first) continue;
+        std::string inner = fill(o1.form, "x", "y");
+        std::string body = t_first ? fill(o2.form, inner, "z") : fill(o2.form, "z", inner);
+        auto b = test::build("function FRep(x, y, z, t) { return " + body + "; }");
+        REQUIRE(b->ok);
+        vm::VmProgram p;
+        std::string error;
+        REQUIRE(vm::compile_program(*b->module, p, error));
+        ++programs;
+        fused += vm::disassemble(p).find(" -> ") != std::string::npos;
+        const float* in[] = {xs.data(), ys.data(), zs.data(), ts.data()};
+        float* outs[] = {out.data()};
+        backends::RuntimeError err;
+        REQUIRE(b->kernel->eval_batch(in, outs, n, err));
+        int bad = 0;
+        for (size_t i = 0; i < n && bad < 3; ++i) {
+          float args1[2] = {xs[i], ys[i]}, tmp, want;
+          REQUIRE(ir::eval_pure(o1.op, args1, tmp));
+          float args2[2] = {t_first ? tmp : zs[i], t_first ? zs[i] : tmp};
+          REQUIRE(ir::eval_pure(o2.op, args2, want));
+          float one = test::eval1(*b, {xs[i], ys[i], zs[i], 0});
+          if (same(out[i], want) && same(one, want)) continue;
+          ++bad;
+          FAIL_CHECK(body << " at x=" << xs[i] << " y=" << ys[i] << " z=" << zs[i] << ": batch " << out[i] << ", one point "
+                          << one << ", want " << want);
+        }
+      }
+  INFO(fused << " of " << programs << " programs fused a pair");
+  CHECK(fused * 10 >= programs * 8);  // a few pairs the optimiser rewrites first (-(-x), x * -y)
+}

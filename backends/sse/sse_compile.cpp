@@ -1,7 +1,7 @@
 // SSA to x86-64, four points per iteration, one value per xmm register (eight per ymm register
 // for a straight-line kernel where the CPU has AVX2: see try_wide). Within a block, registers
 // are assigned while emitting: a free one if there is one, else the value whose next use in the
-// block is farthest is spilled to a 16-byte stack slot (Belady's rule); spilled values and
+// block is farthest is spilled to a stack slot of the lanes' width (Belady's rule); spilled values and
 // constants (rip-relative, from the pool) are read straight from memory. xmm0 and xmm1 are
 // scratch (xmm0 is blendvps's implicit mask). Where the CPU has AVX, arithmetic, min/max and the
 // sign operations take VEX's three-operand forms, which need no copy of a live first operand.
@@ -699,10 +699,6 @@ double choose_bound(const ir::Function& fn, Codegen& gen) {
   if (best > 0) gen.set_ranges(ir::value_ranges(fn, best));
   return best;
 }
-
-}  // namespace
-
-namespace {
 
 // Eight lanes where the kernel is straight-line code: the one function of its program, one block,
 // no globals, arrays or loop counters (those run four lanes: the code generator refuses wide

@@ -5,8 +5,8 @@
 // constants (rip-relative, from the pool) are read straight from memory. xmm0 and xmm1 are
 // scratch (xmm0 is blendvps's implicit mask). Where the CPU has AVX, arithmetic, min/max and the
 // sign operations take VEX's three-operand forms, which need no copy of a live first operand.
-// Runtime calls (transcendentals, fmod, noise) go through runtime/math's batch functions on four
-// lanes in stack slots, every live register saved.
+// Runtime calls (transcendentals, fmod, noise) go through runtime/math's batch functions on the
+// code's lanes in stack slots, every live register saved.
 //
 // Control flow is masked, as in the VM: each block has a pending mask of the lanes waiting at it;
 // blocks run in reverse post-order, each for its pending lanes (skipped when none), and a back

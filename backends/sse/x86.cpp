@@ -99,28 +99,36 @@ void Assembler::wide_op(const char* name, uint8_t pp, uint8_t map, uint8_t opcod
 }
 
 // ---- SSE ----
-// Packed single operations with an eight-lane form: VEX.256 in map 0F in wide mode.
-#define FS_PS_DEFINE(name, opcode, unary)                                                                  \
-  void Assembler::name(Xmm d, Xmm s) {                                                                     \
-    if (wide_) return wide_op("v" #name, 0, 1, opcode, d, r(n(s)), unary);                               \
-    list(#name, d, s), sse(0, {0x0F, opcode}, d, r(n(s)));                                                 \
-  }                                                                                                        \
-  void Assembler::name(Xmm d, const Mem& s) {                                                              \
-    if (wide_) return wide_op("v" #name, 0, 1, opcode, d, m(s), unary);                                  \
-    list(#name, d, s), sse(0, {0x0F, opcode}, d, m(s));                                                      \
+// Packed operations with an eight-lane form: VEX.256 in map 0F in wide mode, with the legacy
+// prefix as VEX.pp (none: single precision; 66: the double and integer ones of the inline sin/cos,
+// doubles four to a ymm register, integers eight: AVX2).
+#define FS_PACKED_DEFINE(name, prefix, pp, opcode, unary)                                          \
+  void Assembler::name(Xmm d, Xmm s) {                                                            \
+    if (wide_) return wide_op("v" #name, pp, 1, opcode, d, r(n(s)), unary);                      \
+    list(#name, d, s), sse(prefix, {0x0F, opcode}, d, r(n(s)));                                    \
+  }                                                                                               \
+  void Assembler::name(Xmm d, const Mem& s) {                                                     \
+    if (wide_) return wide_op("v" #name, pp, 1, opcode, d, m(s), unary);                         \
+    list(#name, d, s), sse(prefix, {0x0F, opcode}, d, m(s));                                       \
   }
-FS_PS_DEFINE(addps, 0x58, false)
-FS_PS_DEFINE(subps, 0x5C, false)
-FS_PS_DEFINE(mulps, 0x59, false)
-FS_PS_DEFINE(divps, 0x5E, false)
-FS_PS_DEFINE(minps, 0x5D, false)
-FS_PS_DEFINE(maxps, 0x5F, false)
-FS_PS_DEFINE(sqrtps, 0x51, true)
-FS_PS_DEFINE(andps, 0x54, false)
-FS_PS_DEFINE(andnps, 0x55, false)
-FS_PS_DEFINE(orps, 0x56, false)
-FS_PS_DEFINE(xorps, 0x57, false)
-#undef FS_PS_DEFINE
+FS_PACKED_DEFINE(addps, 0, 0, 0x58, false)
+FS_PACKED_DEFINE(subps, 0, 0, 0x5C, false)
+FS_PACKED_DEFINE(mulps, 0, 0, 0x59, false)
+FS_PACKED_DEFINE(divps, 0, 0, 0x5E, false)
+FS_PACKED_DEFINE(minps, 0, 0, 0x5D, false)
+FS_PACKED_DEFINE(maxps, 0, 0, 0x5F, false)
+FS_PACKED_DEFINE(sqrtps, 0, 0, 0x51, true)
+FS_PACKED_DEFINE(andps, 0, 0, 0x54, false)
+FS_PACKED_DEFINE(andnps, 0, 0, 0x55, false)
+FS_PACKED_DEFINE(orps, 0, 0, 0x56, false)
+FS_PACKED_DEFINE(xorps, 0, 0, 0x57, false)
+FS_PACKED_DEFINE(addpd, 0x66, 1, 0x58, false)
+FS_PACKED_DEFINE(subpd, 0x66, 1, 0x5C, false)
+FS_PACKED_DEFINE(mulpd, 0x66, 1, 0x59, false)
+FS_PACKED_DEFINE(pand, 0x66, 1, 0xDB, false)
+FS_PACKED_DEFINE(pcmpeqd, 0x66, 1, 0x76, false)
+FS_PACKED_DEFINE(paddd, 0x66, 1, 0xFE, false)
+#undef FS_PACKED_DEFINE
 
 // The rest have no eight-lane form here: refused in wide mode.
 #define FS_SSE_DEFINE(name, prefix, ...)                                                          \
@@ -145,24 +153,6 @@ FS_SSE_DEFINE(ucomiss, 0, 0x0F, 0x2E)
 FS_SSE_DEFINE(punpcklqdq, 0x66, 0x0F, 0x6C)
 #undef FS_SSE_DEFINE
 
-// Packed double and integer operations of the inline sin/cos, with an eight-lane form (VEX.256,
-// 66 prefix): doubles four to a ymm register, integers eight (AVX2).
-#define FS_PD_DEFINE(name, opcode)                                                                 \
-  void Assembler::name(Xmm d, Xmm s) {                                                            \
-    if (wide_) return wide_op("v" #name, 1, 1, opcode, d, r(n(s)), false);                       \
-    list(#name, d, s), sse(0x66, {0x0F, opcode}, d, r(n(s)));                                      \
-  }                                                                                               \
-  void Assembler::name(Xmm d, const Mem& s) {                                                     \
-    if (wide_) return wide_op("v" #name, 1, 1, opcode, d, m(s), false);                          \
-    list(#name, d, s), sse(0x66, {0x0F, opcode}, d, m(s));                                         \
-  }
-FS_PD_DEFINE(addpd, 0x58)
-FS_PD_DEFINE(subpd, 0x5C)
-FS_PD_DEFINE(mulpd, 0x59)
-FS_PD_DEFINE(pand, 0xDB)
-FS_PD_DEFINE(pcmpeqd, 0x76)
-FS_PD_DEFINE(paddd, 0xFE)
-#undef FS_PD_DEFINE
 
 // Conversions between four floats or int32s (an xmm register) and four doubles (a ymm register)
 // in wide mode; the two-lane forms otherwise.

@@ -30,7 +30,7 @@ constexpr uint32_t kNoReg = UINT32_MAX;
 // by the next one only, and by nothing else, runs together with it as one instruction, its value
 // kept in a vector register instead of a register's lanes in memory: dst = op2(op(a, b), c)
 // (kFuseCLast), op2(c, op(a, b)) (kFuseCFirst), with unary ops ignoring their second operand.
-// The operands are registers (constants take registers filled once per run). The ops that fuse:
+// a and b are registers; c is a register or the immediate imm_c (kinds bit 2). The ops that fuse:
 #define FS_VM_FUSE_FIRST(X) X(Add) X(Sub) X(Mul) X(Abs) X(Neg) X(Sqrt)
 #define FS_VM_FUSE_SECOND(X) X(Add) X(Sub) X(Mul) X(Div) X(Abs) X(Neg) X(Sqrt)
 constexpr uint8_t kFuseNone = 0, kFuseCLast = 1, kFuseCFirst = 2;
@@ -60,7 +60,7 @@ struct VInst {
   uint8_t kinds = 0;
   uint32_t dst = kNoReg;
   uint32_t a = kNoReg, b = kNoReg, c = kNoReg;
-  float imm_a = 0, imm_b = 0;
+  float imm_a = 0, imm_b = 0, imm_c = 0;
   int32_t aux = 0;       // global/array slot, callee, or index into VmFunction::lists
   bool array_global = false;
   uint32_t line = 0, col = 0;

@@ -80,8 +80,8 @@ class FunctionCompiler {
   bool fuses(const Inst* i, const Inst* j) const {
     if (fn_.blocks.size() != 1 || fuse_first_index(i->op) < 0 || fuse_second_index(j->op) < 0) return false;
     if (uses_[i->id] != 1 || std::count(j->args.begin(), j->args.end(), i) != 1) return false;
-    auto constant = [](const Inst* a) { return a->op == Op::Const; };
-    return std::none_of(i->args.begin(), i->args.end(), constant) && std::none_of(j->args.begin(), j->args.end(), constant);
+    auto constant = [](const Inst* a) { return a->op == Op::Const; };  // only c may be one (an immediate)
+    return std::none_of(i->args.begin(), i->args.end(), constant);
   }
   void emit_fused(const Inst& i, const Inst& j) {
     VInst v;
@@ -91,7 +91,11 @@ class FunctionCompiler {
     v.a = r(i.args[0]);
     if (i.args.size() > 1) v.b = r(i.args[1]);
     v.fused = j.args[0] == &i ? kFuseCLast : kFuseCFirst;
-    if (j.args.size() > 1) v.c = r(j.args[j.args[0] == &i ? 1 : 0]);
+    if (j.args.size() > 1) {
+      const Inst* c = j.args[j.args[0] == &i ? 1 : 0];
+      if (c->op == Op::Const) v.kinds |= 4, v.imm_c = c->imm;
+      else v.c = r(c);
+    }
     out_.code.push_back(v);
   }
 
@@ -237,7 +241,8 @@ std::string disassemble(const VmProgram& p) {
           operand(0, v.a, 0);
           operand(1, v.b, 0);
           s += std::string(" -> ") + ir::mnemonic(v.op2);
-          if (v.c != kNoReg) s += v.fused == kFuseCFirst ? " r" + std::to_string(v.c) + " _" : " _ r" + std::to_string(v.c);
+          std::string c = v.kinds & 4 ? "#" + ir::format_float(v.imm_c) : v.c != kNoReg ? "r" + std::to_string(v.c) : "";
+          if (!c.empty()) s += v.fused == kFuseCFirst ? " " + c + " _" : " _ " + c;
           s += "\n";
           continue;
         }

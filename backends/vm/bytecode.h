@@ -30,7 +30,8 @@ constexpr uint32_t kNoReg = UINT32_MAX;
 // by the next one only, and by nothing else, runs together with it as one instruction, its value
 // kept in a vector register instead of a register's lanes in memory: dst = op2(op(a, b), c)
 // (kFuseCLast), op2(c, op(a, b)) (kFuseCFirst), with unary ops ignoring their second operand.
-// a and b are registers; c is a register or the immediate imm_c (kinds bit 2). The ops that fuse:
+// a is a register, b a register or the immediate imm_b (kinds bit 1), c a register or the
+// immediate imm_c (kinds bit 2). The ops that fuse:
 #define FS_VM_FUSE_FIRST(X) X(Add) X(Sub) X(Mul) X(Abs) X(Neg) X(Sqrt)
 #define FS_VM_FUSE_SECOND(X) X(Add) X(Sub) X(Mul) X(Div) X(Abs) X(Neg) X(Sqrt)
 constexpr uint8_t kFuseNone = 0, kFuseCLast = 1, kFuseCFirst = 2;

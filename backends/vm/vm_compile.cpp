@@ -80,16 +80,21 @@ class FunctionCompiler {
   bool fuses(const Inst* i, const Inst* j) const {
     if (fn_.blocks.size() != 1 || fuse_first_index(i->op) < 0 || fuse_second_index(j->op) < 0) return false;
     if (uses_[i->id] != 1 || std::count(j->args.begin(), j->args.end(), i) != 1) return false;
-    auto constant = [](const Inst* a) { return a->op == Op::Const; };  // only c may be one (an immediate)
-    return std::none_of(i->args.begin(), i->args.end(), constant);
+    // a must be a register: a constant first operand only of + and * (exact either way round).
+    return i->args[0]->op != Op::Const || (i->args.size() > 1 && i->args[1]->op != Op::Const && commutative(i->op));
   }
+  static bool commutative(Op op) { return op == Op::Add || op == Op::Mul; }
   void emit_fused(const Inst& i, const Inst& j) {
     VInst v;
     v.op = i.op, v.op2 = j.op;
     v.line = j.line, v.col = j.col;
     v.dst = reg_[j.id];
-    v.a = r(i.args[0]);
-    if (i.args.size() > 1) v.b = r(i.args[1]);
+    const Inst* a = i.args[0];
+    const Inst* b = i.args.size() > 1 ? i.args[1] : nullptr;
+    if (a->op == Op::Const) std::swap(a, b);  // fuses() allows it for + and * only
+    v.a = r(a);
+    if (b && b->op == Op::Const) v.kinds |= 2, v.imm_b = b->imm;
+    else if (b) v.b = r(b);
     v.fused = j.args[0] == &i ? kFuseCLast : kFuseCFirst;
     if (j.args.size() > 1) {
       const Inst* c = j.args[j.args[0] == &i ? 1 : 0];
@@ -239,7 +244,7 @@ std::string disassemble(const VmProgram& p) {
         if (v.fused) {  // e.g. r5 = fmul r1 r1 -> fadd r3 _ (the first op's value in the place of _)
           s += ir::mnemonic(v.op);
           operand(0, v.a, 0);
-          operand(1, v.b, 0);
+          operand(1, v.b, v.imm_b);
           s += std::string(" -> ") + ir::mnemonic(v.op2);
           std::string c = v.kinds & 4 ? "#" + ir::format_float(v.imm_c) : v.c != kNoReg ? "r" + std::to_string(v.c) : "";
           if (!c.empty()) s += v.fused == kFuseCFirst ? " " + c + " _" : " _ " + c;

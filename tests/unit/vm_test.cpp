@@ -146,8 +146,8 @@ TEST_CASE("vm: paired sin and cos give the bits of sin and cos alone") {
 }
 
 // Straight-line functions run pairs of lane ops as one fused instruction (bytecode.h): every pair
-// of fusable ops, in both operand positions, with the second op's other operand a register or an
-// immediate, on pairs of special values, gives the bits of the two ops applied one after the
+// of fusable ops, in both operand positions, with the first op's second operand and the second
+// op's other operand registers or immediates, on pairs of special values, gives the bits of the two ops applied one after the
 // other by the reference evaluator, in a batch and one point at a time.
 TEST_CASE("vm: fused pairs of lane ops give the bits of the two ops") {
   struct OpText {
@@ -172,36 +172,40 @@ TEST_CASE("vm: fused pairs of lane ops give the bits of the two ops") {
   for (const OpText& o1 : first)
     for (const OpText& o2 : second)
       for (bool t_first : {true, false})
-        for (const char* c : {"z", "-0.5"}) {  // the second op's other operand: a register or an immediate
-          if (ir::op_info(o2.op).arity == 1 && (!t_first || c[0] != 'z')) continue;
-          std::string inner = fill(o1.form, "x", "y");
-          std::string body = t_first ? fill(o2.form, inner, c) : fill(o2.form, c, inner);
-          float cv = c[0] == 'z' ? 0.0f : -0.5f;
-          auto b = test::build("function FRep(x, y, z, t) { return " + body + "; }");
-          REQUIRE(b->ok);
-          vm::VmProgram p;
-          std::string error;
-          REQUIRE(vm::compile_program(*b->module, p, error));
-          ++programs;
-          fused += vm::disassemble(p).find(" -> ") != std::string::npos;
-          const float* in[] = {xs.data(), ys.data(), zs.data(), ts.data()};
-          float* outs[] = {out.data()};
-          backends::RuntimeError err;
-          REQUIRE(b->kernel->eval_batch(in, outs, n, err));
-          int bad = 0;
-          for (size_t i = 0; i < n && bad < 3; ++i) {
-            float args1[2] = {xs[i], ys[i]}, tmp, want;
-            REQUIRE(ir::eval_pure(o1.op, args1, tmp));
-            float other = c[0] == 'z' ? zs[i] : cv;
-            float args2[2] = {t_first ? tmp : other, t_first ? other : tmp};
-            REQUIRE(ir::eval_pure(o2.op, args2, want));
-            float one = test::eval1(*b, {xs[i], ys[i], zs[i], 0});
-            if (same(out[i], want) && same(one, want)) continue;
-            ++bad;
-            FAIL_CHECK(body << " at x=" << xs[i] << " y=" << ys[i] << " z=" << zs[i] << ": batch " << out[i] << ", one point "
-                            << one << ", want " << want);
+        for (const char* c : {"z", "-0.5"})  // the second op's other operand: a register or an immediate
+          for (int ab = 0; ab < 3; ++ab) {  // the first op's operands: x y, x 0.75, 0.75 x
+            if (ir::op_info(o2.op).arity == 1 && (!t_first || c[0] != 'z')) continue;
+            if (ir::op_info(o1.op).arity == 1 && ab > 0) continue;
+            const char* av = ab == 2 ? "0.75" : "x";
+            const char* bv = ab == 0 ? "y" : ab == 1 ? "0.75" : "x";
+            std::string inner = fill(o1.form, av, bv);
+            std::string body = t_first ? fill(o2.form, inner, c) : fill(o2.form, c, inner);
+            float cv = c[0] == 'z' ? 0.0f : -0.5f;
+            auto b = test::build("function FRep(x, y, z, t) { return " + body + "; }");
+            REQUIRE(b->ok);
+            vm::VmProgram p;
+            std::string error;
+            REQUIRE(vm::compile_program(*b->module, p, error));
+            ++programs;
+            fused += vm::disassemble(p).find(" -> ") != std::string::npos;
+            const float* in[] = {xs.data(), ys.data(), zs.data(), ts.data()};
+            float* outs[] = {out.data()};
+            backends::RuntimeError err;
+            REQUIRE(b->kernel->eval_batch(in, outs, n, err));
+            int bad = 0;
+            for (size_t i = 0; i < n && bad < 3; ++i) {
+              float args1[2] = {ab == 2 ? 0.75f : xs[i], ab == 0 ? ys[i] : ab == 1 ? 0.75f : xs[i]}, tmp, want;
+              REQUIRE(ir::eval_pure(o1.op, args1, tmp));
+              float other = c[0] == 'z' ? zs[i] : cv;
+              float args2[2] = {t_first ? tmp : other, t_first ? other : tmp};
+              REQUIRE(ir::eval_pure(o2.op, args2, want));
+              float one = test::eval1(*b, {xs[i], ys[i], zs[i], 0});
+              if (same(out[i], want) && same(one, want)) continue;
+              ++bad;
+              FAIL_CHECK(body << " at x=" << xs[i] << " y=" << ys[i] << " z=" << zs[i] << ": batch " << out[i] << ", one point "
+                              << one << ", want " << want);
+            }
           }
-        }
   INFO(fused << " of " << programs << " programs fused a pair");
   CHECK(fused * 10 >= programs * 8);  // a few pairs the optimiser rewrites first (-(-x), x * -y)
 }

@@ -32,8 +32,8 @@ constexpr uint32_t kNoReg = UINT32_MAX;
 // (kFuseCLast), op2(c, op(a, b)) (kFuseCFirst), with unary ops ignoring their second operand.
 // a is a register, b a register or the immediate imm_b (kinds bit 1), c a register or the
 // immediate imm_c (kinds bit 2). The ops that fuse:
-#define FS_VM_FUSE_FIRST(X) X(Add) X(Sub) X(Mul) X(Abs) X(Neg) X(Sqrt)
-#define FS_VM_FUSE_SECOND(X) X(Add) X(Sub) X(Mul) X(Div) X(Abs) X(Neg) X(Sqrt)
+#define FS_VM_FUSE_FIRST(X) X(Add) X(Sub) X(Mul) X(Max) X(Abs) X(Neg) X(Sqrt)
+#define FS_VM_FUSE_SECOND(X) X(Add) X(Sub) X(Mul) X(Div) X(Max) X(Abs) X(Neg) X(Sqrt)
 constexpr uint8_t kFuseNone = 0, kFuseCLast = 1, kFuseCFirst = 2;
 #define FS_VM_FUSE_COUNT(N) +1
 constexpr int kFuseFirstOps = 0 FS_VM_FUSE_FIRST(FS_VM_FUSE_COUNT), kFuseSecondOps = 0 FS_VM_FUSE_SECOND(FS_VM_FUSE_COUNT);

@@ -154,11 +154,12 @@ TEST_CASE("vm: fused pairs of lane ops give the bits of the two ops") {
     ir::Op op;
     const char* form;  // A and B stand for the operands
   };
-  const OpText first[] = {{ir::Op::Add, "(A + B)"}, {ir::Op::Sub, "(A - B)"}, {ir::Op::Mul, "(A * B)"},
-                          {ir::Op::Abs, "abs(A)"},   {ir::Op::Neg, "(-A)"},    {ir::Op::Sqrt, "sqrt(A)"}};
-  const OpText second[] = {{ir::Op::Add, "(A + B)"}, {ir::Op::Sub, "(A - B)"}, {ir::Op::Mul, "(A * B)"},
-                           {ir::Op::Div, "(A / B)"}, {ir::Op::Abs, "abs(A)"},   {ir::Op::Neg, "(-A)"},
-                           {ir::Op::Sqrt, "sqrt(A)"}};
+  const OpText first[] = {{ir::Op::Add, "(A + B)"}, {ir::Op::Sub, "(A - B)"},  {ir::Op::Mul, "(A * B)"},
+                          {ir::Op::Max, "max(A, B)"}, {ir::Op::Abs, "abs(A)"}, {ir::Op::Neg, "(-A)"},
+                          {ir::Op::Sqrt, "sqrt(A)"}};
+  const OpText second[] = {{ir::Op::Add, "(A + B)"},   {ir::Op::Sub, "(A - B)"}, {ir::Op::Mul, "(A * B)"},
+                           {ir::Op::Div, "(A / B)"},   {ir::Op::Max, "max(A, B)"}, {ir::Op::Abs, "abs(A)"},
+                           {ir::Op::Neg, "(-A)"},      {ir::Op::Sqrt, "sqrt(A)"}};
   auto fill = [](std::string form, const std::string& a, const std::string& b) {
     form.replace(form.find('A'), 1, a);
     if (size_t at = form.find('B'); at != std::string::npos) form.replace(at, 1, b);

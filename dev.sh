@@ -8,6 +8,8 @@
 #   ./dev.sh mutation [--only ID,...]   mutation testing (tests/mutation/run.sh; docs/testing.md)
 #   ./dev.sh fuzz [TARGET|all] [SECONDS]   coverage-guided fuzzing with clang-19's libFuzzer
 #                    (tests/fuzz; docs/reliability.md); ./dev.sh test runs every target briefly
+#   ./dev.sh campaign TARGET [SECONDS] [WORKERS]   a long run of one target on the UBSan-only
+#                    build, WORKERS processes (default: the cores) that yield to other work
 # With CI set (CI=true ./dev.sh test), a test skipped because something is missing fails instead.
 # FVRML_SHARED=DIR names the shared folder (corpus, paper data) when it is not ../shared.
 set -euo pipefail
@@ -53,7 +55,7 @@ build() {
 cmd="${1:-demo}"
 install_missing "${PACKAGES[@]}"
 case "$cmd" in
-  test | fuzz) install_missing "${FUZZ_PACKAGES[@]}" || echo "note: could not install ${FUZZ_PACKAGES[*]}; fuzzing will be skipped" ;;
+  test | fuzz | campaign) install_missing "${FUZZ_PACKAGES[@]}" || echo "note: could not install ${FUZZ_PACKAGES[*]}; fuzzing will be skipped" ;;
 esac
 build
 SHARED_DIR="${FVRML_SHARED:-../shared}"
@@ -67,6 +69,12 @@ build_fuzz() {
   ninja -C build-fuzz >&2
 }
 # Fuzzing's part of ./dev.sh test: every target for 60 s, two at a time (3 minutes on 2 cores).
+# build-fuzz-ub: the same without ASan, for long campaigns (three to four times the executions).
+build_fuzz_ub() {
+  CC=clang-19 CXX=clang++-19 cmake -S . -B build-fuzz-ub -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFS_FUZZ=ON \
+    -DFS_FUZZ_SANITIZERS=undefined > /dev/null
+  ninja -C build-fuzz-ub >&2
+}
 fuzz_briefly() {
   . tests/support/skip.sh
   if ! have_fuzz_toolchain; then
@@ -124,6 +132,12 @@ case "$cmd" in
     build_fuzz
     exec tests/fuzz/run.sh build-fuzz "$SHARED_DIR" "${3:-300}" "$(nproc)" "${targets[@]}"
     ;;
+  campaign)
+    [ -n "${2:-}" ] || { echo "usage: ./dev.sh campaign TARGET [SECONDS] [WORKERS]   (TARGET: ${FUZZ_TARGETS[*]})" >&2; exit 2; }
+    have_fuzz_toolchain || { echo "campaign: clang-19 with libFuzzer (${FUZZ_PACKAGES[*]}) is not installed" >&2; exit 1; }
+    build_fuzz && build_fuzz_ub
+    exec tests/fuzz/campaign.sh build-fuzz-ub build-fuzz "$SHARED_DIR" "${3:-3600}" "${4:-$(nproc)}" "$2"
+    ;;
   mutation)
     shift
     exec tests/mutation/run.sh "$@"
@@ -134,5 +148,5 @@ case "$cmd" in
     echo "installed fscript, fvrml-run, fvrml-meshdiff and fscript-lsp in $2/bin"
     case ":$PATH:" in *":$2/bin:"*) ;; *) echo "note: $2/bin is not on PATH; add it for editors to find fscript-lsp" ;; esac
     ;;
-  *) echo "usage: ./dev.sh demo|test|build|install PREFIX|mutation|fuzz [TARGET|all] [SECONDS]" >&2; exit 2 ;;
+  *) echo "usage: ./dev.sh demo|test|build|install PREFIX|mutation|fuzz [TARGET|all] [SECONDS]|campaign TARGET [SECONDS] [WORKERS]" >&2; exit 2 ;;
 esac

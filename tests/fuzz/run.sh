@@ -11,28 +11,8 @@ src=$(cd "$here/../.." && pwd)
 bf="$1" shared="$2" seconds="$3" jobs="$4"
 shift 4
 
-dict_for() {
-  case "$1" in
-    fscript_frontend) echo "$here/dict/fscript.dict" ;;
-    ir_reader) echo "$here/dict/ir.dict" ;;
-    vrml_reader) echo "$here/dict/vrml.dict" ;;
-    lsp_server) echo "$here/dict/lsp.dict" ;;
-    *) echo "" ;;
-  esac
-}
-
-# Seeds, copied flat (libFuzzer reads one level): the programs for the front end, the scenes for
-# the VRML reader. The generator targets start from their regression corpus alone.
-seed() {
-  local t="$1" dir="$bf/seeds/$1"
-  rm -rf "$dir" && mkdir -p "$dir"
-  local n=0
-  copy() { while IFS= read -r -d '' f; do n=$((n + 1)); cp "$f" "$dir/seed$n"; done; }
-  case "$t" in
-    fscript_frontend) find "$src/tests/golden" "$src/examples" "$shared/bench" -name '*.fs' -print0 2>/dev/null | copy ;;
-    vrml_reader) find "$src/examples" "$shared/corpus" -name '*.wrl' -size -256k -print0 2>/dev/null | copy ;;
-  esac
-}
+# shellcheck source=tests/fuzz/lib.sh
+source "$here/lib.sh"
 
 run_one() {
   local t="$1" exe="$bf/tests/fuzz/fuzz_$1"

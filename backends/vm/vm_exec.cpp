@@ -66,6 +66,9 @@ static_assert(K % 16 == 0, "whole AVX-512 vectors per register");
 // is never read, as before).
 inline uint32_t vector_lanes(uint32_t lanes) { return std::min<uint32_t>(K, (lanes + 15) / 16 * 16); }
 
+// The lanes a frame's loops and masks cover: one in a one-lane frame, else its lanes in whole vectors.
+inline uint32_t present_lanes(uint32_t stride, uint32_t lanes) { return stride == 1 ? 1 : vector_lanes(lanes); }
+
 inline float* reg(float* R, uint32_t r) { return static_cast<float*>(__builtin_assume_aligned(R + size_t(r) * K, 64)); }
 
 template <class F>
@@ -250,7 +253,7 @@ class Executor {
   uint64_t chunk_ticks_ = 0;  // loop iterations the chunk's lanes made together (batch frames only)
   static void init_frame(Frame& fr) {
     const VmFunction& f = *fr.f;
-    uint32_t n = fr.stride == 1 ? 1 : vector_lanes(fr.lanes);
+    uint32_t n = present_lanes(fr.stride, fr.lanes);
     for (auto [r, v] : f.consts) std::fill_n(fr.regs + size_t(r) * fr.stride, n, v);
   }
   // Parameter p's lanes for points [base, base + L): the points' own values, or with row parameters
@@ -309,7 +312,7 @@ bool Executor::run_chunk(const float* const* in, float* const* out, size_t base,
   init_frame(fr);
   for (uint32_t p = 0; p < k.num_params; ++p)
     if (k.param_regs[p] != kNoReg) load_param(p, in[p], base, L, fr.regs + size_t(k.param_regs[p]) * S);
-  start.assign(S == 1 ? 1 : vector_lanes(L), 0);  // the lanes run() and the ops cover
+  start.assign(present_lanes(S, L), 0);
   std::fill_n(start.begin(), L, ~Mask{0});
   if (k.blocks.size() == 1) {  // straight-line kernel: one pass over the code, all lanes present
     const VBlock& vb = k.blocks[0];
@@ -324,7 +327,7 @@ bool Executor::run_chunk(const float* const* in, float* const* out, size_t base,
 
 void Executor::edge_moves(Frame& fr, const Edge& e, const Mask* m) {
   if (e.moves.empty()) return;
-  uint32_t S = fr.stride, n = S == 1 ? 1 : vector_lanes(fr.lanes);  // the lanes present, as in run()
+  uint32_t S = fr.stride, n = present_lanes(S, fr.lanes);
   thread_local std::vector<float> tmp;
   tmp.resize(e.moves.size() * n);
   for (size_t k = 0; k < e.moves.size(); ++k)
@@ -344,7 +347,7 @@ bool Executor::run(Frame& fr, std::vector<Mask>& start_mask, float* const* out, 
   uint32_t S = fr.stride;
   // Masks cover the chunk's lanes rounded up to whole vectors, as the ops run them (slots past the
   // chunk stay 0): a short batch in a K-lane frame costs its own lanes, not K.
-  uint32_t L = S == 1 ? 1 : vector_lanes(fr.lanes);
+  uint32_t L = present_lanes(S, fr.lanes);
   size_t nb = f.blocks.size();
   std::vector<Mask> pending(nb * L, 0);
   std::vector<uint32_t> count(nb, 0);

@@ -20,9 +20,10 @@
 
 namespace fscript::vm {
 
-// Measured (docs/performance.md, tenth session): 2,048 beats 512 and 1,024 on straight-line
-// kernels (csg8, prospero) and 4,096 is far worse (out of L2); 512 beats 2,048 on a divergent loop.
-constexpr uint32_t kChunkLanes = 2048;
+// Measured (docs/performance.md): with fused pairs 1,024 beats 2,048 and 512 on straight-line
+// kernels (prospero 7%, csg8 points 3%; eleventh session), 4,096 is far worse (out of L2); 512
+// beats 2,048 on a divergent loop.
+constexpr uint32_t kChunkLanes = 1024;
 constexpr uint32_t kBranchyChunkLanes = 512;
 constexpr uint32_t kNoReg = UINT32_MAX;
 

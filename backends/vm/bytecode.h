@@ -35,9 +35,13 @@ constexpr uint32_t kNoReg = UINT32_MAX;
 // immediate imm_c (kinds bit 2). The ops that fuse:
 #define FS_VM_FUSE_FIRST(X) X(Add) X(Sub) X(Mul) X(Max) X(Abs) X(Neg) X(Sqrt)
 #define FS_VM_FUSE_SECOND(X) X(Add) X(Sub) X(Mul) X(Div) X(Max) X(Abs) X(Neg) X(Sqrt)
+// A pair's first op may also square its value before the second op (dst = op2(op(a, b)^2, c), the
+// `squared` flag): x - cx, its square, a sum is how every distance starts. The ops that may:
+#define FS_VM_FUSE_SQUARED(X) X(Add) X(Sub)
 constexpr uint8_t kFuseNone = 0, kFuseCLast = 1, kFuseCFirst = 2;
 #define FS_VM_FUSE_COUNT(N) +1
-constexpr int kFuseFirstOps = 0 FS_VM_FUSE_FIRST(FS_VM_FUSE_COUNT), kFuseSecondOps = 0 FS_VM_FUSE_SECOND(FS_VM_FUSE_COUNT);
+constexpr int kFuseFirstOps = 0 FS_VM_FUSE_FIRST(FS_VM_FUSE_COUNT), kFuseSecondOps = 0 FS_VM_FUSE_SECOND(FS_VM_FUSE_COUNT),
+              kFuseSquaredOps = 0 FS_VM_FUSE_SQUARED(FS_VM_FUSE_COUNT);
 #undef FS_VM_FUSE_COUNT
 // The op's place in each list, or -1.
 constexpr int fuse_first_index(ir::Op op) {
@@ -51,6 +55,11 @@ constexpr int fuse_first_index(ir::Op op) {
 constexpr int fuse_second_index(ir::Op op) {
   int k = 0;
   FS_VM_FUSE_SECOND(FS_VM_FUSE_AT)
+  return -1;
+}
+constexpr int fuse_squared_index(ir::Op op) {
+  int k = 0;
+  FS_VM_FUSE_SQUARED(FS_VM_FUSE_AT)
 #undef FS_VM_FUSE_AT
   return -1;
 }
@@ -59,6 +68,7 @@ struct VInst {
   ir::Op op = ir::Op::Const;
   ir::Op op2 = ir::Op::Const;  // a fused pair's second op
   uint8_t fused = kFuseNone;
+  bool squared = false;        // a fused pair's first value squared before the second op
   uint8_t kinds = 0;
   uint32_t dst = kNoReg;
   uint32_t a = kNoReg, b = kNoReg, c = kNoReg;

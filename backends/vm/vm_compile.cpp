@@ -83,9 +83,18 @@ class FunctionCompiler {
     // a must be a register: a constant first operand only of + and * (exact either way round).
     return i->args[0]->op != Op::Const || (i->args.size() > 1 && i->args[1]->op != Op::Const && commutative(i->op));
   }
+  // i then s = i * i, where i's value is read by s alone (squared pairs: fuses(s, next) as well).
+  bool squares(const Inst* i, const Inst* s) const {
+    if (fn_.blocks.size() != 1 || fuse_squared_index(i->op) < 0 || s->op != Op::Mul) return false;
+    if (uses_[i->id] != 2 || s->args[0] != i || s->args[1] != i) return false;
+    return i->args[0]->op != Op::Const || (i->args[1]->op != Op::Const && commutative(i->op));
+  }
   static bool commutative(Op op) { return op == Op::Add || op == Op::Mul; }
-  void emit_fused(const Inst& i, const Inst& j) {
+  // i and its one reader j; with `square`, i's value squared (s) is what j reads.
+  void emit_fused(const Inst& i, const Inst& j, const Inst* square = nullptr) {
+    const Inst* t = square ? square : &i;
     VInst v;
+    v.squared = square != nullptr;
     v.op = i.op, v.op2 = j.op;
     v.line = j.line, v.col = j.col;
     v.dst = reg_[j.id];
@@ -95,9 +104,9 @@ class FunctionCompiler {
     v.a = r(a);
     if (b && b->op == Op::Const) v.kinds |= 2, v.imm_b = b->imm;
     else if (b) v.b = r(b);
-    v.fused = j.args[0] == &i ? kFuseCLast : kFuseCFirst;
+    v.fused = j.args[0] == t ? kFuseCLast : kFuseCFirst;
     if (j.args.size() > 1) {
-      const Inst* c = j.args[j.args[0] == &i ? 1 : 0];
+      const Inst* c = j.args[j.args[0] == t ? 1 : 0];
       if (c->op == Op::Const) v.kinds |= 4, v.imm_c = c->imm;
       else v.c = r(c);
     }
@@ -115,6 +124,11 @@ class FunctionCompiler {
       seq.push_back(i);
     }
     for (size_t k = 0; k < seq.size(); ++k) {
+      if (k + 2 < seq.size() && squares(seq[k], seq[k + 1]) && fuses(seq[k + 1], seq[k + 2])) {
+        emit_fused(*seq[k], *seq[k + 2], seq[k + 1]);
+        k += 2;
+        continue;
+      }
       if (k + 1 < seq.size() && fuses(seq[k], seq[k + 1])) {
         emit_fused(*seq[k], *seq[k + 1]);
         ++k;
@@ -194,6 +208,76 @@ class FunctionCompiler {
   std::vector<uint32_t> uses_;  // by value id: how many operands read it
 };
 
+// Straight-line code reordered for fusion: a value whose one reader would fuse with it
+// (FunctionCompiler::fuses, ::squares) moves down to just before that reader, with the values it
+// pulls in turn. Sources write `dx = x - a; dy = y - b; dz = z - c; sqrt(dx * dx + dy * dy +
+// dz * dz)`, which leaves each subtraction apart from its square. Only such chains move (moving
+// whole expression trees to their roots made prospero's live values 127 -> 959 registers), each
+// reader pulls at most one operand (one can sit next to it), and every op is pure, so the values
+// do not change.
+class FusionOrder {
+ public:
+  // The block's instructions in fusion order (the block itself untouched).
+  static std::vector<Inst*> of(const ir::Block& b) {
+    for (const Inst* i : b.insts)
+      if (i->op != Op::Ret && !ir::has_flag(i->op, ir::Pure)) return b.insts;
+    uint32_t ids = 0;
+    for (const Inst* i : b.insts) ids = std::max(ids, i->id + 1);
+    std::vector<uint32_t> readers(ids, 0), at(ids, 0);
+    std::vector<const Inst*> last_reader(ids, nullptr);
+    for (const Inst* i : b.insts)
+      for (const Inst* a : i->args)
+        if (last_reader[a->id] != i) last_reader[a->id] = i, ++readers[a->id];
+    for (size_t k = 0; k < b.insts.size(); ++k) at[b.insts[k]->id] = static_cast<uint32_t>(k);
+    std::vector<Inst*> pulled(ids, nullptr);  // by reader id: the operand it pulls next to itself
+    std::vector<char> moved(ids, 0);
+    for (Inst* j : b.insts) {
+      Inst* best = nullptr;
+      for (Inst* a : j->args)
+        if (readers[a->id] == 1 && wants_next(*a, *j) && (!best || at[a->id] > at[best->id])) best = a;
+      if (best) pulled[j->id] = best, moved[best->id] = 1;
+    }
+    std::vector<Inst*> order, chain;
+    for (Inst* x : b.insts) {
+      if (moved[x->id]) continue;
+      for (Inst* c = x; c; c = pulled[c->id]) chain.push_back(c);
+      order.insert(order.end(), chain.rbegin(), chain.rend());
+      chain.clear();
+    }
+    return order;
+  }
+
+ private:
+  // j, i's only reader, would take i fused: as a pair's second op, or as i's square.
+  static bool wants_next(const Inst& i, const Inst& j) {
+    if (!i.defines_value() || i.op == Op::Param || i.op == Op::Const) return false;
+    bool square_of_i = j.op == Op::Mul && j.args[0] == &i && j.args[1] == &i;
+    if (square_of_i) return fuse_squared_index(i.op) >= 0;
+    return fuse_first_index(i.op) >= 0 && fuse_second_index(j.op) >= 0;
+  }
+
+};
+
+// A one-block function seen with its block in fusion order: a shell whose block lists the
+// original's instructions (owned by the original; the caller's module may be compiled by another
+// thread at the same time, so it is not reordered in place, and a copy cost 2 ms on prospero).
+std::unique_ptr<ir::Function> fusion_view(const ir::Function& fn) {
+  auto v = std::make_unique<ir::Function>();
+  v->name = fn.name;
+  v->num_params = fn.num_params;
+  v->num_results = fn.num_results;
+  v->recursive = fn.recursive;
+  v->kernel = fn.kernel;
+  v->row_params_from = fn.row_params_from;
+  v->arrays = fn.arrays;
+  ir::Block* b = v->add_block();
+  b->id = fn.entry()->id;
+  b->insts = FusionOrder::of(*fn.entry());
+  v->next_value = fn.next_value;
+  v->next_block = fn.next_block;
+  return v;
+}
+
 }  // namespace
 
 bool compile_program(const ir::Module& m, VmProgram& out, std::string& error) {
@@ -205,7 +289,9 @@ bool compile_program(const ir::Module& m, VmProgram& out, std::string& error) {
   bool found = false;
   for (size_t k = 0; k < m.functions.size(); ++k) {
     out.functions.emplace_back();
-    FunctionCompiler(*m.functions[k], out.functions.back()).run();
+    const ir::Function& fn = *m.functions[k];
+    std::unique_ptr<ir::Function> view = fn.blocks.size() == 1 ? fusion_view(fn) : nullptr;
+    FunctionCompiler(view ? *view : fn, out.functions.back()).run();
     if (m.functions[k]->kernel) {
       out.kernel = static_cast<uint32_t>(k);
       out.row_params_from = m.functions[k]->row_params_from;
@@ -241,10 +327,13 @@ std::string disassemble(const VmProgram& p) {
           if (v.kinds & (1u << idx)) s += " #" + ir::format_float(imm);
           else if (reg != kNoReg) s += " r" + std::to_string(reg);
         };
-        if (v.fused) {  // e.g. r5 = fmul r1 r1 -> fadd r3 _ (the first op's value in the place of _)
+        // e.g. r5 = fmul r1 r1 -> fadd r3 _ (the first op's value in the place of _), or
+        // r5 = fsub r1 #0.5 -> square -> fadd r3 _
+        if (v.fused) {
           s += ir::mnemonic(v.op);
           operand(0, v.a, 0);
           operand(1, v.b, v.imm_b);
+          if (v.squared) s += " -> square";
           s += std::string(" -> ") + ir::mnemonic(v.op2);
           std::string c = v.kinds & 4 ? "#" + ir::format_float(v.imm_c) : v.c != kNoReg ? "r" + std::to_string(v.c) : "";
           if (!c.empty()) s += v.fused == kFuseCFirst ? " " + c + " _" : " _ " + c;

@@ -210,3 +210,94 @@ TEST_CASE("vm: fused pairs of lane ops give the bits of the two ops") {
   INFO(fused << " of " << programs << " programs fused a pair");
   CHECK(fused * 10 >= programs * 8);  // a few pairs the optimiser rewrites first (-(-x), x * -y)
 }
+
+// Bits, zero signs included; any NaN for a NaN (payloads are not defined).
+static bool same_bits(float a, float b) {
+  return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+TEST_CASE("vm: squared fused pairs give the bits of the three ops") {
+  struct OpText {
+    ir::Op op;
+    const char* form;
+  };
+  const OpText first[] = {{ir::Op::Add, "A + B"}, {ir::Op::Sub, "A - B"}};
+  const OpText second[] = {{ir::Op::Add, "(A + B)"},   {ir::Op::Sub, "(A - B)"}, {ir::Op::Mul, "(A * B)"},
+                           {ir::Op::Div, "(A / B)"},   {ir::Op::Max, "max(A, B)"}, {ir::Op::Abs, "abs(A)"},
+                           {ir::Op::Neg, "(-A)"},      {ir::Op::Sqrt, "sqrt(A)"}};
+  auto fill = [](std::string form, const std::string& a, const std::string& b) {
+    form.replace(form.find('A'), 1, a);
+    if (size_t at = form.find('B'); at != std::string::npos) form.replace(at, 1, b);
+    return form;
+  };
+  const float special[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, 3e38f, -3e38f, 1e-40f, INFINITY, -INFINITY, NAN, 7.25f};
+  const size_t k = std::size(special), n = k * k;
+  std::vector<float> xs(n), ys(n), zs(n), ts(n, 0), out(n);
+  for (size_t i = 0; i < n; ++i) xs[i] = special[i % k], ys[i] = special[i / k], zs[i] = special[(i * 5 + 2) % k];
+  int squared = 0, programs = 0;
+  for (const OpText& o1 : first)
+    for (const OpText& o2 : second)
+      for (bool t_first : {true, false})
+        for (const char* c : {"z", "-0.5"})
+          for (int ab = 0; ab < 3; ++ab) {  // the first op's operands: x y, x 0.75, 0.75 x
+            if (ir::op_info(o2.op).arity == 1 && (!t_first || c[0] != 'z')) continue;
+            const char* av = ab == 2 ? "0.75" : "x";
+            const char* bv = ab == 0 ? "y" : ab == 1 ? "0.75" : "x";
+            std::string body = t_first ? fill(o2.form, "(d * d)", c) : fill(o2.form, c, "(d * d)");
+            std::string text = "function FRep(x, y, z, t) { var d = " + fill(o1.form, av, bv) + "; return " + body + "; }";
+            auto b = test::build(text);
+            REQUIRE(b->ok);
+            vm::VmProgram p;
+            std::string error;
+            REQUIRE(vm::compile_program(*b->module, p, error));
+            ++programs;
+            squared += vm::disassemble(p).find("-> square ->") != std::string::npos;
+            const float* in[] = {xs.data(), ys.data(), zs.data(), ts.data()};
+            float* outs[] = {out.data()};
+            backends::RuntimeError err;
+            REQUIRE(b->kernel->eval_batch(in, outs, n, err));
+            int bad = 0;
+            for (size_t i = 0; i < n && bad < 3; ++i) {
+              float args1[2] = {ab == 2 ? 0.75f : xs[i], ab == 0 ? ys[i] : ab == 1 ? 0.75f : xs[i]}, d, sq, want;
+              REQUIRE(ir::eval_pure(o1.op, args1, d));
+              float args_sq[2] = {d, d};
+              REQUIRE(ir::eval_pure(ir::Op::Mul, args_sq, sq));
+              float other = c[0] == 'z' ? zs[i] : -0.5f;
+              float args2[2] = {t_first ? sq : other, t_first ? other : sq};
+              REQUIRE(ir::eval_pure(o2.op, args2, want));
+              float one = test::eval1(*b, {xs[i], ys[i], zs[i], 0});
+              if (same_bits(out[i], want) && same_bits(one, want)) continue;
+              ++bad;
+              FAIL_CHECK(text << " at x=" << xs[i] << " y=" << ys[i] << " z=" << zs[i] << ": batch " << out[i]
+                              << ", one point " << one << ", want " << want);
+            }
+          }
+  INFO(squared << " of " << programs << " programs squared a fused pair");
+  CHECK(squared * 10 >= programs * 8);
+}
+
+TEST_CASE("vm: straight-line code is reordered so that a value sits next to the reader it fuses with") {
+  // Written the way sources write distances: the subtractions first, the squares after.
+  auto b = test::build(R"(function FRep(x, y, z, t) {
+    var dx = x - 0.25; var dy = y + 0.5; var dz = z - t;
+    return sqrt(dx * dx + dy * dy + dz * dz) - 0.3;
+  })");
+  REQUIRE(b->ok);
+  vm::VmProgram p;
+  std::string error;
+  REQUIRE(vm::compile_program(*b->module, p, error));
+  std::string listing = vm::disassemble(p);
+  INFO(listing);
+  size_t squares = 0;
+  for (size_t at = listing.find("-> square ->"); at != std::string::npos; at = listing.find("-> square ->", at + 1)) ++squares;
+  CHECK(squares == 2);  // dy^2 into the first sum, dz^2 into the second; dx^2 is the sum's other operand
+  CHECK(listing.find("= sqrt r1 -> fsub _ #0.3") != std::string::npos);
+  const float xs[] = {0.0f, -0.0f, 1.0f, 0.25f, 3e38f, NAN, -2.0f, 1e-40f, 0.5f};
+  for (float x : xs)
+    for (float y : xs) {
+      float z = y * 0.5f - x, t = x;
+      float dx = x - 0.25f, dy = y + 0.5f, dz = z - t;
+      float want = std::sqrt(dx * dx + dy * dy + dz * dz) - 0.3f;
+      CHECK(same_bits(test::eval1(*b, {x, y, z, t}), want));
+    }
+}

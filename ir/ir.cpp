@@ -122,7 +122,7 @@ int Module::global_slot(const std::string& name) {
   return static_cast<int>(globals.size()) - 1;
 }
 
-static std::unique_ptr<Function> clone_function(const Function& src) {
+std::unique_ptr<Function> shell_of(const Function& src) {
   auto fn = std::make_unique<Function>();
   fn->name = src.name;
   fn->num_params = src.num_params;
@@ -132,6 +132,11 @@ static std::unique_ptr<Function> clone_function(const Function& src) {
   fn->row_params_from = src.row_params_from;
   fn->row_param_ranges = src.row_param_ranges;
   fn->arrays = src.arrays;
+  return fn;
+}
+
+static std::unique_ptr<Function> clone_function(const Function& src) {
+  auto fn = shell_of(src);
   std::unordered_map<const Block*, Block*> bmap;
   std::unordered_map<const Inst*, Inst*> imap;
   for (auto& b : src.blocks) bmap[b.get()] = fn->add_block();

@@ -118,6 +118,8 @@ struct Module {
   std::unique_ptr<Module> clone() const;
 };
 
+// A function with src's name, signature and attributes, and no blocks.
+std::unique_ptr<Function> shell_of(const Function& src);
 // Replace every use of each key by its value (chains resolved), in one sweep of `fn`.
 void replace_uses(Function& fn, std::vector<Inst*>& replacement_by_id);
 // Removes `inst` from its block (the pool keeps its memory).

@@ -255,21 +255,13 @@ class FusionOrder {
     if (square_of_i) return fuse_squared_index(i.op) >= 0;
     return fuse_first_index(i.op) >= 0 && fuse_second_index(j.op) >= 0;
   }
-
 };
 
 // A one-block function seen with its block in fusion order: a shell whose block lists the
 // original's instructions (owned by the original; the caller's module may be compiled by another
 // thread at the same time, so it is not reordered in place, and a copy cost 2 ms on prospero).
 std::unique_ptr<ir::Function> fusion_view(const ir::Function& fn) {
-  auto v = std::make_unique<ir::Function>();
-  v->name = fn.name;
-  v->num_params = fn.num_params;
-  v->num_results = fn.num_results;
-  v->recursive = fn.recursive;
-  v->kernel = fn.kernel;
-  v->row_params_from = fn.row_params_from;
-  v->arrays = fn.arrays;
+  auto v = ir::shell_of(fn);
   ir::Block* b = v->add_block();
   b->id = fn.entry()->id;
   b->insts = FusionOrder::of(*fn.entry());

@@ -23,7 +23,7 @@ PACKAGES=(cmake ninja-build ccache g++ python3 catch2 nlohmann-json3-dev libcli1
 TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim nodejs chromium slurm-wlm munge)
 # The fuzz build (build-fuzz) and the replay of the fuzz corpora in the normal build.
 FUZZ_PACKAGES=(clang-19 libfuzzer-19-dev)
-FUZZ_TARGETS=(fscript_frontend ir_reader vrml_reader lsp_server backend_diff interval_sound)
+FUZZ_TARGETS=(fscript_frontend ir_reader vrml_reader lsp_server backend_diff straight_diff interval_sound)
 
 install_missing() {
   local missing=()

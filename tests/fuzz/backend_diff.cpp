@@ -112,9 +112,16 @@ std::unique_ptr<ir::Module> build(const std::string& text, bool optimize, std::u
 
 }  // namespace
 
+// straight_diff.cpp defines it true: the same target on straight-line programs.
+#ifndef FS_DIFF_STRAIGHT_LINE
+#define FS_DIFF_STRAIGHT_LINE false
+#endif
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   FuzzedDataProvider in(data, size);
-  fuzz::GeneratedProgram prog = fuzz::generate_program(in);
+  fuzz::GenOptions go;
+  go.straight_line = FS_DIFF_STRAIGHT_LINE;
+  fuzz::GeneratedProgram prog = fuzz::generate_program(in, go);
   if (std::getenv("FS_FUZZ_SHOW")) std::fprintf(stderr, "---- program ----\n%s\n---- end ----\n", prog.text.c_str());
   std::unique_ptr<backends::Kernel> vm;
   auto module = build(prog.text, true, vm);

@@ -221,8 +221,7 @@ class FusionOrder {
   static std::vector<Inst*> of(const ir::Block& b) {
     for (const Inst* i : b.insts)
       if (i->op != Op::Ret && !ir::has_flag(i->op, ir::Pure)) return b.insts;
-    uint32_t ids = 0;
-    for (const Inst* i : b.insts) ids = std::max(ids, i->id + 1);
+    uint32_t ids = b.fn->next_value;
     std::vector<uint32_t> readers(ids, 0), at(ids, 0);
     std::vector<const Inst*> last_reader(ids, nullptr);
     for (const Inst* i : b.insts)

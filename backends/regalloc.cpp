@@ -1,17 +1,80 @@
-// Liveness by backward dataflow over blocks, then live intervals over the reverse post-order.
+// Live intervals over the reverse post-order, from liveness found by walking up from each use.
 #include "backends/regalloc.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <unordered_map>
+#include <utility>
 
 #include "ir/analysis.h"
 
 namespace fscript::backends {
 
+namespace {
+
+using BlockIndex = std::unordered_map<const ir::Block*, size_t>;
+
+// Stretches each interval to its last use and over every block where the value is live in or out.
+void extend_by_liveness(const ir::Function& fn, const BlockIndex& index, LinearOrder& lo) {
+  // Liveness by path exploration (Boissinot et al., "Computing Liveness Sets for SSA-Form
+  // Programs", 2011): from each use, walk up the predecessors until the defining block. The work is
+  // the size of the live ranges, where a dataflow over bit sets is blocks x values per round (a
+  // 9,000-block script: 1.6 s of a 1.8 s VM compile). Only the interval's end is kept.
+  size_t nb = lo.blocks.size();
+  std::vector<size_t> def_block(fn.next_value, SIZE_MAX);
+  for (size_t k = 0; k < nb; ++k)
+    for (const ir::Inst* i : lo.blocks[k]->insts)
+      if (i->defines_value()) def_block[i->id] = k;
+  std::vector<uint32_t> live_in_stamp(nb, UINT32_MAX);  // the value last found live into the block
+  std::vector<size_t> work;
+  auto live_in = [&](uint32_t v, size_t k) {
+    uint32_t& end = lo.interval[v].end;
+    work.assign(1, k);
+    while (!work.empty()) {
+      size_t b = work.back();
+      work.pop_back();
+      if (b == def_block[v] || live_in_stamp[b] == v) continue;
+      live_in_stamp[b] = v;
+      end = std::max(end, lo.block_start[b]);
+      for (const ir::Block* p : lo.blocks[b]->preds) {
+        auto it = index.find(p);
+        if (it == index.end()) continue;  // unreachable: not in the order
+        end = std::max(end, lo.block_end[it->second]);
+        work.push_back(it->second);
+      }
+    }
+  };
+  // Values in id order, so that one stamp per block marks the value being walked.
+  std::vector<std::vector<std::pair<size_t, uint32_t>>> uses(fn.next_value);  // (block, position)
+  for (size_t k = 0; k < nb; ++k) {
+    uint32_t at = lo.block_start[k];
+    for (const ir::Inst* i : lo.blocks[k]->insts) {
+      for (size_t a = 0; a < i->args.size(); ++a) {
+        if (i->op != ir::Op::Phi) {
+          uses[i->args[a]->id].push_back({k, at});
+          continue;
+        }
+        // A phi operand is used at the end of the predecessor it comes from.
+        auto it = index.find(i->targets[a]);
+        if (it != index.end()) uses[i->args[a]->id].push_back({it->second, lo.block_end[it->second]});
+      }
+      ++at;
+    }
+  }
+  for (uint32_t v = 0; v < fn.next_value; ++v)
+    for (auto [k, at] : uses[v]) {
+      lo.interval[v].end = std::max(lo.interval[v].end, at);
+      live_in(v, k);
+    }
+}
+
+}  // namespace
+
 LinearOrder compute_intervals(const ir::Function& fn) {
   LinearOrder lo;
   lo.blocks = ir::reverse_post_order(fn);
   size_t nb = lo.blocks.size();
-  std::unordered_map<const ir::Block*, size_t> index;
+  BlockIndex index;
   for (size_t k = 0; k < nb; ++k) index[lo.blocks[k]] = k;
   lo.interval.assign(fn.next_value, {});
   lo.has_value.assign(fn.next_value, false);
@@ -29,54 +92,7 @@ LinearOrder compute_intervals(const ir::Function& fn) {
     }
     lo.block_end[k] = pos - 1;
   }
-  // live_in per block as sets of value ids, iterated to a fixed point (backward).
-  std::vector<std::vector<bool>> live_in(nb, std::vector<bool>(fn.next_value, false));
-  auto live_out_of = [&](size_t k) {
-    std::vector<bool> out(fn.next_value, false);
-    const ir::Block* b = lo.blocks[k];
-    for (ir::Block* s : b->succs()) {
-      const auto& in = live_in[index[s]];
-      for (size_t v = 0; v < in.size(); ++v)
-        if (in[v]) out[v] = true;
-      for (const ir::Inst* p : s->insts) {
-        if (p->op != ir::Op::Phi) break;
-        for (size_t a = 0; a < p->args.size(); ++a)
-          if (p->targets[a] == b) out[p->args[a]->id] = true;
-      }
-    }
-    return out;
-  };
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (size_t k = nb; k-- > 0;) {
-      std::vector<bool> live = live_out_of(k);
-      const ir::Block* b = lo.blocks[k];
-      for (auto it = b->insts.rbegin(); it != b->insts.rend(); ++it) {
-        const ir::Inst* i = *it;
-        if (i->defines_value()) live[i->id] = false;
-        if (i->op == ir::Op::Phi) continue;
-        for (const ir::Inst* a : i->args) live[a->id] = true;
-      }
-      if (live != live_in[k]) {
-        live_in[k] = std::move(live);
-        changed = true;
-      }
-    }
-  }
-  // Stretch intervals: uses, and whole blocks where a value is live in or out.
-  for (size_t k = 0; k < nb; ++k) {
-    std::vector<bool> out = live_out_of(k);
-    for (size_t v = 0; v < out.size(); ++v) {
-      if (out[v]) lo.interval[v].end = std::max(lo.interval[v].end, lo.block_end[k]);
-      if (live_in[k][v]) lo.interval[v].end = std::max(lo.interval[v].end, lo.block_start[k]);
-    }
-    uint32_t p = lo.block_start[k];
-    for (const ir::Inst* i : lo.blocks[k]->insts) {
-      if (i->op != ir::Op::Phi)
-        for (const ir::Inst* a : i->args) lo.interval[a->id].end = std::max(lo.interval[a->id].end, p);
-      ++p;
-    }
-  }
+  extend_by_liveness(fn, index, lo);
   return lo;
 }
 

@@ -2,10 +2,16 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <functional>
+#include <fstream>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <random>
+#include <sstream>
 
+#include "backends/regalloc.h"
 #include "backends/vm/bytecode.h"
 #include "ir/eval.h"
 #include "ir/text.h"
@@ -348,4 +354,129 @@ TEST_CASE("vm: random straight-line programs give the IR's values after reorderi
   INFO(squared << " programs with squared pairs, " << fused << " with fused pairs, of 150");
   CHECK(squared >= 50);
   CHECK(fused >= 120);
+}
+
+namespace {
+
+// The definition of liveness, as a backward dataflow to a fixed point over every block and value:
+// the reference backends::compute_intervals, which walks up from each use instead, must match.
+std::vector<backends::Interval> intervals_by_dataflow(const ir::Function& fn, const backends::LinearOrder& lo) {
+  size_t nb = lo.blocks.size(), nv = fn.next_value;
+  std::map<const ir::Block*, size_t> index;
+  for (size_t k = 0; k < nb; ++k) index[lo.blocks[k]] = k;
+  std::vector<std::vector<bool>> live_in(nb, std::vector<bool>(nv, false));
+  auto live_out = [&](size_t k) {
+    std::vector<bool> out(nv, false);
+    for (ir::Block* s : lo.blocks[k]->succs()) {
+      for (size_t v = 0; v < nv; ++v) out[v] = out[v] || live_in[index.at(s)][v];
+      for (const ir::Inst* p : s->insts)
+        for (size_t a = 0; p->op == ir::Op::Phi && a < p->args.size(); ++a)
+          if (p->targets[a] == lo.blocks[k]) out[p->args[a]->id] = true;
+    }
+    return out;
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t k = nb; k-- > 0;) {
+      std::vector<bool> live = live_out(k);
+      for (auto it = lo.blocks[k]->insts.rbegin(); it != lo.blocks[k]->insts.rend(); ++it) {
+        if ((*it)->defines_value()) live[(*it)->id] = false;
+        for (const ir::Inst* a : (*it)->args)
+          if ((*it)->op != ir::Op::Phi) live[a->id] = true;
+      }
+      changed = changed || live != live_in[k];
+      live_in[k] = live;
+    }
+  }
+  std::vector<backends::Interval> want(nv);
+  for (size_t k = 0; k < nb; ++k) {
+    uint32_t at = lo.block_start[k];
+    for (const ir::Inst* i : lo.blocks[k]->insts) {
+      if (i->defines_value()) want[i->id] = {at, at};
+      ++at;
+    }
+  }
+  auto stretch = [&](size_t v, uint32_t at) { want[v].end = std::max(want[v].end, at); };
+  for (size_t k = 0; k < nb; ++k) {
+    std::vector<bool> out = live_out(k);
+    for (size_t v = 0; v < nv; ++v) {
+      if (out[v]) stretch(v, lo.block_end[k]);
+      if (live_in[k][v]) stretch(v, lo.block_start[k]);
+    }
+    uint32_t at = lo.block_start[k];
+    for (const ir::Inst* i : lo.blocks[k]->insts) {
+      for (const ir::Inst* a : i->args)
+        if (i->op != ir::Op::Phi) stretch(a->id, at);
+      ++at;
+    }
+  }
+  return want;
+}
+
+}  // namespace
+
+TEST_CASE("vm: live intervals from walking up each use equal the dataflow fixed point") {
+  std::vector<std::string> texts;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(FS_GOLDEN_DIR)) {
+    if (e.path().extension() != ".fs") continue;
+    std::ifstream in(e.path());
+    std::stringstream ss;
+    ss << in.rdbuf();
+    texts.push_back(ss.str());
+  }
+  // Loops inside loops with early exits: values live around back edges and across many blocks.
+  texts.push_back(
+      "function FRep(x, y, z, t) {\n  var s = 0, q = x * 2;\n"
+      "  for (var i = 0; i < 5; i++) {\n    var w = s + q;\n    for (var j = 0; j < i; j++) {\n"
+      "      if (w > y) break;\n      if (j == 2) continue;\n      w = w + z * j;\n    }\n"
+      "    s = s + w;\n    if (s > 100) return s - q;\n  }\n  return s + q;\n}\n");
+  // Random nests of ifs, loops, breaks, continues and early returns over a few variables.
+  std::mt19937 rng(20261205);
+  auto pick = [&](unsigned n) { return static_cast<unsigned>(rng() % n); };
+  const char* vars[] = {"a", "b", "c", "x", "y"};
+  std::function<std::string(int, int)> statements = [&](int depth, int loops) {
+    std::string out;
+    for (unsigned s = 0, n = 1 + pick(4); s < n; ++s) {
+      std::string v = vars[pick(5)], w = vars[pick(5)], cond = v + (pick(2) ? " < " : " > ") + w;
+      switch (depth < 4 ? pick(6) : 0) {
+        case 0: out += v + " = " + w + (pick(2) ? " * 0.5 + " : " - ") + vars[pick(5)] + ";\n"; break;
+        case 1: out += "if (" + cond + ") {\n" + statements(depth + 1, loops) + "}\n"; break;
+        case 2:
+          out += "if (" + cond + ") {\n" + statements(depth + 1, loops) + "} else {\n" + statements(depth + 1, loops) + "}\n";
+          break;
+        case 3: {
+          std::string i = "i" + std::to_string(depth) + "_" + std::to_string(s);
+          out += "for (var " + i + " = 0; " + i + " < " + std::to_string(1 + pick(4)) + "; " + i + "++) {\n" +
+                 statements(depth + 1, loops + 1) + "}\n";
+          break;
+        }
+        case 4: out += loops ? "if (" + cond + ") " + std::string(pick(2) ? "break" : "continue") + ";\n" : ""; break;
+        default: out += "if (" + cond + ") return " + v + " + " + w + ";\n"; break;
+      }
+    }
+    return out;
+  };
+  for (int n = 0; n < 150; ++n)
+    texts.push_back("function FRep(x, y, z, t) {\nvar a = z, b = t, c = 1;\n" + statements(0, 0) + "return a + b + c;\n}\n");
+  size_t functions = 0, blocks = 0, mismatches = 0;
+  for (bool optimize : {true, false})
+    for (const std::string& text : texts) {
+      auto b = test::build(text, "", optimize);
+      if (!b->ok) continue;  // the golden cases of diagnostics
+      for (const auto& fn : b->module->functions) {
+        backends::LinearOrder lo = backends::compute_intervals(*fn);
+        std::vector<backends::Interval> want = intervals_by_dataflow(*fn, lo);
+        ++functions, blocks += lo.blocks.size();
+        for (size_t v = 0; v < want.size(); ++v)
+          if (lo.has_value[v] && (lo.interval[v].start != want[v].start || lo.interval[v].end != want[v].end)) {
+            ++mismatches;
+            INFO("v" << v << " of " << fn->name << ": [" << lo.interval[v].start << ", " << lo.interval[v].end
+                     << "] vs [" << want[v].start << ", " << want[v].end << "]\n" << text);
+            CHECK(false);
+          }
+      }
+    }
+  CHECK(mismatches == 0);
+  CHECK(functions > 400);  // 503 and 11,605 blocks today
+  CHECK(blocks > 10000);
 }

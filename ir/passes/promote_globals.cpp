@@ -34,10 +34,13 @@ class Promoter {
     }
     for (Block* b : rpo)
       if (!ssa_.is_sealed(b)) ssa_.seal(b);
+    // Trivial phis first: one can stand for a program load's value (`g = g;` before a loop whose
+    // body returns: the store at that return read the loop's phi), which the loads' replacement
+    // must then still see (found by backend_diff: a dangling gstore operand, a crash in the JITs).
+    ssa_.finish();
     std::vector<Inst*> rep(f_.next_value, nullptr);
     for (auto& [load, value] : replaced_) rep[load->id] = ssa_.resolve(value);
     replace_uses(f_, rep);
-    ssa_.finish();
     return true;
   }
 

@@ -156,3 +156,20 @@ TEST_CASE("row split: refused where it cannot or would not pay") {
   CHECK(refused("function f(x) { return x < 1 ? x : f(x - 1) + 1; } function FRep(x, y, z, t) { return f(y) + x; }"));
   CHECK_FALSE(refused("function FRep(x, y, z, t) { return x - exp(y) * log(z + 2); }"));
 }
+
+// Found by backend_diff (tests/fuzz/corpus/backend_diff/promote-gstore-operand): `g = g;` before a
+// loop whose body returns left the store at that return reading the replaced load (a value no
+// longer in the function: the verifier failed, the JITs crashed).
+TEST_CASE("passes: promotion keeps the stores at returns inside loops after g = g") {
+  const char* text =
+      "var g = 0;\n"
+      "function r(n) {\n  if (n <= 0) return 1;\n  g = g;\n  var i = 0;\n"
+      "  while (i < n) {\n    i = i + 1;\n    g += 1;\n    if (g > n) return 2;\n  }\n  return r(n - 1) + g;\n}\n"
+      "function FRep(x, y, z, t) { return r(x) + g; }\n";
+  for (const char* be : {"vm", "sse"}) {
+    auto b = test::build(text, "", true, {}, be);
+    INFO(be << "\n" << test::messages(b->diag));
+    REQUIRE(b->ok);
+    CHECK(test::eval1(*b, {3}) == 10);  // r(3): g reaches 3, r(2) returns 2 at g = 4; 2 + 4, then + g
+  }
+}

@@ -25,6 +25,10 @@ void extend_by_liveness(const ir::Function& fn, const BlockIndex& index, LinearO
   for (size_t k = 0; k < nb; ++k)
     for (const ir::Inst* i : lo.blocks[k]->insts)
       if (i->defines_value()) def_block[i->id] = k;
+  std::vector<std::vector<size_t>> preds(nb);  // reachable predecessors, by position in the order
+  for (size_t k = 0; k < nb; ++k)
+    for (const ir::Block* p : lo.blocks[k]->preds)
+      if (auto it = index.find(p); it != index.end()) preds[k].push_back(it->second);
   std::vector<uint32_t> live_in_stamp(nb, UINT32_MAX);  // the value last found live into the block
   std::vector<size_t> work;
   auto live_in = [&](uint32_t v, size_t k) {
@@ -36,11 +40,9 @@ void extend_by_liveness(const ir::Function& fn, const BlockIndex& index, LinearO
       if (b == def_block[v] || live_in_stamp[b] == v) continue;
       live_in_stamp[b] = v;
       end = std::max(end, lo.block_start[b]);
-      for (const ir::Block* p : lo.blocks[b]->preds) {
-        auto it = index.find(p);
-        if (it == index.end()) continue;  // unreachable: not in the order
-        end = std::max(end, lo.block_end[it->second]);
-        work.push_back(it->second);
+      for (size_t p : preds[b]) {
+        end = std::max(end, lo.block_end[p]);
+        work.push_back(p);
       }
     }
   };

@@ -11,6 +11,7 @@
 #include "backends/backend.h"
 #include "ir/interval_eval.h"
 #include "runtime/math/interval.h"
+#include "runtime/support/cancel.h"
 
 namespace fscript::mesh {
 
@@ -59,6 +60,14 @@ class Field {
   virtual bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                              backends::RuntimeError& err) const;
 };
+
+// Whether the run is cancelled (support/cancel.h), said in `err`: the kernels' fields ask before
+// each batch, so a cancel stops a frame within one batch, not at its end.
+inline bool stop_if_cancelled(backends::RuntimeError& err) {
+  if (!support::run_cancelled()) return false;
+  err.message = support::kCancelledMessage;
+  return true;
+}
 
 // The result of `tape` (a kernel of x, y, z, t and perhaps more inputs, given in `extra`) over a box.
 math::Interval kernel_bound(const ir::IntervalTape& tape, const Box3& b, const std::vector<math::Interval>& extra);

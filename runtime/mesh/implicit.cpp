@@ -627,6 +627,7 @@ math::Interval KernelField::bound(const Box3& b) const {
 
 bool KernelField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
                        backends::RuntimeError& err) const {
+  if (stop_if_cancelled(err)) return false;
   // Reused per thread: the polygonizer calls this for every plane and block.
   thread_local std::vector<float> ts, extra;
   ts.assign(n, t_);
@@ -646,6 +647,7 @@ bool Field::eval_gradient(const float*, const float*, const float*, size_t, floa
 
 bool KernelField::eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                                 backends::RuntimeError& err) const {
+  if (stop_if_cancelled(err)) return false;
   thread_local std::vector<float> ts;
   ts.assign(n, t_);
   const float* in[4] = {x, y, z, ts.data()};
@@ -664,6 +666,7 @@ bool Field::eval_rows(const float* x, size_t count, const float* y, const float*
 
 bool KernelField::eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
                             backends::RuntimeError& err) const {
+  if (stop_if_cancelled(err)) return false;
   thread_local std::vector<float> ts, extra;
   ts.assign(rows, t_);
   size_t n = count * rows;

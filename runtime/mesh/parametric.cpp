@@ -10,6 +10,9 @@
 namespace fscript::mesh {
 namespace {
 
+// Points per evaluation call: a cancelled run (support/cancel.h) stops within one.
+constexpr size_t kBatch = 8192;
+
 float lerp(double a, double b, int i, int n) { return static_cast<float>(n > 0 ? a + (b - a) * i / n : a); }
 
 bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>& uvw, std::vector<Vec3>& xyz,
@@ -18,7 +21,11 @@ bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>&
   std::vector<float> u(n), v(n), w(n), x(n), y(n), z(n);
   for (size_t i = 0; i < n; ++i) u[i] = uvw[i][0], v[i] = uvw[i][1], w[i] = uvw[i][2];
   EvalTimer timer;
-  if (!job.field->eval(u.data(), v.data(), w.data(), n, x.data(), y.data(), z.data(), err)) return false;
+  for (size_t b = 0; b < n; b += kBatch) {
+    size_t m = std::min(kBatch, n - b);
+    if (!job.field->eval(u.data() + b, v.data() + b, w.data() + b, m, x.data() + b, y.data() + b, z.data() + b, err))
+      return false;
+  }
   xyz.resize(n);
   for (size_t i = 0; i < n; ++i) xyz[i] = {x[i], y[i], z[i]};
   return true;
@@ -33,7 +40,12 @@ bool evaluate_surface(const ParametricJob& job, std::vector<Vec3>& xyz, backends
   for (int i = 0; i <= na; ++i) u[static_cast<size_t>(i)] = lerp(job.domain[0], job.domain[1], i, na);
   for (int j = 0; j <= nb; ++j) v[static_cast<size_t>(j)] = lerp(job.domain[2], job.domain[3], j, nb);
   EvalTimer timer;
-  if (!job.field->eval_rows(u.data(), count, v.data(), w.data(), rows, x.data(), y.data(), z.data(), err)) return false;
+  for (size_t j = 0, per = std::max<size_t>(1, kBatch / count); j < rows; j += per) {
+    size_t r = std::min(per, rows - j), at = j * count;
+    if (!job.field->eval_rows(u.data(), count, v.data() + j, w.data() + j, r, x.data() + at, y.data() + at,
+                              z.data() + at, err))
+      return false;
+  }
   xyz.resize(x.size());
   for (size_t i = 0; i < x.size(); ++i) xyz[i] = {x[i], y[i], z[i]};
   return true;
@@ -108,6 +120,7 @@ void patch(const ParametricJob& job, int a, int b, int c, double fixed, bool fli
 
 bool KernelParametric::eval(const float* u, const float* v, const float* w, size_t n, float* x, float* y, float* z,
                             backends::RuntimeError& err) const {
+  if (stop_if_cancelled(err)) return false;
   std::vector<float> t(n, t_);
   const float* in[4] = {u, v, w, t.data()};
   float* out[3] = {x, y, z};
@@ -116,6 +129,7 @@ bool KernelParametric::eval(const float* u, const float* v, const float* w, size
 
 bool KernelParametric::eval_rows(const float* u, size_t count, const float* v, const float* w, size_t rows, float* x,
                                  float* y, float* z, backends::RuntimeError& err) const {
+  if (stop_if_cancelled(err)) return false;
   std::vector<float> t(rows, t_);
   const float* rest[3] = {v, w, t.data()};
   float* out[3] = {x, y, z};

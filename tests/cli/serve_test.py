@@ -232,19 +232,31 @@ def main(d):
     code, out, err = s.stop()
     check("--open without xdg-open: a note, still serving", code == 0 and "open " + s.url in err, err[-200:])
 
-    # --max-seconds: a run over it is cancelled with an error on the page; the server goes on.
+    # A run is cancelled within a batch of evaluations (a fraction of a second here), not at the end
+    # of a frame: this scene's one frame takes minutes. Over --max-seconds: an error on the page.
     slow = os.path.join(d, "slow.wrl")
-    write(slow, '#VRML V2.0 utf8\nFShape { frames 24 geometry FGeometry { definition "function FRep(x, y, z, t) { '
-                'var s = 0; for (var i = 0; i < 20000; i++) s += sin(x * i + t); return 0.5 - x * x - y * y - z * z + '
-                '0.001 * s; }" bboxSize 2 2 2 resolution [24] } }\n')
+    slow_text = ('#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "function FRep(x, y, z, t) { '
+                 'var s = 0; for (var i = 0; i < 10000; i++) s += sin(x * i + t); return 0.5 - x * x - y * y - '
+                 'z * z + 1e-9 * s; }" bboxSize 2 2 2 resolution [160] } }\n')
+    write(slow, slow_text)
     s = Server(slow, "--max-seconds", "1", "--backend", "vm")
-    st = s.wait_state(lambda st: "took longer" in st.get("diagnostics", ""), 120)
+    st = s.wait_state(lambda st: "took longer" in st.get("diagnostics", ""), 60)
     check("--serve --max-seconds: the run is stopped with an error on the page",
           st.get("ok") is False and "error: the run took longer than 1 s (--max-seconds 1); stopped" in st.get("diagnostics", ""),
           str(st)[:300])
     check("--serve --max-seconds: the server goes on", s.request("GET", "/")[0] == 200)
     code, out, err = s.stop()
     check("--serve --max-seconds: Ctrl-C ends it cleanly", code == 0, f"{code} {err[-300:]!r}")
+    # A save during that frame cancels it and runs the new scene; Ctrl-C during it ends the server.
+    s = Server(slow, "--backend", "vm")
+    time.sleep(1)
+    write(slow, BALL.replace("RADIUS", "0.5"))
+    st = s.wait_state(lambda st: st.get("version", 0) >= 1, 60)
+    check("a save during a long frame: the new scene runs", st.get("ok") is True, str(st)[:300])
+    write(slow, slow_text)
+    time.sleep(1)
+    code, out, err = s.stop()
+    check("Ctrl-C during a long frame ends the server", code == 0, f"{code} {err[-300:]!r}")
 
     # A scene broken from the start: no glTF yet, the diagnostics, and the server runs on.
     write(scene, BALL.replace("RADIUS", "0.5 *"))

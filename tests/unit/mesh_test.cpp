@@ -1,11 +1,17 @@
 // The implicit polygonizer by its invariants: watertight, consistently oriented outward, 2-manifold,
 // Euler characteristic, vertices on the true surface, caps on the box faces.
 #include <catch2/catch.hpp>
-#include <cmath>
-#include <filesystem>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <thread>
+
 #include "runtime/mesh/implicit.h"
+#include "runtime/mesh/parametric.h"
+#include "runtime/support/cancel.h"
 #include "tests/unit/helpers.h"
 
 using namespace fscript;
@@ -388,4 +394,50 @@ TEST_CASE("crease normals: a cube's corners keep their faces' normals; a sphere'
       worst = std::min(worst, (p[0] * q[0] + p[1] * q[1] + p[2] * q[2]) / len);
     }
   CHECK(worst > std::cos(10 * 3.14159265 / 180));
+}
+
+// A cancelled run (fvrml-run --serve after a save, --max-seconds, Ctrl-C) stops a frame within a
+// batch: each mesher gives up with the cancel's message instead of finishing the shape. The flag is
+// set from another thread after a few batches; each mesh would take a minute or more otherwise.
+TEST_CASE("mesh: a cancel from another thread stops every mesher within a batch") {
+  auto b = test::build("function FRep(x,y,z,t){ var s = 0; for (var i = 0; i < 20000; i++) s += sin(x * i); "
+                       "return 0.5 - x*x - y*y - z*z + 1e-9 * s; }");
+  auto p = test::build("function FRep(u,v,w,t){ var s = 0; for (var i = 0; i < 20000; i++) s += sin(u * i); "
+                       "x = u; y = v; z = 1e-9 * s; }");
+  REQUIRE(b->ok);
+  REQUIRE(p->ok);
+  mesh::KernelField field(*b->kernel, 0);
+  mesh::KernelParametric map(*p->kernel, 0);
+  for (int which = 0; which < 3; ++which) {
+    std::atomic<bool> cancel{false};
+    support::CancelScope scope(cancel);
+    std::thread canceller([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      cancel = true;
+    });
+    mesh::Mesh m;
+    backends::RuntimeError err;
+    bool ok;
+    if (which < 2) {
+      mesh::ImplicitJob job;
+      job.field = &field;
+      job.box = {-1, 1, -1, 1, -1, 1};
+      job.cells = {64, 64, 64};
+      job.threads = 2;
+      job.mesher.kind = which == 0 ? mesh::Mesher::MarchingTetrahedra : mesh::Mesher::DualContouring;
+      ok = mesh::polygonize(job, m, err);
+    } else {
+      mesh::ParametricJob job;
+      job.field = &map;
+      job.kind = mesh::ParametricKind::Surface;
+      job.domain = {0, 1, 0, 1, 0, 0};
+      job.intervals = {512, 512, 1};
+      ok = mesh::polygonize_parametric(job, m, err);
+    }
+    canceller.join();
+    INFO("mesher " << which);
+    CHECK_FALSE(ok);
+    CHECK(err.message == support::kCancelledMessage);
+  }
+  CHECK_FALSE(support::run_cancelled());  // outside every scope
 }

@@ -50,7 +50,8 @@ struct Options {
   // --serve, glTF: the scene so far while animations are polygonized (its static shapes and the
   // frames made: `frames` of `of` of the animation under way).
   std::function<void(const std::string& glb, size_t frames, size_t of)> on_partial;
-  // --serve: set when a newer save makes the run moot; it stops between shapes and frames.
+  // --serve: set when a newer save makes the run moot; it stops between shapes and frames, and the
+  // meshers stop within a batch of evaluations (the caller holds a support::CancelScope of it).
   const std::atomic<bool>* cancel = nullptr;
   // --serve: a run longer than this is cancelled and reported as an error on the page (0: none).
   double max_seconds = 0;

@@ -21,6 +21,7 @@
 #include <sstream>
 #include <thread>
 
+#include "runtime/support/cancel.h"
 #include "runtime/support/files.h"
 #include "runtime/support/progress.h"
 #include "tools/fvrml-run/memo.h"
@@ -117,7 +118,11 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   std::ostringstream captured;
   std::streambuf* saved = std::cerr.rdbuf(captured.rdbuf());
   auto t0 = Clock::now();
-  int rc = run_scene(o, stats, &files);
+  int rc;
+  {
+    fscript::support::CancelScope scope(cancel);  // the meshers see the cancel mid-frame too
+    rc = run_scene(o, stats, &files);
+  }
   std::cerr.rdbuf(saved);
   stats["total_ms"] = ms_since(t0);
   stats["backend"] = o.model.compile.backend;

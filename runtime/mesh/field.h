@@ -69,6 +69,15 @@ inline bool stop_if_cancelled(backends::RuntimeError& err) {
   return true;
 }
 
+// Points per evaluation call where the caller picks the batches (grid planes, parametric grids,
+// per-vertex colours and displacements): a cancelled run stops within one.
+constexpr size_t kEvalBatch = 8192;
+
+// k.eval_batch over n points (in[i], out[o] are k's columns) in batches of kEvalBatch, asking
+// before each whether the run is cancelled; stops at the first failing batch.
+bool eval_in_batches(const backends::Kernel& k, const float* const* in, float* const* out, size_t n,
+                     backends::RuntimeError& err);
+
 // The result of `tape` (a kernel of x, y, z, t and perhaps more inputs, given in `extra`) over a box.
 math::Interval kernel_bound(const ir::IntervalTape& tape, const Box3& b, const std::vector<math::Interval>& extra);
 

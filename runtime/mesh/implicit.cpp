@@ -18,7 +18,6 @@ namespace fscript::mesh {
 namespace {
 
 constexpr int kTets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
-constexpr size_t kBatch = 8192;
 constexpr uint32_t kNone = UINT32_MAX;
 constexpr uint32_t kPlaceholder = 0x80000000u;  // ids from here on name a vertex of the slab below
 
@@ -101,8 +100,8 @@ struct Grid {
 bool evaluate(const Field& f, const float* xs, const float* ys, const float* zs, size_t n, float* out,
               backends::RuntimeError& err) {
   EvalTimer timer;
-  for (size_t b = 0; b < n; b += kBatch)
-    if (!f.eval(xs + b, ys + b, zs + b, std::min(kBatch, n - b), out + b, err)) return false;
+  for (size_t b = 0; b < n; b += kEvalBatch)
+    if (!f.eval(xs + b, ys + b, zs + b, std::min(kEvalBatch, n - b), out + b, err)) return false;
   return true;
 }
 
@@ -235,7 +234,7 @@ class Slab {
   // f_out_ = f on the plane at height z, as rows (the plane's xs_ and ys_ are row by row).
   bool evaluate_rows(float z, backends::RuntimeError& err) {
     EvalTimer timer;
-    size_t nx = static_cast<size_t>(g_.nx), per = std::max<size_t>(1, kBatch / nx);
+    size_t nx = static_cast<size_t>(g_.nx), per = std::max<size_t>(1, kEvalBatch / nx);
     row_y_.resize(static_cast<size_t>(g_.ny)), row_z_.assign(static_cast<size_t>(g_.ny), z);
     for (size_t j = 0; j < row_y_.size(); ++j) row_y_[j] = ys_[j * nx];
     for (size_t j = 0; j < row_y_.size(); j += per) {
@@ -411,8 +410,8 @@ bool refine(const Grid& g, const Field& f, std::vector<Edge>& edges, Mesh& m, in
   return split(edges.size(), threads, [&](size_t b, size_t e, backends::RuntimeError& er) {
     std::vector<uint32_t> todo;
     std::vector<float> lo, hi, flo, fhi, xs, ys, zs, out;
-    for (size_t b0 = b; b0 < e; b0 += kBatch) {
-      size_t b1 = std::min(e, b0 + kBatch);
+    for (size_t b0 = b; b0 < e; b0 += kEvalBatch) {
+      size_t b1 = std::min(e, b0 + kEvalBatch);
       todo.clear();
       for (size_t v = b0; v < b1; ++v)
         if (!edges[v].cap && std::isfinite(edges[v].fout)) todo.push_back(static_cast<uint32_t>(v));
@@ -471,7 +470,7 @@ bool gradient_normals(const Field& f, const Mesh& m, size_t b0, size_t n, float*
 bool normals(const Grid& g, const Field& f, const std::vector<Edge>& edges, Mesh& m, int threads,
              backends::RuntimeError& err) {
   m.normals.resize(m.positions.size());
-  constexpr size_t kBlock = kBatch / 6;
+  constexpr size_t kBlock = kEvalBatch / 6;
   const bool analytic = f.has_gradient();
   return split(m.positions.size(), threads, [&](size_t b, size_t e, backends::RuntimeError& er) {
     std::vector<float> xs(6 * kBlock), ys(6 * kBlock), zs(6 * kBlock), out(6 * kBlock), grad;
@@ -603,79 +602,6 @@ bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backends::RuntimeErr
   if (job.stats) *job.stats = st;
   return ok && refine(g, *job.field, edges, out, job.refine_steps, job.threads, err) &&
          normals(g, *job.field, edges, out, job.threads, err);
-}
-
-std::atomic<uint64_t>& evaluation_ns() {
-  static std::atomic<uint64_t> total{0};
-  return total;
-}
-
-math::Interval kernel_bound(const ir::IntervalTape& tape, const Box3& b, const std::vector<math::Interval>& extra) {
-  thread_local std::vector<math::Interval> in;
-  thread_local ir::IntervalEval ev;
-  in.clear();
-  for (int a = 0; a < 3; ++a) in.push_back({b.lo[a], b.hi[a], false});
-  in.insert(in.end(), extra.begin(), extra.end());
-  tape.eval(in, ev);
-  return ev.outputs.empty() ? math::Interval::everything() : ev.outputs[0];
-}
-
-math::Interval KernelField::bound(const Box3& b) const {
-  if (!intervals_) return math::Interval::everything();
-  return kernel_bound(*intervals_, b, {math::Interval::point(t_)});
-}
-
-bool KernelField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
-                       backends::RuntimeError& err) const {
-  if (stop_if_cancelled(err)) return false;
-  // Reused per thread: the polygonizer calls this for every plane and block.
-  thread_local std::vector<float> ts, extra;
-  ts.assign(n, t_);
-  extra.resize(k_.num_outputs() > 1 ? n * (k_.num_outputs() - 1) : 0);
-  const float* in[4] = {x, y, z, ts.data()};
-  std::vector<float*> outs(k_.num_outputs());
-  outs[0] = out;
-  for (size_t o = 1; o < outs.size(); ++o) outs[o] = extra.data() + (o - 1) * n;
-  return k_.eval_batch(in, outs.data(), n, err);
-}
-
-bool Field::eval_gradient(const float*, const float*, const float*, size_t, float* const[4],
-                          backends::RuntimeError& err) const {
-  err.message = "internal error: this field has no gradient";
-  return false;
-}
-
-bool KernelField::eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
-                                backends::RuntimeError& err) const {
-  if (stop_if_cancelled(err)) return false;
-  thread_local std::vector<float> ts;
-  ts.assign(n, t_);
-  const float* in[4] = {x, y, z, ts.data()};
-  return gradient_->eval_batch(in, out, n, err);
-}
-
-bool Field::eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
-                      backends::RuntimeError& err) const {
-  thread_local std::vector<float> xs, ys, zs;
-  size_t n = count * rows;
-  xs.resize(n), ys.resize(n), zs.resize(n);
-  for (size_t r = 0; r < rows; ++r)
-    for (size_t i = 0; i < count; ++i) xs[r * count + i] = x[i], ys[r * count + i] = y[r], zs[r * count + i] = z[r];
-  return eval(xs.data(), ys.data(), zs.data(), n, out, err);
-}
-
-bool KernelField::eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
-                            backends::RuntimeError& err) const {
-  if (stop_if_cancelled(err)) return false;
-  thread_local std::vector<float> ts, extra;
-  ts.assign(rows, t_);
-  size_t n = count * rows;
-  extra.resize(k_.num_outputs() > 1 ? n * (k_.num_outputs() - 1) : 0);
-  const float* rest[3] = {y, z, ts.data()};
-  std::vector<float*> outs(k_.num_outputs());
-  outs[0] = out;
-  for (size_t o = 1; o < outs.size(); ++o) outs[o] = extra.data() + (o - 1) * n;
-  return k_.eval_rows(x, count, rest, rows, outs.data(), err);
 }
 
 }  // namespace fscript::mesh

@@ -10,9 +10,6 @@
 namespace fscript::mesh {
 namespace {
 
-// Points per evaluation call: a cancelled run (support/cancel.h) stops within one.
-constexpr size_t kBatch = 8192;
-
 float lerp(double a, double b, int i, int n) { return static_cast<float>(n > 0 ? a + (b - a) * i / n : a); }
 
 bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>& uvw, std::vector<Vec3>& xyz,
@@ -21,8 +18,8 @@ bool evaluate(const ParametricJob& job, const std::vector<std::array<float, 3>>&
   std::vector<float> u(n), v(n), w(n), x(n), y(n), z(n);
   for (size_t i = 0; i < n; ++i) u[i] = uvw[i][0], v[i] = uvw[i][1], w[i] = uvw[i][2];
   EvalTimer timer;
-  for (size_t b = 0; b < n; b += kBatch) {
-    size_t m = std::min(kBatch, n - b);
+  for (size_t b = 0; b < n; b += kEvalBatch) {
+    size_t m = std::min(kEvalBatch, n - b);
     if (!job.field->eval(u.data() + b, v.data() + b, w.data() + b, m, x.data() + b, y.data() + b, z.data() + b, err))
       return false;
   }
@@ -40,7 +37,7 @@ bool evaluate_surface(const ParametricJob& job, std::vector<Vec3>& xyz, backends
   for (int i = 0; i <= na; ++i) u[static_cast<size_t>(i)] = lerp(job.domain[0], job.domain[1], i, na);
   for (int j = 0; j <= nb; ++j) v[static_cast<size_t>(j)] = lerp(job.domain[2], job.domain[3], j, nb);
   EvalTimer timer;
-  for (size_t j = 0, per = std::max<size_t>(1, kBatch / count); j < rows; j += per) {
+  for (size_t j = 0, per = std::max<size_t>(1, kEvalBatch / count); j < rows; j += per) {
     size_t r = std::min(per, rows - j), at = j * count;
     if (!job.field->eval_rows(u.data(), count, v.data() + j, w.data() + j, r, x.data() + at, y.data() + at,
                               z.data() + at, err))

@@ -55,7 +55,7 @@ bool colour_vertices(const Shape& s, mesh::Mesh& m, backends::RuntimeError& err)
   bool ok;
   {
     mesh::EvalTimer timer;
-    ok = s.colour->kernel->eval_batch(ins, outs, n, err);
+    ok = mesh::eval_in_batches(*s.colour->kernel, ins, outs, n, err);
   }
   if (!ok) return false;
   m.colours.resize(n);
@@ -112,7 +112,7 @@ bool displace(const Shape& s, mesh::Mesh& m, backends::RuntimeError& err) {
   float* outs[4] = {d.data(), r.data(), g.data(), b.data()};
   {
     mesh::EvalTimer timer;
-    if (!s.texture->kernel->eval_batch(ins, outs, n, err)) return false;
+    if (!mesh::eval_in_batches(*s.texture->kernel, ins, outs, n, err)) return false;
   }
   for (size_t i = 0; i < n; ++i)
     if (std::isfinite(d[i]))

@@ -1,12 +1,16 @@
 // The scene layer end to end: a .wrl text to the model to meshes (kinds, time, FTransform
 // operations, 3D texture displacement, Transforms), checked by mesh invariants.
 #include <catch2/catch.hpp>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "frontend/vrml/vrml_parser.h"
 #include "runtime/mesh/mesh.h"
 #include "runtime/scene/scene_model.h"
 #include "runtime/scene/shape_mesh.h"
+#include "runtime/support/cancel.h"
 #include "tests/unit/scene_helpers.h"
 
 using namespace fscript;
@@ -320,4 +324,37 @@ FShape { geometry FGeometry { definition "1 - x*x - y*y - z*z + 0 * t" }
   CHECK(l->model.shapes[2].geometry.reads_t);
   REQUIRE(l->model.shapes[3].colour);
   CHECK(l->model.shapes[3].colour->reads_t);
+}
+
+// A cancelled run (fvrml-run --serve) stops within a batch in the per-vertex passes too: the
+// colour and the displacement of each of the 66,049 vertices of a parametric sphere. The geometry
+// is quick and the per-vertex script slow (seconds for all vertices, a fraction of a second per
+// batch); the cancel comes after the geometry, so the shape fails with the cancel's message
+// instead of finishing.
+TEST_CASE("scene: a cancel stops per-vertex colours and displacements within a batch") {
+  const std::string slow = "function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 10000; i++) s += sin(x * i); "
+                           "return 0.5 + 1e-9 * s; }";
+  const std::string sphere = "geometry FGeometry { resolution [256 256] parameters [0 1 0 1] definition "
+                             "\"x=0.5*cos(2*pi*u)*sin(pi*v); y=0.5*sin(2*pi*u)*sin(pi*v); z=0.5*cos(pi*v);\" } }\n";
+  auto l = load("FShape { appearance FAppearance { material FMaterial { diffuseColor \"" + slow + "\" } }\n" + sphere +
+                "FShape { appearance FAppearance { texture3D FTexture3D { definition \"" + slow +
+                "\" type \"displacement\" } }\n" + sphere);
+  INFO(frontend::render_all(l->diag));
+  REQUIRE(l->ok);
+  REQUIRE(l->model.shapes.size() == 2);
+  for (size_t which = 0; which < 2; ++which) {
+    std::atomic<bool> cancel{false};
+    support::CancelScope scope(cancel);
+    std::thread canceller([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      cancel = true;
+    });
+    mesh::Mesh m;
+    backends::RuntimeError err;
+    bool ok = scene::mesh_shape(l->model.shapes[which], m, err);
+    canceller.join();
+    INFO("shape " << which);
+    CHECK_FALSE(ok);
+    CHECK(err.message == support::kCancelledMessage);
+  }
 }

@@ -70,6 +70,7 @@ bool jit_status(uint64_t code, const LaneArrays& arrays, const Budgets& budgets,
     case 1: err.message = errors::loop_budget(budgets.max_loop_iterations); break;
     case 2: err.message = arrays.message; break;
     case 3: err.message = errors::call_depth(budgets.max_call_depth); break;
+    case 5: err.message = errors::cancelled(); break;
     default:
       err.message = errors::recursion_stack(budgets.max_call_depth);
       break;

@@ -30,7 +30,8 @@ bool prepare_program(const ir::Module& m, JitProgram& out, std::string& error);
 const ir::Inst* first_located(const ir::Function& fn);
 
 // Generated code returns 0 or trap_code(kind, line, col): kind 1 loop budget, 2 array error
-// (message in `arrays`), 3 call depth budget, 4 recursion deeper than the thread's stack allows.
+// (message in `arrays`), 3 call depth budget, 4 recursion deeper than the thread's stack allows,
+// 5 the run cancelled (support/cancel.h; asked at every loop iteration and recursive call).
 // The column keeps 24 bits (a longer line reports column 0: unknown).
 inline uint64_t trap_code(uint64_t kind, const ir::Inst* at) {
   uint64_t line = at ? at->line : 0, col = at && at->col < (1u << 24) ? at->col : 0;

@@ -9,6 +9,8 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include "runtime/support/cancel.h"
+
 namespace fscript::backends {
 namespace {
 
@@ -65,6 +67,7 @@ const Loaded& load() {
       return l;
     }
     l.module = entry();  // the handle stays open for the process: kernels point into the module
+    if (l.module) l.module->set_cancel_slot(support::cancel_slot());
     g_loaded = l.module != nullptr;
 #else
     l.error = "this binary has no llvm backend (it needs llvm-19-dev when building)";

@@ -31,6 +31,9 @@ class LlvmModule {
   virtual void set_cache_enabled(bool on) const = 0;
   // The on-disk cache of object code; returns its directory, "" when off or when none can be made.
   virtual std::string set_disk_cache_enabled(bool on) const = 0;
+  // The loading process's support::cancel_slot(), which generated code reads (the module links its
+  // own copy of fs_support, whose flag nobody sets).
+  virtual void set_cancel_slot(const void* slot) const = 0;
 };
 
 // The module, loaded by the first call (any thread); nullptr with the reason in `error` when this

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "runtime/support/cancel.h"
+
 namespace fscript::backends::errors {
 
 namespace {
@@ -21,6 +23,8 @@ std::string loop_budget(uint64_t max_loop_iterations) {
   return "loop iteration budget exceeded: more than " + std::to_string(max_loop_iterations) +
          " iterations in one evaluation";
 }
+
+std::string cancelled() { return support::kCancelledMessage; }
 
 std::string call_depth(uint32_t max_call_depth) {
   return "call depth budget exceeded: more than " + std::to_string(max_call_depth) + " nested calls";

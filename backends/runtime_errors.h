@@ -11,6 +11,8 @@ std::string loop_budget(uint64_t max_loop_iterations);
 std::string call_depth(uint32_t max_call_depth);
 // Only when even a stack sized for the budget (1 GiB) could not be had.
 std::string recursion_stack(uint32_t max_call_depth);
+// The run was cancelled from another thread (support/cancel.h): checked in loops and recursive calls.
+std::string cancelled();
 std::string array_size(const std::string& array, float size, uint64_t max_array_elements);
 std::string array_index(const std::string& array, float index, int64_t length);
 std::string array_unset(const std::string& array);

@@ -9,8 +9,9 @@ namespace fscript::llvmjit {
 namespace {
 // Changed whenever llvm_lower.cpp changes the code it makes, so the disk cache never hands back an
 // object from an older lowering (2: the lanes' mask crosses calls as an integer; 3: min and max as
-// x86's own instructions; 4: the one-point code's own entry).
-constexpr int kLoweringRevision = 4;
+// x86's own instructions; 4: the one-point code's own entry; 5: the cancel check in loops and
+// recursive calls).
+constexpr int kLoweringRevision = 5;
 
 // The cache key: everything the code depends on.
 std::string cache_key(const ir::Module& m, uint32_t width, const backends::Budgets& budgets, bool bounded) {

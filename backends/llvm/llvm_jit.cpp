@@ -14,6 +14,7 @@
 #include <llvm/Target/TargetMachine.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <deque>
@@ -24,6 +25,7 @@
 #include "backends/lane_arrays.h"
 #include "backends/llvm/llvm_disk_cache.h"
 #include "runtime/math/math.h"
+#include "runtime/support/cancel.h"
 
 namespace fscript::llvmjit {
 namespace {
@@ -59,6 +61,9 @@ const RuntimeSymbol kRuntimeSymbols[] = {
 };
 #undef FS_SYM
 #undef FS_LANES
+
+// Until the loader says otherwise, this module's own copy (a process that links the backend in).
+std::atomic<const void*> g_cancel_slot{support::cancel_slot()};
 
 std::string message(llvm::Error e) {
   std::string s;
@@ -266,6 +271,8 @@ std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, doub
   for (const auto& r : kRuntimeSymbols)
     symbols[s.jit->mangleAndIntern(r.name)] = {llvm::orc::ExecutorAddr::fromPtr(r.address),
                                                llvm::JITSymbolFlags::Exported | llvm::JITSymbolFlags::Callable};
+  symbols[s.jit->mangleAndIntern("fs_cancel_slot")] = {llvm::orc::ExecutorAddr::fromPtr(g_cancel_slot.load()),
+                                                       llvm::JITSymbolFlags::Exported};
   auto program = std::make_shared<Program>();
   program->dylib_ = &*dylib;
   program->num_inputs = lowered.num_inputs;
@@ -371,6 +378,8 @@ std::string set_disk_cache_enabled(bool on) {
   std::lock_guard<std::mutex> lock(s.mutex);
   return set_disk_cache(s.disk, on);
 }
+
+void set_cancel_slot(const void* slot) { g_cancel_slot = slot; }
 
 void set_cache_enabled(bool on) {
   State& s = state();

@@ -57,5 +57,8 @@ void set_cache_enabled(bool on);
 // The on-disk cache of object code (off by default); returns its directory, "" when off or when
 // no cache directory can be made.
 std::string set_disk_cache_enabled(bool on);
+// The host's cancel slot (support::cancel_slot() of the executable, whose fs_support is not this
+// module's copy): what generated code's fs_cancel_slot names. Set by the loader before any compile.
+void set_cancel_slot(const void* slot);
 
 }  // namespace fscript::llvmjit

@@ -428,12 +428,27 @@ class LlvmFunctionLowering {
         llvm::Value* n = b_.CreateAdd(b_.CreateLoad(counter_type(), at), b_.CreateZExt(active_, counter_type()));
         b_.CreateStore(n, at);
         llvm::Value* budget = llvm::ConstantInt::get(counter_type(), s_.budgets.max_loop_iterations);
-        return trap_if(b_.CreateOrReduce(b_.CreateICmpUGT(n, budget)), 1, &in);
+        trap_if(b_.CreateOrReduce(b_.CreateICmpUGT(n, budget)), 1, &in);
+        return cancel_check(in);
       }
       case Op::Jump: return jump(in);
       case Op::Branch: return branch(in);
       case Op::Ret: return ret(in);
     }
+  }
+
+  // A run cancelled from another thread (support/cancel.h) ends the loop or the recursion. The JIT
+  // resolves fs_cancel_slot to the host's word that holds the current flag's address (llvm_jit.cpp):
+  // a symbol, not a constant, so objects in the disk cache stay valid in another process.
+  void cancel_check(const ir::Inst& in) {
+    llvm::GlobalVariable* slot = s_.m.getGlobalVariable("fs_cancel_slot");
+    if (!slot)
+      slot = new llvm::GlobalVariable(s_.m, s_.ptr, false, llvm::GlobalValue::ExternalLinkage, nullptr, "fs_cancel_slot");
+    llvm::LoadInst* flag_at = b_.CreateAlignedLoad(s_.ptr, slot, llvm::Align(8));
+    flag_at->setAtomic(llvm::AtomicOrdering::Monotonic);
+    llvm::LoadInst* flag = b_.CreateAlignedLoad(b_.getInt8Ty(), flag_at, llvm::Align(1));
+    flag->setAtomic(llvm::AtomicOrdering::Monotonic);
+    trap_if(b_.CreateICmpNE(flag, b_.getInt8(0)), 5, &in);
   }
 
   // ---- arrays and calls ----
@@ -467,6 +482,7 @@ class LlvmFunctionLowering {
     llvm::Value* depth = b_.CreateLoad(s_.i64, depth_at);
     if (counted) {
       trap_if(b_.CreateICmpUGE(depth, b_.getInt64(s_.budgets.max_call_depth)), 3, &in);
+      cancel_check(in);
       b_.CreateStore(b_.CreateAdd(depth, b_.getInt64(1)), depth_at);
     }
     llvm::Value* result = b_.CreateConstGEP1_64(s_.f32, scratch(), 3 * s_.width);

@@ -25,6 +25,7 @@ class Module final : public backends::LlvmModule {
   }
   void set_cache_enabled(bool on) const override { llvmjit::set_cache_enabled(on); }
   std::string set_disk_cache_enabled(bool on) const override { return llvmjit::set_disk_cache_enabled(on); }
+  void set_cancel_slot(const void* slot) const override { llvmjit::set_cancel_slot(slot); }
 };
 
 }  // namespace

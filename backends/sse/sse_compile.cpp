@@ -27,6 +27,7 @@
 #include "ir/passes/passes.h"
 #include "runtime/math/isa.h"
 #include "runtime/math/math.h"
+#include "runtime/support/cancel.h"
 
 namespace fscript::sse {
 namespace {
@@ -615,12 +616,22 @@ class Codegen : public detail::LaneCode {
     a_.test(Gp::rax, Gp::rax);
     if (loop_budget_ <= kCarryAt) {
       a_.jcc(Cond::NE, trap(1, &in));
-      return;
+    } else {
+      // A budget beyond int32: at 2^30 the counts move into 64-bit totals, checked there.
+      carries_.push_back({a_.new_label(), a_.new_label(), trap(1, &in)});
+      a_.jcc(Cond::NE, carries_.back().entry);
+      a_.bind(carries_.back().back);
     }
-    // A budget beyond int32: at 2^30 the counts move into 64-bit totals, checked there.
-    carries_.push_back({a_.new_label(), a_.new_label(), trap(1, &in)});
-    a_.jcc(Cond::NE, carries_.back().entry);
-    a_.bind(carries_.back().back);
+    cancel_check(in);
+  }
+
+  // A run cancelled from another thread (support/cancel.h) ends the loop or the recursion: the
+  // slot holds the current flag's address.
+  void cancel_check(const ir::Inst& in) {
+    a_.mov_imm(Gp::rax, reinterpret_cast<uint64_t>(support::cancel_slot()));
+    a_.mov(Gp::rax, Mem::at(Gp::rax));
+    a_.cmp8(Mem::at(Gp::rax), 0);
+    a_.jcc(Cond::NE, trap(5, &in));
   }
 
   void global(const ir::Inst& in, int pos) {
@@ -648,6 +659,7 @@ class Codegen : public detail::LaneCode {
     if (counted) {
       a_.cmp(depth, static_cast<int32_t>(program_.max_call_depth));
       a_.jcc(Cond::AE, trap(3, &in));
+      cancel_check(in);
       a_.add(depth, 1);
     }
     a_.lea(Gp::rdi, at(call_slot_));

@@ -319,6 +319,7 @@ FS_GROUP1(add, kAdd)
 FS_GROUP1(sub, kSub)
 FS_GROUP1(cmp, kCmp)
 #undef FS_GROUP1
+void Assembler::cmp8(const Mem& a, uint8_t imm) { list("cmp8", a, imm); emit(0, false, {0x80}, kCmp, m(a), 1, imm); }
 void Assembler::and_(Gp d, int32_t imm) {
   list("and", d, imm);
   bool small = fits8(imm);

@@ -113,6 +113,7 @@ class Assembler {
   void add(const Mem& d, int32_t imm);  // qword
   void sub(const Mem& d, int32_t imm);
   void cmp(const Mem& a, int32_t imm);
+  void cmp8(const Mem& a, uint8_t imm);  // byte
   void push(Gp r);
   void pop(Gp r);
   void call(Gp target);

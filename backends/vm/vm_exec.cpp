@@ -15,6 +15,7 @@
 #include "backends/runtime_errors.h"
 #include "runtime/math/batch_isa.h"
 #include "runtime/math/math.h"
+#include "runtime/support/cancel.h"
 
 #ifndef FS_ISA
 #error "vm_exec.cpp is compiled once per ISA with FS_ISA set (see backends/CMakeLists.txt)"
@@ -474,6 +475,10 @@ bool Executor::lane_op(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err)
         err = {errors::loop_budget(budgets_.max_loop_iterations), v.line, v.col};
         return false;
       }
+      if ((env.ticks & 1023) == 0 && support::run_cancelled()) {  // every 1,024: a call per lane costs
+        err = {errors::cancelled(), v.line, v.col};
+        return false;
+      }
       return true;
     case Op::Call: return call(fr, v, i, err);
     default: break;
@@ -508,6 +513,10 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
   const VmFunction& callee = p_.functions[v.c];
   if (callee.recursive && env.depth + 1 > budgets_.max_call_depth) {
     err = {errors::call_depth(budgets_.max_call_depth), v.line, v.col};
+    return false;
+  }
+  if (callee.recursive && support::run_cancelled()) {  // recursion can take as long as a loop
+    err = {errors::cancelled(), v.line, v.col};
     return false;
   }
   if (callee.recursive && reinterpret_cast<uintptr_t>(__builtin_frame_address(0)) < backends::stack_limit()) {

@@ -3,9 +3,12 @@
 // registered. Every pure operation of the op table on special values against the reference
 // evaluator, and the shared program bodies against the VM, bit for bit.
 #include <catch2/catch.hpp>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <thread>
 
 #include "backends/row_kernel.h"
 #include "backends/runtime_errors.h"
@@ -14,6 +17,7 @@
 #include "ir/eval.h"
 #include "ir/text.h"
 #include "tests/unit/backend_cases.h"
+#include "runtime/support/cancel.h"
 #include "tests/unit/helpers.h"
 #include "backends/llvm_module.h"
 
@@ -461,6 +465,57 @@ TEST_CASE("backends: grid rows through the row split agree with the points, bit 
         INFO("point " << i);
         CHECK(same(want[i], got[i]));
       }
+    }
+  }
+}
+
+// A run cancelled from another thread (fvrml-run --serve: a save, --max-seconds, Ctrl-C) stops
+// generated code in its loops and recursive calls, on every backend, with the VM's message, line
+// and column: a batch would otherwise last as long as the script's loops make it. With the flag
+// set before the call, a loop of 10^8 iterations (its budget past int32 too: the SSE code's
+// carried counters) and a tree of 2^27 recursive calls stop at once instead of running for
+// seconds; straight-line code is not asked (the meshers ask between batches). Then the flag set
+// by another thread during a long loop, through the batch and the one-point call.
+TEST_CASE("backends: a cancelled run stops loops and recursive calls with the VM's message") {
+  backends::Budgets big;
+  big.max_loop_iterations = 4'000'000'000;
+  const char* loop = "function FRep(x, y, z, t) {\n  var s = 0;\n  for (var i = 0; i < 1e8; i++) s += sin(x * i);\n"
+                     "  return s;\n}";
+  const char* tree = "function grow(n) { return n <= 0 ? 1 : grow(n - 1) + grow(n - 1); }\n"
+                     "function FRep(x, y, z, t) {\n  return grow(26) + x;\n}";
+  auto vl = test::build(loop, "", true), vb = test::build(loop, "", true, big), vt = test::build(tree, "", true),
+       vp = test::build("function FRep(x, y, z, t) { return x * y + 1; }");
+  REQUIRE((vl->ok && vb->ok && vt->ok && vp->ok));
+  {
+    std::atomic<bool> cancel{true};
+    support::CancelScope scope(cancel);
+    CHECK(batch_error(*vl->kernel, {1, 2, 3, 4, 5}) == "the run was cancelled @ 3:3");
+    CHECK(batch_error(*vb->kernel, {1, 2, 3, 4, 5}) == "the run was cancelled @ 3:3");
+    CHECK(batch_error(*vt->kernel, {1, 2, 3}).find("the run was cancelled @ ") == 0);
+    for (const Variant& v : variants()) {
+      INFO(v.name);
+      CHECK(batch_error(*compile_on(v, *vl->module), {1, 2, 3, 4, 5}) == batch_error(*vl->kernel, {1, 2, 3, 4, 5}));
+      CHECK(batch_error(*compile_on(v, *vb->module, big), {1, 2, 3, 4, 5}) ==
+            batch_error(*vb->kernel, {1, 2, 3, 4, 5}));
+      CHECK(batch_error(*compile_on(v, *vt->module), {1, 2, 3}) == batch_error(*vt->kernel, {1, 2, 3}));
+      CHECK(batch_error(*compile_on(v, *vp->module), {1, 2, 3}) == "");
+    }
+  }
+  for (const Variant& v : variants()) {
+    INFO(v.name);
+    auto k = compile_on(v, *vl->module);
+    for (bool one_point : {false, true}) {
+      std::atomic<bool> cancel{false};
+      support::CancelScope scope(cancel);
+      std::thread canceller([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        cancel = true;
+      });
+      backends::RuntimeError err;
+      float in[4] = {0.5f, 0, 0, 0}, out = 0;
+      std::string got = one_point ? (k->eval(in, &out, err) ? "" : err.message) : batch_error(*k, {1, 2, 3, 4, 5});
+      canceller.join();
+      CHECK(got.find("the run was cancelled") == 0);
     }
   }
 }

@@ -137,6 +137,8 @@ const Row kRows[] = {
     {"add QWORD PTR [rdi+0x10],0x1", [](Assembler& a) { a.add(Mem::at(Gp::rdi, 16), 1); }, "48 83 47 10 01"},
     {"sub QWORD PTR [rax],0x3e8", [](Assembler& a) { a.sub(Mem::at(Gp::rax), 1000); }, "48 81 28 e8 03 00 00"},
     {"cmp QWORD PTR [rsp+0x8],0x0", [](Assembler& a) { a.cmp(Mem::at(Gp::rsp, 8), 0); }, "48 83 7c 24 08 00"},
+    {"cmp BYTE PTR [rax],0x0", [](Assembler& a) { a.cmp8(Mem::at(Gp::rax), 0); }, "80 38 00"},
+    {"cmp BYTE PTR [r13+0x1],0x7f", [](Assembler& a) { a.cmp8(Mem::at(Gp::r13, 1), 0x7f); }, "41 80 7d 01 7f"},
     {"push rbx", [](Assembler& a) { a.push(Gp::rbx); }, "53"},
     {"push r15", [](Assembler& a) { a.push(Gp::r15); }, "41 57"},
     {"pop rbp", [](Assembler& a) { a.pop(Gp::rbp); }, "5d"},

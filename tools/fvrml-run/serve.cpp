@@ -110,9 +110,12 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   nlohmann::json stats;
   fscript::support::progress_reset();
   memo.reset_counts();
+  bool ok_before;
+  std::string diagnostics_before;  // a partial scene clears them; a cancel puts them back
   {
     std::lock_guard<std::mutex> hold(st.lock);
     st.running = true;
+    ok_before = st.ok, diagnostics_before = st.diagnostics;
   }
   st.changed.notify_all();  // the streams switch to sending progress
   std::ostringstream captured;
@@ -132,7 +135,8 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   if (cancel) {
     {
       std::lock_guard<std::mutex> hold(st.lock);
-      st.glb = st.good;
+      // As before the run: else a cancel after a partial scene looked like a run that succeeded.
+      st.glb = st.good, st.ok = ok_before, st.diagnostics = std::move(diagnostics_before);
       st.partial = nullptr;
       st.running = false;
     }

@@ -4,11 +4,9 @@
 // evaluator, and the shared program bodies against the VM, bit for bit.
 #include <catch2/catch.hpp>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
-#include <thread>
 
 #include "backends/row_kernel.h"
 #include "backends/runtime_errors.h"
@@ -505,16 +503,10 @@ TEST_CASE("backends: a cancelled run stops loops and recursive calls with the VM
     INFO(v.name);
     auto k = compile_on(v, *vl->module);
     for (bool one_point : {false, true}) {
-      std::atomic<bool> cancel{false};
-      support::CancelScope scope(cancel);
-      std::thread canceller([&] {
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
-        cancel = true;
-      });
+      test::CancelAfter cancel(100);
       backends::RuntimeError err;
       float in[4] = {0.5f, 0, 0, 0}, out = 0;
       std::string got = one_point ? (k->eval(in, &out, err) ? "" : err.message) : batch_error(*k, {1, 2, 3, 4, 5});
-      canceller.join();
       CHECK(got.find("the run was cancelled") == 0);
     }
   }

@@ -2,13 +2,17 @@
 // Small helpers shared by the unit tests: compile a script text, evaluate an entry.
 #include <pthread.h>
 
+#include <atomic>
+#include <chrono>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "backends/backend.h"
 #include "runtime/driver/driver.h"
+#include "runtime/support/cancel.h"
 
 namespace fscript::test {
 
@@ -64,5 +68,24 @@ void on_thread_with_stack(size_t stack_bytes, Fn fn) {
   pthread_attr_destroy(&attr);
   pthread_join(thread, nullptr);
 }
+
+// The process's run cancelled by another thread `ms` milliseconds from now, as fvrml-run --serve
+// does on a save: a CancelScope for this object's life, the thread joined at its end.
+class CancelAfter {
+ public:
+  explicit CancelAfter(int ms)
+      : scope_(flag_), thread_([this, ms] {
+          std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+          flag_ = true;
+        }) {}
+  ~CancelAfter() { thread_.join(); }
+  CancelAfter(const CancelAfter&) = delete;
+  CancelAfter& operator=(const CancelAfter&) = delete;
+
+ private:
+  std::atomic<bool> flag_{false};
+  support::CancelScope scope_;
+  std::thread thread_;
+};
 
 }  // namespace fscript::test

@@ -3,11 +3,8 @@
 #include <catch2/catch.hpp>
 #include <unistd.h>
 
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <thread>
 
 #include "runtime/mesh/implicit.h"
 #include "runtime/mesh/parametric.h"
@@ -409,12 +406,7 @@ TEST_CASE("mesh: a cancel from another thread stops every mesher within a batch"
   mesh::KernelField field(*b->kernel, 0);
   mesh::KernelParametric map(*p->kernel, 0);
   for (int which = 0; which < 3; ++which) {
-    std::atomic<bool> cancel{false};
-    support::CancelScope scope(cancel);
-    std::thread canceller([&] {
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
-      cancel = true;
-    });
+    test::CancelAfter cancel(200);
     mesh::Mesh m;
     backends::RuntimeError err;
     bool ok;
@@ -434,7 +426,6 @@ TEST_CASE("mesh: a cancel from another thread stops every mesher within a batch"
       job.intervals = {512, 512, 1};
       ok = mesh::polygonize_parametric(job, m, err);
     }
-    canceller.join();
     INFO("mesher " << which);
     CHECK_FALSE(ok);
     CHECK(err.message == support::kCancelledMessage);

@@ -1,16 +1,14 @@
 // The scene layer end to end: a .wrl text to the model to meshes (kinds, time, FTransform
 // operations, 3D texture displacement, Transforms), checked by mesh invariants.
 #include <catch2/catch.hpp>
-#include <atomic>
-#include <chrono>
 #include <cmath>
-#include <thread>
 
 #include "frontend/vrml/vrml_parser.h"
 #include "runtime/mesh/mesh.h"
 #include "runtime/scene/scene_model.h"
 #include "runtime/scene/shape_mesh.h"
 #include "runtime/support/cancel.h"
+#include "tests/unit/helpers.h"
 #include "tests/unit/scene_helpers.h"
 
 using namespace fscript;
@@ -343,16 +341,10 @@ TEST_CASE("scene: a cancel stops per-vertex colours and displacements within a b
   REQUIRE(l->ok);
   REQUIRE(l->model.shapes.size() == 2);
   for (size_t which = 0; which < 2; ++which) {
-    std::atomic<bool> cancel{false};
-    support::CancelScope scope(cancel);
-    std::thread canceller([&] {
-      std::this_thread::sleep_for(std::chrono::milliseconds(300));
-      cancel = true;
-    });
+    test::CancelAfter cancel(300);
     mesh::Mesh m;
     backends::RuntimeError err;
     bool ok = scene::mesh_shape(l->model.shapes[which], m, err);
-    canceller.join();
     INFO("shape " << which);
     CHECK_FALSE(ok);
     CHECK(err.message == support::kCancelledMessage);

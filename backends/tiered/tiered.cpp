@@ -256,10 +256,12 @@ class TieredKernel : public Kernel {
  private:
   double vm_ns_per_point() const { return s_->vm_ns_per_point(); }
 
-  // The native kernel when it is ready (after a forced switch point, waited for).
+  // The native kernel when it is ready (after a forced switch point, waited for; before it, not
+  // used even when ready, so the switch lands where the test put it however fast the compile was).
   const Kernel* native(size_t n) const {
+    if (force_after_ && s_->vm_points.load() < force_after_) return nullptr;
     const Kernel* k = s_->ready.load(std::memory_order_acquire);
-    if (!k && force_after_ && s_->vm_points.load() >= force_after_) {
+    if (!k && force_after_) {
       std::unique_lock<std::mutex> hold(s_->lock);
       s_->done_cv.wait(hold, [&] { return s_->done; });
       k = s_->ready.load(std::memory_order_acquire);

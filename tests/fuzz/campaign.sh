@@ -30,8 +30,16 @@ for w in $(seq 1 "$workers"); do
   pids+=($!)
 done
 # setsid makes each worker its own scheduler autogroup, inside which alone nice counts: the
-# group's own niceness keeps the workers from taking half of every core from a build.
-for p in "${pids[@]}"; do echo 19 > "/proc/$p/autogroup" 2> /dev/null || true; done
+# group's own niceness keeps the workers from taking half of every core from a build. The group is
+# made when the worker calls setsid, so wait for that (the worker leads its own session): written
+# sooner, the niceness went to this script's group and the workers took 65% of the cores.
+for p in "${pids[@]}"; do
+  for _ in $(seq 100); do
+    [ "$(ps -o sid= -p "$p" 2> /dev/null | tr -d ' ')" = "$p" ] && break
+    sleep 0.05
+  done
+  echo 19 > "/proc/$p/autogroup" 2> /dev/null || true
+done
 trap 'kill -INT "${pids[@]}" 2> /dev/null' INT TERM
 echo "campaign $t: $workers workers for ${seconds}s; logs $bf/campaign/$t-$stamp-*.log (Ctrl-C stops them)"
 

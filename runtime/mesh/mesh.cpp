@@ -39,7 +39,63 @@ void Mesh::append(const Mesh& o) {
   }
 }
 
-Topology topology(const Mesh& m) {
+namespace {
+
+// Each vertex's first vertex at exactly its position with another normal: a mesh that splits a
+// vertex to give each side of a crease its own normal is the same surface as the welded one.
+// Vertices that only share a position (two bodies touching at a point, a crossing on a sample) stay
+// apart, as they are without normals.
+std::vector<uint32_t> welded(const Mesh& m) {
+  std::vector<uint32_t> out(m.positions.size());
+  for (uint32_t i = 0; i < out.size(); ++i) out[i] = i;
+  if (m.normals.size() != m.positions.size()) return out;
+  std::vector<uint32_t> order = out;
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return m.positions[a] != m.positions[b] ? m.positions[a] < m.positions[b] : a < b;
+  });
+  for (size_t i = 0, j; i < order.size(); i = j) {
+    for (j = i + 1; j < order.size() && m.positions[order[j]] == m.positions[order[i]]; ++j) {
+    }
+    for (size_t k = i + 1; k < j; ++k)
+      for (size_t q = i; q < k; ++q)
+        if (m.normals[order[k]] != m.normals[order[q]]) {
+          out[order[k]] = out[order[q]];
+          break;
+        }
+  }
+  return out;
+}
+
+// Connected components (through shared vertices) and, per component, its signed volume.
+void components(const Mesh& m, const std::vector<std::array<uint32_t, 3>>& tris, size_t vertices, Topology& t) {
+  std::vector<uint32_t> parent(vertices);
+  for (uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  auto find = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const auto& tri : tris) parent[find(tri[1])] = find(tri[0]), parent[find(tri[2])] = find(tri[0]);
+  std::map<uint32_t, double> volume;
+  for (const auto& tri : tris) {
+    const Vec3 &a = m.positions[tri[0]], &b = m.positions[tri[1]], &c = m.positions[tri[2]];
+    double det = double(a[0]) * (double(b[1]) * c[2] - double(b[2]) * c[1]) -
+                 double(a[1]) * (double(b[0]) * c[2] - double(b[2]) * c[0]) +
+                 double(a[2]) * (double(b[0]) * c[1] - double(b[1]) * c[0]);
+    volume[find(tri[0])] += det / 6;
+  }
+  t.components = volume.size();
+  for (const auto& [root, v] : volume) t.inverted_components += v < 0;
+}
+
+}  // namespace
+
+Topology topology(const Mesh& mesh) {
+  // The welded mesh: positions stay, indices name each position's first vertex.
+  std::vector<uint32_t> canon = welded(mesh);
+  Mesh m;
+  m.positions = mesh.positions;
+  m.triangles.reserve(mesh.triangles.size());
+  for (const auto& tri : mesh.triangles) m.triangles.push_back({canon[tri[0]], canon[tri[1]], canon[tri[2]]});
   Topology t;
   // Every directed edge and every undirected one, sorted (runs count the triangles using each):
   // sorting beats hashing several times on the millions of edges of a dense reference mesh.
@@ -94,6 +150,10 @@ Topology topology(const Mesh& m) {
   }
   size_t faces = m.triangles.size() - t.degenerate_triangles;
   t.euler = static_cast<long>(used_vertices) - static_cast<long>(edges) + static_cast<long>(faces);
+  std::vector<std::array<uint32_t, 3>> proper;
+  for (const auto& tri : m.triangles)
+    if (tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2]) proper.push_back(tri);
+  components(m, proper, m.positions.size(), t);
   return t;
 }
 

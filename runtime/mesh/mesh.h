@@ -30,9 +30,11 @@ struct Mesh {
   void append(const Mesh& other);  // concatenates (indices shifted)
 };
 
-// Topology report: every edge shared by exactly two triangles (watertight), each used once in
-// each direction (consistently oriented), no vertex whose triangles form more than one fan
-// (2-manifold), and V - E + F.
+// Topology report of the surface, its vertices welded where their positions are equal and their
+// normals differ (a vertex split for its normals is one point of the surface): every edge shared by exactly two triangles
+// (watertight), each used once in each direction (consistently oriented), no vertex whose
+// triangles form more than one fan (2-manifold), V - E + F, and the connected components, with
+// those whose signed volume is negative (inside-out, or the wall of a cavity).
 struct Topology {
   bool watertight = false;
   bool oriented = false;
@@ -40,6 +42,8 @@ struct Topology {
   long euler = 0;
   size_t boundary_edges = 0;
   size_t degenerate_triangles = 0;
+  size_t components = 0;
+  size_t inverted_components = 0;
 };
 Topology topology(const Mesh& m);
 

@@ -105,9 +105,12 @@ bool parse_ply(const std::string& bytes, Mesh& m, std::string& error) {
   std::istringstream text(ascii ? bytes.substr(data) : std::string());
   BinaryReader bin(bytes, data, format == "binary_big_endian");
   auto next = [&](const std::string& type, double& v) { return ascii ? static_cast<bool>(text >> v) : bin.read(type, v); };
+  bool normals = false;
+  for (const auto& e : elems)
+    for (const auto& pr : e.props) normals |= e.name == "vertex" && pr.name == "nx";
   for (const auto& e : elems) {
     for (size_t i = 0; i < e.count; ++i) {
-      Vec3 p{0, 0, 0};
+      Vec3 p{0, 0, 0}, n{0, 0, 0};
       std::vector<uint32_t> face;
       for (const auto& pr : e.props) {
         double v;
@@ -130,8 +133,10 @@ bool parse_ply(const std::string& bytes, Mesh& m, std::string& error) {
         if (pr.name == "x") p[0] = static_cast<float>(v);
         if (pr.name == "y") p[1] = static_cast<float>(v);
         if (pr.name == "z") p[2] = static_cast<float>(v);
+        if (pr.name == "nx" || pr.name == "ny" || pr.name == "nz") n[static_cast<size_t>(pr.name[1] - 'x')] = static_cast<float>(v);
       }
       if (e.name == "vertex") m.positions.push_back(p);
+      if (e.name == "vertex" && normals) m.normals.push_back(n);
       if (e.name == "face")
         for (size_t k = 1; k + 1 < face.size(); ++k) m.triangles.push_back({face[0], face[k], face[k + 1]});
     }
@@ -139,9 +144,12 @@ bool parse_ply(const std::string& bytes, Mesh& m, std::string& error) {
   return true;
 }
 
+// Normals (`vn`, named by each corner's `v//vn`) become the normals of the corners' vertices.
 bool parse_obj(const std::string& bytes, Mesh& m, std::string& error) {
   std::istringstream in(bytes);
   std::string line;
+  std::vector<Vec3> vn;
+  std::vector<std::pair<uint32_t, long>> corner_normals;
   for (size_t ln = 1; std::getline(in, line); ++ln) {
     std::istringstream ls(line);
     std::string w;
@@ -153,6 +161,13 @@ bool parse_obj(const std::string& bytes, Mesh& m, std::string& error) {
         return false;
       }
       m.positions.push_back(p);
+    } else if (w == "vn") {
+      Vec3 n;
+      if (!(ls >> n[0] >> n[1] >> n[2])) {
+        error = "OBJ line " + std::to_string(ln) + ": a normal needs three numbers";
+        return false;
+      }
+      vn.push_back(n);
     } else if (w == "f") {
       std::vector<uint32_t> f;
       std::string tok;
@@ -164,9 +179,22 @@ bool parse_obj(const std::string& bytes, Mesh& m, std::string& error) {
           return false;
         }
         f.push_back(static_cast<uint32_t>(idx - 1));
+        if (size_t slashes = tok.find("//"); slashes != std::string::npos) {
+          long n = std::strtol(tok.c_str() + slashes + 2, nullptr, 10);
+          corner_normals.push_back({static_cast<uint32_t>(idx - 1), n < 0 ? static_cast<long>(vn.size()) + n + 1 : n});
+        }
       }
       for (size_t k = 1; k + 1 < f.size(); ++k) m.triangles.push_back({f[0], f[k], f[k + 1]});
     }
+  }
+  if (corner_normals.empty()) return true;
+  m.normals.assign(m.positions.size(), Vec3{0, 0, 0});
+  for (auto [v, n] : corner_normals) {
+    if (n <= 0 || static_cast<size_t>(n) > vn.size() || v >= m.positions.size()) {
+      error = "OBJ: a face names normal " + std::to_string(n) + " of " + std::to_string(vn.size());
+      return false;
+    }
+    m.normals[v] = vn[static_cast<size_t>(n - 1)];
   }
   return true;
 }

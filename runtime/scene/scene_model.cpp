@@ -108,6 +108,12 @@ std::string number_text(double v) {
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
+// A count of points as a message shows it: three digits are enough to compare it with a limit.
+std::string count_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
 std::string str(const vrml::Node& n, const char* field) {
   const vrml::Value* v = n.get(field);
   return v && !v->strs.empty() ? v->strs[0] : "";
@@ -416,27 +422,49 @@ class Builder {
     out_.shapes.push_back(std::move(s));
   }
 
+  // A shape is refused by what one frame costs (shape_cost.h): the points it evaluates, by its own
+  // dimension, and the memory they need; NaN and infinite resolutions too, before any work.
+  bool within_cost(ShapeKind kind, const std::array<double, 3>& r, const vrml::Node& geo) {
+    ShapeCost c = shape_cost(kind, r);
+    double max_samples = kind == ShapeKind::Implicit ? kMaxShapeSamples : kMaxParametricSamples;
+    double memory = memory_limit_bytes(opts_.max_memory_mib);
+    std::string why;
+    if (!(c.samples <= max_samples))
+      why = "asks for " + count_text(c.samples) + " sample points, over the limit of " + count_text(max_samples) +
+            " for one shape";
+    else if (!(c.bytes <= memory))
+      why = "needs about " + bytes_text(c.bytes) + " of memory (" + count_text(c.samples) + " sample points), over the " +
+            bytes_text(memory) + " of --max-memory";
+    if (why.empty()) return true;
+    int used = kind == ShapeKind::Curve ? 1 : kind == ShapeKind::Surface ? 2 : 3;
+    std::string text = "resolution [";
+    char num[32];
+    for (int k = 0; k < used; ++k) std::snprintf(num, sizeof num, "%s%.10g", k ? " " : "", r[k]), text += num;
+    text += "]";
+    if (opts_.resolution_scale != 1) text += " (after --resolution-scale " + number_text(opts_.resolution_scale) + ")";
+    text += std::string(" of this ") + (kind == ShapeKind::Implicit ? "implicit shape" : kind_name(kind)) + " " + why;
+    const vrml::FieldSlot* at = geo.slot("resolution");
+    diag_.error(file_of(geo), at ? at->span : geo.span, text);
+    return false;
+  }
+
   void resolve_domain(Shape& s, const vrml::Node& geo, bool implicit) {
     const vrml::Value* res = geo.get("resolution");
     size_t dims = res ? res->nums.size() : 3;
-    bool refused = false;
+    std::array<double, 3> scaled;
     for (int k = 0; k < 3; ++k) {
       double r = res && !res->nums.empty() ? res->nums[std::min<size_t>(k, res->nums.size() - 1)] : 50;
-      double scaled = r * opts_.resolution_scale;
-      if (!(scaled <= kMaxResolution)) {  // also NaN: refused before any work, not an out-of-memory abort
-        if (!refused) {
-          const vrml::FieldSlot* at = geo.slot("resolution");
-          std::string scale = opts_.resolution_scale != 1 ? " (times --resolution-scale " + number_text(opts_.resolution_scale) + ")" : "";
-          diag_.error(file_of(geo), at ? at->span : geo.span,
-                      "resolution " + number_text(r) + scale + " is over the limit of " +
-                          std::to_string(kMaxResolution) + " samples per axis");
-        }
-        refused = true, scaled = 1;
-      }
-      s.resolution[k] = std::max(1, static_cast<int>(std::lround(scaled)));
+      scaled[k] = r * opts_.resolution_scale;
     }
+    std::string poly = s.fshape ? str(*s.fshape, "polygonizer") : "";
+    s.kind = implicit ? ShapeKind::Implicit
+             : (dims <= 1 || poly == "analytical_curve") ? ShapeKind::Curve
+             : dims == 2                                  ? ShapeKind::Surface
+                                                          : ShapeKind::Solid;
+    bool refused = !within_cost(s.kind, scaled, geo);
+    for (int k = 0; k < 3; ++k)
+      s.resolution[k] = refused ? 1 : std::max(1, static_cast<int>(std::lround(std::min(scaled[k], 2e9))));
     if (implicit) {
-      s.kind = ShapeKind::Implicit;
       if (const vrml::FieldSlot* unused = geo.slot("parameters"); unused && unused->is_ref.empty())
         diag_.warning(file_of(geo), unused->span,
                       "'parameters' is not used by an implicit shape (its box is bboxCenter and bboxSize); it "
@@ -448,8 +476,6 @@ class Builder {
       }
       return;
     }
-    std::string poly = s.fshape ? str(*s.fshape, "polygonizer") : "";
-    s.kind = (dims <= 1 || poly == "analytical_curve") ? ShapeKind::Curve : dims == 2 ? ShapeKind::Surface : ShapeKind::Solid;
     // Parametric children of an FTransform share its parameters when they give none themselves.
     const vrml::Value* p = geo.slot("parameters") ? geo.get("parameters") : nullptr;
     for (int g = s.group; !p && g >= 0; g = out_.groups[g].parent)
@@ -503,16 +529,8 @@ class Builder {
 
 }  // namespace
 
-uint64_t shape_samples(const Shape& s) {
-  uint64_t n[3];
-  for (size_t k = 0; k < 3; ++k) n[k] = static_cast<uint64_t>(std::max(s.resolution[k], 1)) + 1;
-  switch (s.kind) {
-    case ShapeKind::Implicit: return n[0] * n[1] * n[2];
-    case ShapeKind::Curve: return n[0];
-    case ShapeKind::Surface: return n[0] * n[1];
-    case ShapeKind::Solid: return 2 * (n[0] * n[1] + n[1] * n[2] + n[2] * n[0]);
-  }
-  return 0;
+ShapeCost shape_cost(const Shape& s) {
+  return shape_cost(s.kind, {double(s.resolution[0]), double(s.resolution[1]), double(s.resolution[2])});
 }
 
 bool build_scene_model(const vrml::Scene& scene, const ModelOptions& opts, frontend::DiagnosticSink& diag,

@@ -16,6 +16,7 @@
 #include "frontend/vrml/scene_graph.h"
 #include "ir/interval_eval.h"
 #include "runtime/driver/driver.h"
+#include "runtime/scene/shape_cost.h"
 #include "runtime/scene/time_model.h"
 
 namespace fscript::scene {
@@ -101,10 +102,6 @@ struct Group {
   double fraction = 0;
 };
 
-// The most samples a shape's resolution may ask for per axis (implicit and parametric), after
-// --resolution-scale: more is refused before any work (docs/scenes.md, "Limits"). 4096^3 cells are
-// meshed in slabs and blocks; a plane of 4096^2 samples takes 64 MB per value array.
-constexpr int kMaxResolution = 4096;
 // The most nodes the scene's graph expands to, counting every PROTO instance's body and every USE
 // of a DEF again (VRML97 allows both to multiply a small file into a huge graph: "billion laughs"),
 // and the deepest it may nest through PROTO instances. More is an error at the node that crosses it.
@@ -112,13 +109,8 @@ constexpr size_t kMaxExpandedNodes = 1'000'000;
 constexpr int kMaxExpandedDepth = 2000;
 // The most frames an FShape's or FTransform's `frames` (or fvrml-run --frames) may ask for.
 constexpr int kMaxFrames = 1000;
-// What one run may polygonize, over every shape times the frames it is made for: implicit grid
-// points, and parametric points (each one a vertex of the output, so they are capped far lower).
-// One shape at the largest resolution fits, no more; refused before any work (docs/reliability.md).
-constexpr uint64_t kMaxRunImplicitSamples = uint64_t{kMaxResolution + 1} * (kMaxResolution + 1) * (kMaxResolution + 1);
-constexpr uint64_t kMaxRunParametricSamples = 4 * uint64_t{kMaxResolution + 1} * (kMaxResolution + 1);
-// The sample points of one frame of a shape (grid points; a parametric solid samples its faces).
-uint64_t shape_samples(const Shape& s);
+// What one frame of a shape costs (shape_cost.h), from its kind and resolution.
+ShapeCost shape_cost(const Shape& s);
 
 struct ModelOptions {
   // Every script of the scene compiles with these (tiered execution unless the caller says
@@ -127,6 +119,9 @@ struct ModelOptions {
   double now = 0;                   // --time
   std::optional<double> fraction;   // --fraction: every node as if set_fraction had been received
   double resolution_scale = 1;
+  // The memory a shape may need (--max-memory, in MiB; 0: its default): a shape over it, or over
+  // the points one shape may evaluate, is refused at its `resolution` before any work.
+  uint64_t max_memory_mib = 0;
 };
 
 struct SceneModel {

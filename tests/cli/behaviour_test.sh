@@ -90,12 +90,13 @@ printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 131072; i++) 
 check "a long loop finishes with every point on the VM" 0 '^2048 white pixels' -- "$F" render2d "$T/long.fs" -o "$T/long.png" --size 64 --bounds -1,1,-1,1 --backend vm
 check "call depth above the ceiling" 2 'max-call-depth: Value 100001 not in range 1 to 100000' -- "$F" run "$T/down.fs" 1 --max-call-depth 100001
 check "fvrml-run call depth above the ceiling" 2 'max-call-depth' -- "$R" "$P/figure1-morphing.wrl" --stats --max-call-depth 100001
-# A resolution over the limit is refused before any work (it aborted with bad_alloc), and writes nothing.
+# A resolution whose points are over the limit is refused before any work (it aborted with
+# bad_alloc), and writes nothing.
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1-x*x-y*y-z*z" bboxSize 2 2 2 resolution [100000] } }\n' > "$T/huge.wrl"
-check "a resolution over the limit" 1 'huge.wrl:2:73: error: resolution 100000 is over the limit of 4096 samples per axis$' -- "$R" "$T/huge.wrl" -o "$T/huge.ply"
+check "a resolution over the limit" 1 'huge.wrl:2:73: error: resolution \[100000 100000 100000\] of this implicit shape asks for 1e\+15 sample points, over the limit of 6.88e\+10 for one shape$' -- "$R" "$T/huge.wrl" -o "$T/huge.ply"
 [ -e "$T/huge.ply" ] && { echo "FAIL a refused scene wrote $T/huge.ply"; fails=$((fails + 1)); }
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1-x*x" resolution [3000] } }\n' > "$T/wide.wrl"
-check "a scaled resolution over the limit" 1 'resolution 3000 \(times --resolution-scale 2\) is over the limit' -- "$R" "$T/wide.wrl" -o "$T/wide.ply" --resolution-scale 2
+check "a scaled resolution over the limit" 1 'resolution \[6000 6000 6000\] \(after --resolution-scale 2\) of this implicit shape asks for 2.16e\+11 sample points' -- "$R" "$T/wide.wrl" -o "$T/wide.ply" --resolution-scale 2
 
 # ---- Frames: the limit, glTF STEP timing, contact sheets ----
 printf '#VRML V2.0 utf8\nFShape { frames 1500 geometry FGeometry { definition "0.5^2-x^2-y^2-z^2+0.01*t" bboxSize 2 2 2 resolution [4] } }\n' > "$T/many.wrl"

@@ -74,14 +74,27 @@ refused "frames over 1000" 'frames.wrl:2:10: error: frames 1001 is over the limi
 printf '#VRML V2.0 utf8\nFTransform { frames 5000 children [ %s ] }\n' "$sphere" > "$T/gframes.wrl"
 refused "an FTransform's frames over 1000" 'gframes.wrl:2:14: error: frames 5000 is over the limit' "$T/o.glb" \
   -- "$R" "$T/gframes.wrl" -o "$T/o.glb"
-printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1-x*x-y*y-z*z" resolution [5000 8 8] } }\n' > "$T/res.wrl"
-refused "a resolution over 4096" 'res.wrl:2:58: error: resolution 5000 is over the limit of 4096 samples per axis' \
+# Shapes are refused by what they cost (points by their own dimension, and memory), not per axis.
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1-x*x-y*y-z*z" resolution [100000 100000 100000] } }\n' > "$T/res.wrl"
+refused "a solid grid of 10^15 points" 'res.wrl:2:58: error: resolution \[100000 100000 100000\] of this implicit shape asks for 1e\+15 sample points, over the limit of 6.88e\+10 for one shape' \
   "$T/o.ply" -- "$R" "$T/res.wrl" -o "$T/o.ply"
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { type "parametric" definition "x = u; y = v; z = 0;" parameters [0 1 0 1] resolution [30000 30000] } }\n' > "$T/sheet.wrl"
+refused "a surface of 30000^2 points by memory" 'sheet.wrl:2:104: error: resolution \[30000 30000\] of this parametric surface needs about 268 GiB of memory \(9e\+08 sample points\), over the 7.81 GiB of --max-memory' \
+  "$T/o.ply" -- "$R" "$T/sheet.wrl" --max-memory 8000 -o "$T/o.ply"
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { type "parametric" definition "x = u; y = 0; z = 0;" parameters [0 1] resolution [2147483647] } }\n' > "$T/line.wrl"
+refused "a curve of 2^31 points, whatever the memory" 'line.wrl:2:100: error: resolution \[2147483647\] of this parametric curve asks for 2.15e\+09 sample points, over the limit of 1e\+09 for one shape' \
+  "$T/o.ply" -- "$R" "$T/line.wrl" --max-memory 1000000 -o "$T/o.ply"
+refused "an infinite resolution" 'res.wrl:2:58: error: resolution \[1e\+305 1e\+305 1e\+305\] \(after --resolution-scale 1e\+300\) of this implicit shape asks for inf sample points' \
+  "$T/o.ply" -- "$R" "$T/res.wrl" --resolution-scale 1e300 -o "$T/o.ply"
+for r in 5000 20000; do
+  printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { type "parametric" definition "x = cos(u); y = sin(u); z = 0;" parameters [0 6.3] resolution [%s] } }\n' $r > "$T/curve$r.wrl"
+  check "a curve of $r points runs" 0 '"vertices":'$((r + 1)) -- "$R" "$T/curve$r.wrl" --stats -o "$T/curve$r.ply"
+done
 printf '#VRML V2.0 utf8\nFShape { frames 100 geometry FGeometry { definition "1-x*x-y*y-z*z+t" resolution [1000] } }\n' > "$T/cells.wrl"
 refused "implicit samples over the run's limit" \
-  'cells.wrl:2:71: error: the run asks for 1e\+11 implicit sample points \(this shape: 1e\+09, times 100 frames\), over the limit of 6.88e\+10' \
+  'cells.wrl:2:71: error: the run asks for 1e\+11 sample points \(this shape: 1e\+09, times 100 frames\), over the limit of 6.88e\+10' \
   "$T/o.glb" -- "$R" "$T/cells.wrl" -o "$T/o.glb"
-refused "--frames counts too" 'cells.wrl:2:71: error: the run asks for 1e\+11 implicit sample points' \
+refused "--frames counts too" 'cells.wrl:2:71: error: the run asks for 1e\+11 sample points' \
   "$T/o-000.ply" -- "$R" "$T/cells.wrl" --frames 100 -o "$T/o.ply"
 check "one frame of it is within the limit" 0 '' -- "$R" "$T/cells.wrl" --resolution-scale 0.05 -o "$T/one.ply"
 python3 - "$T" <<'PY'
@@ -89,8 +102,8 @@ import sys
 shape = 'FShape { geometry FGeometry { type "parametric" definition "x = u; y = v; z = %d;" parameters [0 1 0 1] resolution [4000 4000] } }'
 open(f"{sys.argv[1]}/param.wrl", "w").write("#VRML V2.0 utf8\n" + "\n".join(shape % k for k in range(5)) + "\n")
 PY
-refused "parametric samples over the run's limit" 'param.wrl:2:104: error: the run asks for 8e\+07 parametric sample points \(this shape: 1.6e\+07, times 1 frame\), over the limit of 6.71e\+07' \
-  "$T/o.ply" -- "$R" "$T/param.wrl" -o "$T/o.ply"
+refused "parametric shapes over the run's memory" 'param.wrl:2:104: error: the run needs about 23.9 GiB of memory \(this shape: 4.77 GiB, 1 frame\), over the 7.81 GiB of --max-memory' \
+  "$T/o.ply" -- "$R" "$T/param.wrl" --max-memory 8000 -o "$T/o.ply"
 
 # ---- Time: --max-seconds ends a run, with no output; --serve has its own (serve_test.py) ----
 printf 'function main() { var s = 0; for (var i = 0; i < 1e12; i++) s += sin(i); return s; }\n' > "$T/long.fs"

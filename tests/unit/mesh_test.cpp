@@ -432,3 +432,44 @@ TEST_CASE("mesh: a cancel from another thread stops every mesher within a batch"
   }
   CHECK_FALSE(support::run_cancelled());  // outside every scope
 }
+
+TEST_CASE("topology: components, inside-out ones, and vertices split for their normals") {
+  mesh::Mesh a = tetrahedron(), b = tetrahedron();
+  for (auto& p : b.positions) p[0] += 5;  // a second body beside the first
+  auto two = a;
+  two.append(b);
+  auto t = mesh::topology(two);
+  CHECK(t.components == 2);
+  CHECK(t.inverted_components == 0);
+  // Turn the second body inside out: still closed and consistently oriented, but a negative volume.
+  for (size_t i = 4; i < two.triangles.size(); ++i) std::swap(two.triangles[i][1], two.triangles[i][2]);
+  t = mesh::topology(two);
+  CHECK(t.watertight);
+  CHECK(t.oriented);
+  CHECK(t.components == 2);
+  CHECK(t.inverted_components == 1);
+  // Each triangle of a tetrahedron with vertices of its own, each with the face's normal (as a
+  // writer splits a sharp vertex): the same closed surface once the split vertices are welded.
+  mesh::Mesh split;
+  auto tet = tetrahedron();
+  for (const auto& tri : tet.triangles) {
+    std::array<uint32_t, 3> out;
+    for (int k = 0; k < 3; ++k) {
+      out[k] = static_cast<uint32_t>(split.positions.size());
+      split.positions.push_back(tet.positions[tri[k]]);
+      split.normals.push_back({float(split.triangles.size()), 0, 1});  // a different normal per face
+    }
+    split.triangles.push_back(out);
+  }
+  auto s = mesh::topology(split);
+  CHECK(s.watertight);
+  CHECK(s.oriented);
+  CHECK(s.manifold);
+  CHECK(s.euler == 2);
+  CHECK(s.components == 1);
+  // Without normals the same vertices are twelve separate points: an open soup of four triangles.
+  split.normals.clear();
+  auto soup = mesh::topology(split);
+  CHECK_FALSE(soup.watertight);
+  CHECK(soup.components == 4);
+}

@@ -1,4 +1,5 @@
-// fvrml-meshdiff A B: distances between two meshes and their topology, as one JSON object.
+// fvrml-meshdiff A [B]: the topology of a mesh (components, inside-out ones, watertight, ...), and
+// with B the distances between the two, as one JSON object.
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -11,18 +12,25 @@ namespace {
 
 nlohmann::json describe(const fscript::mesh::Mesh& m) {
   auto t = fscript::mesh::topology(m);
-  return {{"vertices", m.positions.size()}, {"triangles", m.triangles.size()}, {"watertight", t.watertight},
-          {"manifold", t.manifold},        {"oriented", t.oriented},         {"euler", t.euler}};
+  return {{"vertices", m.positions.size()},
+          {"triangles", m.triangles.size()},
+          {"watertight", t.watertight},
+          {"manifold", t.manifold},
+          {"oriented", t.oriented},
+          {"euler", t.euler},
+          {"components", t.components},
+          {"inverted_components", t.inverted_components},
+          {"normals", !m.normals.empty()}};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"fvrml-meshdiff: Hausdorff and Chamfer distances and topology of two meshes (PLY, OBJ, STL)"};
+  CLI::App app{"fvrml-meshdiff: the topology of a mesh, and Hausdorff and Chamfer distances to a second (PLY, OBJ, STL)"};
   app.set_version_flag("--version", fscript::support::version_line("fvrml-meshdiff"));
   std::string a_path, b_path;
   app.add_option("A", a_path, "the first mesh (distances relative to its bounding-box diagonal)")->required();
-  app.add_option("B", b_path, "the second mesh")->required();
+  app.add_option("B", b_path, "the second mesh (without it: the topology of A alone)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -33,6 +41,10 @@ int main(int argc, char** argv) {
   if (!fscript::mesh::read_mesh(a_path, a, error)) {
     std::cerr << a_path << ": error: " << error << "\n";
     return 1;
+  }
+  if (b_path.empty()) {
+    std::cout << nlohmann::json{{"a", describe(a)}}.dump(2) << "\n";
+    return 0;
   }
   if (!fscript::mesh::read_mesh(b_path, b, error)) {
     std::cerr << b_path << ": error: " << error << "\n";

@@ -231,31 +231,41 @@ bool within_sample_limits(const Options& o, Loaded& l, const SceneModel& model, 
     for (size_t i = 0; i < model.shapes.size(); ++i)
       if (t.group ? fscript::scene::inside_group(model, model.shapes[i].group, t.index) : static_cast<int>(i) == t.index)
         per[i] = static_cast<uint64_t>(t.frames);
-  for (bool implicit : {true, false}) {
-    uint64_t total = 0, most = 0;
-    size_t worst = 0;
-    for (size_t i = 0; i < model.shapes.size(); ++i) {
-      if ((model.shapes[i].kind == ShapeKind::Implicit) != implicit) continue;
-      uint64_t n = fscript::scene::shape_samples(model.shapes[i]) * per[i];
-      total += n;
-      if (n > most) most = n, worst = i;
-    }
-    uint64_t limit = implicit ? fscript::scene::kMaxRunImplicitSamples : fscript::scene::kMaxRunParametricSamples;
-    if (total <= limit) continue;
-    const auto& s = model.shapes[worst];
-    const vrml::Node& at = s.geometry_node ? *s.geometry_node : *s.fshape;
-    const vrml::FieldSlot* res = at.slot("resolution");
-    char text[320];
-    std::snprintf(text, sizeof text,
-                  "the run asks for %.3g %s sample points (this shape: %.3g, times %llu frame%s), over the limit of "
-                  "%.3g for one run; lower the resolutions, the frames or --resolution-scale",
-                  static_cast<double>(total), implicit ? "implicit" : "parametric", static_cast<double>(most / per[worst]),
-                  static_cast<unsigned long long>(per[worst]), per[worst] == 1 ? "" : "s", static_cast<double>(limit));
-    l.diag.error(vrml::file_of(l.scene, at), res ? res->span : at.span, text);
-    std::cerr << fscript::frontend::render_all(l.diag);
-    return false;
+  // Work: every point of every frame. Memory: one frame of every shape at once, and the finished
+  // parametric frames an animation keeps (implicit ones depend on the surface: the limit stops them).
+  double samples = 0, bytes = 0, most = 0, most_bytes = 0;
+  size_t worst = 0, heaviest = 0;
+  for (size_t i = 0; i < model.shapes.size(); ++i) {
+    fscript::scene::ShapeCost c = fscript::scene::shape_cost(model.shapes[i]);
+    double n = c.samples * static_cast<double>(per[i]), b = c.bytes + c.kept * static_cast<double>(per[i] - 1);
+    samples += n, bytes += b;
+    if (n > most) most = n, worst = i;
+    if (b > most_bytes) most_bytes = b, heaviest = i;
   }
-  return true;
+  double memory = fscript::scene::memory_limit_bytes(o.model.max_memory_mib);
+  bool over_work = samples > fscript::scene::kMaxShapeSamples;
+  if (!over_work && bytes <= memory) return true;
+  size_t at_shape = over_work ? worst : heaviest;
+  const auto& s = model.shapes[at_shape];
+  const vrml::Node& at = s.geometry_node ? *s.geometry_node : *s.fshape;
+  const vrml::FieldSlot* res = at.slot("resolution");
+  uint64_t f = per[at_shape];
+  char text[400];
+  if (over_work)
+    std::snprintf(text, sizeof text,
+                  "the run asks for %.3g sample points (this shape: %.3g, times %llu frame%s), over the limit of %.3g for "
+                  "one run; lower the resolutions, the frames or --resolution-scale",
+                  samples, most / static_cast<double>(f), static_cast<unsigned long long>(f), f == 1 ? "" : "s",
+                  fscript::scene::kMaxShapeSamples);
+  else
+    std::snprintf(text, sizeof text,
+                  "the run needs about %s of memory (this shape: %s, %llu frame%s), over the %s of --max-memory; lower "
+                  "the resolutions, the frames or --resolution-scale",
+                  fscript::scene::bytes_text(bytes).c_str(), fscript::scene::bytes_text(most_bytes).c_str(),
+                  static_cast<unsigned long long>(f), f == 1 ? "" : "s", fscript::scene::bytes_text(memory).c_str());
+  l.diag.error(vrml::file_of(l.scene, at), res ? res->span : at.span, text);
+  std::cerr << fscript::frontend::render_all(l.diag);
+  return false;
 }
 
 int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::json& st) {

@@ -290,6 +290,7 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   if (merge) o.merging = merge->first, o.memo = merge->memo, o.whole_frames = merge->whole_frames, o.mesher.slabs = merge->slabs;
   // Under --serve the clock is per run (cancelled, the server goes on), not a watchdog on the process.
   if (!fscript::tools::apply_limits("fvrml-run", limits, !serve.on)) return 1;
+  o.model.max_memory_mib = limits.max_memory_mib;
   if (serve.on) {
     o.max_seconds = limits.max_seconds > 0 ? limits.max_seconds : kServeMaxSeconds;
     return fvrml_run::serve(o, serve);

@@ -153,9 +153,10 @@ struct Track {
   int frames = 0;
 };
 std::vector<Track> tracks(const Options& o, const SceneModel& model);
-// Whether the run stays within the scene model's sample limits (kMaxRun*Samples): every shape's
-// samples times `frames` (--frames with a mesh format or pictures), else times the frames of the
-// animation it belongs to. An error at the costliest shape's resolution when not.
+// Whether the run stays within what one run may cost (scene/shape_cost.h): the points of every shape
+// times `frames` (--frames with a mesh format or pictures), else times the frames of the animation
+// it belongs to, and the memory of a frame with the frames an animation keeps. An error at the
+// costliest shape's resolution when not.
 bool within_sample_limits(const Options& o, Loaded& l, const SceneModel& model, int frames);
 
 }  // namespace fvrml_run

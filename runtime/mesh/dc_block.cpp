@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "runtime/mesh/dc_tubes.h"
+
 namespace fscript::mesh {
 
 namespace {
@@ -255,7 +257,10 @@ void cells_of(const Crossing& c, int out[4][3]) {
 }
 
 int Block::key(const CellInfo& c, int in, int out) {
-  return c.flips & kOneSheet ? 0 : sheet_key(c.mask, c.flips, in, out);
+  if (c.flips & kOneSheet) return 0;
+  int k = sheet_key(c.mask, kuhn_flips(c.mask), in, out);
+  if (!(c.flips & kTubes) && !joins_middle(c.mask)) return k;
+  return k + 64 * cell_cuts(c.mask, c.flips & kTubes).piece[static_cast<size_t>(cube_edge(in, out))];
 }
 
 uint32_t Block::sheet(const CellInfo& c, int in, int out) const {
@@ -580,24 +585,26 @@ unsigned cell_mask(const Block& b, int i, int j, int k) {
   return two(j, k) | two(j + 1, k) << 2 | two(j, k + 1) << 4 | two(j + 1, k + 1) << 6;
 }
 
-// A cell's inside corners and the faces decided the other way (dc_cells.h), looking across the
-// block's faces through the grid.
-void cell_signs(const BlockGrid& grid, Block& b, const int l[3], size_t c) {
-  const Lattice& g = grid.lattice();
-  unsigned mask = cell_mask(b, l[0], l[1], l[2]), flips = 0;
-  for (unsigned faces = ambiguous_faces(mask); faces; faces &= faces - 1) {
-    int face = __builtin_ctz(faces), axis = face / 2, side = face % 2;
-    int o[3] = {l[0], l[1], l[2]};
-    o[axis] += side ? 1 : -1;
-    int cell[3] = {b.s0[0] + o[0], b.s0[1] + o[1], b.s0[2] + o[2]};
-    if (cell[axis] < -1 || cell[axis] >= g.n[axis]) continue;
-    bool here = o[axis] >= 0 && o[axis] < b.m[axis];
-    unsigned there = here ? cell_mask(b, o[0], o[1], o[2]) : grid.mask(cell);
-    if (face_flipped(mask, there, axis, side)) flips |= 1u << face;
+// A cell's inside corners and its tube faces (dc_cells.h), looking across the block's faces
+// through the grid.
+void cell_signs(const BlockGrid& grid, Block& b, const int l[3], size_t c, std::vector<size_t>& tube_cells) {
+  unsigned mask = cell_mask(b, l[0], l[1], l[2]), tubes = 0;
+  if (ambiguous_faces(mask)) {
+    unsigned around[6] = {};
+    for (unsigned faces = ambiguous_faces(mask); faces; faces &= faces - 1) {
+      int face = __builtin_ctz(faces), axis = face / 2, side = face % 2;
+      int o[3] = {l[0], l[1], l[2]};
+      o[axis] += side ? 1 : -1;
+      bool here = o[axis] >= 0 && o[axis] < b.m[axis];
+      int cell[3] = {b.s0[0] + o[0], b.s0[1] + o[1], b.s0[2] + o[2]};
+      around[face] = here ? cell_mask(b, o[0], o[1], o[2]) : grid.mask(cell);
+    }
+    tubes = tube_faces(mask, around);
   }
-  const CellSigns& cs = signs_of(mask, flips);
-  if (cs.regions_in == 1 && cs.regions_out == 1) flips |= Block::kOneSheet;
-  b.cells[c].mask = static_cast<uint8_t>(mask), b.cells[c].flips = static_cast<uint8_t>(flips);
+  if (tubes || joins_middle(mask)) tube_cells.push_back(c);
+  const CellSigns& cs = signs_of(mask, kuhn_flips(mask));
+  if (!tubes && cs.regions_in == 1 && cs.regions_out == 1) tubes |= Block::kOneSheet;
+  b.cells[c].mask = static_cast<uint8_t>(mask), b.cells[c].flips = static_cast<uint8_t>(tubes);
 }
 
 }  // namespace
@@ -613,6 +620,7 @@ void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& plan
   b.ids.clear();
   b.sheets.reserve(b.xs.size());
   b.ids.reserve(b.xs.size());
+  std::vector<size_t> tube_cells;
   for (size_t e = 0; e < b.xs.size(); ++e) {
     const Crossing& c = b.xs[e];
     int cells[4][3], inside[3] = {c.l[0], c.l[1], c.l[2]};
@@ -629,7 +637,7 @@ void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& plan
       const int* l = cells[q];
       size_t cell = Block::cell(l[0], l[1], l[2]);
       Block::CellInfo& info = b.cells[cell];
-      if (info.first == kNone) cell_signs(grid, b, l, cell);
+      if (info.first == kNone) cell_signs(grid, b, l, cell, tube_cells);
       int in = (inside[0] - l[0]) | (inside[1] - l[1]) << 1 | (inside[2] - l[2]) << 2;
       uint32_t s = b.sheet(info, in, in ^ (1 << c.axis));
       if (s == kNone) {
@@ -644,6 +652,7 @@ void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& plan
     }
     b.ids.push_back(id);
   }
+  record_cuts(grid, b, tube_cells);
   b.sheets.shrink_to_fit();  // a sheet per two or three crossings: the reserve's rest goes to the next block
 }
 

@@ -31,6 +31,22 @@ struct Crossing {
 // the order that winds its polygon around +axis.
 void cells_of(const Crossing& c, int out[4][3]);
 
+// A cell's side of a cut segment (dc_cells.h, "Tube faces"; dc_tubes.h): both cells on the face
+// record one, whichever of them cuts it.
+struct TubeCut {
+  int32_t face[3] = {0, 0, 0};  // the face's lowest lattice sample
+  uint8_t axis = 0;             // the axis the face is across
+  uint8_t segment = 0;          // its two crossing edges: bits face_edge(e, axis)
+  uint8_t high = 0;             // this cell lies on the face's +axis side
+  uint8_t forward = 0;          // the first crossing's polygon runs from the low cell's vertex to the high cell's
+  // This cell's pieces at the segment's first and second crossing (by face_edge): sheets of the
+  // block, then its vertices, then the output's.
+  uint32_t first = 0, second = 0;
+  bool same_segment(const TubeCut& o) const {
+    return face[0] == o.face[0] && face[1] == o.face[1] && face[2] == o.face[2] && axis == o.axis && segment == o.segment;
+  }
+};
+
 // One sheet of surface in a dual cell (manifold dual contouring). Its planes (a Qef) live only while
 // the block is merged (cell_sheets to merge_block), so the blocks stay small.
 // In 16 bits: a block holds 4,096 cells and at most four sheets in each (6 bytes a sheet, not 12:
@@ -39,12 +55,12 @@ struct Sheet {
   Sheet() = default;
   Sheet(uint32_t in_cell, uint32_t next_sheet, int sheet_key)
       : cell(static_cast<uint16_t>(in_cell)), link(next_sheet == kNone ? kEnd : static_cast<uint16_t>(next_sheet)),
-        key(static_cast<uint8_t>(sheet_key)) {}
+        key(static_cast<uint16_t>(sheet_key)) {}
   uint32_t next() const { return link == kEnd ? kNone : link; }  // the cell's next sheet, or kNone
   static constexpr uint16_t kEnd = 0xffff;
   uint16_t cell = 0;     // in the block
   uint16_t link = kEnd;  // next(), or kEnd
-  uint8_t key = 0;       // sheet_key: which sheet of the cell
+  uint16_t key = 0;      // which sheet of the cell: sheet_key, plus 64 times its piece (tube faces)
 };
 
 struct Block {
@@ -56,13 +72,14 @@ struct Block {
   uint32_t rows[kBlockSamples][kBlockSamples];  // [k][j]: bit i where sample (i, j, k) is inside
   std::vector<Crossing> xs;       // on every edge between the block's samples
   std::vector<std::array<float, 2>> ends;  // f at their lower and upper samples (until the Hermite data is done)
-  // Per cell with surface: its inside corners, its faces decided the other way (bits 0-5) and
-  // kOneSheet where the whole cell is one sheet (its sheets need no key then), and its first sheet.
+  // Per cell with surface: its inside corners, its tube faces (kTubes: bits 2 * axis + side; its
+  // faces are decided by kuhn_flips) and kOneSheet where the whole cell is one sheet (its sheets
+  // need no key then), and its first sheet.
   struct CellInfo {
     uint8_t mask = 0, flips = 0;
     uint32_t first = kNone;
   };
-  static constexpr uint8_t kOneSheet = 0x80;
+  static constexpr uint8_t kOneSheet = 0x80, kTubes = 0x3f;
   std::vector<CellInfo> cells;  // every cell, while the block is worked (a buffer of the thread)
   // Then only its cells with sheets on its upper faces, which the next blocks' polygons reach: a
   // tenth of a face's cells or fewer, and the block's largest part once the whole face was kept.
@@ -82,6 +99,8 @@ struct Block {
   // output mesh), their positions (as the mesh stores them) and their largest plane distance.
   std::vector<uint32_t> vertex;
   std::vector<std::array<float, 3>> positions;
+  std::vector<TubeCut> cuts;  // its cells' sides of cut segments (their pieces, as `vertex`)
+  std::vector<std::array<uint32_t, 3>> fans;  // the middles of loops of three or more pieces (the same)
   double max_rms = 0;
   size_t merged = 0;        // of those, merged cells
   bool root = false;        // one merged cell holds every sheet: it may merge with other blocks

@@ -2,6 +2,7 @@
 // The sampled lattice of dual contouring and the topology of its cells: which crossings of a cell
 // belong to the same sheet of surface (manifold dual contouring), shared by the uniform mesher and
 // the octree that merges its cells (dc_octree.h).
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -39,9 +40,55 @@ bool ambiguous_face(unsigned inside, int axis, int side);
 // Bit 2 * axis + side for each such face.
 uint8_t ambiguous_faces(unsigned inside);
 
-// Whether the ambiguous face (axis, side) of a cell with corners `inside` is decided the other way,
-// given the corners `there` of the cell across it (face_flips of the old whole-grid mesher).
-bool face_flipped(unsigned inside, unsigned there, int axis, int side);
+// How an ambiguous face is decided: as marching tetrahedra decides it on the same samples. Its Kuhn
+// split cuts each face along the diagonal from the face's lowest corner to its highest, and joins
+// the corners at that diagonal's ends, inside or outside (their bit in kuhn_flips set where they are
+// inside). Both cells on a face see the same samples and choose alike, and dual contouring keeps the
+// bridges and tunnels marching tetrahedra makes: a fixed "outside joins" rule cut every thin bridge
+// along a CSG seam into specks, some of them inside-out.
+uint8_t kuhn_flips(unsigned inside);
+
+// Tube faces: where the pair of corners a face separates runs around through the rest of the cell
+// on both of its sides, one sheet of each cell crosses the face twice (a tube too thin for the grid
+// passes through the face: inside along a face diagonal with outside all around, or the other way).
+// One vertex per sheet would give the two cells' vertices two edges in common (an edge four
+// triangles use) and cut the tube off. So such a sheet's loop (its crossings in order around the
+// cell, the inside on their left seen from outside the cell) is cut at the segment after each of its
+// segments on a tube face, into pieces, each with a vertex of its own, and the gaps the cuts leave
+// are closed by triangles (dc_tubes.h): the tube's wall then passes through the face. Marching
+// tetrahedra's bridges and tunnels are kept, the mesh stays a closed 2-manifold.
+// tube_faces: bit 2 * axis + side of each, given the corners of the six cells across the faces.
+uint8_t tube_faces(unsigned inside, const unsigned around[6]);
+// Cube edge 0 .. 11 between corners c and d (one bit apart): along axis a, 4 * a + the lower
+// corner's two other bits.
+int cube_edge(int c, int d);
+// The lower corner of cube edge e.
+int edge_corner(int e);
+// Edge e's place on a face across `face_axis` it lies on: 0, 1 along the face's lower axis (at
+// offset 0, 1 on the higher one), 2, 3 along the higher axis (at offset 0, 1 on the lower).
+int face_edge(int e, int face_axis);
+
+// Whether the cell's middle joins corners 0 and 7, which share a sign its faces do not join
+// (marching tetrahedra's split joins them along its diagonal) and the other sign is one region.
+// Then the two loops around their regions are cut at every segment and joined by a band through
+// the cell (cell_cuts): a tube, as marching tetrahedra makes it.
+bool joins_middle(unsigned inside);
+
+// A cut segment of a loop: on face `face` (2 * axis + side), from crossing edge `from` to `to`.
+struct LoopCut {
+  uint8_t face, from, to;
+};
+// The pieces of a cell with tube faces or a joined middle: the piece of each crossing edge on its
+// loop (0, 1, ...; all 0 without either), every cut, and the triangles among the cell's own pieces
+// (each named by a crossing edge on it): the middles of loops cut into three pieces or more, and
+// the band of a joined middle.
+struct CellCuts {
+  std::array<uint8_t, 12> piece{};
+  uint8_t n_cuts = 0, n_tris = 0;
+  LoopCut cuts[12];
+  std::array<uint8_t, 3> tris[24];
+};
+CellCuts cell_cuts(unsigned inside, uint8_t tubes);
 
 // The sheet (0 .. 63) of a cell with corners `inside` and face choices `flips` that the crossing
 // between its corners `in` and `out` lies on.

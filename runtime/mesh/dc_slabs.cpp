@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "runtime/mesh/dc_octree.h"
+#include "runtime/mesh/dc_tubes.h"
 #include "runtime/support/bytes.h"
 
 namespace fscript::mesh {
@@ -141,13 +142,13 @@ void put_block(ByteWriter& w, const BlockGrid& grid, const Block& b, int first_l
     Ring r;
     if (c.l[0] < b.m[0] && c.l[1] < b.m[1] && c.l[2] < b.m[2] && ring_refs(grid, b, e, first_layer, r)) put_ring(rings, r);
   }
-  w.put_vector(rings), w.put_vector(b.positions);
+  w.put_vector(rings), w.put_vector(b.positions), w.put_vector(b.cuts), w.put_vector(b.fans);
   w.put(b.max_rms), w.put<uint64_t>(b.merged), w.put<uint8_t>(b.root), w.put(b.root_qef);
   w.put<uint8_t>(top);
   if (!top) return;
   std::vector<uint16_t> next(b.sheets.size()), vertex(b.vertex.size()), at, signs, first;
-  std::vector<uint8_t> key(b.sheets.size());
-  for (size_t s = 0; s < b.sheets.size(); ++s) next[s] = narrow(b.sheets[s].next()), key[s] = static_cast<uint8_t>(b.sheets[s].key);
+  std::vector<uint16_t> key(b.sheets.size());
+  for (size_t s = 0; s < b.sheets.size(); ++s) next[s] = narrow(b.sheets[s].next()), key[s] = b.sheets[s].key;
   for (size_t s = 0; s < b.vertex.size(); ++s) vertex[s] = narrow(b.vertex[s]);
   for (const Block::RimCell& c : b.rim)
     if (c.at < kFace)
@@ -181,11 +182,18 @@ bool get_block(ByteReader& r, Block& b, std::vector<Ring>& rings, const Lattice&
   set_corner_signs(b, r.get<uint8_t>());
   if (!get_rings(r.get_vector<uint16_t>(), rings)) return false;
   b.positions = r.get_vector<std::array<float, 3>>();
+  b.cuts = r.get_vector<TubeCut>();
+  b.fans = r.get_vector<std::array<uint32_t, 3>>();
+  for (const TubeCut& c : b.cuts)
+    if (c.first >= b.positions.size() || c.second >= b.positions.size()) return false;
+  for (const auto& t : b.fans)
+    for (uint32_t v : t)
+      if (v >= b.positions.size()) return false;
   b.max_rms = r.get<double>(), b.merged = r.get<uint64_t>(), b.root = r.get<uint8_t>() != 0;
   b.root_qef = r.get<Qef>();
   if (!r.get<uint8_t>()) return r.ok;
   std::vector<uint16_t> next = r.get_vector<uint16_t>();
-  std::vector<uint8_t> key = r.get_vector<uint8_t>();
+  std::vector<uint16_t> key = r.get_vector<uint16_t>();
   std::vector<uint16_t> vertex = r.get_vector<uint16_t>();
   std::vector<uint16_t> at = r.get_vector<uint16_t>(), signs = r.get_vector<uint16_t>(), first = r.get_vector<uint16_t>();
   if (!r.ok || key.size() != next.size() || signs.size() != at.size() || first.size() != at.size()) return false;
@@ -303,6 +311,16 @@ bool SlabSplit::join(uint32_t job, const Lattice& g, double tolerance, Mesh& out
       out.triangles.push_back({ring[0], ring[1], ring[2]});
       if (n == 4) out.triangles.push_back({ring[0], ring[2], ring[3]});
     }
+  std::vector<TubeCut> cuts;
+  for (size_t i = 0; i < blocks.size(); ++i) {
+    auto number = [&](uint32_t v) { return grouped[i] ? base[i] : base[i] + v; };
+    for (TubeCut c : blocks[i].cuts) {
+      c.first = number(c.first), c.second = number(c.second);
+      cuts.push_back(c);
+    }
+    for (const auto& t : blocks[i].fans) out.triangles.push_back({number(t[0]), number(t[1]), number(t[2])});
+  }
+  close_tubes(std::move(cuts), out);
   stats.triangles = out.triangles.size();
   return true;
 }

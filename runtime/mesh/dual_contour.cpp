@@ -12,6 +12,7 @@
 
 #include "runtime/mesh/dc_block.h"
 #include "runtime/mesh/dc_octree.h"
+#include "runtime/mesh/dc_tubes.h"
 #include "runtime/mesh/dc_slabs.h"
 #include "runtime/mesh/octree.h"
 #include "runtime/support/parallel.h"
@@ -122,6 +123,9 @@ bool work_blocks(const ImplicitJob& job, const Lattice& g, BlockGrid& grid, int 
     if (!hermite(*job.field, g, b, planes, e)) return false;
     cell_sheets(grid, b, planes, qefs);
     merge_block(g, b, qefs, job.mesher.tolerance);
+    for (TubeCut& c : b.cuts) c.first = b.vertex[c.first], c.second = b.vertex[c.second];
+    for (auto& t : b.fans)
+      for (uint32_t& v : t) v = b.vertex[v];
     b.keep_rim();
     if (job.progress) job.progress->advance(1);
     return true;
@@ -142,6 +146,9 @@ void number_vertices(BlockGrid& grid, const std::vector<int32_t>& group, const s
     if (grouped[i]) std::fill(b.vertex.begin(), b.vertex.end(), base[i]);
     else
       for (uint32_t& v : b.vertex) v += base[i];
+    for (TubeCut& c : b.cuts) c.first = grouped[i] ? base[i] : c.first + base[i], c.second = grouped[i] ? base[i] : c.second + base[i];
+    for (auto& t : b.fans)
+      for (uint32_t& v : t) v = grouped[i] ? base[i] : v + base[i];
     b.positions = {};
   }
 }
@@ -229,6 +236,12 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   for (const Block& b : blocks) crossings += b.xs.size();
   out.triangles.reserve(2 * crossings);
   for (const Block& b : blocks) polygons(*grid, b, out);
+  std::vector<TubeCut> cuts;
+  for (const Block& b : blocks) {
+    cuts.insert(cuts.end(), b.cuts.begin(), b.cuts.end());
+    out.triangles.insert(out.triangles.end(), b.fans.begin(), b.fans.end());
+  }
+  close_tubes(std::move(cuts), out);
   stats.triangles = out.triangles.size();
   for (const Block& b : blocks) stats.gradient_normals += b.gradient_normals, stats.difference_normals += b.difference_normals;
   // No vertex normals: a vertex on a sharp edge has no one normal, and its faces' mean would shade

@@ -444,7 +444,10 @@ if [ -n "$D" ] && [ -n "$R" ]; then
   check meshdiff-missing 1 'cannot read' -- "$D" "$T/none.ply" "$T/r1.ply"
   printf 'not a mesh' > "$T/bad.ply"
   check meshdiff-bad 1 'bad.ply: error: not a PLY file' -- "$D" "$T/bad.ply" "$T/r1.ply"
-  check meshdiff-usage 2 '' -- "$D" "$T/r1.ply"
+  check meshdiff-usage 2 '' -- "$D"
+  # One mesh: its topology alone, with its components and the inside-out ones.
+  jcheck meshdiff-one out "j['a']['components'] == 1 and j['a']['inverted_components'] == 0 and j['a']['watertight'] and 'hausdorff' not in j" \
+    -- "$D" "$T/r1.ply"
   jcheck fvrml-run-check out "near(j['hausdorff'], 0.1, 0.01) and near(j['chamfer'], 0.1, 0.005) and j['watertight']" \
     -- "$R" "$T/r1.wrl" --check "$T/r11.stl"
   jcheck fvrml-run-check-self out "j['hausdorff'] < 1e-6 and j['chamfer'] < 1e-6 and j['euler'] == 2" -- "$R" "$T/r1.wrl" --check "$T/r1.ply"

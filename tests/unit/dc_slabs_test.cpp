@@ -93,6 +93,10 @@ TEST_CASE("dc slabs: the joined slabs are the whole job's mesh, for any number o
     return std::min(s, 0.4 - std::abs(g));
   });
   FnField slab_z([](double, double, double z) { return 0.31 - std::abs(z); });  // flat: blocks merge across layers
+  // Finer than the grid: tube faces, cut sheets and joined middles on every layer (dc_tubes.h).
+  FnField fine([](double x, double y, double z) {
+    return std::sin(43 * x) * std::cos(41 * y) + std::sin(41 * y) * std::cos(47 * z) + std::sin(47 * z) * std::cos(43 * x);
+  });
   struct Case {
     const char* name;
     const mesh::Field* f;
@@ -102,7 +106,8 @@ TEST_CASE("dc slabs: the joined slabs are the whole job's mesh, for any number o
   } cases[] = {{"pruned sphere", &sphere, 70, mesh::MesherOptions::kDefaultTolerance, 1},
                {"sphere, every cell kept", &sphere, 47, 0, 2},
                {"gyroid in a sphere", &gyroid, 64, mesh::MesherOptions::kDefaultTolerance, 2},
-               {"flat slab, merged across blocks", &slab_z, 90, 0.5, 1}};
+               {"flat slab, merged across blocks", &slab_z, 90, 0.5, 1},
+               {"gyroid finer than the grid", &fine, 50, mesh::MesherOptions::kDefaultTolerance, 2}};
   for (const Case& c : cases) {
     SECTION(c.name) {
       mesh::ImplicitJob j = job(*c.f, c.cells);

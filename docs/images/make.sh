@@ -19,6 +19,8 @@ mkdir -p "$OUT"
 "$RUN" $P/figure1-morphing.wrl --frames 6 --size 600x400 -o "$OUT/figure1-frames.png"
 "$RUN" examples/csg.fs --mesher mt --size 400x300 -o "$OUT/csg-mt.png"
 "$RUN" examples/csg.fs --mesher dc --size 400x300 -o "$OUT/csg-dc.png"
+"$RUN" examples/gyroid-ball.fs --mesher mt --size 400x300 -o "$OUT/gyroid-ball-mt.png"
+"$RUN" examples/gyroid-ball.fs --mesher dc --size 400x300 -o "$OUT/gyroid-ball-dc.png"
 if [ -f "$SHARED/corpus/wilsonteng97-CZ2003-CGV/Lab 4/lab4.wrl" ]; then
   "$RUN" "$SHARED/corpus/wilsonteng97-CZ2003-CGV/Lab 4/lab4.wrl" --size 480x360 -o "$OUT/lab4.png"
 fi

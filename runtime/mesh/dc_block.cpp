@@ -232,6 +232,11 @@ const Block* BlockGrid::at(int bi, int bj, int bk) const {
   return s >= 0 ? &blocks_[static_cast<size_t>(s)] : nullptr;
 }
 
+int32_t BlockGrid::slot_at(int bi, int bj, int bk) const {
+  if (bi < 0 || bj < 0 || bk < 0 || bi >= nb_[0] || bj >= nb_[1] || bk >= nb_[2]) return kAllOutside;
+  return slot_[(static_cast<size_t>(bk) * nb_[1] + static_cast<size_t>(bj)) * nb_[0] + static_cast<size_t>(bi)];
+}
+
 bool BlockGrid::inside(int i, int j, int k) const {
   int s[3] = {i, j, k}, b[3], l[3];
   if (g_.padding(s)) return false;
@@ -609,7 +614,7 @@ void cell_signs(const BlockGrid& grid, Block& b, const int l[3], size_t c, std::
 
 }  // namespace
 
-void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& planes, std::vector<Qef>& qefs) {
+void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& planes, std::vector<Qef>& qefs, uint8_t look_across) {
   // Given back clean by keep_rim (only its cells with sheets were written): clearing all 4,096
   // cells per block cost more than the few hundred it names.
   b.cells.swap(cell_buffer());
@@ -652,7 +657,7 @@ void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& plan
     }
     b.ids.push_back(id);
   }
-  record_cuts(grid, b, tube_cells);
+  record_cuts(grid, b, tube_cells, look_across);
   b.sheets.shrink_to_fit();  // a sheet per two or three crossings: the reserve's rest goes to the next block
 }
 

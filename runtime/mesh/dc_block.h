@@ -47,6 +47,13 @@ struct TubeCut {
   }
 };
 
+// A cut segment's side in another block, to be recorded once every block is worked
+// (dc_tubes.h): the cut without its pieces, and the lattice cell whose pieces they are.
+struct TubeRequest {
+  TubeCut cut;
+  int32_t cell[3];
+};
+
 // One sheet of surface in a dual cell (manifold dual contouring). Its planes (a Qef) live only while
 // the block is merged (cell_sheets to merge_block), so the blocks stay small.
 // In 16 bits: a block holds 4,096 cells and at most four sheets in each (6 bytes a sheet, not 12:
@@ -101,6 +108,7 @@ struct Block {
   std::vector<std::array<float, 3>> positions;
   std::vector<TubeCut> cuts;  // its cells' sides of cut segments (their pieces, as `vertex`)
   std::vector<std::array<uint32_t, 3>> fans;  // the middles of loops of three or more pieces (the same)
+  std::vector<TubeRequest> requests;          // sides of its cells' cuts in other blocks
   double max_rms = 0;
   size_t merged = 0;        // of those, merged cells
   bool root = false;        // one merged cell holds every sheet: it may merge with other blocks
@@ -145,6 +153,8 @@ class BlockGrid {
   const std::vector<Block>& blocks() const { return blocks_; }
   // The block at position b, or nullptr where none is kept.
   const Block* at(int bi, int bj, int bk) const;
+  // Its slot: an index into blocks(), kAllInside, or kAllOutside (also past the grid's ends).
+  int32_t slot_at(int bi, int bj, int bk) const;
   // Whether lattice sample s (from -1 per axis) is inside; the padding is not.
   bool inside(int i, int j, int k) const;
   // The inside corners of dual cell c.
@@ -163,7 +173,9 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
 // The Hermite data of each crossing, planes[e]: the crossing by regula falsi, the normal from the
 // gradient; the box face where an end is padding.
 bool hermite(const Field& f, const Lattice& g, Block& b, std::vector<Plane>& planes, backends::RuntimeError& err);
-// The cells' signs and face choices, and the sheets of the crossings; qefs[s]: sheet s's planes.
-void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& planes, std::vector<Qef>& qefs);
+// The cells' signs and face choices, and the sheets of the crossings; qefs[s]: sheet s's planes;
+// the cuts of tube faces (record_cuts, looking across the faces `look_across` names).
+void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& planes, std::vector<Qef>& qefs,
+                 uint8_t look_across = 0);
 
 }  // namespace fscript::mesh

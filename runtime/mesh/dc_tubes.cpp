@@ -37,21 +37,76 @@ int edge_at(int face, int k) {
 
 class Recorder {
  public:
-  Recorder(const BlockGrid& grid, Block& b) : grid_(grid), b_(b) {}
+  Recorder(const BlockGrid& grid, Block& b, uint8_t look_across) : grid_(grid), b_(b), look_across_(look_across) {}
 
-  // The corners of cell l (block-local, any cell of the lattice).
-  unsigned mask(const int l[3]) const {
-    bool here = true;
-    for (int a = 0; a < 3; ++a) here &= l[a] >= 0 && l[a] < b_.m[a];
-    if (here) {
-      unsigned m = 0;
-      for (int q = 0; q < 8; ++q) m |= static_cast<unsigned>(b_.inside(l[0] + (q & 1), l[1] + (q >> 1 & 1), l[2] + (q >> 2 & 1))) << q;
-      return m;
+  // The corners of cell l (block-local, any cell of the lattice): the block's own samples where it
+  // has them, the grid's for the others.
+  unsigned mask(const int l[3]) {
+    int outs = 0;
+    bool near = true;
+    for (int a = 0; a < 3; ++a) outs += l[a] < 0 || l[a] >= b_.m[a], near &= l[a] >= -1 && l[a] <= b_.m[a];
+    if (near && outs <= 1) {  // every corner in ext_: two bits a row
+      if (!ext_ready_) build_ext();
+      int i = l[0] + 1, j = l[1] + 1, k = l[2] + 1;
+      auto two = [&](int y, int z) { return ext_[z][y] >> i & 3u; };
+      return two(j, k) | two(j + 1, k) << 2 | two(j, k + 1) << 4 | two(j + 1, k + 1) << 6;
     }
-    int cell[3] = {b_.s0[0] + l[0], b_.s0[1] + l[1], b_.s0[2] + l[2]};
-    return grid_.mask(cell);
+    unsigned m = 0;
+    for (int q = 0; q < 8; ++q) {
+      int s[3] = {l[0] + (q & 1), l[1] + (q >> 1 & 1), l[2] + (q >> 2 & 1)};
+      m |= static_cast<unsigned>(inside(s)) << q;
+    }
+    return m;
   }
-  uint8_t tubes(const int l[3], unsigned inside) const {
+  // Sample s (block-local): the block's own or one of the layers just outside its faces (ext_), or
+  // the grid's beyond.
+  bool inside(const int s[3]) {
+    int outs = 0;
+    for (int a = 0; a < 3; ++a) outs += s[a] < 0 || s[a] > b_.m[a];
+    bool near = true;
+    for (int a = 0; a < 3; ++a) near &= s[a] >= -1 && s[a] <= b_.m[a] + 1;
+    if (outs <= 1 && near) {
+      if (!ext_ready_) build_ext();
+      return ext_[s[2] + 1][s[1] + 1] >> (s[0] + 1) & 1u;
+    }
+    return grid_.inside(b_.s0[0] + s[0], b_.s0[1] + s[1], b_.s0[2] + s[2]);
+  }
+  // The block's sample rows, one wider on every side (bit x + 1 of row [z + 1][y + 1]): its own and
+  // the six layers across its faces.
+  void build_ext() {
+    std::vector<uint8_t> layer[6];
+    for (int f = 0; f < 6; ++f) fill_halo(f, layer[f]);
+    auto at = [&](int f, int i, int j) { return static_cast<uint32_t>(layer[f][static_cast<size_t>(j * kBlockSamples + i)]); };
+    for (auto& plane : ext_)
+      for (uint32_t& row : plane) row = 0;
+    int mx = b_.m[0], my = b_.m[1], mz = b_.m[2];
+    for (int k = 0; k <= mz; ++k)
+      for (int j = 0; j <= my; ++j)
+        ext_[k + 1][j + 1] = (b_.rows[k][j] & ((2u << mx) - 1)) << 1 | at(0, j, k) | at(1, j, k) << (mx + 2);
+    for (int k = 0; k <= mz; ++k)
+      for (int i = 0; i <= mx; ++i) ext_[k + 1][0] |= at(2, i, k) << (i + 1), ext_[k + 1][my + 2] |= at(3, i, k) << (i + 1);
+    for (int j = 0; j <= my; ++j)
+      for (int i = 0; i <= mx; ++i) ext_[0][j + 1] |= at(4, i, j) << (i + 1), ext_[mz + 2][j + 1] |= at(5, i, j) << (i + 1);
+    ext_ready_ = true;
+  }
+  // The layer of samples just outside face `face`, from the block across it: its samples there are
+  // ours one block over (its sample 1 is our kBlock + 1, its kBlock - 1 our -1).
+  void fill_halo(int face, std::vector<uint8_t>& layer) const {
+    int a = face / 2, side = face % 2, u = a == 0 ? 1 : 0, w = a == 2 ? 1 : 2, nb[3] = {b_.b[0], b_.b[1], b_.b[2]};
+    nb[a] += side ? 1 : -1;
+    int32_t slot = grid_.slot_at(nb[0], nb[1], nb[2]);
+    layer.assign(static_cast<size_t>(kBlockSamples * kBlockSamples), slot == BlockGrid::kAllInside);
+    if (slot < 0) return;
+    const Block& there = grid_.blocks()[static_cast<size_t>(slot)];
+    int t[3];
+    t[a] = side ? 1 : kBlock - 1;
+    for (int j = 0; j <= b_.m[w]; ++j)
+      for (int i = 0; i <= b_.m[u]; ++i) {
+        t[u] = i, t[w] = j;
+        layer[static_cast<size_t>(j * kBlockSamples + i)] = there.inside(t[0], t[1], t[2]);
+      }
+  }
+  uint8_t tubes(const int l[3], unsigned inside) {
     if (!ambiguous_faces(inside)) return 0;
     unsigned around[6] = {};
     for (int f = 0; f < 6; ++f) {
@@ -62,7 +117,7 @@ class Recorder {
     return tube_faces(inside, around);
   }
   // Whether cell l cuts its loops (tube faces, or a joined middle).
-  bool cuts(const int l[3]) const {
+  bool cuts(const int l[3]) {
     unsigned m = mask(l);
     return joins_middle(m) || tubes(l, m);
   }
@@ -89,16 +144,27 @@ class Recorder {
     };
     bool cut_here = (info.flips & Block::kTubes) || joins_middle(info.mask);
     if (cut_here) add(cell_cuts(info.mask, info.flips & Block::kTubes), -1, false);
+    uint8_t mine[6];
+    for (int f = 0; f < 6; ++f) mine[f] = segments[f];
     for (int f = 0; f < 6; ++f) {
       int o[3] = {l[0], l[1], l[2]};
       o[f / 2] += f % 2 ? 1 : -1;
+      if (!here(o) && !(look_across_ >> f & 1u)) continue;  // that block records its cuts' sides here
       unsigned there = mask(o);
       uint8_t t = tubes(o, there);
       if (t || joins_middle(there)) add(cell_cuts(there, t), f, true);
     }
     for (int f = 0; f < 6; ++f)
       for (int s = 0; s < 6; ++s)
-        if (segments[f] >> s & 1u) record(l, info, f, s);
+        if (segments[f] >> s & 1u) {
+          TubeCut cut = record(l, info, f, s);
+          int o[3] = {l[0], l[1], l[2]};
+          o[f / 2] += f % 2 ? 1 : -1;
+          if (!(mine[f] >> s & 1u) || here(o)) continue;
+          TubeRequest q{cut, {b_.s0[0] + o[0], b_.s0[1] + o[1], b_.s0[2] + o[2]}};  // the other side, later
+          q.cut.high = !cut.high;
+          b_.requests.push_back(q);
+        }
     if (cut_here) own_triangles(info);
   }
 
@@ -113,7 +179,7 @@ class Recorder {
     k0 = pairs[s][0], k1 = pairs[s][1];
   }
 
-  void record(const int l[3], const Block::CellInfo& info, int face, int s) {
+  TubeCut record(const int l[3], const Block::CellInfo& info, int face, int s) {
     int axis = face / 2, side = face % 2, k0, k1;
     segment_edges(s, k0, k1);
     TubeCut cut;
@@ -134,9 +200,10 @@ class Recorder {
         cut.forward = winds(lower, e / 4, (info.mask >> c) & 1u, low, high);
       }
     }
-    if (sheet[0] == kNone || sheet[1] == kNone) return;
+    if (sheet[0] == kNone || sheet[1] == kNone) return cut;
     cut.first = sheet[0], cut.second = sheet[1];
     b_.cuts.push_back(cut);
+    return cut;
   }
 
   // The triangles among the cell's own pieces (cell_cuts).
@@ -155,15 +222,18 @@ class Recorder {
 
   const BlockGrid& grid_;
   Block& b_;
+  uint8_t look_across_;
+  uint32_t ext_[kBlockSamples + 2][kBlockSamples + 2];
+  bool ext_ready_ = false;
 };
 
 }  // namespace
 
-void record_cuts(const BlockGrid& grid, Block& b, const std::vector<size_t>& tube_cells) {
-  b.cuts.clear(), b.fans.clear();
-  Recorder r(grid, b);
-  // The cells that may meet a cut: those with tube faces, the block's cells beside them, and every
-  // cell on the block's faces (the cell across may be another block's).
+void record_cuts(const BlockGrid& grid, Block& b, const std::vector<size_t>& tube_cells, uint8_t look_across) {
+  b.cuts.clear(), b.fans.clear(), b.requests.clear();
+  Recorder r(grid, b, look_across);
+  // The cells that may meet a cut: those that cut, the block's cells beside them, and the cells on
+  // the faces it looks across.
   std::vector<size_t> cells;
   auto position = [](size_t c, int l[3]) {
     l[0] = static_cast<int>(c % kBlock), l[1] = static_cast<int>(c / kBlock % kBlock), l[2] = static_cast<int>(c / kBlock / kBlock);
@@ -178,22 +248,38 @@ void record_cuts(const BlockGrid& grid, Block& b, const std::vector<size_t>& tub
       if (r.here(o)) cells.push_back(Block::cell(o[0], o[1], o[2]));
     }
   }
-  for (int k = 0; k < b.m[2]; ++k)
+  // Across a face whose neighbouring block holds no surface its cells' far corners share one sign,
+  // and then none of them cuts a segment on the shared face (no face of it beside that one can be
+  // ambiguous, nor can its corners 0 and 7 be apart): those faces are not looked across.
+  bool across[6];
+  for (int f = 0; f < 6; ++f) {
+    int nb[3] = {b.b[0], b.b[1], b.b[2]};
+    nb[f / 2] += f % 2 ? 1 : -1;
+    across[f] = (look_across >> f & 1u) && grid.slot_at(nb[0], nb[1], nb[2]) >= 0;
+  }
+  bool any = false;
+  for (bool a : across) any |= a;
+  for (int k = 0; k < b.m[2] && any; ++k)
     for (int j = 0; j < b.m[1]; ++j)
       for (int i = 0; i < b.m[0]; ++i) {
-        bool rim = i == 0 || j == 0 || k == 0 || i == b.m[0] - 1 || j == b.m[1] - 1 || k == b.m[2] - 1;
-        if (!rim) {
-          i = std::max(i, b.m[0] - 2);  // jump across the block's inside
+        int l[3] = {i, j, k};
+        uint8_t faces = 0;
+        for (int a = 0; a < 3; ++a) {
+          if (l[a] == 0 && across[2 * a]) faces |= static_cast<uint8_t>(1u << (2 * a));
+          if (l[a] == b.m[a] - 1 && across[2 * a + 1]) faces |= static_cast<uint8_t>(1u << (2 * a + 1));
+        }
+        if (!faces) {
+          if (j > 0 && k > 0 && j < b.m[1] - 1 && k < b.m[2] - 1) i = std::max(i, b.m[0] - 2);  // across the inside
           continue;
         }
         size_t c = Block::cell(i, j, k);
         if (b.cells[c].first == kNone) continue;
-        int l[3] = {i, j, k};
         bool near_tube = false;
         for (int f = 0; f < 6 && !near_tube; ++f) {
+          if (!(faces >> f & 1u)) continue;
           int o[3] = {l[0], l[1], l[2]};
           o[f / 2] += f % 2 ? 1 : -1;
-          near_tube = !r.here(o) && r.cuts(o);
+          near_tube = r.cuts(o);
         }
         if (near_tube) cells.push_back(c);
       }
@@ -204,6 +290,46 @@ void record_cuts(const BlockGrid& grid, Block& b, const std::vector<size_t>& tub
     position(c, l);
     r.cell(l);
   }
+}
+
+void resolve_requests(BlockGrid& grid, int first, int end) {
+  std::vector<Block>& blocks = grid.blocks();
+  for (const Block& from : blocks)
+    for (const TubeRequest& q : from.requests) {
+      int bi[3], l[3];
+      for (int a = 0; a < 3; ++a) bi[a] = (q.cell[a] + 1) / kBlock;
+      int32_t slot = grid.slot_at(bi[0], bi[1], bi[2]);
+      if (slot < 0 || bi[2] < first || bi[2] >= end) continue;
+      Block& b = blocks[static_cast<size_t>(slot)];
+      for (int a = 0; a < 3; ++a) l[a] = q.cell[a] - b.s0[a];
+      int face = 2 * q.cut.axis + !q.cut.high, k[2], n = 0;
+      for (int e = 0; e < 4; ++e)
+        if (q.cut.segment >> e & 1u) k[n++] = e;
+      uint32_t vertex[2] = {kNone, kNone};
+      for (int s = 0; s < 2; ++s) {
+        int e = edge_at(face, k[s]), c = edge_corner(e), axis = e / 4;
+        int lower[3] = {l[0] + (c & 1), l[1] + (c >> 1 & 1), l[2] + (c >> 2 & 1)};
+        // The block's crossings run by z, y, x, then axis.
+        auto before = [&](const Crossing& x) {
+          return std::make_tuple(int(x.l[2]), int(x.l[1]), int(x.l[0]), int(x.axis)) <
+                 std::make_tuple(lower[2], lower[1], lower[0], axis);
+        };
+        auto it = std::partition_point(b.xs.begin(), b.xs.end(), before);
+        if (it == b.xs.end() || it->l[0] != lower[0] || it->l[1] != lower[1] || it->l[2] != lower[2] || it->axis != axis) break;
+        size_t index = static_cast<size_t>(it - b.xs.begin());
+        int cells[4][3];
+        cells_of(*it, cells);
+        for (int c4 = 0; c4 < 4; ++c4)
+          if (cells[c4][0] == l[0] && cells[c4][1] == l[1] && cells[c4][2] == l[2]) {
+            uint32_t sheet = b.id(index, static_cast<size_t>(c4));
+            if (sheet != kNone) vertex[s] = b.vertex[sheet];
+          }
+      }
+      if (vertex[0] == kNone || vertex[1] == kNone) continue;
+      TubeCut cut = q.cut;
+      cut.first = vertex[0], cut.second = vertex[1];
+      b.cuts.push_back(cut);
+    }
 }
 
 void close_tubes(std::vector<TubeCut> cuts, Mesh& out) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "runtime/mesh/dc_block.h"
+#include "runtime/mesh/dc_normals.h"
 #include "runtime/mesh/dc_octree.h"
 #include "runtime/mesh/dc_tubes.h"
 #include "runtime/mesh/dc_slabs.h"
@@ -121,7 +122,11 @@ bool work_blocks(const ImplicitJob& job, const Lattice& g, BlockGrid& grid, int 
     thread_local std::vector<Plane> planes;  // scratch of this thread, reused block after block
     thread_local std::vector<Qef> qefs;
     if (!hermite(*job.field, g, b, planes, e)) return false;
-    cell_sheets(grid, b, planes, qefs);
+    // A shard looks across its slab's faces: the blocks there are another process's.
+    uint8_t look_across = 0;
+    if (job.mesher.slabs && b.b[2] == first && first > 0) look_across |= 1u << 4;
+    if (job.mesher.slabs && b.b[2] == end - 1 && end < BlockGrid::blocks_along(g, 2)) look_across |= 1u << 5;
+    cell_sheets(grid, b, planes, qefs, look_across);
     merge_block(g, b, qefs, job.mesher.tolerance);
     for (TubeCut& c : b.cuts) c.first = b.vertex[c.first], c.second = b.vertex[c.second];
     for (auto& t : b.fans)
@@ -219,11 +224,18 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   std::unique_ptr<BlockGrid> grid;
   SlabSplit* split = job.mesher.slabs;
   uint32_t number = split ? split->next_job() : 0;
+  // Normals from the gradient, differences a hundredth of a cell apart where the field has none of
+  // its own (so only vertices that close to a sharp edge blend its two sides).
+  auto with_normals = [&] {
+    return gradient_vertex_normals(*job.field, 0.01 * std::min({g.h[0], g.h[1], g.h[2]}), kCreaseAngle, job.threads, out, err);
+  };
   // The merge: the shards' slabs joined into the mesh, numbered and connected as below.
-  if (split && split->joining()) return split->join(number, g, job.mesher.tolerance, out, stats, err.message);
+  if (split && split->joining())
+    return split->join(number, g, job.mesher.tolerance, out, stats, err.message) && with_normals();
   Layers layers;
   if (!sample_blocks(job, g, split, layers, grid, err) || !work_blocks(job, g, *grid, layers.first, layers.end, err))
     return false;
+  resolve_requests(*grid, layers.first, layers.end);
   if (split) {  // a shard: its slab's blocks, for the merge
     split->keep(number, *grid, layers.first, layers.end);
     return true;
@@ -244,9 +256,7 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   close_tubes(std::move(cuts), out);
   stats.triangles = out.triangles.size();
   for (const Block& b : blocks) stats.gradient_normals += b.gradient_normals, stats.difference_normals += b.difference_normals;
-  // No vertex normals: a vertex on a sharp edge has no one normal, and its faces' mean would shade
-  // both sides wrong; without them every output is shaded flat (glTF and VRML97 viewers too).
-  return true;
+  return with_normals();
 }
 
 void DualContourStats::add(const DualContourStats& o) {

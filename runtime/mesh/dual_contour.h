@@ -1,13 +1,14 @@
 #pragma once
-// Adaptive manifold dual contouring (fvrml-run --mesher dc; marching tetrahedra stays the default
-// until it meets its speed targets): Hermite data on every sign-change edge of the padded,
+// Adaptive manifold dual contouring (fvrml-run --mesher dc, the default): Hermite data on every sign-change edge of the padded,
 // cell-centred grid (crossings by regula falsi on the real function, normals from its gradient; the
 // box faces close a cut solid with their own planes), one vertex per sheet of surface in each dual
-// cell at the minimum of its QEF (qef.h), cells merged up an octree while the tolerance and the
-// topology allow (dc_octree.h), one polygon per sign-change edge. Worked in blocks (dc_block.h) on
-// every thread; the same bytes for any count. Sharp CSG edges and corners are kept. Known limits: a
-// vertex may leave its cell by half a cell (so sharp corners are reached), which can fold a
-// triangle where features are closer than a cell.
+// cell at the minimum of its QEF (qef.h), ambiguous cells decided as marching tetrahedra decides
+// them and tubes thinner than a cell kept (dc_cells.h, dc_tubes.h), cells merged up an octree while
+// the tolerance and the topology allow (dc_octree.h), one polygon per sign-change edge, vertex
+// normals from the gradient split at sharp features (dc_normals.h). Worked in blocks (dc_block.h)
+// on every thread; the same bytes for any count. Sharp CSG edges and corners are kept. Known
+// limits: a vertex may leave its cell by half a cell (so sharp corners are reached), which can fold
+// a triangle where features are closer than a cell.
 #include "backends/backend.h"
 #include "runtime/mesh/implicit.h"
 #include "runtime/mesh/mesh.h"

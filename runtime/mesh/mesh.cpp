@@ -28,6 +28,11 @@ void Mesh::append(const Mesh& o) {
   }
   if (normals.size() == n && o.normals.size() == on) normals.insert(normals.end(), o.normals.begin(), o.normals.end());
   else normals.clear();
+  if (!split_from.empty() || !o.split_from.empty()) {
+    for (uint32_t i = static_cast<uint32_t>(split_from.size()); i < n; ++i) split_from.push_back(i);
+    for (size_t i = 0; i < on; ++i)
+      split_from.push_back(static_cast<uint32_t>(n) + (i < o.split_from.size() ? o.split_from[i] : static_cast<uint32_t>(i)));
+  }
   if (params.size() == n && o.params.size() == on) params.insert(params.end(), o.params.begin(), o.params.end());
   else params.clear();
   positions.insert(positions.end(), o.positions.begin(), o.positions.end());
@@ -41,28 +46,10 @@ void Mesh::append(const Mesh& o) {
 
 namespace {
 
-// Each vertex's first vertex at exactly its position with another normal: a mesh that splits a
-// vertex to give each side of a crease its own normal is the same surface as the welded one.
-// Vertices that only share a position (two bodies touching at a point, a crossing on a sample) stay
-// apart, as they are without normals.
+// Each vertex as the vertex it was split from (Mesh::split_from), or itself.
 std::vector<uint32_t> welded(const Mesh& m) {
   std::vector<uint32_t> out(m.positions.size());
-  for (uint32_t i = 0; i < out.size(); ++i) out[i] = i;
-  if (m.normals.size() != m.positions.size()) return out;
-  std::vector<uint32_t> order = out;
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    return m.positions[a] != m.positions[b] ? m.positions[a] < m.positions[b] : a < b;
-  });
-  for (size_t i = 0, j; i < order.size(); i = j) {
-    for (j = i + 1; j < order.size() && m.positions[order[j]] == m.positions[order[i]]; ++j) {
-    }
-    for (size_t k = i + 1; k < j; ++k)
-      for (size_t q = i; q < k; ++q)
-        if (m.normals[order[k]] != m.normals[order[q]]) {
-          out[order[k]] = out[order[q]];
-          break;
-        }
-  }
+  for (uint32_t i = 0; i < out.size(); ++i) out[i] = i < m.split_from.size() && m.split_from[i] < out.size() ? m.split_from[i] : i;
   return out;
 }
 

@@ -23,6 +23,10 @@ struct Mesh {
   std::vector<Vec3> normals;  // empty or one per position
   std::vector<Vec3> colours;  // empty or one per position, each channel in [0, 1]
   std::vector<Vec3> params;   // parametric shapes: the (u, v, w) of each position
+  // Empty, or per position the vertex it was split from to carry another normal (its own index
+  // where it was not): the same point of the surface (dc_normals.h). topology() welds them back and
+  // the OBJ writer writes each point once.
+  std::vector<uint32_t> split_from;
   std::vector<std::array<uint32_t, 3>> triangles;
   std::vector<std::vector<uint32_t>> polylines;  // curves
   std::optional<Material> material;              // none: the viewer's default
@@ -30,8 +34,8 @@ struct Mesh {
   void append(const Mesh& other);  // concatenates (indices shifted)
 };
 
-// Topology report of the surface, its vertices welded where their positions are equal and their
-// normals differ (a vertex split for its normals is one point of the surface): every edge shared by exactly two triangles
+// Topology report of the surface, the copies of a vertex split for its normals welded back
+// (Mesh::split_from): every edge shared by exactly two triangles
 // (watertight), each used once in each direction (consistently oriented), no vertex whose
 // triangles form more than one fan (2-manifold), V - E + F, and the connected components, with
 // those whose signed volume is negative (inside-out, or the wall of a cavity).

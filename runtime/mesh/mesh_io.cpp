@@ -99,24 +99,33 @@ void ply(const Mesh& m, Out& out) {
   ply_faces(m, out);
 }
 
+// OBJ names a corner's position and normal apart: a vertex split for its normals
+// (Mesh::split_from) is written once, so the file keeps the surface's topology.
 void obj(const Mesh& m, Out& out) {
   bool normals = m.normals.size() == m.positions.size() && !m.positions.empty();
+  bool split = m.split_from.size() == m.positions.size();
+  std::vector<uint32_t> at(m.positions.size());  // each vertex's position line, from 1
+  uint32_t written = 0;
+  for (size_t i = 0; i < m.positions.size(); ++i) at[i] = !split || m.split_from[i] == i ? ++written : 0;
+  for (size_t i = 0; i < m.positions.size(); ++i)
+    if (!at[i]) at[i] = at[m.split_from[i] < i ? m.split_from[i] : i];
   out.text("# written by fvrml-run\n");
   char buf[128];
   auto line = [&](int n) { out.put(buf, static_cast<size_t>(n)); };
-  for (const auto& p : m.positions) line(std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\n", p[0], p[1], p[2]));
+  for (size_t i = 0; i < m.positions.size(); ++i)
+    if (!split || m.split_from[i] == i)
+      line(std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\n", m.positions[i][0], m.positions[i][1], m.positions[i][2]));
   if (normals)
     for (const auto& n : m.normals) line(std::snprintf(buf, sizeof buf, "vn %.9g %.9g %.9g\n", n[0], n[1], n[2]));
   for (const auto& t : m.triangles) {
     if (normals)
-      line(std::snprintf(buf, sizeof buf, "f %u//%u %u//%u %u//%u\n", t[0] + 1, t[0] + 1, t[1] + 1, t[1] + 1, t[2] + 1,
-                         t[2] + 1));
+      line(std::snprintf(buf, sizeof buf, "f %u//%u %u//%u %u//%u\n", at[t[0]], t[0] + 1, at[t[1]], t[1] + 1, at[t[2]], t[2] + 1));
     else
-      line(std::snprintf(buf, sizeof buf, "f %u %u %u\n", t[0] + 1, t[1] + 1, t[2] + 1));
+      line(std::snprintf(buf, sizeof buf, "f %u %u %u\n", at[t[0]], at[t[1]], at[t[2]]));
   }
   for (const auto& l : m.polylines) {
     std::string s = "l";
-    for (uint32_t v : l) s += " " + std::to_string(v + 1);
+    for (uint32_t v : l) s += " " + std::to_string(at[v]);
     out.text(s + "\n");
   }
 }

@@ -2,9 +2,10 @@
 """Every course file as a student has it, end to end: fvrml-run on every .wrl of the shared corpus
 with the file's own settings (no resolution scaling) to each of .wrl, .glb, .ply and .png. Each run
 exits 0 (the one BS-encrypted file: exit 1 with the clear refusal and nothing written); the VRML97
-output is read back by our own parser (fscript check); every .glb passes the Khronos validator; a
-scene made only of implicit shapes gives a closed, oriented PLY with no inside-out component; and
-each PNG is a PNG.
+output is read back by our own parser (fscript check); every .glb passes the Khronos validator;
+every PLY with triangles carries vertex normals; a scene made only of implicit shapes gives a
+closed, oriented 2-manifold with no inside-out component (checked on the OBJ, which writes a vertex
+split for its normals once); and each PNG is a PNG.
 
 usage: corpus_run_test.py FVRML_RUN FSCRIPT FVRML_MESHDIFF SOURCE_DIR SHARED_DIR"""
 import glob
@@ -19,7 +20,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import skip as skip_rules  # noqa: E402
 
 RUN, FSCRIPT, DIFF, SRC, SHARED = sys.argv[1:6]
-FORMATS = ("wrl", "glb", "ply", "png")
+FORMATS = ("wrl", "glb", "ply", "png", "obj")
 failures = []
 
 
@@ -64,13 +65,18 @@ def check_file(index, scene, tmp):
         elif fmt == "png":
             if open(path, "rb").read(8) != b"\x89PNG\r\n\x1a\n":
                 out.append(f"{name} -> png: not a PNG")
-        elif fmt == "ply" and kinds and all(k == "implicit" for k in kinds):
+        elif fmt == "ply":
+            t = json.loads(run([DIFF, path]).stdout)["a"]
+            if t["triangles"] and not t["normals"]:
+                out.append(f"{name} -> ply: no vertex normals")
+        elif fmt == "obj" and kinds and all(k == "implicit" for k in kinds):
+            # OBJ writes a vertex split for its normals once: the surface's own topology.
             t = json.loads(run([DIFF, path]).stdout)["a"]
             for key in ("watertight", "oriented", "manifold"):
                 if not t[key]:
-                    out.append(f"{name} -> ply: not {key} ({t})")
+                    out.append(f"{name} -> obj: not {key} ({t})")
             if t["inverted_components"]:
-                out.append(f"{name} -> ply: {t['inverted_components']} inside-out components ({t})")
+                out.append(f"{name} -> obj: {t['inverted_components']} inside-out components ({t})")
     return name, out, glbs
 
 

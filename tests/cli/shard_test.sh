@@ -94,7 +94,9 @@ slabs() {
   cmp -s "$T/single.$format" "$T/merged.$format" || fail "$name: the merged $format differs from the single run's"
 }
 slabs "gyroid in a sphere, PLY, 3 slabs" "$G" ply 3 'its slab of 1 shape' --resolution-scale 0.4
-"$FVRML_MESHDIFF" "$T/merged.ply" "$T/merged.ply" > "$T/topology.json" 2>&1
+# Its topology on the OBJ, which writes a vertex split for its normals once (PLY holds the copies).
+slabs "gyroid in a sphere, OBJ, 3 slabs" "$G" obj 3 'its slab of 1 shape' --resolution-scale 0.4
+"$FVRML_MESHDIFF" "$T/merged.obj" > "$T/topology.json" 2>&1
 grep -q '"watertight": true' "$T/topology.json" && grep -q '"manifold": true' "$T/topology.json" ||
   fail "gyroid in a sphere in slabs: the merged mesh is not a closed manifold"
 slabs "gyroid in a sphere, glTF, 4 slabs" "$G" glb 4 'its slab of 1 shape' --resolution-scale 0.3

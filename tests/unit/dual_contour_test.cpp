@@ -41,7 +41,7 @@ TEST_CASE("dual contouring: a sphere is closed, oriented, of genus 0, its vertic
   double h = 2.0 / 32, worst = 0;
   for (const auto& p : m.positions) worst = std::max(worst, std::abs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 0.7));
   CHECK(worst < 0.1 * h);
-  // Faces leave the solid; no vertex normals (flat shading: a vertex on a sharp edge has no one normal).
+  // Faces leave the solid.
   size_t outward = 0;
   for (const auto& t : m.triangles) {
     const auto &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
@@ -51,17 +51,37 @@ TEST_CASE("dual contouring: a sphere is closed, oriented, of genus 0, its vertic
     outward += n[0] * (a[0] + b[0] + c[0]) + n[1] * (a[1] + b[1] + c[1]) + n[2] * (a[2] + b[2] + c[2]) > 0;
   }
   CHECK(outward == m.triangles.size());
-  CHECK(m.normals.empty());
+  // Each vertex's normal is the gradient's, within 1 degree of the true normal (radial), and the
+  // smooth sphere needs no vertex split for it.
+  REQUIRE(m.normals.size() == m.positions.size());
+  CHECK(m.split_from.empty());
+  double cos_worst = 1;
+  for (size_t v = 0; v < m.positions.size(); ++v) {
+    const auto &p = m.positions[v], &n = m.normals[v];
+    double len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    cos_worst = std::min(cos_worst, (p[0] * n[0] + p[1] * n[1] + p[2] * n[2]) / len);
+  }
+  CHECK(cos_worst > std::cos(M_PI / 180));
   CHECK(st.cells == m.positions.size());
 }
 
 TEST_CASE("dual contouring: a cube turned off the axes keeps its corners sharp") {
   Turn turn;
-  FnField cube([&](double x, double y, double z) {
-    double p[3] = {x, y, z}, q[3];
-    turn.apply(p, q, true);
-    return 0.5 - std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2])});
-  });
+  test::GradField cube(
+      [&](double x, double y, double z) {
+        double p[3] = {x, y, z}, q[3];
+        turn.apply(p, q, true);
+        return 0.5 - std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2])});
+      },
+      [&](double x, double y, double z, double g[3]) {  // minus the outward normal of the face max picks
+        double p[3] = {x, y, z}, q[3], d[3] = {0, 0, 0};
+        turn.apply(p, q, true);
+        int k = 0;
+        for (int a = 1; a < 3; ++a)
+          if (std::abs(q[a]) > std::abs(q[k])) k = a;
+        d[k] = q[k] > 0 ? -1 : 1;
+        turn.apply(d, g, false);
+      });
   // The farthest of the cube's eight corners from its nearest vertex of `m`.
   auto worst_corner = [&](const mesh::Mesh& m) {
     double worst = 0;
@@ -85,6 +105,35 @@ TEST_CASE("dual contouring: a cube turned off the axes keeps its corners sharp")
     REQUIRE(mesh::polygonize_implicit(job(cube, cells), mt, err));
     CHECK(worst_corner(mt) > 2 * worst);
     CHECK(m.triangles.size() < mt.triangles.size());
+    // Its faces stay flat: every triangle lying in a face of the cube has that face's normal at
+    // all three corners, the vertices on edges and corners split into one per face they join.
+    REQUIRE(m.normals.size() == m.positions.size());
+    double cos_worst = 1;
+    size_t flat = 0;
+    for (const auto& t : m.triangles) {
+      const auto &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+      double n[3] = {(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+                     (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+                     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])}, q[3];
+      double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if (!(len > 0)) continue;
+      for (double& x : n) x /= len;
+      turn.apply(n, q, true);  // in the cube's own axes
+      int axis = 0;
+      for (int k = 1; k < 3; ++k)
+        if (std::abs(q[k]) > std::abs(q[axis])) axis = k;
+      if (std::abs(q[axis]) < std::cos(M_PI / 180)) continue;  // not in a face: a chamfer across an edge
+      double face[3] = {0, 0, 0}, w[3];
+      face[axis] = q[axis] > 0 ? 1 : -1;
+      turn.apply(face, w, false);
+      ++flat;
+      for (uint32_t v : t) cos_worst = std::min(cos_worst, w[0] * m.normals[v][0] + w[1] * m.normals[v][1] + w[2] * m.normals[v][2]);
+    }
+    INFO(flat << " triangles in the faces; worst corner normal " << std::acos(std::min(1.0, cos_worst)) * 180 / M_PI
+              << " degrees off its face");
+    CHECK(flat > m.triangles.size() / 2);
+    CHECK(cos_worst > std::cos(M_PI / 180));
+    CHECK(m.positions.size() > st.cells);  // split at the edges
   }
 }
 

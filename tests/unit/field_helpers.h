@@ -17,6 +17,24 @@ struct FnField : mesh::Field {
   }
 };
 
+// The same with its gradient, as a scene's kernels have one (ir/passes/gradient).
+struct GradField : FnField {
+  std::function<void(double, double, double, double[3])> grad;
+  GradField(std::function<double(double, double, double)> fn, std::function<void(double, double, double, double[3])> g)
+      : FnField(std::move(fn)), grad(std::move(g)) {}
+  bool has_gradient() const override { return true; }
+  bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
+                     backends::RuntimeError&) const override {
+    for (size_t i = 0; i < n; ++i) {
+      double g[3];
+      grad(x[i], y[i], z[i], g);
+      out[0][i] = static_cast<float>(f(x[i], y[i], z[i]));
+      for (int a = 0; a < 3; ++a) out[1 + a][i] = static_cast<float>(g[a]);
+    }
+    return true;
+  }
+};
+
 // The job over the cube [-half, half]^3 with `cells` samples a side.
 inline mesh::ImplicitJob job(const mesh::Field& f, int cells, double half = 1.0) {
   mesh::ImplicitJob j;

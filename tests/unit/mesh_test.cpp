@@ -380,7 +380,8 @@ TEST_CASE("crease normals: a cube's corners keep their faces' normals; a sphere'
   // A sphere meshed by dual contouring: every corner's normal within a few degrees of radial.
   mesh::Mesh ball = polygonize("function FRep(x,y,z,t){ return 0.7*0.7 - x*x - y*y - z*z; }", {-1, 1, -1, 1, -1, 1}, 32,
                                 0, mesh::Mesher::DualContouring);
-  REQUIRE(ball.normals.empty());
+  REQUIRE(ball.normals.size() == ball.positions.size());  // its own, from the gradient (dc_normals.h)
+  ball.normals.clear();
   auto r = mesh::crease_normals(ball, mesh::kCreaseAngle);
   double worst = 1;
   for (size_t t = 0; t < ball.triangles.size(); ++t)
@@ -452,10 +453,13 @@ TEST_CASE("topology: components, inside-out ones, and vertices split for their n
   // writer splits a sharp vertex): the same closed surface once the split vertices are welded.
   mesh::Mesh split;
   auto tet = tetrahedron();
+  std::vector<int32_t> first(tet.positions.size(), -1);
   for (const auto& tri : tet.triangles) {
     std::array<uint32_t, 3> out;
     for (int k = 0; k < 3; ++k) {
       out[k] = static_cast<uint32_t>(split.positions.size());
+      if (first[tri[k]] < 0) first[tri[k]] = static_cast<int32_t>(out[k]);
+      split.split_from.push_back(static_cast<uint32_t>(first[tri[k]]));
       split.positions.push_back(tet.positions[tri[k]]);
       split.normals.push_back({float(split.triangles.size()), 0, 1});  // a different normal per face
     }
@@ -467,8 +471,9 @@ TEST_CASE("topology: components, inside-out ones, and vertices split for their n
   CHECK(s.manifold);
   CHECK(s.euler == 2);
   CHECK(s.components == 1);
-  // Without normals the same vertices are twelve separate points: an open soup of four triangles.
-  split.normals.clear();
+  // Without saying where they were split from, the same vertices are twelve separate points: an
+  // open soup of four triangles.
+  split.split_from.clear();
   auto soup = mesh::topology(split);
   CHECK_FALSE(soup.watertight);
   CHECK(soup.components == 4);

@@ -271,6 +271,67 @@ Qef::Solution solve_in_cells(const Lattice& g, const Qef& qef, const int c0[3], 
   return qef.solve(lo, hi);
 }
 
+namespace {
+
+// Whether block sample s (inside) is a layer one sample thick across `axis`: outside on both sides.
+bool thin(const Block& b, const int s[3], int axis) {
+  int lo[3] = {s[0], s[1], s[2]}, hi[3] = {s[0], s[1], s[2]};
+  --lo[axis], ++hi[axis];
+  if (lo[axis] < 0 || hi[axis] > b.m[axis]) return false;
+  return !b.inside(lo[0], lo[1], lo[2]) && !b.inside(hi[0], hi[1], hi[2]);
+}
+
+// Vertices that leave their cells (kReach) can pass each other where the solid is thinner than a
+// cell, and turn a sliver inside out (the gyroid cut by a ball along its seam). Their polygons then
+// wind the wrong way round their crossings: the four cells' vertices of a polygon over cells of
+// the block, seen along its crossing's axis, go round the edge the other way. Where that happens at
+// a crossing whose inside sample is a layer one sample thick across it, the polygon's vertices go back into
+// their own cells, where four vertices always go round their edge the right way. A sharp corner
+// reaching out of its cell (kReach's purpose) stands over a solid that is not thin, and stays.
+// Merged vertices (one for several sheets) stay too: their cells span several, and they are flat.
+void unfold(const Lattice& g, Block& b, std::vector<std::array<float, 3>>& positions) {
+  std::vector<uint32_t> back;  // few: only where slivers fold
+  for (size_t e = 0; e < b.xs.size(); ++e) {
+    const Crossing& c = b.xs[e];
+    uint32_t ring[4];
+    bool here = true;
+    for (size_t q = 0; q < 4 && here; ++q) here = b.ids[e][q] != Block::kNoSheet, ring[q] = here ? b.vertex[b.ids[e][q]] : 0;
+    if (!here) continue;
+    int u = kNextAxis[c.axis], w = kNextAxis[u];
+    double area = 0;  // cells_of's order goes round the edge counter-clockwise about its axis
+    for (int q = 0; q < 4; ++q) {
+      const auto &p = positions[ring[q]], &n = positions[ring[(q + 1) % 4]];
+      area += double(p[u]) * n[w] - double(p[w]) * n[u];
+    }
+    if (area >= 0) continue;
+    int in[3] = {c.l[0], c.l[1], c.l[2]};
+    if (!c.lower_inside) ++in[c.axis];
+    if (!thin(b, in, c.axis)) continue;
+    back.insert(back.end(), ring, ring + 4);
+  }
+  if (back.empty()) return;
+  std::sort(back.begin(), back.end());
+  back.erase(std::unique(back.begin(), back.end()), back.end());
+  std::vector<uint8_t> sheets_of(back.size(), 0);  // a merged vertex stands for several sheets
+  for (size_t s = 0; s < b.sheets.size(); ++s) {
+    auto it = std::lower_bound(back.begin(), back.end(), b.vertex[s]);
+    if (it != back.end() && *it == b.vertex[s]) sheets_of[static_cast<size_t>(it - back.begin())] += 1;
+  }
+  for (size_t s = 0; s < b.sheets.size(); ++s) {
+    uint32_t v = b.vertex[s];
+    auto it = std::lower_bound(back.begin(), back.end(), v);
+    if (it == back.end() || *it != v || sheets_of[static_cast<size_t>(it - back.begin())] != 1) continue;
+    int c[3] = {b.sheets[s].cell % kBlock, b.sheets[s].cell / kBlock % kBlock, b.sheets[s].cell / kBlock / kBlock};
+    for (int a = 0; a < 3; ++a) {
+      double lo = std::max(g.coord(a, b.s0[a] + c[a]), g.lo[a]), hi = std::min(g.coord(a, b.s0[a] + c[a] + 1), g.end(a));
+      auto& x = positions[v][static_cast<size_t>(a)];
+      x = static_cast<float>(std::clamp(double(x), lo, hi));
+    }
+  }
+}
+
+}  // namespace
+
 void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, double tolerance) {
   thread_local BlockTree tree;
   double limit = tolerance * std::min({g.h[0], g.h[1], g.h[2]});
@@ -311,6 +372,7 @@ void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, doubl
     b.vertex[s] = static_cast<uint32_t>(positions.size() - 1);
     if (named) *named = b.vertex[s];
   }
+  unfold(g, b, positions);
   b.positions.assign(positions.begin(), positions.end());
   b.max_rms = std::sqrt(max_square);
   b.root = tree.built == kBlockLevels && tree.nodes[kBlockLevels].size() == 1 && tree.nodes[kBlockLevels][0].state == State::Merged;

@@ -11,9 +11,11 @@ namespace fscript::mesh {
 namespace {
 
 // Minus the gradient at each vertex, normalised; (0, 0, 0) where there is none (not finite, or zero).
-bool gradients(const Field& f, double step, int threads, const Mesh& m, std::vector<Vec3>& out, backends::RuntimeError& err) {
+bool gradients(const Field& f, double step, int threads, const Mesh& m, std::vector<Vec3>& out, std::vector<float>& dist,
+               backends::RuntimeError& err) {
   const size_t n = m.positions.size();
   out.assign(n, Vec3{0, 0, 0});
+  dist.assign(n, 0);
   int parts = std::max(1, std::min<int>(threads, static_cast<int>(n / 4096) + 1));
   const bool analytic = f.has_gradient();
   return support::run_parts(parts, [&](int k, backends::RuntimeError& e) {
@@ -28,8 +30,10 @@ bool gradients(const Field& f, double step, int threads, const Mesh& m, std::vec
         for (size_t q = 0; q < c; ++q) xs[q] = m.positions[b0 + q][0], ys[q] = m.positions[b0 + q][1], zs[q] = m.positions[b0 + q][2];
         float* const o[4] = {g.data(), g.data() + c, g.data() + 2 * c, g.data() + 3 * c};
         if (!f.eval_gradient(xs.data(), ys.data(), zs.data(), c, o, e)) return false;
-        for (size_t q = 0; q < c; ++q)
+        for (size_t q = 0; q < c; ++q) {
           for (int a = 0; a < 3; ++a) out[b0 + q][static_cast<size_t>(a)] = -o[1 + a][q];
+          dist[b0 + q] = o[0][q];
+        }
       } else {
         size_t p = 0;
         for (int a = 0; a < 3; ++a)
@@ -40,15 +44,21 @@ bool gradients(const Field& f, double step, int threads, const Mesh& m, std::vec
               xs[p] = v[0], ys[p] = v[1], zs[p] = v[2];
             }
         if (!f.eval(xs.data(), ys.data(), zs.data(), p, vals.data(), e)) return false;
-        for (size_t q = 0; q < c; ++q)
-          for (int a = 0; a < 3; ++a)
+        for (size_t q = 0; q < c; ++q) {
+          float mean = 0;
+          for (int a = 0; a < 3; ++a) {
             out[b0 + q][static_cast<size_t>(a)] = -(vals[(2 * a + 1) * c + q] - vals[2 * a * c + q]) / static_cast<float>(2 * step);
+            mean += vals[(2 * a + 1) * c + q] + vals[2 * a * c + q];
+          }
+          dist[b0 + q] = mean / 6;
+        }
       }
-      for (size_t q = b0; q < b0 + c; ++q) {
+      for (size_t q = b0; q < b0 + c; ++q) {  // f over the gradient's length: how far the surface is
         Vec3& d = out[q];
         float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (len > 0 && std::isfinite(len)) d = {d[0] / len, d[1] / len, d[2] / len};
-        else d = {0, 0, 0};
+        if (len > 0 && std::isfinite(len)) d = {d[0] / len, d[1] / len, d[2] / len}, dist[q] /= len;
+        else d = {0, 0, 0}, dist[q] = 0;
+        if (!std::isfinite(dist[q])) dist[q] = 0;
       }
     }
     return true;
@@ -68,9 +78,24 @@ Vec3 face_normal(const Mesh& m, const std::array<uint32_t, 3>& t) {
 
 }  // namespace
 
-bool gradient_vertex_normals(const Field& f, double step, double crease, int threads, Mesh& m, backends::RuntimeError& err) {
+bool gradient_vertex_normals(const Field& f, double step, double crease, int threads, const Projection& onto, Mesh& m,
+                             backends::RuntimeError& err) {
   std::vector<Vec3> grad;
-  if (!gradients(f, step, threads, m, grad, err)) return false;
+  std::vector<float> dist;
+  if (!gradients(f, step, threads, m, grad, dist, err)) return false;
+  // A vertex farther from the surface than `onto.beyond` (f over the gradient's length) steps onto
+  // it along its normal, up to `onto.most`; not one on a face of the box, whose surface is the box.
+  for (size_t v = 0; v < m.positions.size(); ++v) {
+    float d = dist[v];
+    if (!(std::abs(d) > onto.beyond) || !(std::abs(d) <= onto.most)) continue;
+    Vec3& p = m.positions[v];
+    bool on_box = false;
+    for (int a = 0; a < 3; ++a)
+      on_box |= std::abs(p[static_cast<size_t>(a)] - onto.box[2 * a]) <= onto.box_eps ||
+                std::abs(p[static_cast<size_t>(a)] - onto.box[2 * a + 1]) <= onto.box_eps;
+    if (on_box) continue;
+    for (int a = 0; a < 3; ++a) p[static_cast<size_t>(a)] += d * grad[v][static_cast<size_t>(a)];
+  }
   // Half the crease angle: a gradient taken by differences across a sharp edge blends both sides
   // (45 degrees from each at a right angle), and must not pass for either.
   const float cos_crease = static_cast<float>(std::cos(crease / 2));

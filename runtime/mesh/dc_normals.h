@@ -2,6 +2,8 @@
 // Vertex normals of dual-contoured meshes: the function's gradient where the surface is smooth, and
 // at a sharp feature (a crease the QEF found, a box face closing a cut solid) each side of it with
 // its own normal, the vertex split so every format can carry them (PLY, OBJ, glTF, VRML97).
+#include <array>
+
 #include "backends/backend.h"
 #include "runtime/mesh/field.h"
 #include "runtime/mesh/mesh.h"
@@ -14,6 +16,15 @@ namespace fscript::mesh {
 // vertex that fits the face best where that one is within the angle, else the face's normal; and
 // a vertex whose corners differ is split into one per normal (the first keeps its index, the
 // others are appended, Mesh::split_from naming the first).
-bool gradient_vertex_normals(const Field& f, double step, double crease, int threads, Mesh& m, backends::RuntimeError& err);
+// First, a vertex farther from the surface than `beyond` (f over the gradient's length), and no
+// farther than `most`, steps onto it along the gradient (one Newton step): the QEF's vertex can
+// leave the surface where planes meet at a grazing angle. Vertices on a face of `box` (within
+// box_eps), where a cut solid is closed by the box, stay.
+struct Projection {
+  double beyond = 0, most = 0, box_eps = 0;
+  std::array<double, 6> box{};
+};
+bool gradient_vertex_normals(const Field& f, double step, double crease, int threads, const Projection& onto, Mesh& m,
+                             backends::RuntimeError& err);
 
 }  // namespace fscript::mesh

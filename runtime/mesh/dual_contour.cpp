@@ -227,7 +227,9 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   // Normals from the gradient, differences a hundredth of a cell apart where the field has none of
   // its own (so only vertices that close to a sharp edge blend its two sides).
   auto with_normals = [&] {
-    return gradient_vertex_normals(*job.field, 0.01 * std::min({g.h[0], g.h[1], g.h[2]}), kCreaseAngle, job.threads, out, err);
+    double h = std::min({g.h[0], g.h[1], g.h[2]});
+    Projection onto{0.1 * h, 0.5 * h, 1e-6 * h, job.box};
+    return gradient_vertex_normals(*job.field, 0.01 * h, kCreaseAngle, job.threads, onto, out, err);
   };
   // The merge: the shards' slabs joined into the mesh, numbered and connected as below.
   if (split && split->joining())

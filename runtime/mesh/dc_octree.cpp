@@ -273,7 +273,7 @@ Qef::Solution solve_in_cells(const Lattice& g, const Qef& qef, const int c0[3], 
 
 namespace {
 
-// Whether block sample s (inside) is a layer one sample thick across `axis`: outside on both sides.
+// Whether block sample s (inside) is one sample thick across `axis`: outside on both sides.
 bool thin(const Block& b, const int s[3], int axis) {
   int lo[3] = {s[0], s[1], s[2]}, hi[3] = {s[0], s[1], s[2]};
   --lo[axis], ++hi[axis];
@@ -285,9 +285,11 @@ bool thin(const Block& b, const int s[3], int axis) {
 // cell, and turn a sliver inside out (the gyroid cut by a ball along its seam). Their polygons then
 // wind the wrong way round their crossings: the four cells' vertices of a polygon over cells of
 // the block, seen along its crossing's axis, go round the edge the other way. Where that happens at
-// a crossing whose inside sample is a layer one sample thick across it, the polygon's vertices go back into
-// their own cells, where four vertices always go round their edge the right way. A sharp corner
-// reaching out of its cell (kReach's purpose) stands over a solid that is not thin, and stays.
+// a crossing whose inside sample is a sheet of solid one sample thick (thin across the crossing, or
+// across exactly one axis), the polygon's vertices go back into their own cells, where four
+// vertices always go round their edge the right way. A sharp edge's or corner's tip is thin across
+// two or three axes, along another than its crossings': reaching out of its cell (kReach's
+// purpose), it keeps its place.
 // Merged vertices (one for several sheets) stay too: their cells span several, and they are flat.
 void unfold(const Lattice& g, Block& b, std::vector<std::array<float, 3>>& positions) {
   std::vector<uint32_t> back;  // few: only where slivers fold
@@ -306,7 +308,9 @@ void unfold(const Lattice& g, Block& b, std::vector<std::array<float, 3>>& posit
     if (area >= 0) continue;
     int in[3] = {c.l[0], c.l[1], c.l[2]};
     if (!c.lower_inside) ++in[c.axis];
-    if (!thin(b, in, c.axis)) continue;
+    int thin_axes = 0;
+    for (int a = 0; a < 3; ++a) thin_axes += thin(b, in, a);
+    if (!thin(b, in, c.axis) && thin_axes != 1) continue;
     back.insert(back.end(), ring, ring + 4);
   }
   if (back.empty()) return;

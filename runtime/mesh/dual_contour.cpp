@@ -228,7 +228,7 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   // its own (so only vertices that close to a sharp edge blend its two sides).
   auto with_normals = [&] {
     double h = std::min({g.h[0], g.h[1], g.h[2]});
-    Projection onto{0.1 * h, 0.5 * h, 1e-6 * h, job.box};
+    Projection onto{0.05 * h, h, 1e-6 * h, job.box};
     return gradient_vertex_normals(*job.field, 0.01 * h, kCreaseAngle, job.threads, onto, out, err);
   };
   // The merge: the shards' slabs joined into the mesh, numbered and connected as below.

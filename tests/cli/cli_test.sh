@@ -444,6 +444,10 @@ if [ -n "$D" ] && [ -n "$R" ]; then
   check meshdiff-missing 1 'cannot read' -- "$D" "$T/none.ply" "$T/r1.ply"
   printf 'not a mesh' > "$T/bad.ply"
   check meshdiff-bad 1 'bad.ply: error: not a PLY file' -- "$D" "$T/bad.ply" "$T/r1.ply"
+  printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//5\n' > "$T/badn.obj"
+  check meshdiff-bad-normal 1 'badn.obj: error: OBJ: a face names normal 5 of 1' -- "$D" "$T/badn.obj"
+  printf 'v 0 0 0\nvn 0 1\n' > "$T/shortn.obj"
+  check meshdiff-short-normal 1 'shortn.obj: error: OBJ line 2: a normal needs three numbers' -- "$D" "$T/shortn.obj"
   check meshdiff-usage 2 '' -- "$D"
   # One mesh: its topology alone, with its components and the inside-out ones.
   jcheck meshdiff-one out "j['a']['components'] == 1 and j['a']['inverted_components'] == 0 and j['a']['watertight'] and 'hausdorff' not in j" \

@@ -177,13 +177,7 @@ double distance_to_surface(const Fn& f, const P3& p, double most) {
 
 mesh::Mesh run(const mesh::Field& field, mesh::Mesher kind, int cells = kCells,
                double tolerance = mesh::MesherOptions::kDefaultTolerance) {
-  mesh::ImplicitJob j = test::job(field, cells);
-  j.mesher.kind = kind;
-  j.mesher.tolerance = tolerance;
-  mesh::Mesh m;
-  backends::RuntimeError err;
-  REQUIRE(mesh::polygonize(j, m, err));
-  return m;
+  return test::meshed(test::job(field, cells), kind, tolerance);
 }
 
 }  // namespace

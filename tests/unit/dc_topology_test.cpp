@@ -41,17 +41,18 @@ struct RandomSigns {
   }
 };
 
-mesh::Mesh mesh_of(const mesh::Field& f, int n, mesh::Mesher kind, double tolerance = 0) {
+// The job over the box `centre` +- `half`, `cells` a side.
+mesh::ImplicitJob box_job(const mesh::Field& f, int cells, const double centre[3], double half) {
   mesh::ImplicitJob j;
   j.field = &f;
-  j.box = {0, double(n), 0, double(n), 0, double(n)};
-  j.cells = {n, n, n};
-  j.mesher.kind = kind;
-  j.mesher.tolerance = tolerance;
-  mesh::Mesh m;
-  backends::RuntimeError err;
-  REQUIRE(mesh::polygonize(j, m, err));
-  return m;
+  for (int a = 0; a < 3; ++a) j.box[2 * a] = centre[a] - half, j.box[2 * a + 1] = centre[a] + half;
+  j.cells = {cells, cells, cells};
+  return j;
+}
+
+mesh::Mesh mesh_of(const mesh::Field& f, int n, mesh::Mesher kind) {
+  const double centre[3] = {n / 2.0, n / 2.0, n / 2.0};
+  return test::meshed(box_job(f, n, centre, n / 2.0), kind, 0);
 }
 
 // Cells whose corners 0 and 7 share a sign their faces do not join (marching tetrahedra's split
@@ -143,17 +144,8 @@ struct Compared {
 // Both meshers over the box of half-size `half` about `centre`, `cells` a side.
 Compared compare(const mesh::Field& f, int cells, const double centre[3], double half) {
   Compared out;
-  for (mesh::Mesher kind : {mesh::Mesher::DualContouring, mesh::Mesher::MarchingTetrahedra}) {
-    mesh::ImplicitJob j;
-    j.field = &f;
-    for (int a = 0; a < 3; ++a) j.box[2 * a] = centre[a] - half, j.box[2 * a + 1] = centre[a] + half;
-    j.cells = {cells, cells, cells};
-    j.mesher.kind = kind;
-    mesh::Mesh m;
-    backends::RuntimeError err;
-    REQUIRE(mesh::polygonize(j, m, err));
-    (kind == mesh::Mesher::DualContouring ? out.dc : out.mt) = mesh::topology(m);
-  }
+  out.dc = mesh::topology(test::meshed(box_job(f, cells, centre, half), mesh::Mesher::DualContouring));
+  out.mt = mesh::topology(test::meshed(box_job(f, cells, centre, half), mesh::Mesher::MarchingTetrahedra));
   return out;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 // Fields from C++ functions and a fixed rotation off the grid axes, for the mesher tests.
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <functional>
 
@@ -42,6 +43,16 @@ inline mesh::ImplicitJob job(const mesh::Field& f, int cells, double half = 1.0)
   j.box = {-half, half, -half, half, -half, half};
   j.cells = {cells, cells, cells};
   return j;
+}
+
+// The job meshed by `kind` at `tolerance`, which must succeed.
+inline mesh::Mesh meshed(mesh::ImplicitJob j, mesh::Mesher kind, double tolerance = mesh::MesherOptions::kDefaultTolerance) {
+  j.mesher.kind = kind;
+  j.mesher.tolerance = tolerance;
+  mesh::Mesh m;
+  backends::RuntimeError err;
+  REQUIRE(mesh::polygonize(j, m, err));
+  return m;
 }
 
 // The rotation about (1, 2, 3) through 0.6 radians, and its inverse (the transpose).

@@ -311,8 +311,14 @@ bool Executor::run_chunk(const float* const* in, float* const* out, size_t base,
   uint32_t S = L == 1 ? 1 : K;
   Frame fr{&k, regs.get(size_t(std::max<uint32_t>(k.num_regs, 1)) * S), L, S, env_ptrs.data(), gmem.data(), L, 0};
   init_frame(fr);
+  // The lanes past the last point repeat it: what an earlier chunk left there (any value: huge
+  // ones sent sin and cos to libm's slow reduction) would cost more than a real point.
   for (uint32_t p = 0; p < k.num_params; ++p)
-    if (k.param_regs[p] != kNoReg) load_param(p, in[p], base, L, fr.regs + size_t(k.param_regs[p]) * S);
+    if (k.param_regs[p] != kNoReg) {
+      float* lanes = fr.regs + size_t(k.param_regs[p]) * S;
+      load_param(p, in[p], base, L, lanes);
+      std::fill(lanes + L, lanes + present_lanes(S, L), lanes[L - 1]);
+    }
   start.assign(present_lanes(S, L), 0);
   std::fill_n(start.begin(), L, ~Mask{0});
   if (k.blocks.size() == 1) {  // straight-line kernel: one pass over the code, all lanes present

@@ -14,8 +14,9 @@ namespace fscript::mesh {
 // own, else central differences `step` apart), normalised, for every triangle corner whose face
 // is within half of `crease` radians of it; another corner takes the gradient of its triangle's
 // vertex that fits the face best where that one is within the angle, else the face's normal; and
-// a vertex whose corners differ is split into one per normal (the first keeps its index, the
-// others are appended, Mesh::split_from naming the first).
+// a vertex whose corners differ is split into one per normal (the vertex keeps its gradient where
+// a corner takes it, else the first other normal; the others are appended, Mesh::split_from naming
+// the vertex).
 // First, a vertex farther from the surface than `beyond` (f over the gradient's length), and no
 // farther than `most`, steps onto it along the gradient (one Newton step): the QEF's vertex can
 // leave the surface where planes meet at a grazing angle. Vertices on a face of `box` (within

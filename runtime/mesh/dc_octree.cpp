@@ -452,7 +452,7 @@ void number_blocks(const BlockGrid& grid, const std::vector<int32_t>& group, con
   double h = std::min({grid.lattice().h[0], grid.lattice().h[1], grid.lattice().h[2]});
   size_t total = groups.size();
   for (const Block& b : blocks) total += b.positions.size();
-  out.positions.reserve(total);
+  out.positions.reserve(total + total / 8);  // and the copies dc_normals splits off, without a move
   for (size_t i = 0; i < blocks.size(); ++i) {
     const Block& b = blocks[i];
     if (b.positions.empty()) continue;

@@ -258,6 +258,7 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   close_tubes(std::move(cuts), out);
   stats.triangles = out.triangles.size();
   for (const Block& b : blocks) stats.gradient_normals += b.gradient_normals, stats.difference_normals += b.difference_normals;
+  grid.reset(), group = {}, groups = {};  // the normals' memory takes the blocks' place
   return with_normals();
 }
 

@@ -5,6 +5,7 @@
 #include "frontend/fscript/entry.h"
 #include "frontend/fscript/lower.h"
 #include "frontend/fscript/script.h"
+#include "frontend/vrml/inline.h"
 #include "frontend/vrml/scene_scripts.h"
 #include "frontend/vrml/vrml_parser.h"
 
@@ -56,9 +57,10 @@ bool check_script(const std::string& path, const std::string& text, DiagnosticSi
   return !diag.has_errors();
 }
 
-bool check_scene(const std::string& path, const std::string& text, DiagnosticSink& diag) {
+bool check_scene(const std::string& path, const std::string& text, DiagnosticSink& diag, bool read_inlines) {
   vrml::Scene scene;
   bool ok = vrml::parse_scene(std::make_unique<SourceFile>(path, text), diag, scene);
+  if (ok && read_inlines) ok = vrml::load_inlines(scene, diag);
   std::vector<std::string> lines = split_lines(text);
   for (const auto& s : vrml::scene_scripts(scene)) {
     if (!is_affine_field(s.script.field)) {

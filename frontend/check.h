@@ -10,7 +10,9 @@ namespace fscript::frontend {
 
 // Returns false when any error was reported.
 bool check_script(const std::string& path, const std::string& text, DiagnosticSink& diag);
-bool check_scene(const std::string& path, const std::string& text, DiagnosticSink& diag);
+// A scene's scripts; with `read_inlines` (a file on disk, not an editor's buffer) its Inlines are
+// read too, so a missing one is warned about as fvrml-run does (vrml::load_inlines).
+bool check_scene(const std::string& path, const std::string& text, DiagnosticSink& diag, bool read_inlines = false);
 
 // The warnings lowering adds to a script that analysed without errors (check_script's last step).
 struct Script;

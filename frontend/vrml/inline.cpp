@@ -36,7 +36,8 @@ fs::path local_path(std::string url, const fs::path& dir) {
 
 class Loader {
  public:
-  Loader(frontend::DiagnosticSink& diag, std::vector<std::string>* files) : diag_(diag), files_(files) {}
+  Loader(frontend::DiagnosticSink& diag, std::vector<std::string>* files, std::vector<MissingInline>& missing, bool strict)
+      : diag_(diag), files_(files), missing_(missing), strict_(strict) {}
 
   void load(Scene& scene, std::vector<std::string>& stack) {
     std::unordered_set<const Node*> seen;
@@ -55,17 +56,40 @@ class Loader {
   }
 
  private:
-  // The first local URL of the Inline, read and parsed (VRML97: the first URL that works).
+  // The first URL of the Inline that reads (VRML97: the first that works); none: it is missing.
   void inline_node(Scene& scene, Node& n, std::vector<std::string>& stack) {
     const Value* url = n.get("url");
+    if (!url || url->strs.empty()) return;
     const frontend::SourceFile& here = file_of(scene, n);
-    for (size_t k = 0; url && k < url->strs.size(); ++k) {
-      if (is_remote_url(url->strs[k]) || url->strs[k].empty()) continue;
+    MissingInline missing{url->strs[0], "", "", &here, url->str_spans.empty() ? n.span : url->str_spans[0]};
+    for (size_t k = 0; k < url->strs.size(); ++k) {
+      const std::string& u = url->strs[k];
+      if (u.empty()) continue;
+      if (!missing.looked_at.empty()) missing.looked_at += ", ";
+      if (is_remote_url(u)) {
+        missing.looked_at += u, missing.reason = "not fetched (no network)";
+        continue;
+      }
       frontend::Span at = k < url->str_spans.size() ? url->str_spans[k] : n.span;
-      fs::path path = local_path(url->strs[k], fs::path(here.path()).parent_path());
-      if (Scene* file = read(here, at, "Inline '" + url->strs[k] + "'", path, scene, stack)) n.inlined = file->roots;
-      return;
+      fs::path path = local_path(u, fs::path(here.path()).parent_path());
+      missing.looked_at += path.string();
+      bool unreadable = false;
+      if (Scene* file = read(here, at, "Inline '" + u + "'", path, scene, stack, &missing.reason, &unreadable))
+        n.inlined = file->roots;
+      if (!unreadable) return;  // read, or an error reported (broken, circular)
     }
+    if (missing.looked_at.empty()) return;
+    report_missing(missing, std::all_of(url->strs.begin(), url->strs.end(), [](const std::string& u) { return u.empty() || is_remote_url(u); }));
+  }
+
+  void report_missing(const MissingInline& m, bool remote_only) {
+    if (strict_)
+      diag_.error(*m.file, m.span, "Inline '" + m.url + "': " + (remote_only ? m.reason : "cannot read " + m.looked_at + ": " + m.reason) +
+                                       ", and --strict makes a missing Inline an error");
+    else if (!remote_only)  // the parser warned about remote ones
+      diag_.warning(*m.file, m.span, "Inline '" + m.url + "': cannot read " + m.looked_at + ": " + m.reason +
+                                         "; the scene is drawn without it (put the file there, or --strict to make this an error)");
+    missing_.push_back(m);
   }
 
   // The first local URL of an EXTERNPROTO: its file read, and the PROTO the URL's #fragment names
@@ -103,9 +127,10 @@ class Loader {
   }
 
   // A local file read and parsed (its own Inlines and EXTERNPROTOs too), kept in `scene`; nullptr
-  // after an error reported at `at`.
+  // after an error reported at `at`. With `unreadable` given, a file that cannot be read is not
+  // reported but sets it, with the reason in `why`.
   Scene* read(const frontend::SourceFile& here, frontend::Span at, const std::string& what, const fs::path& path,
-              Scene& scene, std::vector<std::string>& stack) {
+              Scene& scene, std::vector<std::string>& stack, std::string* why = nullptr, bool* unreadable = nullptr) {
     std::error_code ec;
     fs::path canonical = fs::weakly_canonical(path, ec);
     std::string key = ec ? path.string() : canonical.string();
@@ -119,6 +144,12 @@ class Loader {
     }
     std::string text, error;
     if (!read_scene_text(path.string(), text, error)) {
+      // Not there, not allowed, a folder: missing. Too large, a gzip bomb: errors.
+      const std::string kCannot = "cannot read the file: ";
+      if (unreadable && error.rfind(kCannot, 0) == 0 && error.rfind(kCannot + "the file is", 0) != 0) {
+        *unreadable = true, *why = error.substr(kCannot.size());
+        return nullptr;
+      }
       diag_.error(here, at, what + ": " + error);
       return nullptr;
     }
@@ -134,6 +165,8 @@ class Loader {
 
   frontend::DiagnosticSink& diag_;
   std::vector<std::string>* files_;
+  std::vector<MissingInline>& missing_;
+  bool strict_;
 };
 
 }  // namespace
@@ -143,12 +176,12 @@ bool is_remote_url(const std::string& url) {
   return !s.empty() && s != "file";
 }
 
-bool load_inlines(Scene& scene, frontend::DiagnosticSink& diag, std::vector<std::string>* files) {
+bool load_inlines(Scene& scene, frontend::DiagnosticSink& diag, std::vector<std::string>* files, bool strict) {
   size_t before = diag.error_count();
   std::error_code ec;
   fs::path self = fs::weakly_canonical(scene.file->path(), ec);
   std::vector<std::string> stack = {ec ? scene.file->path() : self.string()};
-  Loader(diag, files).load(scene, stack);
+  Loader(diag, files, scene.missing_inlines, strict).load(scene, stack);
   return diag.error_count() == before;
 }
 

@@ -100,6 +100,16 @@ struct ProtoDef {
   frontend::Span span;
 };
 
+// An Inline none of whose URLs was read: a local file missing or unreadable, or only remote URLs
+// (never fetched). The scene is drawn without it (load_inlines).
+struct MissingInline {
+  std::string url;        // the first URL
+  std::string looked_at;  // the paths and URLs tried, in order, comma-separated
+  std::string reason;     // why the last one failed
+  const frontend::SourceFile* file = nullptr;
+  frontend::Span span;  // the URL in `file`
+};
+
 struct Scene {
   std::unique_ptr<frontend::SourceFile> file;
   std::vector<NodePtr> roots;
@@ -107,6 +117,7 @@ struct Scene {
   std::vector<std::unique_ptr<ProtoDef>> protos;
   std::map<std::string, NodePtr> defs;  // last DEF of each name at the top level
   std::vector<std::unique_ptr<Scene>> inlines;  // the local files Inlines and EXTERNPROTOs pulled in (load_inlines)
+  std::vector<MissingInline> missing_inlines;    // this file's and its Inlines' (load_inlines)
 
   // Top-level statements in file order, for the writer: (kind, index into roots/protos/routes).
   enum class Kind : uint8_t { Node, Proto, Route };

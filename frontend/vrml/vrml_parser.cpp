@@ -276,8 +276,12 @@ class Parser {
     resolve_type(sc, *n, type.span);
     node_body(sc, *n, depth);
     if (n->type == "Inline")  // a local file is read by load_inlines (fvrml-run), a remote one never
-      if (const Value* url = n->get("url"); url && !url->strs.empty() && is_remote_url(url->strs[0]))
-        d_.warning(f_, n->span, "Inline '" + url->strs[0] + "' is not fetched (no network); it stays a reference");
+      if (const Value* url = n->get("url");
+          url && !url->strs.empty() && std::all_of(url->strs.begin(), url->strs.end(), is_remote_url))
+        d_.warning(f_, url->str_spans.empty() ? n->span : url->str_spans[0],
+                   "Inline '" + url->strs[0] + "' is not fetched (no network): the scene is drawn without it, and its "
+                   "VRML97 output keeps the reference (to draw a copy of the file, name it first: url [\"" +
+                       url->strs[0].substr(url->strs[0].find_last_of('/') + 1) + "\" \"" + url->strs[0] + "\"])");
     if (!def_name.empty()) sc.defs[def_name] = n;  // after the body: a node cannot USE itself
     return n;
   }

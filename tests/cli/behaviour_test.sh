@@ -304,59 +304,6 @@ fi
 printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 3; i = i + 1) s = s + x; return 0.5 - s * s - y * y; }\n' > "$T/loop2d.fs"
 same_picture loop "$T/loop2d.fs" --size 64 --bounds -1,1,-1,1
 
-# ---- Inline of local files: read (relative to the file that names them), meshed and drawn ----
-mkdir -p "$T/inl/parts"
-printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "0.3^2 - x^2 - y^2 - z^2" bboxSize 1 1 1 resolution [16] } }\nInline { url "box.wrl" }\n' > "$T/inl/parts/ball.wrl"
-printf '#VRML V2.0 utf8\nTransform { translation 1 0 0 children [ Shape { geometry Box { size 0.2 0.2 0.2 } } ] }\n' > "$T/inl/parts/box.wrl"
-printf '#VRML V2.0 utf8\nTransform { translation 0 2 0 children [ Inline { url "parts/ball.wrl" } ] }\nInline { url "http://example.com/axes.wrl" }\n' > "$T/inl/main.wrl"
-check "Inline: a local file's FShape is meshed; a remote URL still warns" 0 "warning: Inline 'http://example.com/axes.wrl' is not fetched" \
-  -- "$R" "$T/inl/main.wrl" -o "$T/inl/main.obj"
-jcheck "Inline: the inlined ball, moved by the Transform around the Inline" out "
-j['triangles'] > 100 and near(j['bbox'][1], 1.7, 0.02) and near(j['bbox'][4], 2.3, 0.02) and near(j['bbox'][0], -0.3, 0.02)
-" -- python3 "$SRC/tests/clients/mesh_probe.py" "$T/inl/main.obj"
-check "Inline: a picture of the inlined FShape and the box its own Inline names" 0 'wrote [^ ]*main.png' -- "$R" "$T/inl/main.wrl" --size 120x80 -o "$T/inl/main.png"
-printf '#VRML V2.0 utf8\nInline { url "http://example.com/axes.wrl" }\n' > "$T/inl/remote.wrl"
-"$R" "$T/inl/remote.wrl" --size 120x80 -o "$T/inl/remote.png" 2> /dev/null
-[ -s "$T/inl/remote.png" ] || fail "Inline: a scene of one remote Inline draws no (empty) picture"
-cmp -s "$T/inl/main.png" "$T/inl/remote.png" && fail "Inline: the picture does not show the Inline's contents"
-printf '#VRML V2.0 utf8\nInline { url "missing.wrl" }\n' > "$T/inl/lost.wrl"
-check "Inline: a missing file, at its URL" 1 'lost.wrl:2:15: error: Inline .missing.wrl.: cannot read' -- "$R" "$T/inl/lost.wrl" -o "$T/inl/lost.ply"
-[ -e "$T/inl/lost.ply" ] && fail "Inline: a missing file still wrote lost.ply"
-printf '#VRML V2.0 utf8\nInline { url "b.wrl" }\n' > "$T/inl/a.wrl"
-printf '#VRML V2.0 utf8\nInline { url "a.wrl" }\n' > "$T/inl/b.wrl"
-check "Inline: a file that includes itself through another" 1 "b.wrl:2:15: error: Inline 'a.wrl' includes a file that includes it" -- "$R" "$T/inl/a.wrl" -o "$T/inl/a.ply"
-for i in $(seq 0 17); do printf '#VRML V2.0 utf8\nInline { url "deep%d.wrl" }\n' $((i + 1)) > "$T/inl/deep$i.wrl"; done
-printf '#VRML V2.0 utf8\n' > "$T/inl/deep18.wrl"
-check "Inline: nesting past 16 levels is refused at the URL" 1 "deep16.wrl:2:15: error: Inline 'deep17.wrl': files nested more than 16 deep" \
-  -- "$R" "$T/inl/deep0.wrl" -o "$T/inl/deep.ply"
-[ -e "$T/inl/deep.ply" ] && fail "Inline: too deep a nesting still wrote deep.ply"
-printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "function FRep(x,y,z,t) { while (1) { x = x + 1; } return x; }" } }\n' > "$T/inl/parts/loop.wrl"
-printf '#VRML V2.0 utf8\nInline { url "parts/loop.wrl" }\n' > "$T/inl/runerr.wrl"
-check "Inline: a runtime error in the inlined file's script, at its own line" 1 'parts/loop.wrl:2:68: error: loop iteration budget' \
-  -- "$R" "$T/inl/runerr.wrl" -o "$T/inl/runerr.ply" --max-loop-iterations 100
-
-# ---- EXTERNPROTO of a local file: its PROTO (named by the #fragment) is read and instantiated ----
-mkdir -p "$T/ext/lib"
-printf '#VRML V2.0 utf8\nPROTO Other [ ] { Group { } }\nPROTO Ball [ exposedField SFString shape "0.5^2 - x^2 - y^2 - z^2" field SFVec3f at 0 0 0 ] {\n  Transform { translation IS at children FShape { geometry FGeometry { definition IS shape bboxSize 2 2 2 resolution [16] } } }\n}\n' > "$T/ext/lib/balls.wrl"
-printf '#VRML V2.0 utf8\nEXTERNPROTO Ball [ exposedField SFString shape field SFVec3f at ] "lib/balls.wrl#Ball"\nBall { }\nBall { shape "0.3^2 - x^2 - y^2 - z^2" at 2 0 0 }\n' > "$T/ext/main.wrl"
-check "EXTERNPROTO: a local file's PROTO, with its defaults and the instance's values" 0 'wrote [^ ]*main.obj' -- "$R" "$T/ext/main.wrl" -o "$T/ext/main.obj"
-jcheck "EXTERNPROTO: both balls, the second moved by the field IS'd to its Transform" out "
-j['triangles'] > 100 and near(j['bbox'][0], -0.5, 0.02) and near(j['bbox'][3], 2.3, 0.02)
-" -- python3 "$SRC/tests/clients/mesh_probe.py" "$T/ext/main.obj"
-printf '#VRML V2.0 utf8\nEXTERNPROTO Ball [ exposedField SFString shape ] "lib/balls.wrl#Bal"\nBall { }\n' > "$T/ext/noname.wrl"
-check "EXTERNPROTO: no PROTO of that name in the file" 1 "noname.wrl:2:1: error: EXTERNPROTO Ball 'lib/balls.wrl#Bal': the file has no PROTO Bal" -- "$R" "$T/ext/noname.wrl" -o "$T/ext/x.ply"
-printf '#VRML V2.0 utf8\nEXTERNPROTO Ball [ exposedField SFFloat shape ] "lib/balls.wrl#Ball"\nBall { }\n' > "$T/ext/type.wrl"
-check "EXTERNPROTO: a field declared otherwise than in the PROTO" 1 "type.wrl:2:.*error: EXTERNPROTO Ball 'lib/balls.wrl#Ball': field 'shape' is exposedField SFString in the PROTO" -- "$R" "$T/ext/type.wrl" -o "$T/ext/x.ply"
-printf '#VRML V2.0 utf8\nEXTERNPROTO Ball [ ] [ "missing.wrl#Ball" "http://example.com/balls.wrl#Ball" ]\nBall { }\n' > "$T/ext/lost.wrl"
-check "EXTERNPROTO: a missing local file" 1 "lost.wrl:2:1: error: EXTERNPROTO Ball 'missing.wrl#Ball': cannot read" -- "$R" "$T/ext/lost.wrl" -o "$T/ext/x.ply"
-[ -e "$T/ext/x.ply" ] && fail "EXTERNPROTO: a broken one still wrote x.ply"
-printf '#VRML V2.0 utf8\nEXTERNPROTO Ball [ ] "http://example.com/balls.wrl#Ball"\nBall { }\n' > "$T/ext/remote.wrl"
-check "EXTERNPROTO: a remote one still warns" 0 "warning: EXTERNPROTO 'Ball' is not fetched" -- "$R" "$T/ext/remote.wrl" -o "$T/ext/remote.wrl.out.wrl"
-printf '#VRML V2.0 utf8\nShape { geometry Box { }\n' > "$T/inl/parts/broken.wrl"
-printf '#VRML V2.0 utf8\nInline { url "parts/broken.wrl" }\n' > "$T/inl/broken.wrl"
-check "Inline: a syntax error in the inlined file, at its own line" 1 "parts/broken.wrl:3:1: error: expected '}' to close 'Shape'" \
-  -- "$R" "$T/inl/broken.wrl" -o "$T/inl/broken.ply"
-
 # ---- progress on a terminal: one line redrawn in place, erased at the end; nothing on a pipe ----
 # (FVRML_PROGRESS_AFTER=0 shows it from the first redraw, a quarter second in, instead of after 1 s.)
 TTY="$SRC/tests/cli/tty_run.py"

@@ -170,6 +170,19 @@ def main(d):
     fixed = events.wait(lambda st: st["version"] > v, 2.0)
     check("a fixed save clears the diagnostics", fixed is not None and fixed["ok"] and "error" not in fixed["diagnostics"])
 
+    # A missing Inline: a good run (the scene without it) whose diagnostics carry the warning.
+    v = s.state()["version"]
+    write(scene, BALL.replace("RADIUS", "0.6") + '\nInline { url "nothere.wrl" }\n')
+    warned = events.wait(lambda st: st["version"] > v, 2.0)
+    check("a missing Inline: the scene without it, and the warning", warned is not None and warned["ok"] and
+          "warning: Inline 'nothere.wrl': cannot read" in warned["diagnostics"] and
+          (warned.get("stats") or {}).get("missing_inlines", [{}])[0].get("url") == "nothere.wrl", json.dumps(warned)[:400])
+    status, glb4 = s.request("GET", "/scene.glb")
+    check("a missing Inline: the scene's glTF", status == 200 and glb4[:4] == b"glTF")
+    v = s.state()["version"]
+    write(scene, BALL.replace("RADIUS", "0.6"))
+    events.wait(lambda st: st["version"] > v, 2.0)
+
     # The resolution scale from the page.
     status, _ = s.request("POST", "/settings?scale=0.5", b"")
     check("settings: a resolution scale", status == 200, str(status))

@@ -1,6 +1,7 @@
 // The preview page in headless Chromium (Debian chromium, driven by playwright-core): the first
 // picture appears, the time slider moves the morph, an edit on disk shows within 2 s, a broken edit
-// shows its diagnostics over the last good picture, a fixed one clears them, an animation plays the
+// shows its diagnostics over the last good picture, a fixed one clears them, a missing Inline's
+// warning shows over the scene drawn without it, an animation plays the
 // frames made so far before the last exists, and paths outside the page are 404. usage: node preview_browser.mjs URL SCENE_FILE   (fvrml-run --serve already runs)
 import { chromium } from 'playwright-core';
 import fs from 'node:fs';
@@ -82,6 +83,18 @@ try {
     await until(() => document.body.dataset.state === 'ok', 2000);
     const display = await page.$eval('#overlay', (el) => getComputedStyle(el).display);
     assert.equal(display, 'none');
+  });
+  await check('a missing Inline: its warning over the scene, which is still drawn', async () => {
+    const before = await shown();
+    write(original + '\nInline { url "nothere.wrl" }\n');
+    await until((v) => Number(document.body.dataset.shown) > v && document.body.dataset.state === 'ok' &&
+                document.body.dataset.shownFrames === 'all', 10000, before);
+    const text = await page.$eval('#overlay', (el) => (getComputedStyle(el).display === 'none' ? '' : el.textContent));
+    assert.match(text, /warning: Inline 'nothere.wrl': cannot read .*nothere.wrl/, text);
+    const p = await picture();
+    assert.ok(p.drawn > p.total / 100, `${p.drawn} of ${p.total} pixels drawn`);
+    write(original);
+    await until(() => getComputedStyle(document.getElementById('overlay')).display === 'none', 5000);
   });
   await check('an animation plays its frames so far before the last one is made', async () => {
     // The benchmark gyroid at half resolution: about 0.1 s a frame, 24 frames.

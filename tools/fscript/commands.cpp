@@ -138,7 +138,7 @@ int cmd_check(const std::vector<std::string>& files) {
       continue;
     }
     frontend::DiagnosticSink diag;
-    bool ok = is_wrl ? frontend::check_scene(path, text, diag) : frontend::check_script(path, text, diag);
+    bool ok = is_wrl ? frontend::check_scene(path, text, diag, true) : frontend::check_script(path, text, diag);
     if (!ok) rc = kExitInput;
     print_diagnostics(diag);
   }

@@ -197,6 +197,9 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   app.add_flag("--open", serve.open, "--serve: open the page in the desktop's browser (xdg-open)");
   app.add_option("--format", o.format, "wrl|glb|ply|obj|stl|png (default: from the output's extension; wrl)");
   app.add_flag("--keep-going", o.keep_going, "write what succeeded when a shape fails");
+  app.add_flag("--strict", o.strict,
+               "an Inline that cannot be read (a missing file, or only remote URLs: never fetched) is an error; "
+               "without it, a warning, and the scene is drawn without the Inline");
   app.add_option("--check", o.check, "compare the mesh with the reference mesh REF (ply, obj, stl): distances as JSON");
   app.add_option("--width", o.width, "picture width in pixels, 16 to 8,192 (png)")
       ->check(CLI::Range(16u, 8192u).description(""))

@@ -104,6 +104,17 @@ bool check_against(const std::string& ref, const mesh::Mesh& all) {
 
 int single(const Options& o, Loaded& l, nlohmann::json& st);
 
+// --stats: each Inline drawn as nothing, where it is and what was tried.
+nlohmann::json missing_json(const std::vector<vrml::MissingInline>& missing) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& m : missing) {
+    fscript::frontend::LineCol at = m.file->position(m.span.begin);
+    out.push_back({{"url", m.url}, {"file", m.file->path()}, {"line", at.line}, {"column", at.col},
+                   {"looked_at", m.looked_at}, {"reason", m.reason}});
+  }
+  return out;
+}
+
 // What the preview page takes from the scene: the first Viewpoint, the DirectionalLights (in world
 // coordinates), the headlight and the background colour.
 nlohmann::json view_json(const fscript::render::RenderOptions& ro) {
@@ -134,9 +145,10 @@ int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* fi
   bool ok = script ? script_scene(o.path, text, l)
                    : vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(o.path, text), l.diag, l.scene);
   l.files = {o.path};
-  if (ok && !script) ok = vrml::load_inlines(l.scene, l.diag, &l.files);  // local Inline files, read and parsed
+  if (ok && !script) ok = vrml::load_inlines(l.scene, l.diag, &l.files, o.strict);  // local Inline files, read and parsed
   if (files) files->insert(files->end(), l.files.begin() + 1, l.files.end());
   st = {{"parse_ms", ms_since(t0)}};
+  if (!l.scene.missing_inlines.empty()) st["missing_inlines"] = missing_json(l.scene.missing_inlines);
   if (!ok) {
     std::cerr << fscript::frontend::render_all(l.diag);
     return 1;

@@ -93,10 +93,12 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   Options o = preview_run_options(base, (fs::path(dir) / "scene.glb").string());
   o.memo = &memo;
   o.cancel = &cancel;
-  o.on_partial = [&st](const std::string& glb, size_t frames, size_t of) {
+  std::ostringstream captured;
+  // Called by the run's own thread, which writes `captured`: the warnings so far go with the scene.
+  o.on_partial = [&st, &captured](const std::string& glb, size_t frames, size_t of) {
     {
       std::lock_guard<std::mutex> hold(st.lock);
-      st.glb = glb, st.ok = true, st.diagnostics.clear();
+      st.glb = glb, st.ok = true, st.diagnostics = captured.str();
       st.partial = {{"frames", frames}, {"of", of}};
       ++st.version;
     }
@@ -118,7 +120,6 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
     ok_before = st.ok, diagnostics_before = st.diagnostics;
   }
   st.changed.notify_all();  // the streams switch to sending progress
-  std::ostringstream captured;
   std::streambuf* saved = std::cerr.rdbuf(captured.rdbuf());
   auto t0 = Clock::now();
   int rc;

@@ -137,8 +137,11 @@ let currentView = null;
 
 function show(state) {
   if (state.ok && state.stats && state.stats.view) currentView = state.stats.view;
-  overlay.style.display = state.ok ? 'none' : 'block';
-  overlay.textContent = state.ok ? '' : state.diagnostics;
+  // Errors over the last good picture; a good run's warnings (a missing Inline) over its own.
+  const warned = state.ok && /warning:/.test(state.diagnostics || '');
+  overlay.style.display = state.ok && !warned ? 'none' : 'block';
+  overlay.className = warned ? 'warn' : '';
+  overlay.textContent = state.ok && !warned ? '' : state.diagnostics;
   document.body.dataset.state = state.ok ? 'ok' : 'error';
   const s = state.stats || {};
   let triangles = 0, frames = 0;

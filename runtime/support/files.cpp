@@ -15,6 +15,16 @@
 
 namespace fscript::support {
 
+bool same_file(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec) && !ec;
+  fs::path ca = fs::weakly_canonical(a, ec);
+  if (ec) return false;
+  fs::path cb = fs::weakly_canonical(b, ec);
+  return !ec && ca == cb;
+}
+
 bool read_file(const std::string& path, std::string& out, std::string& error, size_t max_bytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {

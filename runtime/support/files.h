@@ -30,6 +30,10 @@ bool write_file_atomic(const std::string& path, const std::vector<std::string_vi
 // output streamed through a small buffer, never held whole in memory.
 bool write_file_atomic(const std::string& path, const std::function<bool(std::FILE*)>& fill, std::string& error);
 
+// Whether two paths name the same file: the same inode where both exist (links, `./`, `..`),
+// else the same absolute path once `.`, `..` and symbolic links are resolved.
+bool same_file(const std::string& a, const std::string& b);
+
 // Deletes the temporary files of writes in progress in any thread: for a run that a limit ends
 // with _exit (runtime/support/limits.h), so it leaves neither the output nor half of it.
 void remove_pending_writes();

@@ -14,6 +14,7 @@
 #include "backends/tiered/tiered.h"
 #include "runtime/render/png.h"
 #include "runtime/render/quadtree.h"
+#include "runtime/support/files.h"
 #include "runtime/support/parallel.h"
 #include "runtime/support/progress.h"
 #include "tools/fscript/commands.h"
@@ -256,6 +257,10 @@ int cmd_render2d(const Options& o, const std::string& file, const std::string& e
   }
   if (!parse_bounds(bounds, bd)) {
     std::cerr << "error: --bounds wants four finite numbers X0,X1,Y0,Y1, got '" << bounds << "'\n";
+    return kExitUsage;
+  }
+  if (!out_path.empty() && file != "-" && support::same_file(out_path, file)) {
+    std::cerr << "error: the output " << out_path << " is the script this command reads: name another output\n";
     return kExitUsage;
   }
   Compiled c;

@@ -19,6 +19,7 @@
 #include "runtime/mesh/dual_contour.h"
 #include "runtime/mesh/octree.h"
 #include "runtime/support/big_stack.h"
+#include "runtime/support/files.h"
 #include "runtime/support/progress.h"
 #include "runtime/support/version.h"
 #include "tools/budget_flags.h"
@@ -197,6 +198,9 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   app.add_flag("--open", serve.open, "--serve: open the page in the desktop's browser (xdg-open)");
   app.add_option("--format", o.format, "wrl|glb|ply|obj|stl|png (default: from the output's extension; wrl)");
   app.add_flag("--keep-going", o.keep_going, "write what succeeded when a shape fails");
+  app.add_flag("--force", o.force,
+               "let an output replace a file the run reads (the scene, an Inline or EXTERNPROTO file, the --check "
+               "mesh); without it that is refused");
   app.add_flag("--strict", o.strict,
                "an Inline that cannot be read (a missing file, or only remote URLs: never fetched) is an error; "
                "without it, a warning, and the scene is drawn without the Inline");
@@ -341,6 +345,9 @@ int merge_main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  for (const std::string& p : paths)
+    if (fscript::support::same_file(p, output))
+      return std::cerr << "error: -o " << output << " is a part this merge reads (" << p << "); name another output\n", 1;
   std::vector<Part> parts(paths.size());
   std::string error;
   for (size_t i = 0; i < paths.size(); ++i)

@@ -42,6 +42,7 @@ struct Options {
   int frames = 0, threads = 1;
   bool stats = false, keep_going = false, prune = true;
   bool strict = false;  // a missing Inline is an error, not a warning
+  bool force = false;   // an output may replace a file the run reads
   mesh::MesherOptions mesher;  // --mesher, --tolerance
   uint32_t width = 800, height = 600;
   double azimuth = 30, elevation = 20, zoom = 1;  // the picture's automatic camera (raster.h)

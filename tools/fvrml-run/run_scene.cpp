@@ -104,6 +104,35 @@ bool check_against(const std::string& ref, const mesh::Mesh& all) {
 
 int single(const Options& o, Loaded& l, nlohmann::json& st);
 
+// The files the run writes: -o, or with --frames N and a mesh format the N numbered files.
+std::vector<std::string> outputs(const Options& o) {
+  if (o.output.empty() || o.output == "-") return {};
+  bool numbered_frames = o.frames > 0 && o.format != "wrl" && o.format != "glb" && o.format != "png" && !o.shard_part;
+  if (!numbered_frames) return {o.output};
+  std::vector<std::string> out;
+  for (int f = 0; f < o.frames; ++f) out.push_back(numbered(o.output, f, o.frames));
+  return out;
+}
+
+// False, with the error printed, where an output would replace a file the run reads: `fvrml-run
+// lab.wrl -o lab.wrl` replaced a student's scene with our VRML97 export, without a word.
+bool outputs_clear_of_inputs(const Options& o, const std::vector<std::string>& inputs) {
+  for (const std::string& out : outputs(o)) {
+    for (size_t i = 0; i < inputs.size(); ++i)
+      if (fscript::support::same_file(out, inputs[i])) {
+        std::cerr << "error: the output " << out << " is " << (i == 0 ? "the scene this run reads" : "a file this scene reads (" + inputs[i] + ")")
+                  << ": writing it would replace that file; name another output, or add --force\n";
+        return false;
+      }
+    if (!o.check.empty() && fscript::support::same_file(out, o.check)) {
+      std::cerr << "error: the output " << out << " is the reference mesh of --check: writing it would replace that file; "
+                << "name another output, or add --force\n";
+      return false;
+    }
+  }
+  return true;
+}
+
 // --stats: each Inline drawn as nothing, where it is and what was tried.
 nlohmann::json missing_json(const std::vector<vrml::MissingInline>& missing) {
   nlohmann::json out = nlohmann::json::array();
@@ -149,6 +178,7 @@ int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* fi
   if (files) files->insert(files->end(), l.files.begin() + 1, l.files.end());
   st = {{"parse_ms", ms_since(t0)}};
   if (!l.scene.missing_inlines.empty()) st["missing_inlines"] = missing_json(l.scene.missing_inlines);
+  if (!o.force && !outputs_clear_of_inputs(o, l.files)) return 1;
   if (!ok) {
     std::cerr << fscript::frontend::render_all(l.diag);
     return 1;

@@ -366,7 +366,7 @@ printf '#VRML V2.0 utf8\nFShape { cycleInterval 2 loop TRUE\n appearance FAppear
 sed 's|DISP|0.04*sin(8*x)|' "$T/dc-all.tpl" > "$T/dc-all.wrl"
 sed 's|DISP|0|' "$T/dc-all.tpl" > "$T/dc-plain.wrl"
 for ext in ply obj stl glb wrl png; do
-  check "fvrml-run --mesher dc -o .$ext" 0 "wrote [^ ]*dc-out.$ext" -- "$R" "$T/dc-all.wrl" --mesher dc -o "$T/dc-out.$ext"
+  check "fvrml-run --mesher dc -o .$ext" 0 "wrote [^ ]*dc-out.$ext" -- "$R" "$T/dc-all.wrl" --mesher dc --time 0 -o "$T/dc-out.$ext"
 done
 for ext in ply obj stl; do
   jcheck "--mesher dc .$ext: closed, oriented, 2-manifold" out "all(j['a'][k] for k in ('watertight', 'oriented', 'manifold'))" \

@@ -195,6 +195,18 @@ with tempfile.TemporaryDirectory() as tmp:
     expect("load names every script", type_line(fd, f":load {listing}"),
            r"shape1_geometry shape1_diffuseColor shape2_geometry shape2_diffuseColor")
     expect("call shape1_geometry", type_line(fd, "shape1_geometry(0.5, 0.5, 0.5, 0)"), r"\r\n-?[0-9.e+-]+( -?[0-9.e+-]+)*\r\n")
+    # A scene with a broken script: its error at load, at the file's own line and column, and the
+    # good script still loaded and callable.
+    broken = os.path.join(tmp, "broken.wrl")
+    with open(broken, "w") as f:
+        f.write('#VRML V2.0 utf8\nDEF good FShape { geometry FGeometry { definition "1 - x*x" } }\n'
+                'DEF bad FShape {\n  geometry FGeometry { definition "1 - x*x + nosuch(y)" } }\n')
+    loaded = type_line(fd, f":load {broken}")
+    expect("load shows a script's error at the file's line:col", loaded, r"broken\.wrl:4:46: error: [^\r\n]*nosuch")
+    expect("load: the caret under it", loaded, r"\r\n +\^")
+    expect("load: what was loaded and what was left out", loaded,
+           r"loaded 1 script from .*broken\.wrl; 1 script with errors \(above\) left out[^\r\n]*\r\n +good_geometry\r\n")
+    expect("the good script of that scene", type_line(fd, "good_geometry(0.5, 0, 0, 0)"), r"\r\n0\.75\r\n")
     fs_file = os.path.join(tmp, "defs.fs")
     with open(fs_file, "w") as f:
         f.write("function cube(x) { return x * x * x; }\n")

@@ -202,6 +202,9 @@ def main(d):
 
     code, out, err = s.stop()
     check("Ctrl-C ends it cleanly", code == 0 and "stopped" in out, f"{code} {out!r} {err[-300:]!r}")
+    check("a broken save's errors on the terminal too", "scene.wrl:2:" in err and "error:" in err, err[-500:])
+    check("and the word when it is good again", "scene.wrl: no errors now" in err, err[-500:])
+    check("a missing Inline's warning on the terminal too", "warning: Inline 'nothere.wrl'" in err, err[-500:])
     check("the scratch folder is gone", not any(n.startswith(f"fvrml-serve-{s.proc.pid}-")
                                                 for n in os.listdir(tempfile.gettempdir())))
 
@@ -293,6 +296,11 @@ def main(d):
     check("a port in use: a clear error", busy.returncode == 1 and "cannot listen" in busy.stderr, busy.stderr[-200:])
     code, out, err = s.stop()
     check("Ctrl-C ends it cleanly (broken scene)", code == 0, f"{code} {err[-300:]!r}")
+    missing = subprocess.run([RUN, os.path.join(d, "nosuch.wrl"), "--serve", "--port", "0"], capture_output=True,
+                             text=True, timeout=30)
+    check("a scene that is not there: an error at the start", missing.returncode == 1 and
+          "nosuch.wrl:1:1: error: cannot read the file: No such file or directory" in missing.stderr and
+          "serving" not in missing.stdout, missing.stdout + missing.stderr)
     bad = subprocess.run([RUN, scene, "--serve", "-o", os.path.join(d, "x.glb")], capture_output=True, text=True, timeout=30)
     check("--serve with -o: refused", bad.returncode == 2 and "--serve writes no file" in bad.stderr, bad.stderr)
 

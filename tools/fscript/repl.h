@@ -3,6 +3,7 @@
 // expression's value, commands (:help, :backend, :ir, :asm, :time, :load, :plot, :reset, :quit).
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,9 @@ class Session {
   Options opts_;
   std::vector<std::pair<std::string, std::string>> defs_;  // (name, text)
   struct SceneCallable {
-    std::string text, where;  // the script, "file.wrl:line"
+    std::string text, path;  // the script, and the .wrl it is in
+    uint32_t line = 1, col = 1;  // where its text starts in the .wrl: diagnostics at the file's own places
+    std::shared_ptr<const std::vector<std::string>> lines;  // the .wrl's lines, for carets
   };
   std::map<std::string, SceneCallable> scene_;  // node name -> its script
 };

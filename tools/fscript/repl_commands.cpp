@@ -5,6 +5,8 @@
 #include <regex>
 #include <sstream>
 
+#include "frontend/fscript/embedded.h"
+#include "frontend/fscript/script.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/scene_scripts.h"
 #include "frontend/vrml/vrml_parser.h"
@@ -407,21 +409,35 @@ void Session::cmd_load(const std::string& path, std::string& out) {
   std::map<const vrml::Node*, int> per_node;
   for (const auto& s : scripts) ++per_node[s.node];
   std::string names;
-  int count = 0;
+  int count = 0, broken = 0;
+  auto lines = std::make_shared<const std::vector<std::string>>(frontend::split_lines(text));
   for (const auto& s : scripts) {
     if (frontend::is_affine_field(s.script.field) || s.script.field == "operation") continue;
+    // Checked now, its errors at the file's own lines; one with errors is left out.
+    auto file = std::make_unique<frontend::SourceFile>(path, s.script.text, s.script.line, s.script.col);
+    file->set_outer_lines(*lines);
+    frontend::Script checked;
+    size_t errors = diag.error_count();
+    frontend::load_script(std::move(file), diag, checked);
+    if (diag.error_count() != errors) {
+      ++broken;
+      continue;
+    }
     // The node's own DEF name (with the field when it has several scripts), else its owner's
     // name and the script's role: shape1_geometry, shape1_diffuseColor, ball_texture.
     std::string name = !s.node->def_name.empty()
                            ? (per_node[s.node] > 1 ? s.node->def_name + "_" + s.script.field : s.node->def_name)
                            : owner.count(s.node) ? owner[s.node] + "_" + role_of(*s.node, s.script.field)
                                                  : lowercase_type(*s.node) + "_" + s.script.field;
-    scene_[name] = {s.script.text, path + ":" + std::to_string(s.script.line)};
+    scene_[name] = {s.script.text, path, s.script.line, s.script.col, lines};
     names += (count++ % 6 == 0 ? "\n  " : " ") + name;
   }
-  out += names.empty() ? "no FScript in " + path + "\n"
+  out += frontend::render_all(diag);
+  std::string left_out = broken == 0 ? "" : "; " + std::to_string(broken) + (broken == 1 ? " script" : " scripts") +
+                                                " with errors (above) left out";
+  out += names.empty() ? (broken ? "no script of " + path + " loaded" + left_out : "no FScript in " + path) + "\n"
                        : "loaded " + std::to_string(count) + (count == 1 ? " script" : " scripts") + " from " + path +
-                             ", each callable with its script's inputs (x, y, z, t or u, v, w, t):" + names + "\n";
+                             left_out + ", each callable with its script's inputs (x, y, z, t or u, v, w, t):" + names + "\n";
 }
 
 // NAME(args) where NAME came from a loaded scene: the script compiled on its own (its entry
@@ -445,8 +461,9 @@ bool Session::call_scene_script(const std::string& input, std::string& out) {
   }
   Compiled c;
   frontend::DiagnosticSink diag;
-  driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>(sc.where, sc.text), driver::default_entry(),
-                                      opts_, diag, c);
+  auto file = std::make_unique<frontend::SourceFile>(sc.path, sc.text, sc.line, sc.col);
+  file->set_outer_lines(*sc.lines);
+  driver::Outcome r = driver::compile(std::move(file), driver::default_entry(), opts_, diag, c);
   if (!report_compile(r, frontend::render_all(diag), out)) return true;
   args.resize(c.kernel->num_inputs(), 0.0f);
   const backends::Kernel& k = *c.kernel;

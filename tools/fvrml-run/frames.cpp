@@ -84,7 +84,9 @@ mesh::GltfAnimation gltf_animation(const vrml::Scene& scene, const Track& t, con
   return a;
 }
 
-// Whether a track's frames differ: some script it runs reads t.
+}  // namespace
+
+// A track's frames differ where some script it runs reads t.
 bool moves(const SceneModel& m, const Track& t) {
   auto shape_moves = [](const fscript::scene::Shape& s) {
     bool r = s.geometry.reads_t || (s.texture && s.texture->reads_t) || (s.colour && s.colour->reads_t);
@@ -104,6 +106,8 @@ bool moves(const SceneModel& m, const Track& t) {
   }
   return false;
 }
+
+namespace {
 
 // A shard's part records the hash of the files the scene read; a merge checks it against them now.
 bool stamp_scene(const Options& o, const Loaded& l) {
@@ -211,17 +215,28 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
 std::vector<Track> tracks(const Options& o, const SceneModel& model) {
   std::vector<Track> out;
   if (o.format != "wrl" && o.format != "glb") return out;
-  auto count = [&](double own) { return o.frames > 0 ? o.frames : std::clamp(static_cast<int>(own), 0, kMaxFrames); };
+  auto add = [&](Track t, double own) {
+    t.frames = o.frames > 0 ? o.frames : std::clamp(static_cast<int>(own), 0, kMaxFrames);
+    if (t.frames == 0 && !o.instant && moves(model, t)) t.frames = kDefaultAnimationFrames;
+    if (t.frames > 0) out.push_back(t);
+  };
   for (size_t i = 0; i < model.shapes.size(); ++i) {
     const auto& s = model.shapes[i];
-    if (s.group < 0 && count(s.frames) > 0) out.push_back({s.fshape, false, static_cast<int>(i), count(s.frames)});
+    if (s.group < 0) add({s.fshape, false, static_cast<int>(i), 0}, s.frames);
   }
   for (size_t g = 0; g < model.groups.size(); ++g) {
     const auto& grp = model.groups[g];
-    int n = count(fscript::scene::field_number(*grp.node, "frames"));
-    if (grp.parent < 0 && n > 0) out.push_back({grp.node, true, static_cast<int>(g), n});
+    if (grp.parent < 0) add({grp.node, true, static_cast<int>(g), 0}, fscript::scene::field_number(*grp.node, "frames"));
   }
   return out;
+}
+
+bool scene_moves(const SceneModel& model) {
+  for (size_t i = 0; i < model.shapes.size(); ++i)
+    if (model.shapes[i].group < 0 && moves(model, {model.shapes[i].fshape, false, static_cast<int>(i), 0})) return true;
+  for (size_t g = 0; g < model.groups.size(); ++g)
+    if (model.groups[g].parent < 0 && moves(model, {model.groups[g].node, true, static_cast<int>(g), 0})) return true;
+  return false;
 }
 
 bool within_sample_limits(const Options& o, Loaded& l, const SceneModel& model, int frames) {

@@ -113,9 +113,20 @@ std::string written_summary(const Options& o, const nlohmann::json& st, double m
     if (st.contains(part) && st[part].is_array())
       for (const auto& s : st[part])
         if (s.contains("triangles") && s["triangles"].is_number()) triangles += s["triangles"].get<uint64_t>();
-  std::string what;
-  if (st.contains("frames") && st["frames"].is_array()) what = std::to_string(st["frames"].size()) + " frame files, ";
-  if (st.contains("animations") && !st["animations"].empty()) what = "animated, ";
+  std::string what, files = o.output;
+  if (st.contains("frames") && st["frames"].is_array()) {
+    int n = static_cast<int>(st["frames"].size());
+    if (o.format == "png") what = "a contact sheet of " + std::to_string(n) + (n == 1 ? " frame, " : " frames, ");
+    else {
+      files = n == 1 ? numbered(o.output, 0, n) : numbered(o.output, 0, n) + " ... " + numbered(o.output, n - 1, n);
+      what = std::to_string(n) + (n == 1 ? " frame file, " : " frame files, ");
+    }
+  }
+  int frames = 0;
+  if (st.contains("animations"))
+    for (const auto& a : st["animations"])
+      if (a.contains("frames") && a["frames"].is_number()) frames = std::max(frames, a["frames"].get<int>());
+  if (frames > 0) what = "animated, " + std::to_string(frames) + " frames a cycle, ";
   what += thousands(triangles) + " triangles";
   if (st.contains("shapes")) {
     size_t shapes = st["shapes"].size();
@@ -123,7 +134,13 @@ std::string written_summary(const Options& o, const nlohmann::json& st, double m
   }
   char secs[32];
   std::snprintf(secs, sizeof secs, ", %.2f s", ms / 1000.0);
-  return "wrote " + o.output + ": " + what + secs;
+  std::string out = "wrote " + files + ": " + what + secs;
+  if (st.value("one_instant", false)) {
+    std::string format = o.format == "png" ? "a picture" : o.format == "stl" ? "STL" : o.format == "obj" ? "OBJ" : "PLY";
+    out += "\nnote: the scene changes in time and " + format + " holds one instant: this is the scene at time 0; --frames N writes N " + (o.format == "png" ? "frames on a contact sheet" : "files") +
+           " over its cycle, --time T or --fraction F another instant, and -o NAME.glb or NAME.wrl an animation";
+  }
+  return out;
 }
 
 // fvrml-run merge: the parts' frames in a memo the run takes every frame from.
@@ -296,6 +313,7 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   }
   if (merge) o.merging = merge->first, o.memo = merge->memo, o.whole_frames = merge->whole_frames, o.mesher.slabs = merge->slabs;
   // Under --serve the clock is per run (cancelled, the server goes on), not a watchdog on the process.
+  o.instant = app.count("--time") > 0 || app.count("--fraction") > 0;
   if (!fscript::tools::apply_limits("fvrml-run", limits, !serve.on)) return 1;
   o.model.max_memory_mib = limits.max_memory_mib;
   if (serve.on) {

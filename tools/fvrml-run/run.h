@@ -43,6 +43,7 @@ struct Options {
   bool stats = false, keep_going = false, prune = true;
   bool strict = false;  // a missing Inline is an error, not a warning
   bool force = false;   // an output may replace a file the run reads
+  bool instant = false;  // --time or --fraction: one instant asked for, not an animation
   mesh::MesherOptions mesher;  // --mesher, --tolerance
   uint32_t width = 800, height = 600;
   double azimuth = 30, elevation = 20, zoom = 1;  // the picture's automatic camera (raster.h)
@@ -148,13 +149,24 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st);
 int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::json& st);
 
 // The animated nodes of the model (empty when the output is not VRML97 or glTF).
+// The frames of a cycle an animated shape gets in glTF and VRML97 when neither the command line
+// (--frames) nor the shape (its `frames` field) says: the live preview's too.
+constexpr int kDefaultAnimationFrames = 24;
+
 struct Track {
   const vrml::Node* node = nullptr;
   bool group = false;  // a top-level FTransform (model.groups[index]), else model.shapes[index]
   int index = 0;
   int frames = 0;
 };
+// The shapes and top-level FTransforms glTF and VRML97 write as animations: with --frames every
+// one (a still one then comes out as one frame); else those with a `frames` field, and those that
+// change in time (moves) with kDefaultAnimationFrames, unless one instant was asked for.
 std::vector<Track> tracks(const Options& o, const SceneModel& model);
+// Whether the shape or group of `t` changes with its t (geometry, colour, texture, material, CSG).
+bool moves(const SceneModel& m, const Track& t);
+// Whether anything in the scene changes with time.
+bool scene_moves(const SceneModel& m);
 // Whether the run stays within what one run may cost (scene/shape_cost.h): the points of every shape
 // times `frames` (--frames with a mesh format or pictures), else times the frames of the animation
 // it belongs to, and the memory of a frame with the frames an animation keeps. An error at the

@@ -250,6 +250,8 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
       return 1;
     }
     st["write_ms"] = ms_since(t2);
+    // A scene that changes in time, written to a format of one instant: said, with the way to frames.
+    if (!o.instant && o.format != "wrl" && o.format != "glb" && scene_moves(model)) st["one_instant"] = true;
   } else {
     st["polygonize_ms"] = ms_since(t2);
   }

@@ -42,7 +42,6 @@ const char kPreviewJs[] =
     ;
 
 constexpr int kMaxStreams = 4;  // open pages at once (each holds a server thread)
-constexpr int kPreviewFrames = 24;  // frames of an animated shape's cycle, unless --frames says
 int stop_pipe[2] = {-1, -1};    // the signal handler's way to the thread that stops the server
 
 // The served three.js files: URL path to the file under FS_THREE_DIR (the jsm modules import
@@ -67,6 +66,7 @@ struct State {
   double scale = 1;         // the resolution scale the page asked for
   int streams = 0;
   bool running = false;     // a run is under way (its progress goes to the pages)
+  std::string printed;      // the diagnostics last printed on the terminal (the watcher's thread only)
 };
 
 nlohmann::json state_json(const State& s) {
@@ -147,10 +147,18 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   std::string glb, error;
   bool ok = rc == 0 && fscript::support::read_file(o.output, glb, error);
   if (ok) memo.sweep();
+  std::string diagnostics = captured.str() + (rc == 0 && !ok ? "error: " + error + "\n" : "");
+  // The terminal gets them too (a page may not be open): each new set once, and the word when a
+  // broken scene is good again.
+  if (diagnostics != st.printed) {
+    if (!diagnostics.empty()) std::fprintf(stderr, "%s", diagnostics.c_str());
+    else if (st.printed.find("error:") != std::string::npos) std::fprintf(stderr, "fvrml-run: %s: no errors now\n", o.path.c_str());
+    st.printed = diagnostics;
+  }
   {
     std::lock_guard<std::mutex> hold(st.lock);
     st.ok = ok;
-    st.diagnostics = captured.str() + (rc == 0 && !ok ? "error: " + error + "\n" : "");
+    st.diagnostics = std::move(diagnostics);
     if (ok) st.good = std::move(glb), st.stats = stats;
     st.glb = st.good;
     st.partial = nullptr;
@@ -337,7 +345,6 @@ Options preview_run_options(const Options& base, const std::string& output) {
   Options o = base;
   o.output = output;
   o.format = "glb";
-  if (o.frames == 0) o.frames = kPreviewFrames;  // time-dependent shapes play as an animation
   o.stats = true;
   o.view_json = true;
   return o;
@@ -455,8 +462,13 @@ int serve(const Options& o, const ServeOptions& s) {
   sigemptyset(&on_stop.sa_mask);
   sigaction(SIGINT, &on_stop, nullptr);
   sigaction(SIGTERM, &on_stop, nullptr);
+  // A scene that is not there is an error now; one with errors in it is served (and fixed by a save).
+  std::string text, error;
+  if (!fscript::support::read_file(o.path, text, error, fscript::support::kMaxInputBytes)) {
+    std::cerr << o.path << ":1:1: error: cannot read the file: " << error << "\n";
+    return 1;
+  }
   Preview preview(o, s);
-  std::string error;
   if (!preview.start(error, [] { [[maybe_unused]] ssize_t k = write(stop_pipe[1], "e", 1); })) {
     std::cerr << "error: --serve: " << error << "\n";
     return 1;

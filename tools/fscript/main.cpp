@@ -7,6 +7,7 @@
 
 #include "runtime/support/big_stack.h"
 #include "tools/budget_flags.h"
+#include "tools/cli_suggest.h"
 #include "tools/limit_flags.h"
 #include "tools/fscript/commands.h"
 #include "tools/fscript/repl.h"
@@ -131,6 +132,10 @@ int real_main(int argc, char** argv) {
       ->type_name("N");
   r2d->add_flag("--stats", a.stats, "print how the quadtree went: regions per level, tape lengths, points evaluated");
 
+  if (std::string error; !tools::check_command_line(app, argc, argv, true, error)) {
+    std::cerr << "error: " << error << "\nRun with --help for more information.\n";
+    return kExitUsage;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -23,6 +23,7 @@
 #include "runtime/support/progress.h"
 #include "runtime/support/version.h"
 #include "tools/budget_flags.h"
+#include "tools/cli_suggest.h"
 #include "tools/limit_flags.h"
 #include "tools/fvrml-run/run.h"
 #include "tools/fvrml-run/memo.h"
@@ -242,6 +243,8 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   app.add_option("--threads", o.threads, "worker threads, 1 to 256 (default: all cores); the output is the same for any count")
       ->check(CLI::Range(1, 256).description(""))
       ->type_name("N");
+  if (std::string error; !fscript::tools::check_command_line(app, argc, argv, false, error))
+    return std::cerr << "error: " << error << "\nRun with --help for more information.\n", 2;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

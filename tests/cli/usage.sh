@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Command lines a user gets wrong: an unknown option or command is named, with the nearest known
+# one, exit status 2; what looks like an option but is a value ("-inf", "-1,1,-1,1") still works.
+# usage: usage.sh FSCRIPT SOURCE_DIR FVRML_RUN
+set -u
+F="$1"
+SRC="$2"
+R="$3"
+. "$SRC/tests/cli/lib.sh"
+
+printf 'function main(x) { return x; }\n' > "$T/id.fs"
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "0.3^2 - x^2 - y^2 - z^2" bboxSize 1 1 1 resolution [8] } }\n' > "$T/ball.wrl"
+check "fscript run: a misspelt option, not a number" 2 "^error: unknown option '--backnd' \(did you mean '--backend'\?\)" -- "$F" run "$T/id.fs" --backnd vm
+check "fscript run: a misspelt option with =" 2 "unknown option '--bakend' \(did you mean '--backend'\?\)" -- "$F" run "$T/id.fs" --bakend=vm
+check "fscript run: a misspelt short option" 2 "unknown option '-q'" -- "$F" run "$T/id.fs" -q
+check "fscript: a misspelt command" 2 "^error: unknown command 'rn' \(did you mean 'run'\?\); the commands are run, eval, check" -- "$F" rn "$T/id.fs"
+check "fscript: a command it does not know" 2 "^error: unknown command 'compile'; the commands are run, eval, check, emit-ir, emit-asm, fmt, repl, bench, render2d" -- "$F" compile "$T/id.fs"
+check "fscript render2d: an option of another command" 2 "unknown option '--points' \(did you mean '--repeat'\?\)|unknown option '--points'" \
+  -- "$F" render2d "$T/id.fs" --size 8 --bounds -1,1,-1,1 --points 4
+check "fvrml-run: a misspelt option" 2 "^error: unknown option '--backnd' \(did you mean '--backend'\?\)" -- "$R" "$T/ball.wrl" --backnd vm -o "$T/b.ply"
+check "fvrml-run: a misspelt flag" 2 "unknown option '--keep-goin' \(did you mean '--keep-going'\?\)" -- "$R" "$T/ball.wrl" --keep-goin -o "$T/b.ply"
+[ -e "$T/b.ply" ] && fail "fvrml-run with a misspelt option wrote b.ply"
+# Values that start with '-'.
+check "fscript run -inf" 0 "^-inf$" -- "$F" run "$T/id.fs" -inf
+check "fscript run -1e3" 0 "^-1000$" -- "$F" run "$T/id.fs" -1e3
+check "fscript run -b vm -2.5" 0 "^-2.5$" -- "$F" run "$T/id.fs" -b vm -2.5
+printf "function f(x, y) { return x - y; }\n" > "$T/xy.fs"
+check "fscript render2d --bounds -1,1,-1,1" 0 "white pixels" -- "$F" render2d "$T/xy.fs" --size 8 --bounds -1,1,-1,1 -o "$T/id.png"
+check "fvrml-run --view -30,20" 0 "wrote" -- "$R" "$T/ball.wrl" --view -30,20 --size 32 -o "$T/b.png"
+check "options before the command" 0 "^3$" -- "$F" --max-seconds 5 run "$T/id.fs" 3
+check "fscript --help still works" 0 "Subcommands:" -- "$F" --help
+check "fscript run --help" 0 "--backend" -- "$F" run --help
+
+finish usage

@@ -95,7 +95,8 @@ def check_chart(name, text, f, a, b, width=72, rows=16):
 with tempfile.TemporaryDirectory() as tmp:
     history = os.path.join(tmp, "history")
     pid, fd = start(["--max-loop-iterations", "4000000000000"], {"FSCRIPT_HISTORY": history})
-    expect("banner", read_until(fd, r"fs> $"), r"definitions stay.*:help")
+    expect("banner", read_until(fd, r"fs> $"), r"\(backend auto\): definitions stay.*:help")
+    expect(":backend says what the banner said", reply(fd, ":backend"), r"^backend auto\n$")
     expect("expression", type_line(fd, "1 + 2 * 3"), r"\r\n7\r\n")
     expect("definition silent", type_line(fd, "function sq(x) { return x * x; }"), r"^[^0-9]*fs> $")
     expect("call", type_line(fd, "sq(7)"), r"\r\n49\r\n")
@@ -241,6 +242,14 @@ with tempfile.TemporaryDirectory() as tmp:
     os.write(fd, b"\x15")  # kill the recalled line
     os.write(fd, b":quit\r")
     wait_exit(pid, fd, ":quit", again=b"\x15:quit\r")
+    # fscript repl --backend: the session starts on it, and says so.
+    pid, fd = start(["repl", "--backend", "sse"], {"FSCRIPT_HISTORY": history})
+    expect("repl --backend sse: the banner", read_until(fd, r"fs> $"), r"\(backend sse\): definitions stay")
+    expect("repl --backend sse: :backend", reply(fd, ":backend"), r"^backend sse\n$")
+    expect("repl --backend sse: a value", type_line(fd, "2 * 21"), r"\r\n42\r\n")
+    expect(":backend auto is accepted", reply(fd, ":backend auto"), r"^backend auto\n$")
+    os.write(fd, b":quit\r")
+    wait_exit(pid, fd, ":quit after --backend", again=b"\x15:quit\r")
 
 for f in failures:
     print("FAIL " + f)

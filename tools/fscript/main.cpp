@@ -104,7 +104,9 @@ int real_main(int argc, char** argv) {
   fmt->add_flag("-i,--in-place", a.in_place, "rewrite FILE in place instead of printing");
   fmt->add_flag("--check", a.check_only, "print nothing; exit 1 (naming FILE) if it is not formatted");
 
-  app.add_subcommand("repl", "the interactive session (also what fscript alone starts on a terminal)");
+  CLI::App* repl = app.add_subcommand("repl", "the interactive session (also what fscript alone starts on a terminal)");
+  repl->add_option("--backend,-b", a.opts.backend, "the backend it starts with: auto, vm, sse or llvm (default: auto; :backend changes it)");
+  add_budget_flags(*repl, a);
   app.footer("With no command: on a terminal, the REPL (fscript repl); otherwise the program on standard\n"
              "input runs once (fscript < FILE). Exit status: 0 success, 1 an error in the input, 2 usage.");
 

@@ -392,7 +392,7 @@ int run_lines(Session& session) {
 int run_repl(const Options& o) {
   Session session(o);
   if (!isatty(STDIN_FILENO)) {
-    std::cout << "fscript " << "(backend " << (o.backend.empty() ? backends::default_backend() : o.backend)
+    std::cout << "fscript " << "(backend " << session.backend()
               << "): reading input that is not a terminal, one entry per line\n";
     return run_lines(session);
   }
@@ -406,7 +406,7 @@ int run_repl(const Options& o) {
   rl_completion_append_character = '\0';
   using_history();
   if (!history.empty()) read_history(history.c_str());
-  std::cout << "fscript " << "(backend " << (o.backend.empty() ? backends::default_backend() : o.backend)
+  std::cout << "fscript " << "(backend " << session.backend()
             << "): definitions stay, expressions print their value; :help for commands, Ctrl-D to leave\n"
             << std::flush;
   // Ctrl-C at the prompt drops the line being typed and any continuation, as node and Python do;

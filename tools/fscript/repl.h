@@ -16,7 +16,7 @@ namespace fscript::cli {
 class Session {
  public:
   explicit Session(const Options& o) : opts_(o) {
-    if (opts_.backend.empty()) opts_.backend = backends::available_backends().front();
+    if (opts_.backend.empty()) opts_.backend = backends::default_backend();  // what the banner says
   }
 
   // One complete input (brackets balanced): a definition, a command or an expression. Output and
@@ -26,6 +26,8 @@ class Session {
   // Names that complete `prefix` (Tab): commands after ':', else definitions, scene scripts,
   // built-ins, keywords and the standard globals; sorted, no repeats.
   std::vector<std::string> completions(const std::string& prefix) const;
+
+  const std::string& backend() const { return opts_.backend; }
 
   // The text of every accepted definition, then `tail`.
   std::string program(const std::string& tail = "") const;

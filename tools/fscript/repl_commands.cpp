@@ -26,7 +26,7 @@ struct CommandInfo {
 };
 constexpr CommandInfo kCommands[] = {
     {":help", "", "this text"},
-    {":backend", "vm|sse|llvm", "the backend that compiles what follows (no argument: the current one)"},
+    {":backend", "auto|vm|sse|llvm", "the backend that compiles what follows (no argument: the current one)"},
     {":ir", "NAME", "the optimised IR of function NAME"},
     {":asm", "NAME", "the generated code of NAME on the current backend"},
     {":time", "EXPR", "evaluations per second of EXPR"},

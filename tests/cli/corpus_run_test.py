@@ -5,7 +5,8 @@ exits 0 (the one BS-encrypted file: exit 1 with the clear refusal and nothing wr
 output is read back by our own parser (fscript check); every .glb passes the Khronos validator;
 every PLY with triangles carries vertex normals; a scene made only of implicit shapes gives a
 closed, oriented 2-manifold with no inside-out component (checked on the OBJ, which writes a vertex
-split for its normals once); and each PNG is a PNG.
+split for its normals once); each PNG is a PNG; and `fscript fmt` formats its scripts into a scene
+that checks, formats to itself and meshes to the same PLY bytes.
 
 usage: corpus_run_test.py FVRML_RUN FSCRIPT FVRML_MESHDIFF SOURCE_DIR SHARED_DIR"""
 import glob
@@ -77,7 +78,33 @@ def check_file(index, scene, tmp):
                     out.append(f"{name} -> obj: not {key} ({t})")
             if t["inverted_components"]:
                 out.append(f"{name} -> obj: {t['inverted_components']} inside-out components ({t})")
+    if not encrypted:
+        out.extend(check_fmt(name, index, scene, tmp))
     return name, out, glbs
+
+
+def check_fmt(name, index, scene, tmp):
+    """fscript fmt on the scene: its scripts formatted, the rest kept; the result checks, formats to
+    itself, and meshes to the same PLY bytes."""
+    p = run([FSCRIPT, "fmt", scene])
+    if p.returncode != 0:
+        return [f"{name}: fscript fmt: exit {p.returncode}: {p.stderr.strip()[:300]}"]
+    formatted = os.path.join(tmp, f"{index}.fmt.wrl")
+    with open(formatted, "w") as f:
+        f.write(p.stdout)
+    out = []
+    if run([FSCRIPT, "check", formatted]).returncode != 0:
+        out.append(f"{name}: the formatted scene does not check")
+    if run([FSCRIPT, "fmt", "--check", formatted]).returncode != 0:
+        out.append(f"{name}: fscript fmt is not idempotent on it")
+    ply = os.path.join(tmp, f"{index}.fmt.ply")
+    q = run([RUN, formatted, "-o", ply, "--stats"])
+    stats = last_json(q.stderr) or {}
+    if q.returncode != 0:
+        out.append(f"{name}: the formatted scene does not run: {q.stderr.strip()[-300:]}")
+    elif not [m for m in stats.get("missing_inlines", []) if "not fetched" not in m["reason"]] and open(ply, "rb").read() != open(os.path.join(tmp, f"{index}.ply"), "rb").read():
+        out.append(f"{name}: the formatted scene meshes to other bytes")
+    return out
 
 
 def main():

@@ -1,4 +1,4 @@
-// fscript run, eval, check, emit-ir, emit-asm, fmt.
+// fscript run, eval, check, emit-ir, emit-asm.
 #include "tools/fscript/commands.h"
 #include "runtime/support/files.h"
 
@@ -240,38 +240,6 @@ int cmd_emit_asm(const Options& given, const std::string& file, const std::strin
     return kExitInput;
   }
   std::cout << text;
-  return kExitOk;
-}
-
-int cmd_fmt(const std::string& file, bool in_place, bool check_only) {
-  if (in_place && file == "-") {
-    std::cerr << "error: fmt -i rewrites a file; standard input has none (drop -i)\n";
-    return kExitUsage;
-  }
-  std::string text;
-  if (!read_source(file, text)) return kExitInput;
-  frontend::SourceFile src(file == "-" ? "<stdin>" : file, text);
-  frontend::DiagnosticSink diag;
-  auto prog = frontend::parse(src, diag);
-  if (diag.has_errors()) {  // never rewrite what does not parse
-    print_diagnostics(diag);
-    return kExitInput;
-  }
-  std::string formatted = frontend::format_program(*prog, text);
-  if (check_only) {
-    if (formatted == text) return kExitOk;
-    std::cerr << src.path() << ": not formatted (fscript fmt -i " << src.path() << " formats it)\n";
-    return kExitInput;
-  }
-  if (!in_place) {
-    std::cout << formatted;
-    return kExitOk;
-  }
-  std::string error;
-  if (formatted != text && !support::write_file_atomic(file, formatted, error)) {
-    std::cerr << "error: " << error << "\n";
-    return kExitInput;
-  }
   return kExitOk;
 }
 

@@ -3,13 +3,14 @@
 #include <cstring>
 #include <iostream>
 
-#include "runtime/support/big_stack.h"
 #include "lsp/server.h"
 #include "lsp/transport.h"
+#include "runtime/support/big_stack.h"
 #include "runtime/support/version.h"
 
 int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
+  fscript::support::set_default_thread_stack();  // workers' stacks not sized by ulimit -s
   for (int i = 1; i < argc; ++i) {  // clients may pass --stdio, the only transport there is
     if (std::strcmp(argv[i], "--version") == 0) {
       std::cout << fscript::support::version_line("fscript-lsp") << "\n";

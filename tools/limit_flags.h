@@ -38,7 +38,10 @@ inline bool apply_limits(const char* tool, const RunLimits& limits, bool watchdo
     std::cerr << tool << ": error: cannot limit memory to " << mib << " MiB: " << error << "\n";
     return false;
   }
-  if (watchdog) support::start_watchdog(tool, limits.max_seconds);
+  if (watchdog && !support::start_watchdog(tool, limits.max_seconds)) {
+    std::cerr << tool << ": error: --max-seconds: the system gave no thread to keep the time\n";
+    return false;
+  }
   // Inside the cap, so the cap still bounds the run: a quarter of it, at most 1 GiB.
   support::reserve_huge_heap(std::min<uint64_t>(uint64_t{1} << 30, (mib << 20) / 4));
   return true;

@@ -11,6 +11,7 @@
 #include <vector>
 #include <algorithm>
 #include <mutex>
+#include <system_error>
 #include <thread>
 
 #include "ir/ir.h"
@@ -97,7 +98,16 @@ class Compiler {
  public:
   void submit(std::shared_ptr<Shared> s) {
     std::lock_guard<std::mutex> hold(lock_);
-    if (!thread_.joinable()) thread_ = std::thread([this] { loop(); });
+    if (!thread_.joinable()) {
+      try {
+        thread_ = std::thread([this] { loop(); });
+      } catch (const std::system_error&) {  // no thread to be had: the kernel stays on the VM
+        std::lock_guard<std::mutex> done(s->lock);
+        s->done = true;
+        s->done_cv.notify_all();
+        return;
+      }
+    }
     queue_.push_back(std::move(s));
     wake_.notify_one();
   }

@@ -38,4 +38,11 @@ void run_with_big_stack(const std::function<void()>& fn, size_t stack_bytes) {
   fn();
 }
 
+void set_default_thread_stack(size_t bytes) {
+  pthread_attr_t attr;
+  if (pthread_attr_init(&attr) != 0) return;
+  if (pthread_attr_setstacksize(&attr, bytes) == 0) pthread_setattr_default_np(&attr);
+  pthread_attr_destroy(&attr);
+}
+
 }  // namespace fscript::support

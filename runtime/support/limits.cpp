@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <new>
+#include <system_error>
 #include <thread>
 
 #include <sys/resource.h>
@@ -47,15 +48,20 @@ uint64_t data_bytes_now() {
 
 }  // namespace
 
-void start_watchdog(const char* tool, double seconds) {
-  if (!(seconds > 0)) return;
+bool start_watchdog(const char* tool, double seconds) {
+  if (!(seconds > 0)) return true;
   char message[256];
   std::snprintf(message, sizeof message, "%s: error: the run took longer than %g s (--max-seconds %g); stopped\n", tool,
                 seconds, seconds);
-  std::thread([seconds, text = std::string(message)] {
-    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
-    stop(text.c_str());
-  }).detach();
+  try {
+    std::thread([seconds, text = std::string(message)] {
+      std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+      stop(text.c_str());
+    }).detach();
+  } catch (const std::system_error&) {
+    return false;
+  }
+  return true;
 }
 
 bool limit_memory(const char* tool, uint64_t mib, std::string& error) {

@@ -8,7 +8,8 @@ namespace fscript::support {
 
 // After `seconds` (> 0), from a watchdog thread: prints "TOOL: error: the run took longer than S s
 // (--max-seconds S); stopped", deletes the temporary files of writes in progress and exits 1.
-void start_watchdog(const char* tool, double seconds);
+// False when its thread cannot start (the run would have no time limit).
+bool start_watchdog(const char* tool, double seconds);
 
 // Caps the data the process adds from now on (RLIMIT_DATA over today's VmData) at `mib` MiB and installs a new-handler: an allocation past the cap
 // prints "TOOL: error: the run needs more than N MiB of memory (--max-memory N); stopped" and

@@ -4,19 +4,31 @@
 // work (chosen by the caller, never by timing), so what the parts compute is the same for any
 // thread count and any schedule: the "same bytes for 1 and N threads" rule rests on that.
 #include <algorithm>
+#include <system_error>
 #include <thread>
 #include <vector>
 
 namespace fscript::support {
 
-// Whether every task(k) returned true. Every part runs to its end even when another fails.
+// Whether every task(k) returned true. Every part runs to its end even when another fails. A part
+// whose thread cannot start (the system's thread or memory limit) runs on the caller's thread
+// after part 0: fewer threads, the same results.
 template <class Task>
 bool run_parts(int parts, Task task) {
   parts = std::max(1, parts);
   std::vector<char> ok(static_cast<size_t>(parts), 1);
   std::vector<std::thread> pool;
-  for (int k = 1; k < parts; ++k) pool.emplace_back([&, k] { ok[static_cast<size_t>(k)] = task(k); });
+  int started = 1;
+  for (; started < parts; ++started) {
+    int k = started;
+    try {
+      pool.emplace_back([&, k] { ok[static_cast<size_t>(k)] = task(k); });
+    } catch (const std::system_error&) {
+      break;
+    }
+  }
   ok[0] = task(0);
+  for (int k = started; k < parts; ++k) ok[static_cast<size_t>(k)] = task(k);
   for (auto& t : pool) t.join();
   return std::all_of(ok.begin(), ok.end(), [](char v) { return v != 0; });
 }

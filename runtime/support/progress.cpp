@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <system_error>
 
 namespace fscript::support {
 namespace {
@@ -75,7 +76,12 @@ ProgressLine::ProgressLine(std::string label, bool enabled)
     double v = std::strtod(env, &end);
     if (end != env && v >= 0) after_ = v;
   }
-  if (enabled && isatty(STDERR_FILENO)) thread_ = std::thread([this] { loop(); });
+  if (enabled && isatty(STDERR_FILENO)) {
+    try {
+      thread_ = std::thread([this] { loop(); });
+    } catch (const std::system_error&) {  // no thread to be had: no progress line, the run goes on
+    }
+  }
 }
 
 ProgressLine::~ProgressLine() {

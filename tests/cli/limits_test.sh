@@ -130,6 +130,15 @@ else
   refused "fvrml-run --max-memory" '^fvrml-run: error: the run needs more than 64 MiB of memory \(--max-memory 64\); stopped' \
     "$T/wavy.ply" -- "$R" "$T/wavy.wrl" --max-memory 64 -o "$T/wavy.ply"
   check "--max-memory under 64 is a usage error" 2 'max-memory' -- "$R" "$T/wavy.wrl" --max-memory 10 -o "$T/x.ply"
+  # Worker threads under --max-memory, whatever the stack limit (ulimit -s $(ulimit -s) here): a
+  # thread's stack is its own size, not the limit (a gibibyte each under ulimit -s 1048576).
+  G="$SRC/bench/scenes/gyroid-sphere256.wrl"
+  check "two threads within --max-memory 1024 (ulimit -s $(ulimit -s))" 0 "wrote" \
+    -- "$R" "$G" --threads 2 --max-memory 1024 --resolution-scale 0.4 --time 0 -o "$T/g.ply"
+  check "an animation on two threads within --max-memory 1024 (ulimit -s $(ulimit -s))" 0 "animated" \
+    -- "$R" "$G" --threads 2 --max-memory 1024 --resolution-scale 0.2 -o "$T/g.glb"
+  check "fscript bench on two threads within --max-memory 256 (ulimit -s $(ulimit -s))" 0 "" \
+    -- "$F" bench "$SRC/examples/gyroid-ball.fs" --threads 2 --points 200000 --max-memory 256
   # The huge heap (docs/performance.md) is reserved inside the cap, a quarter of it: the refusal
   # above still comes at 64 MiB, and a run that fits is unaffected.
   printf '#VRML V2.0 utf8\n%s\n' "$sphere" > "$T/small.wrl"

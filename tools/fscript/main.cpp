@@ -152,6 +152,7 @@ int real_main(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   fscript::support::prepare_huge_heap();  // before any thread: one heap for all
+  fscript::support::set_default_thread_stack();  // workers' stacks not sized by ulimit -s
   int rc = 0;
   fscript::support::run_with_big_stack([&] { rc = fscript::cli::real_main(argc, argv); });
   std::cout.flush();

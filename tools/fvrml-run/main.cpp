@@ -414,6 +414,7 @@ int merge_main(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   fscript::support::prepare_huge_heap();  // before any thread: one heap for all
+  fscript::support::set_default_thread_stack();  // workers' stacks not sized by ulimit -s
   int rc = 0;
   fscript::support::run_with_big_stack([&] {
     rc = argc > 1 && std::strcmp(argv[1], "merge") == 0 ? fvrml_run::merge_main(argc, argv) : fvrml_run::run(argc, argv);

@@ -57,12 +57,15 @@ bool check_script(const std::string& path, const std::string& text, DiagnosticSi
   return !diag.has_errors();
 }
 
-bool check_scene(const std::string& path, const std::string& text, DiagnosticSink& diag, bool read_inlines) {
+bool check_scene(const std::string& path, const std::string& text, DiagnosticSink& diag, bool read_inlines,
+                 size_t* scripts) {
   vrml::Scene scene;
   bool ok = vrml::parse_scene(std::make_unique<SourceFile>(path, text), diag, scene);
   if (ok && read_inlines) ok = vrml::load_inlines(scene, diag);
   std::vector<std::string> lines = split_lines(text);
-  for (const auto& s : vrml::scene_scripts(scene)) {
+  auto all = vrml::scene_scripts(scene);
+  if (scripts) *scripts = all.size();
+  for (const auto& s : all) {
     if (!is_affine_field(s.script.field)) {
       ok &= check_embedded(path, lines, s.script, diag);
       continue;

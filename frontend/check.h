@@ -12,7 +12,9 @@ namespace fscript::frontend {
 bool check_script(const std::string& path, const std::string& text, DiagnosticSink& diag);
 // A scene's scripts; with `read_inlines` (a file on disk, not an editor's buffer) its Inlines are
 // read too, so a missing one is warned about as fvrml-run does (vrml::load_inlines).
-bool check_scene(const std::string& path, const std::string& text, DiagnosticSink& diag, bool read_inlines = false);
+// `scripts`, when given, gets the number of scripts checked.
+bool check_scene(const std::string& path, const std::string& text, DiagnosticSink& diag, bool read_inlines = false,
+                 size_t* scripts = nullptr);
 
 // The warnings lowering adds to a script that analysed without errors (check_script's last step).
 struct Script;

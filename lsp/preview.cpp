@@ -55,6 +55,8 @@ std::string path_of_uri(const std::string& uri) {
 json Previews::start(const std::string& uri) {
   std::string path = path_of_uri(uri);
   if (path.empty()) return failure("fscript.preview needs a file: URI, got '" + uri + "'");
+  if (access(path.c_str(), R_OK) != 0)  // fvrml-run --serve refuses a scene that is not there
+    return failure("fscript.preview: " + path + " is not on disk yet: save it, then preview it");
   if (auto it = running_.find(path); it != running_.end()) {
     if (waitpid(it->second.pid, nullptr, WNOHANG) == 0) return {{"url", it->second.url}};
     running_.erase(it);  // it ended: start another

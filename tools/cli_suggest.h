@@ -3,35 +3,13 @@
 // them in its own terms: `fscript run f.fs --backnd vm` passed "--backnd" and "vm" to the script
 // as numbers ("'vm' is not a number"), and `fscript rn` said only that "rn" was not expected.
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
+#include "runtime/support/suggest.h"
+
 namespace fscript::tools {
-
-// Edits (insert, delete, replace, swap two neighbours) from a to b.
-inline size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
-  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
-  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
-  for (size_t i = 1; i <= a.size(); ++i)
-    for (size_t j = 1; j <= b.size(); ++j) {
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
-    }
-  return d[a.size()][b.size()];
-}
-
-// The name of `names` nearest to `word`, if near enough to be a slip (a third of its letters, at
-// least two), else "".
-inline std::string nearest_name(const std::string& word, const std::vector<std::string>& names) {
-  std::string best;
-  size_t best_d = std::max<size_t>(2, word.size() / 3) + 1;
-  for (const auto& n : names)
-    if (size_t d = edit_distance(word, n); d < best_d) best = n, best_d = d;
-  return best;
-}
 
 // "--long" and "-s" names of the options of `app` (and of the apps above it, which CLI11 also takes).
 inline std::vector<std::string> option_names(const CLI::App* app) {
@@ -69,7 +47,7 @@ inline bool check_command_line(const CLI::App& app, int argc, char** argv, bool 
       }
       const CLI::Option* o = find_option(at, name);
       if (!o) {
-        std::string near = nearest_name(name, option_names(at));
+        std::string near = support::nearest_name(name, option_names(at));
         error = "unknown option '" + name + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)");
         return false;
       }
@@ -86,7 +64,7 @@ inline bool check_command_line(const CLI::App& app, int argc, char** argv, bool 
         if (s->get_name() == arg) sub = s;
       }
       if (!sub) {
-        std::string near = nearest_name(arg, commands), list;
+        std::string near = support::nearest_name(arg, commands), list;
         for (const auto& c : commands) list += (list.empty() ? "" : ", ") + c;
         error = "unknown command '" + arg + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
                 "; the commands are " + list;

@@ -178,7 +178,9 @@ class Lexer {
     if (i_ < s_.size() && is_ident_start(s_[i_])) {
       size_t bad = i_;
       while (i_ < s_.size() && is_ident_char(s_[i_])) ++i_;
-      diag_.error(f_, {u(bad), u(i_)}, "invalid suffix on number");
+      // "10u", "2x": a product written as in mathematics; FScript needs the '*'.
+      std::string number(s_, start, bad - start), name(s_, bad, i_ - bad);
+      diag_.error(f_, {u(bad), u(i_)}, "invalid suffix on number (did you mean " + number + "*" + name + "?)");
     }
   }
 

@@ -12,6 +12,7 @@
 
 #include "frontend/vrml/inline.h"
 #include "frontend/vrml/vrml_lexer.h"
+#include "runtime/support/suggest.h"
 
 namespace fscript::vrml {
 namespace {
@@ -355,7 +356,12 @@ class Parser {
     const VToken& name = advance();
     const FieldDecl* decl = find_field(n, name.text);
     if (!decl) {
-      if (n.iface) error(name.span, "'" + n.type + "' has no field '" + name.text + "'");
+      if (n.iface) {
+        std::vector<std::string> names;
+        for (const auto& f : n.iface->fields) names.push_back(f.name);
+        std::string near = support::nearest_name(name.text, names);
+        error(name.span, "'" + n.type + "' has no field '" + name.text + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+      }
       skip_value();
       return;
     }

@@ -3,10 +3,12 @@
 
 #include <charconv>
 #include <cstdlib>
+#include <filesystem>
 #include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
+#include "frontend/vrml/inline.h"
 #include "frontend/vrml/writer.h"
 
 namespace fscript::scene {
@@ -147,11 +149,34 @@ NodePtr frame_script(int frames) {
   return script;
 }
 
+// A relative URL of a file read beside the scene (in `from`), as seen from the output's folder
+// `to`: an Inline's "parts/axes.wrl" stays the same file when the output is written elsewhere.
+// Remote URLs, "file:" and absolute ones, and "#viewpoint" alone are left as they are.
+std::string rebased(const std::string& url, const std::filesystem::path& from, const std::filesystem::path& to) {
+  namespace fs = std::filesystem;
+  if (url.empty() || url[0] == '#' || url[0] == '/' || vrml::is_remote_url(url) || url.rfind("file:", 0) == 0) return url;
+  size_t hash = url.find('#');
+  std::string path = url.substr(0, hash), fragment = hash == std::string::npos ? "" : url.substr(hash);
+  std::error_code ec;
+  fs::path target = fs::weakly_canonical(fs::absolute(from / path, ec), ec);
+  fs::path here = ec ? fs::path() : fs::weakly_canonical(fs::absolute(to, ec), ec);
+  if (ec || target.empty() || here.empty()) return url;
+  fs::path rel = target.lexically_relative(here);
+  return rel.empty() ? url : rel.generic_string() + fragment;
+}
+
 class Exporter {
  public:
   Exporter(const vrml::Scene& in, const std::map<const Node*, mesh::Mesh>& meshes,
            const std::map<const Node*, Animation>& animations)
       : in_(in), meshes_(meshes), animations_(animations) {}
+
+  std::optional<std::filesystem::path> output_dir;  // set: relative URLs are rebased onto it
+  std::string rebase(const std::string& url, const Node* n) const {
+    if (!output_dir) return url;
+    const frontend::SourceFile& file = n && n->file ? *n->file : *in_.file;
+    return rebased(url, std::filesystem::path(file.path()).parent_path(), *output_dir);
+  }
 
   std::vector<vrml::Route> routes;  // those of the animations
 
@@ -172,8 +197,11 @@ class Exporter {
       if (!n->def_name.empty()) replaced_names_.insert(n->def_name);
     } else {
       c = std::make_shared<Node>(*n);
-      for (auto& f : c->fields)
+      for (auto& f : c->fields) {
         for (auto& child : f.value.nodes) child = copy(child);
+        if (f.name == "url")  // Inline, ImageTexture, Anchor...: the same files from the output's folder
+          for (auto& u : f.value.strs) u = rebase(u, n.get());
+      }
     }
     done_[n.get()] = c;
     return c;
@@ -241,14 +269,18 @@ class Exporter {
 }  // namespace
 
 std::string export_vrml(const vrml::Scene& in, const std::map<const Node*, mesh::Mesh>& meshes,
-                        const std::map<const Node*, Animation>& animations) {
+                        const std::map<const Node*, Animation>& animations, const std::string& output_path) {
   vrml::Scene out;
   Exporter ex(in, meshes, animations);
+  if (!output_path.empty() && output_path != "-")
+    ex.output_dir = std::filesystem::path(output_path).parent_path().empty() ? std::filesystem::path(".")
+                                                                                : std::filesystem::path(output_path).parent_path();
   for (auto [kind, i] : in.order) {
     switch (kind) {
       case vrml::Scene::Kind::Proto:
         if (vrml::is_fvrml_node(in.protos[i]->iface.name)) continue;  // the FVRML PROTOs are gone
         out.protos.push_back(std::make_unique<vrml::ProtoDef>(*in.protos[i]));
+        for (auto& u : out.protos.back()->urls) u = ex.rebase(u, nullptr);  // an EXTERNPROTO's file
         out.order.push_back({kind, out.protos.size() - 1});
         break;
       case vrml::Scene::Kind::Node:

@@ -23,8 +23,11 @@ struct Animation {
 };
 
 // `meshes`: the mesh of each replaced node (an FShape or a top-level FTransform), in the node's
-// own coordinates; `animations`: the replaced nodes shown as frames. Returns the text of the file.
+// own coordinates; `animations`: the replaced nodes shown as frames. With `output_path`, relative
+// URLs (Inline, EXTERNPROTO, textures) are rewritten to name the same files from its folder.
+// Returns the text of the file.
 std::string export_vrml(const vrml::Scene& in, const std::map<const vrml::Node*, mesh::Mesh>& meshes,
-                        const std::map<const vrml::Node*, Animation>& animations = {});
+                        const std::map<const vrml::Node*, Animation>& animations = {},
+                        const std::string& output_path = "");
 
 }  // namespace fscript::scene

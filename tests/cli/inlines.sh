@@ -107,4 +107,20 @@ check "Inline: a syntax error in the inlined file, at its own line" 1 "parts/bro
   -- "$R" "$T/inl/broken.wrl" -o "$T/inl/broken.ply"
 
 
+# The VRML97 output names an Inline's file as seen from the output's folder.
+mkdir -p "$T/inl/elsewhere/deeper"
+"$R" "$T/inl/main.wrl" -o "$T/inl/elsewhere/deeper/copy.wrl" 2> /dev/null || fail "Inline: a VRML97 output in another folder"
+grep -q '"../../parts/ball.wrl"' "$T/inl/elsewhere/deeper/copy.wrl" || fail "Inline: the URL not rewritten for the output's folder: $(grep -A1 Inline "$T/inl/elsewhere/deeper/copy.wrl")"
+grep -q '"http://example.com/axes.wrl"' "$T/inl/elsewhere/deeper/copy.wrl" || fail "Inline: a remote URL was changed"
+check "Inline: the output read again finds the inlined file" 0 "wrote" -- "$R" "$T/inl/elsewhere/deeper/copy.wrl" -o "$T/inl/elsewhere/copy.obj"
+jcheck "Inline: and meshes the inlined ball" out "j['triangles'] > 100" -- python3 "$SRC/tests/clients/mesh_probe.py" "$T/inl/elsewhere/copy.obj"
+"$R" "$T/inl/main.wrl" -o "$T/inl/same.wrl" 2> /dev/null
+grep -q '"parts/ball.wrl"' "$T/inl/same.wrl" || fail "Inline: an output beside the scene changed the URL"
+printf '#VRML V2.0 utf8
+EXTERNPROTO Ball [ ] "lib/balls.wrl#Ball"
+Ball { }
+' > "$T/ext/plain.wrl"
+"$R" "$T/ext/plain.wrl" -o "$T/inl/elsewhere/ext.wrl" 2> /dev/null || fail "EXTERNPROTO: a VRML97 output in another folder"
+grep -q '"../../ext/lib/balls.wrl#Ball"' "$T/inl/elsewhere/ext.wrl" || fail "EXTERNPROTO: the URL not rewritten: $(grep -A2 EXTERNPROTO "$T/inl/elsewhere/ext.wrl")"
+
 finish inlines

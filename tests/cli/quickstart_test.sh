@@ -26,7 +26,13 @@ fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
 [ $status -eq 0 ] || fail "the page's commands stopped with status $status:
 $out"
-for f in ball.png ball.glb rings.png; do [ -s "$work/$f" ] || fail "$f was not made"; done
+for f in ball.png ball.glb rings.png lab.glb lab.png lab-0.ply lab-3.ply lab-out.wrl; do [ -s "$work/$f" ] || fail "$f was not made"; done
+grep -q "lab.wrl:6:[0-9]*: warning: Inline 'http://www3.ntu.edu.sg/home/assourin/FVRML/CoordinateAxes.wrl' is not fetched" <<<"$out" ||
+  fail "no warning about the course file's axes"
+grep -q 'wrote lab.glb: animated, 24 frames a cycle' <<<"$out" || fail "the course file's glTF is not animated"
+grep -q 'note: the scene changes in time and a picture holds one instant' <<<"$out" || fail "no note on the course file's picture"
+grep -q 'wrote lab-0.ply ... lab-3.ply: 4 frame files' <<<"$out" || fail "no frame files line"
+grep -q 'ok: 1 script, no errors' <<<"$out" && fail "fscript check printed its terminal word on a pipe"
 grep -q 'fscript [0-9]' <<<"$out" || fail "no version line"
 grep -q 'wrote ball.png: [0-9,]* triangles, 1 shape' <<<"$out" || fail "no summary line for ball.png"
 grep -qx '1' <<<"$out" && grep -qx -- '-1' <<<"$out" || fail "the REPL did not print 1 and -1"

@@ -31,4 +31,16 @@ check "options before the command" 0 "^3$" -- "$F" --max-seconds 5 run "$T/id.fs
 check "fscript --help still works" 0 "Subcommands:" -- "$F" --help
 check "fscript run --help" 0 "--backend" -- "$F" run --help
 
+# Messages that say what to do.
+check "--resolution-scale -1: a short message" 2 "^--resolution-scale: wants a number above 0, got '-1'$" -- "$R" "$T/ball.wrl" --resolution-scale -1
+grep -q '[0-9]\{40\}' "$T/out.txt" && fail "--resolution-scale -1 prints a huge number"
+printf 'function f(u) { return 10u; }\n' > "$T/suffix.fs"
+check "10u: did you mean 10*u" 1 "suffix.fs:1:26: error: invalid suffix on number \(did you mean 10\*u\?\)" -- "$F" check "$T/suffix.fs"
+printf '#VRML V2.0 utf8\nFShape { appearance FAppearance { material FMaterial { diffuseColour "r=1;" } } }\n' > "$T/colour.wrl"
+check "a misspelt VRML field: did you mean" 1 "colour.wrl:2:56: error: 'FMaterial' has no field 'diffuseColour' \(did you mean 'diffuseColor'\?\)" -- "$F" check "$T/colour.wrl"
+check "fscript check on a terminal: the word that all went well" 0 "ok: 1 script, no errors" -- python3 "$SRC/tests/cli/tty_run.py" "$F" check "$T/id.fs"
+check "fscript check of two files on a terminal" 0 "ok: 2 files, 2 scripts, no errors" -- python3 "$SRC/tests/cli/tty_run.py" "$F" check "$T/id.fs" "$T/ball.wrl"
+check "fscript check on a pipe: silence" 0 "" -- "$F" check "$T/id.fs"
+[ -s "$T/out.txt" ] && fail "fscript check on a pipe printed: $(cat "$T/out.txt")"
+
 finish usage

@@ -2,6 +2,8 @@
 #include "tools/fscript/commands.h"
 #include "runtime/support/files.h"
 
+#include <unistd.h>
+
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -128,6 +130,7 @@ int cmd_eval(const Options& o, const std::string& file, const std::string& entry
 
 int cmd_check(const std::vector<std::string>& files) {
   int rc = kExitOk;
+  size_t scripts = 0, warnings = 0;
   for (const auto& path : files) {
     std::string text;
     bool is_wrl = is_scene_path(path);
@@ -138,9 +141,18 @@ int cmd_check(const std::vector<std::string>& files) {
       continue;
     }
     frontend::DiagnosticSink diag;
-    bool ok = is_wrl ? frontend::check_scene(path, text, diag, true) : frontend::check_script(path, text, diag);
+    size_t n = 1;
+    bool ok = is_wrl ? frontend::check_scene(path, text, diag, true, &n) : frontend::check_script(path, text, diag);
     if (!ok) rc = kExitInput;
+    scripts += n, warnings += diag.all().size() - diag.error_count();
     print_diagnostics(diag);
+  }
+  // On a terminal, a word that all went well (a pipe or a script gets silence, as compilers give).
+  if (rc == kExitOk && isatty(STDOUT_FILENO)) {
+    std::cout << "ok: " << (files.size() > 1 ? std::to_string(files.size()) + " files, " : "") << scripts
+              << (scripts == 1 ? " script" : " scripts") << ", no errors";
+    if (warnings) std::cout << " (" << warnings << (warnings == 1 ? " warning" : " warnings") << ")";
+    std::cout << "\n";
   }
   return rc;
 }

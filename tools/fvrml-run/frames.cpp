@@ -385,7 +385,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     written = fscript::support::write_file_atomic(o.output, mesh::encode_glb(merged(meshed), gltf), error);
     if (!written) std::cerr << "error: " << error << "\n";
   } else {
-    written = write_text(o, fscript::scene::export_vrml(l.scene, meshed.by_node, animations));
+    written = write_text(o, fscript::scene::export_vrml(l.scene, meshed.by_node, animations, o.output));
   }
   st["write_ms"] = ms_since(t3);
   return !written || failed ? 1 : 0;

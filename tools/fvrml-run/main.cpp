@@ -182,7 +182,14 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
       ->check(CLI::Range(1, 1000).description(""))
       ->type_name("N");
   app.add_option("--resolution-scale", o.model.resolution_scale, "multiply every node's resolution by K > 0")
-      ->check(CLI::PositiveNumber.description(""))
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            char* end = nullptr;
+            double k = std::strtod(text.c_str(), &end);
+            return end && *end == '\0' && k > 0 && std::isfinite(k) ? std::string()
+                                                                    : "wants a number above 0, got '" + text + "'";
+          },
+          ""))
       ->type_name("K");
   app.add_flag("--stats", o.stats, "print one JSON object describing the resolved scene on standard error");
   bool no_prune = false;

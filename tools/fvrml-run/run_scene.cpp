@@ -239,7 +239,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
     t2 = Clock::now();
     std::string error;
     if (o.format == "wrl") {
-      std::string text = fscript::scene::export_vrml(l.scene, meshed.by_node);
+      std::string text = fscript::scene::export_vrml(l.scene, meshed.by_node, {}, o.output);
       if (o.output.empty() || o.output == "-") std::cout << text;
       else if (!fscript::support::write_file_atomic(o.output, text, error)) return std::cerr << "error: " << error << "\n", 1;
     } else if (o.format == "png") {

@@ -8,6 +8,7 @@ import http.client
 import json
 import os
 import signal
+import socket
 import subprocess
 import sys
 import tempfile
@@ -129,7 +130,7 @@ def main(d):
     status, page = s.request("GET", "/")
     check("the page", status == 200 and b'<script type="module" src="/preview.js">' in page, str(status))
     status, js = s.request("GET", "/preview.js")
-    check("the page's script", status == 200 and b"EventSource('/events')" in js, str(status))
+    check("the page's script", status == 200 and b"new EventSource('/events?page=' + pageId)" in js and b"sendBeacon('/closed?page='" in js, str(status))
     for path in ["/three/build/three.module.js", "/three/examples/jsm/loaders/GLTFLoader.js",
                  "/three/examples/jsm/controls/OrbitControls.js"]:
         status, _ = s.request("GET", path)
@@ -182,6 +183,24 @@ def main(d):
     v = s.state()["version"]
     write(scene, BALL.replace("RADIUS", "0.6"))
     events.wait(lambda st: st["version"] > v, 2.0)
+
+    # Four open pages at most; one that says it closed frees its slot at once (a reload got 503).
+    def open_stream(page):
+        sock = socket.create_connection((s.host, s.port), timeout=10)
+        sock.sendall(f"GET /events?page={page} HTTP/1.1\r\nHost: x\r\n\r\n".encode())
+        return sock, sock.recv(64).decode(errors="replace").split("\r\n")[0]
+    streams = [open_stream(f"p{k}") for k in range(3)]  # the fourth is this test's own (Events)
+    check("four pages get their streams", all(" 200 " in line for _, line in streams), str([l for _, l in streams]))
+    extra, line = open_stream("p4")
+    check("a fifth page gets 503", " 503 " in line, line)
+    extra.close()
+    t0 = time.time()
+    status, _ = s.request("POST", "/closed?page=p0", b"")
+    again, line = open_stream("p5")
+    check("a page that closed frees its slot at once", status == 204 and " 200 " in line and time.time() - t0 < 2,
+          f"{status} {line} {time.time() - t0:.2f} s")
+    for sock, _ in streams + [(again, "")]:
+        sock.close()
 
     # The resolution scale from the page.
     status, _ = s.request("POST", "/settings?scale=0.5", b"")

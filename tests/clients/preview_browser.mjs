@@ -1,7 +1,8 @@
 // The preview page in headless Chromium (Debian chromium, driven by playwright-core): the first
 // picture appears, the time slider moves the morph, an edit on disk shows within 2 s, a broken edit
 // shows its diagnostics over the last good picture, a fixed one clears them, a missing Inline's
-// warning shows over the scene drawn without it, an animation plays the
+// warning shows over the scene drawn without it, the scene is drawn with no animation frame (a
+// headless screenshot), quick reloads each get the scene, an animation plays the
 // frames made so far before the last exists, and paths outside the page are 404. usage: node preview_browser.mjs URL SCENE_FILE   (fvrml-run --serve already runs)
 import { chromium } from 'playwright-core';
 import fs from 'node:fs';
@@ -108,6 +109,32 @@ try {
     await until(() => document.body.dataset.shownFrames === 'all', 120000);
     write(original);
     await page.request.post(url + 'settings?scale=1');
+  });
+  await check('the scene is drawn without animation frames (what a headless screenshot gives)', async () => {
+    const still = await browser.newPage({ viewport: { width: 320, height: 240 } });
+    await still.addInitScript(() => { window.requestAnimationFrame = () => 0; });
+    await still.goto(url);
+    await still.waitForFunction(() => document.body.dataset.shown !== undefined, null, { timeout: 30000, polling: 50 });
+    const drawn = await still.evaluate(() => {
+      const c = document.querySelector('canvas'), copy = document.createElement('canvas');
+      copy.width = c.width, copy.height = c.height;
+      const g = copy.getContext('2d');
+      g.drawImage(c, 0, 0);
+      const d = g.getImageData(0, 0, c.width, c.height).data;
+      // A rendered frame: the white background and the shape. One never rendered is all black.
+      let shape = 0, white = 0;
+      for (let i = 0; i < d.length; i += 4) {
+        if (d[i] >= 250 && d[i + 1] >= 250 && d[i + 2] >= 250) white++;
+        else if (d[i + 3] > 0) shape++;
+      }
+      return { shape: shape / (d.length / 4), white: white / (d.length / 4) };
+    });
+    await still.close();
+    assert.ok(drawn.white > 0.1 && drawn.shape > 0.01, `background ${(drawn.white * 100).toFixed(1)}%, shape ${(drawn.shape * 100).toFixed(1)}%`);
+  });
+  await check('six quick reloads each get the scene (a closed page frees its stream)', async () => {
+    for (let i = 0; i < 6; i++) await page.reload();
+    await until(() => document.body.dataset.state === 'ok', 5000);
   });
   await check('paths outside the page are 404', async () => {
     for (const path of ['/../../etc/passwd', '/%2e%2e/%2e%2e/etc/passwd', '/three/../../../../etc/passwd', '/etc/passwd']) {

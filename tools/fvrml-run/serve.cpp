@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <iostream>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -65,6 +66,7 @@ struct State {
   nlohmann::json stats;     // of the last good run
   double scale = 1;         // the resolution scale the page asked for
   int streams = 0;
+  std::set<std::string> closed_pages;  // pages that said they closed (/closed): their streams end now
   bool running = false;     // a run is under way (its progress goes to the pages)
   std::string printed;      // the diagnostics last printed on the terminal (the watcher's thread only)
 };
@@ -286,7 +288,20 @@ void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
     res.set_content("{}", "application/json");
   });
   // Server-Sent Events: the state now, then at every change; a comment every 15 s keeps it open.
-  svr.Get("/events", [&st](const httplib::Request&, httplib::Response& res) {
+  // A page going away (reload, close) says so: its stream's slot is free at once, not at the next
+  // write that fails (a reload within seconds found every slot taken: 503).
+  svr.Post("/closed", [&st](const httplib::Request& req, httplib::Response& res) {
+    std::string page = req.get_param_value("page");
+    if (!page.empty() && page.size() <= 64) {
+      std::lock_guard<std::mutex> hold(st.lock);
+      if (st.closed_pages.size() > 256) st.closed_pages.clear();  // names of streams that had ended anyway
+      st.closed_pages.insert(page);
+    }
+    st.changed.notify_all();
+    res.status = 204;
+  });
+  svr.Get("/events", [&st](const httplib::Request& req, httplib::Response& res) {
+    std::string page = req.get_param_value("page");
     {
       std::lock_guard<std::mutex> hold(st.lock);
       if (st.streams >= kMaxStreams) {
@@ -300,16 +315,17 @@ void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
     auto sent = std::make_shared<uint64_t>(~uint64_t{0});
     res.set_chunked_content_provider(
         "text/event-stream",
-        [&st, sent](size_t, httplib::DataSink& sink) {
+        [&st, sent, page](size_t, httplib::DataSink& sink) {
           std::string out;
           {
             std::unique_lock<std::mutex> hold(st.lock);
+            auto gone = [&] { return st.stopping || (!page.empty() && st.closed_pages.count(page)); };
             // While a run is under way, its progress four times a second; else wait for the next state.
             if (st.running)
-              st.changed.wait_for(hold, std::chrono::milliseconds(250), [&] { return st.stopping || st.version != *sent; });
-            else  // idle: until a state, a run starting, or the keep-alive
-              st.changed.wait_for(hold, std::chrono::seconds(15), [&] { return st.stopping || st.version != *sent || st.running; });
-            if (st.stopping) return false;
+              st.changed.wait_for(hold, std::chrono::milliseconds(250), [&] { return gone() || st.version != *sent; });
+            else  // idle: until a state, a run starting, the page closing, or the keep-alive
+              st.changed.wait_for(hold, std::chrono::seconds(15), [&] { return gone() || st.version != *sent || st.running; });
+            if (gone()) return false;
             if (st.version != *sent) {
               *sent = st.version;
               out = "event: state\ndata: " + state_json(st).dump() + "\n\n";
@@ -323,9 +339,10 @@ void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
           }
           return sink.write(out.data(), out.size());
         },
-        [&st](bool) {
+        [&st, page](bool) {
           std::lock_guard<std::mutex> hold(st.lock);
           --st.streams;
+          st.closed_pages.erase(page);
         });
   });
 }

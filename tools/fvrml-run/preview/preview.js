@@ -127,6 +127,7 @@ function load(version, partial) {
       if (viewpoint(currentView)) framed = true;
       else frame(content);
     }
+    draw();  // now, not at the next animation frame: a headless screenshot never gets one
     shown = version;
     document.body.dataset.shown = String(version);
     document.body.dataset.shownFrames = partial ? `${partial.frames}/${partial.of}` : 'all';
@@ -148,7 +149,7 @@ function show(state) {
   for (const shape of s.shapes || []) triangles += shape.triangles || 0;
   for (const a of s.animations || []) {  // per frame: the animated shapes' triangles over their frames
     triangles += Math.round(a.triangles / Math.max(1, a.frames));
-    frames = Math.max(frames, a.frames);
+    if (!a.constant) frames = Math.max(frames, a.frames);  // one that never changed is a still shape
   }
   const time = frames ? `${Math.round(s.total_ms || 0)} ms for ${frames} frames (${((s.total_ms || 0) / frames).toFixed(1)} ms a frame)`
                       : `${Math.round(s.total_ms || 0)} ms`;
@@ -159,7 +160,13 @@ function show(state) {
   if (state.ok && state.version !== shown) load(state.version, state.partial);
 }
 
-const events = new EventSource('/events');
+// This page's name for its stream: said again when it goes away, so the server frees its slot then.
+const pageId = Math.random().toString(36).slice(2, 12);
+const events = new EventSource('/events?page=' + pageId);
+addEventListener('pagehide', () => {
+  events.close();
+  navigator.sendBeacon('/closed?page=' + pageId);
+});
 events.addEventListener('state', (e) => { status.textContent = ''; show(JSON.parse(e.data)); });
 events.addEventListener('progress', (e) => {  // while the scene runs again: frames done of N, share
   const p = JSON.parse(e.data);
@@ -183,7 +190,7 @@ scaleInput.onchange = () => {
   fetch('/settings?scale=' + encodeURIComponent(scaleInput.value), { method: 'POST' });
 };
 
-renderer.setAnimationLoop(() => {
+function draw() {
   const dt = clock.getDelta();
   if (mixer && playing) mixer.update(dt);
   for (const node of framesOf) node.visible = node.scale.x !== 0;
@@ -194,4 +201,5 @@ renderer.setAnimationLoop(() => {
   }
   controls.update();
   renderer.render(scene, camera);
-});
+}
+renderer.setAnimationLoop(draw);

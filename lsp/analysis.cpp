@@ -64,6 +64,7 @@ bool embedded_script_at(const Document& scene, size_t offset, Document& script, 
     script.text = s.script.text;
     script.scene = false;
     script.revision = 0;
+    script.first_line = s.script.line - 1;
     base = start;
     return true;
   }

@@ -19,6 +19,9 @@ struct Document {
   int64_t version = 0;
   bool scene = false;  // a .wrl (VRML with FScript strings) rather than a .fs script
   uint64_t revision = 0;  // bumped by every change of `text`
+  // A script inside a .wrl, taken as a document of its own: the .wrl line (0-based) its text
+  // starts on, for what the features say in words ("defined at line N" is the file's line).
+  uint32_t first_line = 0;
   // The analysis of `text` at `analysed_revision` (lsp/analysis.h), shared by the features.
   mutable std::shared_ptr<Analysis> analysis;
   mutable uint64_t analysed_revision = ~uint64_t{0};

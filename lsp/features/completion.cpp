@@ -15,6 +15,23 @@ namespace {
 // CompletionItemKind values of LSP 3.17.
 constexpr int kFunctionKind = 3, kVariableKind = 6, kKeywordKind = 14, kConstantKind = 21;
 
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// How well `label` fits what was typed: 0 starts with it as written, 1 starts with it in another
+// letter case ("Sq": sqrt, "sQ": Sq3), -1 not at all.
+int rank(const std::string& label, const std::string& typed) {
+  if (label.compare(0, typed.size(), typed) == 0) return 0;
+  return lower(label).compare(0, typed.size(), lower(typed)) == 0 ? 1 : -1;
+}
+
+// What a client matches the typed word against: the label, with the typed letters where they
+// differ only in case ("Sq" + "rt"), so a client that filters by prefix keeps what the server found.
+std::string filter_text(const std::string& label, const std::string& typed, int rank) {
+  return rank == 0 ? label : typed + label.substr(typed.size());
+}
 
 }  // namespace
 
@@ -24,10 +41,16 @@ json completion(const Document& d, const json& params) {
   std::string prefix = word_at(d.text, at, b, e) ? d.text.substr(b, at - b) : "";
   json items = json::array();
   std::set<std::string> seen;
+  // Every name that fits the word typed so far, in any letter case, ranked (sortText) so the best
+  // fits come first; the item replaces the typed word (textEdit), so "Sq" becomes "sqrt".
+  Position from = position_of(d.text, at - prefix.size()), to = position_of(d.text, at);
+  json replaced = {{"start", {{"line", from.line}, {"character", from.character}}},
+                   {"end", {{"line", to.line}, {"character", to.character}}}};
   auto add = [&](const std::string& label, int kind, const std::string& detail, const std::string& doc = "") {
-    if (label.empty() || label[0] == '$' || label.compare(0, prefix.size(), prefix) != 0 || !seen.insert(label).second)
-      return;
-    items.push_back({{"label", label}, {"kind", kind}, {"detail", detail}});
+    int r = label.empty() || label[0] == '$' ? -1 : rank(label, prefix);
+    if (r < 0 || !seen.insert(label).second) return;
+    items.push_back({{"label", label}, {"kind", kind}, {"detail", detail}, {"sortText", std::to_string(r) + lower(label)},
+                     {"filterText", filter_text(label, prefix, r)}, {"textEdit", {{"range", replaced}, {"newText", label}}}});
     if (!doc.empty()) items.back()["documentation"] = {{"kind", "markdown"}, {"value", doc}};
   };
   std::string node;

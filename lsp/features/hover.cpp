@@ -74,7 +74,7 @@ json hover(const Document& d, const json& params) {
                          : sym.kind == frontend::SymKind::Constant                        ? "constant"
                                                                                           : "global variable";
       result = markdown("```fscript\n" + r.word + (sym.is_array ? "[]" : "") + "\n```\n" + kind +
-                        ", defined at line " + std::to_string(at.line + 1));
+                        ", defined at line " + std::to_string(d.first_line + at.line + 1));
       break;
     }
   }

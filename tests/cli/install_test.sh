@@ -14,7 +14,7 @@ for tool in fscript fvrml-run fvrml-meshdiff fscript-lsp; do
   [ -x "$T/prefix/bin/$tool" ] || { fail "$tool is not in PREFIX/bin"; continue; }
   "$T/prefix/bin/$tool" --version 2>&1 | grep -q "^$tool " || fail "$tool --version from PREFIX/bin"
 done
-[ -f "$T/prefix/share/fvrml/editors/nvim/fscript.lua" ] ||
+[ -f "$T/prefix/share/fvrml/editors/nvim/lua/fscript.lua" ] ||
   fail "the editor set-ups are not in PREFIX/share/fvrml/editors"
 [ -f "$T/prefix/share/fvrml/docs/quickstart.md" ] || fail "docs/quickstart.md is not in PREFIX/share/fvrml/docs"
 mkdir -p "$T/elsewhere"

@@ -38,18 +38,25 @@ if [ -f "$PROBE" ]; then  # the shared probe, when ../shared is there
 else
   fs_skip missing "lsp_nvim shared probe" "$PROBE not found (the shared folder is absent)" || fails=$((fails + 1))
 fi
-# The Neovim set-up the README documents (editors/nvim/fscript.lua), on a .fs and a .wrl.
+# The Neovim set-up the README documents (editors/nvim/lua/fscript.lua), on a .fs and a .wrl:
+# loaded as init.lua does (the folder on the runtime path, require), and by :luafile.
 printf 'function FRep(x, y, z, t) {\n  return 1 - Q;\n}\n' > "$T/bad.fs"
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1 - x*x - QQ" } }\n' > "$T/bad.wrl"
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "function g(a) { return a * a; }\nfunction FRep(x, y, z, t) { return 1 - g(x) - sqrt(y) - QQ; }" } }\n' > "$T/bad2.wrl"
-with_config() {  # FILE QUERIES: Neovim with editors/nvim/fscript.lua, then nvim_config_check.lua
-  (cd "$T" && FSCRIPT_LSP="$LSP" QUERIES=$2 timeout 60 nvim --headless --clean -n -u NONE \
-     -c "luafile $SRC/editors/nvim/fscript.lua" -c "edit $1" -c "luafile $SRC/tests/clients/nvim_config_check.lua" 2>&1)
+printf 'vim.opt.runtimepath:append("%s/editors/nvim")\nrequire("fscript")\n' "$SRC" > "$T/init.lua"
+LOAD=(-u "$T/init.lua")  # as the README says: init.lua puts the folder on the runtime path and requires it
+with_config() {  # FILE QUERIES: Neovim with the set-up, then nvim_config_check.lua
+  (cd "$T" && FSCRIPT_LSP="$LSP" QUERIES=$2 timeout 60 nvim --headless --clean -n "${LOAD[@]}" \
+     -c "edit $1" -c "luafile $SRC/tests/clients/nvim_config_check.lua" 2>&1)
 }
 for f in bad.fs bad.wrl; do
   out=$(with_config "$f" "")
-  want "editors/nvim/fscript.lua on $f" "$out" "clients=fscript-lsp diagnostic=unknown name 'Q"
+  want "require('fscript') from init.lua, on $f" "$out" "clients=fscript-lsp diagnostic=unknown name 'Q"
 done
+LOAD=(-u NONE -c "luafile $SRC/editors/nvim/lua/fscript.lua")
+out=$(with_config bad.fs "")
+want ":luafile editors/nvim/lua/fscript.lua, on bad.fs" "$out" "clients=fscript-lsp diagnostic=unknown name 'Q"
+LOAD=(-u "$T/init.lua")
 # Hover, completion and definition through Neovim's own client, in a .fs and inside a .wrl string.
 printf 'function sq(a) {\n  return a * a;\n}\nfunction FRep(x, y, z, t) {\n  return 1 - sqrt(sq(x)) - Q;\n}\n' > "$T/feat.fs"
 out=$(with_config feat.fs 'textDocument/hover@4:14;textDocument/completion@4:15;textDocument/definition@4:19')

@@ -1,4 +1,4 @@
--- Opened by lsp_nvim_test.sh after editors/nvim/fscript.lua: waits for the server's diagnostics on
+-- Opened by lsp_nvim_test.sh after editors/nvim/lua/fscript.lua: waits for the server's diagnostics on
 -- the current buffer, prints the filetype, the attached client and the first message, then sends
 -- the requests in QUERIES ("method@line:character;...", 0-based) through Neovim's client and
 -- prints each result as JSON.

@@ -1,6 +1,9 @@
 -- Neovim (0.7 or later) set-up for FScript: *.fs files are FScript (not F#), and fscript-lsp
--- serves them and .wrl scenes (the FScript strings inside). Use: `:luafile path/to/fscript.lua`
--- from init.vim, or `require` it from init.lua; FSCRIPT_LSP may name the server's path.
+-- serves them and .wrl scenes (the FScript strings inside). Use, from init.lua:
+--   vim.opt.runtimepath:append("/path/to/editors/nvim")
+--   require("fscript")
+-- or `:luafile /path/to/editors/nvim/lua/fscript.lua` from init.vim. FSCRIPT_LSP may name the
+-- server's path.
 local server = os.getenv("FSCRIPT_LSP") or "fscript-lsp"
 
 vim.cmd([[
@@ -57,3 +60,5 @@ vim.api.nvim_create_user_command("FvrmlPreview", function()
     if vim.ui.open then vim.ui.open(result.url) else vim.fn.jobstart({ "xdg-open", result.url }, { detach = true }) end
   end)
 end, { desc = "FVRML: the live preview of this scene in the browser" })
+
+return { server = server }

@@ -2,6 +2,7 @@
 #include "runtime/scene/standard_geometry.h"
 
 #include <cmath>
+#include <optional>
 
 #include "runtime/scene/scene_model.h"
 #include "runtime/scene/shape_mesh.h"
@@ -81,20 +82,42 @@ void indexed_faces(const vrml::Node* g, mesh::Mesh& m) {
   if (m.colours.size() != m.positions.size()) m.colours.clear();
 }
 
-void indexed_lines(const vrml::Node* g, mesh::Mesh& m) {
+// Lines are unlit (VRML97 6.24): each vertex takes the Color node's colour (per vertex, or per
+// polyline with colorPerVertex FALSE, through colorIndex when given), else the Material's
+// emissiveColor; with neither, the viewer's default. Each polyline vertex is its own point, so
+// its colour stays its own when the picture's meshes are merged.
+void indexed_lines(const vrml::Node* shape, const vrml::Node* g, mesh::Mesh& m) {
   const auto& pts = nums(child(g, "coord"), "point");
   const auto& idx = nums(g, "coordIndex");
-  size_t npts = pts.size() / 3;
-  for (size_t i = 0; i < npts; ++i) m.positions.push_back(vec(pts, i));
+  const auto& cols = nums(child(g, "color"), "color");
+  const auto& col_idx = nums(g, "colorIndex");
+  bool per_vertex = number(g, "colorPerVertex", 1) != 0;
+  size_t npts = pts.size() / 3, ncols = cols.size() / 3, line = 0;
+  std::optional<mesh::Vec3> emissive;
+  if (const vrml::Node* mat = child(child(shape, "appearance"), "material")) {
+    const auto& e = nums(mat, "emissiveColor");
+    emissive = e.size() >= 3 ? vec(e, 0) : mesh::Vec3{0, 0, 0};
+  }
+  auto colour_of = [&](size_t corner, size_t point) -> std::optional<mesh::Vec3> {
+    if (ncols == 0) return emissive;
+    size_t c = per_vertex ? (corner < col_idx.size() && col_idx[corner] >= 0 ? size_t(col_idx[corner]) : point)
+                          : (line < col_idx.size() && col_idx[line] >= 0 ? size_t(col_idx[line]) : line);
+    return c < ncols ? std::optional<mesh::Vec3>(vec(cols, c)) : emissive;
+  };
   m.polylines.emplace_back();
-  for (double i : idx) {
+  for (size_t k = 0; k < idx.size(); ++k) {
+    double i = idx[k];
     if (i < 0 || size_t(i) >= npts) {
       if (!m.polylines.back().empty()) m.polylines.emplace_back();
+      if (i < 0) ++line;
       continue;
     }
-    m.polylines.back().push_back(static_cast<uint32_t>(i));
+    m.polylines.back().push_back(static_cast<uint32_t>(m.positions.size()));
+    m.positions.push_back(vec(pts, size_t(i)));
+    if (auto c = colour_of(k, size_t(i))) m.colours.push_back(*c);
   }
   if (m.polylines.back().empty()) m.polylines.pop_back();
+  if (m.colours.size() != m.positions.size()) m.colours.clear();
 }
 
 // A quad as two triangles with its own vertices and normal n.
@@ -195,7 +218,7 @@ void walk(const vrml::Node* n, const Mat4& m, std::vector<mesh::Mesh>& out, int 
     if (!g || g->fvrml) return;
     mesh::Mesh mesh;
     if (g->type == "IndexedFaceSet") indexed_faces(g, mesh);
-    else if (g->type == "IndexedLineSet") indexed_lines(g, mesh);
+    else if (g->type == "IndexedLineSet") indexed_lines(n, g, mesh);
     else if (g->type == "Box") box(g, mesh);
     else if (g->type == "Sphere") sphere(g, mesh);
     else if (g->type == "Cylinder" || g->type == "Cone") round_solid(g, g->type == "Cone", mesh);

@@ -1,5 +1,9 @@
 #pragma once
-// CFG analyses shared by passes and backends: reverse post-order and dominators.
+// CFG analyses shared by passes and backends: reverse post-order and dominators; and arrays
+// indexed out of range by constants.
+#include <cstdint>
+#include <map>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -28,5 +32,16 @@ class DomTree {
   std::unordered_map<Block*, Block*> idom_;
   std::unordered_map<Block*, std::vector<Block*>> kids_;
 };
+
+// An array read or write whose index is a constant outside the array's length, where every
+// `new Array(n)` of that array makes the same constant n: it fails whenever it runs, so `fscript
+// check` warns at it (after optimisation, which makes `var i = 5; a[i]` such a constant).
+struct KnownOutOfRange {
+  uint32_t line = 0, col = 0;
+  std::string array;
+  float index = 0;
+  uint32_t length = 0;
+};
+std::vector<KnownOutOfRange> known_out_of_range(const Module& m);
 
 }  // namespace fscript::ir

@@ -53,17 +53,41 @@ int add_material(const Mesh& m, nlohmann::json& j) {
   return static_cast<int>(j["materials"].size()) - 1;
 }
 
-// Appends the mesh (attributes, indices, material); its index in "meshes", or -1 when empty.
-int add_mesh(const Mesh& m, std::string& bin, nlohmann::json& j) {
+// The triangles (or the polylines) of `m` with only the vertices they use, renumbered.
+Mesh part(const Mesh& m, bool lines) {
+  Mesh out;
+  out.material = m.material;
+  std::vector<uint32_t> at(m.positions.size(), ~uint32_t{0});
+  auto use = [&](uint32_t v) {
+    if (at[v] == ~uint32_t{0}) {
+      at[v] = static_cast<uint32_t>(out.positions.size());
+      out.positions.push_back(m.positions[v]);
+      if (m.normals.size() == m.positions.size()) out.normals.push_back(m.normals[v]);
+      if (m.colours.size() == m.positions.size()) out.colours.push_back(m.colours[v]);
+    }
+    return at[v];
+  };
+  if (lines)
+    for (const auto& l : m.polylines) {
+      out.polylines.emplace_back();
+      for (uint32_t v : l) out.polylines.back().push_back(use(v));
+    }
+  else
+    for (const auto& t : m.triangles) out.triangles.push_back({use(t[0]), use(t[1]), use(t[2])});
+  return out;
+}
+
+// One primitive of `m`: its triangles (mode 4), or its polylines as line segments (mode 1), with
+// their attributes and material; null when it has none.
+nlohmann::json add_primitive(const Mesh& m, bool lines, std::string& bin, nlohmann::json& j) {
   std::vector<uint32_t> index;
-  bool lines = m.triangles.empty() && !m.polylines.empty();
   if (lines) {
     for (const auto& l : m.polylines)
       for (size_t k = 0; k + 1 < l.size(); ++k) index.insert(index.end(), {l[k], l[k + 1]});
   } else {
     for (const auto& t : m.triangles) index.insert(index.end(), t.begin(), t.end());
   }
-  if (m.positions.empty() || index.empty()) return -1;
+  if (m.positions.empty() || index.empty()) return nullptr;
   nlohmann::json attrs;
   attrs["POSITION"] = vec3_attribute(m.positions, true, bin, j);
   if (!lines && m.normals.size() == m.positions.size()) {
@@ -82,8 +106,21 @@ int add_mesh(const Mesh& m, std::string& bin, nlohmann::json& j) {
   j["accessors"].push_back({{"bufferView", j["bufferViews"].size() - 1}, {"componentType", kUint},
                             {"count", index.size()}, {"type", "SCALAR"}});
   int material = add_material(m, j);
-  j["meshes"].push_back({{"primitives", {{{"attributes", attrs}, {"indices", j["accessors"].size() - 1},
-                                           {"mode", lines ? 1 : 4}, {"material", material}}}}});
+  return {{"attributes", attrs}, {"indices", j["accessors"].size() - 1}, {"mode", lines ? 1 : 4}, {"material", material}};
+}
+
+// Appends the mesh: a primitive of its triangles and one of its lines (the standard geometry of a
+// scene has both: shapes and axes); its index in "meshes", or -1 when empty.
+int add_mesh(const Mesh& m, std::string& bin, nlohmann::json& j) {
+  nlohmann::json primitives = nlohmann::json::array();
+  bool both = !m.triangles.empty() && !m.polylines.empty();
+  for (bool lines : {false, true}) {
+    if ((lines ? m.polylines.empty() : m.triangles.empty())) continue;
+    nlohmann::json p = both ? add_primitive(part(m, lines), lines, bin, j) : add_primitive(m, lines, bin, j);
+    if (!p.is_null()) primitives.push_back(p);
+  }
+  if (primitives.empty()) return -1;
+  j["meshes"].push_back({{"primitives", primitives}});
   return static_cast<int>(j["meshes"].size()) - 1;
 }
 

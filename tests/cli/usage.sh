@@ -42,5 +42,15 @@ check "fscript check on a terminal: the word that all went well" 0 "ok: 1 script
 check "fscript check of two files on a terminal" 0 "ok: 2 files, 2 scripts, no errors" -- python3 "$SRC/tests/cli/tty_run.py" "$F" check "$T/id.fs" "$T/ball.wrl"
 check "fscript check on a pipe: silence" 0 "" -- "$F" check "$T/id.fs"
 [ -s "$T/out.txt" ] && fail "fscript check on a pipe printed: $(cat "$T/out.txt")"
+# An array index known to be out of range is a warning at check (it fails whenever it runs).
+printf 'function f(x) { var a = [1, 2, 3]; var i = 5; return a[i] + a[2]; }\n' > "$T/index.fs"
+check "check: a[i] with i known to be 5, of three elements" 0 "index.fs:1:54: warning: index 5 is out of range for array 'a' of 3 elements whenever this runs" -- "$F" check "$T/index.fs"
+grep -q "1:62" "$T/out.txt" && fail "check warned about a[2], which is in range"
+check "run: the same index fails" 1 "index 5 is out of range for array 'a' of 3 elements" -- "$F" run "$T/index.fs"
+printf 'function f(x) { var a = new Array(4); a[3] = x; return a[round(x)]; }\n' > "$T/fine.fs"
+check "check: indices in range or not known say nothing" 0 "" -- "$F" check "$T/fine.fs"
+[ -s "$T/out.txt" ] && fail "check warned about fine.fs: $(cat "$T/out.txt")"
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "\nfunction FRep(x,y,z,t) {\n  var k = [1, 2];\n  return k[2] - x;\n}" } }\n' > "$T/index.wrl"
+check "check: the same inside a .wrl, at the scene's line" 0 "index.wrl:5:10: warning: index 2 is out of range for array 'k' of 2 elements" -- "$F" check "$T/index.wrl"
 
 finish usage

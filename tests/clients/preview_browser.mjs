@@ -110,6 +110,30 @@ try {
     write(original);
     await page.request.post(url + 'settings?scale=1');
   });
+  await check("standard geometry and an Inline's contents are shown, as in VRML97 and pictures", async () => {
+    const before = await shown();
+    fs.writeFileSync(scene.replace(/[^/]*$/, 'part.wrl'),
+      '#VRML V2.0 utf8\nTransform { translation 0.6 0 0 children Shape { appearance Appearance { material Material { diffuseColor 0 0 1 } } geometry Sphere { radius 0.3 } } }\n');
+    write('#VRML V2.0 utf8\nShape { appearance Appearance { material Material { diffuseColor 1 0 0 } } geometry Box { size 0.5 0.5 0.5 } }\n' +
+          'Inline { url "part.wrl" }\n');
+    await until((v) => Number(document.body.dataset.shown) > v && document.body.dataset.state === 'ok', 10000, before);
+    await page.waitForTimeout(300);
+    const counts = await page.evaluate(() => {
+      const c = document.querySelector('canvas'), copy = document.createElement('canvas');
+      copy.width = c.width, copy.height = c.height;
+      const g = copy.getContext('2d');
+      g.drawImage(c, 0, 0);
+      const d = g.getImageData(0, 0, c.width, c.height).data;
+      let red = 0, blue = 0;
+      for (let i = 0; i < d.length; i += 4) {
+        if (d[i] > 120 && d[i + 1] < 60 && d[i + 2] < 60) red++;
+        if (d[i + 2] > 120 && d[i] < 60 && d[i + 1] < 60) blue++;
+      }
+      return { red, blue };
+    });
+    write(original);
+    assert.ok(counts.red > 500 && counts.blue > 500, `red ${counts.red}, blue ${counts.blue} pixels`);
+  });
   await check('the scene is drawn without animation frames (what a headless screenshot gives)', async () => {
     const still = await browser.newPage({ viewport: { width: 320, height: 240 } });
     await still.addInitScript(() => { window.requestAnimationFrame = () => 0; });

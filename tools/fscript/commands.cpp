@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "backends/runtime_errors.h"
 #include "backends/sse/sse_backend.h"
 #include "backends/llvm_module.h"
 #include "backends/vm/vm_backend.h"
@@ -19,6 +20,7 @@
 #include "frontend/vrml/scene_scripts.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
+#include "ir/analysis.h"
 #include "ir/passes/passes.h"
 #include "ir/passes/gradient.h"
 #include "ir/text.h"
@@ -128,6 +130,42 @@ int cmd_eval(const Options& o, const std::string& file, const std::string& entry
   return kExitOk;
 }
 
+// Warnings only the optimised module shows: an array indexed by a known constant past its known
+// length (fails whenever it runs). The script is compiled for its entry point; one without an
+// entry (a library of functions) or that does not compile gets none.
+size_t known_failures(std::unique_ptr<frontend::SourceFile> file, const std::vector<std::string>& extra_globals) {
+  Options o;
+  o.want_kernel = false;
+  o.extra_globals = extra_globals;
+  frontend::DiagnosticSink ignored;
+  Compiled c;
+  if (!driver::compile(std::move(file), driver::default_entry(), o, ignored, c).ok() || !c.module) return 0;
+  auto found = ir::known_out_of_range(*c.module);
+  for (const auto& k : found) {
+    frontend::LineCol at{k.line, std::max(k.col, 1u)};
+    std::cerr << frontend::render(frontend::located(
+        frontend::Severity::Warning, c.script.file->path(), at, c.script.file->line_at(k.line),
+        backends::errors::array_index(k.array, k.index, k.length) + " whenever this runs"));
+  }
+  return found.size();
+}
+
+// known_failures of every script of a scene, each at the scene's own lines.
+size_t known_failures_in_scene(const std::string& path, const std::string& text) {
+  frontend::DiagnosticSink ignored;
+  vrml::Scene scene;
+  vrml::parse_scene(std::make_unique<frontend::SourceFile>(path, text), ignored, scene);
+  std::vector<std::string> lines = frontend::split_lines(text);
+  size_t n = 0;
+  for (const auto& s : vrml::scene_scripts(scene)) {
+    if (frontend::is_affine_field(s.script.field) || s.script.field == "operation") continue;
+    auto file = std::make_unique<frontend::SourceFile>(path, s.script.text, s.script.line, s.script.col);
+    file->set_outer_lines(lines);
+    n += known_failures(std::move(file), {});
+  }
+  return n;
+}
+
 int cmd_check(const std::vector<std::string>& files) {
   int rc = kExitOk;
   size_t scripts = 0, warnings = 0;
@@ -146,6 +184,7 @@ int cmd_check(const std::vector<std::string>& files) {
     if (!ok) rc = kExitInput;
     scripts += n, warnings += diag.all().size() - diag.error_count();
     print_diagnostics(diag);
+    if (ok) warnings += is_wrl ? known_failures_in_scene(path, text) : known_failures(std::make_unique<frontend::SourceFile>(path, text), {});
   }
   // On a terminal, a word that all went well (a pipe or a script gets silence, as compilers give).
   if (rc == kExitOk && isatty(STDOUT_FILENO)) {

@@ -13,6 +13,7 @@
 #include "runtime/mesh/gltf.h"
 #include "runtime/render/png.h"
 #include "runtime/scene/shape_mesh.h"
+#include "runtime/scene/standard_geometry.h"
 #include "runtime/scene/vrml_export.h"
 #include "runtime/support/parallel.h"
 #include "runtime/support/progress.h"
@@ -342,6 +343,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     auto publish = [&](size_t cached) {
       if (!o.on_partial || !world || cached >= cache.size() || (cached & (cached - 1)) != 0) return;
       mesh::Mesh all = meshed.all();
+      for (const auto& part : fscript::scene::standard_meshes(l.scene)) all.append(part);
       std::vector<mesh::GltfAnimation> now = gltf;
       now.push_back(gltf_animation(l.scene, t, cache, true));
       size_t frames = now.back().frames.size();  // other threads may have added some meanwhile
@@ -382,7 +384,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
   bool written = false;
   if (world) {
     std::string error;
-    written = fscript::support::write_file_atomic(o.output, mesh::encode_glb(merged(meshed), gltf), error);
+    written = fscript::support::write_file_atomic(o.output, mesh::encode_glb(picture(meshed, l.scene), gltf), error);
     if (!written) std::cerr << "error: " << error << "\n";
   } else {
     written = write_text(o, fscript::scene::export_vrml(l.scene, meshed.by_node, animations, o.output));

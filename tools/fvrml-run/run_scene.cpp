@@ -246,7 +246,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
       fscript::render::RenderOptions ro = render_options(o, l.scene, o.width, o.height);
       if (!fscript::render::write_png(o.output, ro.width, ro.height, 3, fscript::render::render(picture(meshed, l.scene), ro), error))
         return std::cerr << "error: " << error << "\n", 1;
-    } else if (!write_frame(o, o.output, merged(meshed))) {
+    } else if (!write_frame(o, o.output, o.format == "glb" ? picture(meshed, l.scene) : merged(meshed))) {
       return 1;
     }
     st["write_ms"] = ms_since(t2);

@@ -26,8 +26,16 @@ void Mesh::append(const Mesh& o) {
   } else {
     colours.clear();
   }
-  if (normals.size() == n && o.normals.size() == on) normals.insert(normals.end(), o.normals.begin(), o.normals.end());
-  else normals.clear();
+  // Normals stay where every part with faces has them: a part of lines alone (a scene's axes
+  // beside its shapes) needs none, and gets zeros rather than taking the shapes' away.
+  bool my_normals = normals.size() == n || triangles.empty(), their_normals = o.normals.size() == on || o.triangles.empty();
+  if (my_normals && their_normals && (normals.size() == n || o.normals.size() == on) && n + on > 0) {
+    normals.resize(n, Vec3{0, 0, 0});
+    if (o.normals.size() == on) normals.insert(normals.end(), o.normals.begin(), o.normals.end());
+    else normals.insert(normals.end(), on, Vec3{0, 0, 0});
+  } else {
+    normals.clear();
+  }
   if (!split_from.empty() || !o.split_from.empty()) {
     for (uint32_t i = static_cast<uint32_t>(split_from.size()); i < n; ++i) split_from.push_back(i);
     for (size_t i = 0; i < on; ++i)

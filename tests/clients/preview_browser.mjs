@@ -25,13 +25,20 @@ async function check(name, fn) {
 }
 try {
   const page = await browser.newPage({ viewport: { width: 640, height: 480 } });
+  // In every page: the WebGL canvas's RGBA bytes, read through a 2D copy.
+  const withPixels = () => {
+    window.canvasPixels = () => {
+      const c = document.querySelector('canvas'), copy = document.createElement('canvas');
+      copy.width = c.width, copy.height = c.height;
+      const g = copy.getContext('2d');
+      g.drawImage(c, 0, 0);
+      return g.getImageData(0, 0, c.width, c.height).data;
+    };
+  };
+  await page.addInitScript(withPixels);
   // The canvas's pixels that are not the white background, and a digest of them.
   const picture = () => page.evaluate(() => {
-    const c = document.querySelector('canvas'), copy = document.createElement('canvas');
-    copy.width = c.width, copy.height = c.height;
-    const g = copy.getContext('2d');
-    g.drawImage(c, 0, 0);
-    const d = g.getImageData(0, 0, c.width, c.height).data;
+    const d = window.canvasPixels();
     let drawn = 0, digest = 0;
     for (let i = 0; i < d.length; i += 4) {
       if (d[i] < 250 || d[i + 1] < 250 || d[i + 2] < 250) drawn++;
@@ -116,35 +123,30 @@ try {
       '#VRML V2.0 utf8\nTransform { translation 0.6 0 0 children Shape { appearance Appearance { material Material { diffuseColor 0 0 1 } } geometry Sphere { radius 0.3 } } }\n');
     write('#VRML V2.0 utf8\nShape { appearance Appearance { material Material { diffuseColor 1 0 0 } } geometry Box { size 0.5 0.5 0.5 } }\n' +
           'Inline { url "part.wrl" }\n');
-    await until((v) => Number(document.body.dataset.shown) > v && document.body.dataset.state === 'ok', 10000, before);
-    await page.waitForTimeout(300);
-    const counts = await page.evaluate(() => {
-      const c = document.querySelector('canvas'), copy = document.createElement('canvas');
-      copy.width = c.width, copy.height = c.height;
-      const g = copy.getContext('2d');
-      g.drawImage(c, 0, 0);
-      const d = g.getImageData(0, 0, c.width, c.height).data;
+    const colours = () => {
+      const d = window.canvasPixels();
       let red = 0, blue = 0;
       for (let i = 0; i < d.length; i += 4) {
         if (d[i] > 120 && d[i + 1] < 60 && d[i + 2] < 60) red++;
         if (d[i + 2] > 120 && d[i] < 60 && d[i + 1] < 60) blue++;
       }
       return { red, blue };
-    });
+    };
+    // Until the new scene is shown with both (a run already under way may show first).
+    await until((v) => Number(document.body.dataset.shown) > v && document.body.dataset.state === 'ok', 10000, before);
+    await until(`(${colours})().red > 500 && (${colours})().blue > 500`, 10000).catch(() => {});
+    const counts = await page.evaluate(colours);
     write(original);
     assert.ok(counts.red > 500 && counts.blue > 500, `red ${counts.red}, blue ${counts.blue} pixels`);
   });
   await check('the scene is drawn without animation frames (what a headless screenshot gives)', async () => {
     const still = await browser.newPage({ viewport: { width: 320, height: 240 } });
     await still.addInitScript(() => { window.requestAnimationFrame = () => 0; });
+    await still.addInitScript(withPixels);
     await still.goto(url);
     await still.waitForFunction(() => document.body.dataset.shown !== undefined, null, { timeout: 30000, polling: 50 });
     const drawn = await still.evaluate(() => {
-      const c = document.querySelector('canvas'), copy = document.createElement('canvas');
-      copy.width = c.width, copy.height = c.height;
-      const g = copy.getContext('2d');
-      g.drawImage(c, 0, 0);
-      const d = g.getImageData(0, 0, c.width, c.height).data;
+      const d = window.canvasPixels();
       // A rendered frame: the white background and the shape. One never rendered is all black.
       let shape = 0, white = 0;
       for (let i = 0; i < d.length; i += 4) {

@@ -304,6 +304,9 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
   std::map<const vrml::Node*, fscript::scene::Animation> animations;
   std::vector<mesh::GltfAnimation> gltf;
   nlohmann::json report_json = nlohmann::json::array();
+  // The scene's standard geometry, for the live preview's scenes so far: made once, not per scene.
+  std::vector<mesh::Mesh> standard;
+  if (o.on_partial && world) standard = fscript::scene::standard_meshes(l.scene);
   for (const auto& t : ts) {
     if (!models.count(t.frames) && !frame_models(o, l, t.frames, models[t.frames], false)) return 1;
     const auto& ms = models[t.frames];
@@ -343,7 +346,7 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     auto publish = [&](size_t cached) {
       if (!o.on_partial || !world || cached >= cache.size() || (cached & (cached - 1)) != 0) return;
       mesh::Mesh all = meshed.all();
-      for (const auto& part : fscript::scene::standard_meshes(l.scene)) all.append(part);
+      for (const auto& part : standard) all.append(part);
       std::vector<mesh::GltfAnimation> now = gltf;
       now.push_back(gltf_animation(l.scene, t, cache, true));
       size_t frames = now.back().frames.size();  // other threads may have added some meanwhile

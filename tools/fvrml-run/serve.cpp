@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <iostream>
 #include <mutex>
+#include <map>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -65,7 +66,8 @@ struct State {
   std::string diagnostics;  // of the last run, as a compiler prints them (warnings too)
   nlohmann::json stats;     // of the last good run
   double scale = 1;         // the resolution scale the page asked for
-  int streams = 0;
+  int streams = 0;                     // slots taken: open streams less those of closed pages
+  std::map<std::string, int> live_pages;  // the open streams by page name
   std::set<std::string> closed_pages;  // pages that said they closed (/closed): their streams end now
   bool running = false;     // a run is under way (its progress goes to the pages)
   std::string printed;      // the diagnostics last printed on the terminal (the watcher's thread only)
@@ -289,13 +291,13 @@ void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
   });
   // Server-Sent Events: the state now, then at every change; a comment every 15 s keeps it open.
   // A page going away (reload, close) says so: its stream's slot is free at once, not at the next
-  // write that fails (a reload within seconds found every slot taken: 503).
+  // write that fails (a reload within seconds found every slot taken: 503). The slot is given back
+// here, before the answer, not when the stream's thread wakes: a reload right after must find it.
   svr.Post("/closed", [&st](const httplib::Request& req, httplib::Response& res) {
     std::string page = req.get_param_value("page");
-    if (!page.empty() && page.size() <= 64) {
+    if (!page.empty()) {
       std::lock_guard<std::mutex> hold(st.lock);
-      if (st.closed_pages.size() > 256) st.closed_pages.clear();  // names of streams that had ended anyway
-      st.closed_pages.insert(page);
+      if (st.live_pages.count(page) && st.closed_pages.insert(page).second) --st.streams;
     }
     st.changed.notify_all();
     res.status = 204;
@@ -310,6 +312,7 @@ void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
         return;
       }
       ++st.streams;
+      if (!page.empty()) ++st.live_pages[page];
     }
     res.set_header("Cache-Control", "no-store");
     auto sent = std::make_shared<uint64_t>(~uint64_t{0});
@@ -341,8 +344,9 @@ void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
         },
         [&st, page](bool) {
           std::lock_guard<std::mutex> hold(st.lock);
-          --st.streams;
-          st.closed_pages.erase(page);
+          // A closed page's slot was given back by /closed (once for all its streams).
+          if (page.empty() || !st.closed_pages.erase(page)) --st.streams;
+          if (!page.empty() && --st.live_pages[page] == 0) st.live_pages.erase(page);
         });
   });
 }

@@ -384,10 +384,11 @@ class LlvmFunctionLowering {
       case Op::Sqrt: return define(in, unary(llvm::Intrinsic::sqrt, a(0)));
       case Op::Floor: return define(in, unary(llvm::Intrinsic::floor, a(0)));
       case Op::Ceil: return define(in, unary(llvm::Intrinsic::ceil, a(0)));
-      case Op::Round: {  // f = floor(a); a - f >= 0.5 ? f + 1 : f
+      case Op::Round: {  // f = floor(a); a - f >= 0.5 ? f + 1 : f, with a's sign (round(-0.4) is -0)
         llvm::Value* f = unary(llvm::Intrinsic::floor, a(0));
         llvm::Value* up = b_.CreateFCmpOGE(b_.CreateFSub(a(0), f), splat(0.5f));
-        return define(in, b_.CreateSelect(up, b_.CreateFAdd(f, splat(1)), f));
+        llvm::Value* r = b_.CreateSelect(up, b_.CreateFAdd(f, splat(1)), f);
+        return define(in, b_.CreateBinaryIntrinsic(llvm::Intrinsic::copysign, r, a(0)));
       }
       case Op::Sign: {  // a > 0 ? 1 : (a < 0 ? -1 : a)
         llvm::Value* x = a(0);

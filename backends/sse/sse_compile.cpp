@@ -492,7 +492,7 @@ class Codegen : public detail::LaneCode {
     } else if (in.op == Op::Floor || in.op == Op::Ceil) {
       load(Xmm::x1, arg(in, 0));
       a_.roundps(d, Xmm::x1, in.op == Op::Floor ? Rounding::Down : Rounding::Up);
-    } else if (in.op == Op::Round) {  // f = floor(a); a - f >= 0.5 ? f + 1 : f
+    } else if (in.op == Op::Round) {  // f = floor(a); a - f >= 0.5 ? f + 1 : f, with a's sign
       load(Xmm::x1, arg(in, 0));
       a_.roundps(d, Xmm::x1, Rounding::Down);
       a_.subps(Xmm::x1, d);
@@ -501,6 +501,9 @@ class Codegen : public detail::LaneCode {
       a_.movaps(Xmm::x1, d);
       a_.addps(Xmm::x1, k(1.0f));
       a_.blendvps(d, Xmm::x1);
+      load(Xmm::x0, arg(in, 0));  // only +0 can differ from a's sign (a in [-0.5, 0)): or it in
+      a_.andps(Xmm::x0, bits(0x80000000u));
+      a_.orps(d, Xmm::x0);
     } else {  // Sign: a > 0 ? 1 : (a < 0 ? -1 : a)
       Src a = arg(in, 0);
       a_.movaps(Xmm::x1, k(0.0f));

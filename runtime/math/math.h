@@ -37,9 +37,10 @@ inline float sqrt(float a) { return __builtin_sqrtf(a); }
 inline float floor(float a) { return __builtin_floorf(a); }
 inline float ceil(float a) { return __builtin_ceilf(a); }
 // Nearest integer, ties toward +infinity (Math.round); a - floor(a) is exact for every float.
+// The result keeps a's sign, as in JavaScript: round(-0.4) and round(-0.5) are -0 (f + 1 is +0).
 inline float round(float a) {
   float f = __builtin_floorf(a);
-  return (a - f >= 0.5f) ? f + 1.0f : f;
+  return __builtin_copysignf((a - f >= 0.5f) ? f + 1.0f : f, a);
 }
 inline float sign(float a) { return a > 0 ? 1.0f : (a < 0 ? -1.0f : a); }  // NaN stays NaN
 inline float clamp(float a, float lo, float hi) { return min(max(a, lo), hi); }

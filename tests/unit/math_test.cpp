@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 
+#include "runtime/math/interval.h"
 #include "runtime/math/isa.h"
 #include "runtime/math/math.h"
 
@@ -128,6 +129,12 @@ TEST_CASE("math: exact operations and their NaN rules") {
   CHECK(math::round(-2.5f) == -2);
   CHECK(math::round(0.49999997f) == 0);
   CHECK(math::round(8388609.0f) == 8388609.0f);
+  // JavaScript's zero signs: -0 for [-0.5, -0], +0 for [+0, 0.5).
+  for (float z : {-0.5f, -0.4f, -1e-30f, -0.0f}) CHECK(std::signbit(math::round(z)));
+  for (float z : {0.0f, 1e-30f, 0.49999997f}) CHECK(!std::signbit(math::round(z)));
+  CHECK(math::round(-0.50000006f) == -1);
+  math::Interval r = math::iv::round(math::Interval{-0.4f, 0.3f, 0});  // zero signs are not tracked in intervals
+  CHECK((r.lo == 0 && r.hi == 0 && !r.nan));
   CHECK(math::mod(-7, 3) == -1);
   CHECK(std::isnan(math::sign(nan)));
   CHECK(math::sign(-0.0f) == 0);

@@ -1,5 +1,9 @@
 // Built-ins and their exact special cases.
 function f_round(x) { return round(x); }
+// Math.round keeps the sign of zero: -0 for x in [-0.5, 0], as node gives (the oracle found +0).
+function f_round_zero(x) { return 1 / round(x); }
+function f_round_folded() { return 1 / round(-0.4) + 1 / Math.round(-0.5) + 1 / round(-0); }
+function f_round_positive() { return 1 / round(0.4); }
 function f_floor(x) { return floor(x); }
 function f_ceil(x) { return ceil(x); }
 function f_sign(x) { return sign(x); }
@@ -26,6 +30,14 @@ function f_noise(x, y, z) { return noise(x, y, z); }
 // run: f_round(0.49999997) == 0
 // run: f_round(-0.5) == 0
 // run: f_round(nan) == nan
+// run: f_round_zero(-0.4) == -inf
+// run: f_round_zero(-0.5) == -inf
+// run: f_round_zero(-0) == -inf
+// run: f_round_zero(0.49999997) == inf
+// run: f_round_zero(-0.50000006) == -1
+// run: f_round_zero(-1.5) == -1
+// run: f_round_folded() == -inf
+// run: f_round_positive() == inf
 // run: f_floor(-1.5) == -2
 // run: f_ceil(-1.5) == -1
 // run: f_sign(-3) == -1

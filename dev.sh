@@ -10,6 +10,8 @@
 #                    (tests/fuzz; docs/reliability.md); ./dev.sh test runs every target briefly
 #   ./dev.sh campaign TARGET [SECONDS] [WORKERS]   a long run of one target on the UBSan-only
 #                    build, WORKERS processes (default: the cores) that yield to other work
+#   ./dev.sh oracle [SECONDS]   generated programs on every backend and under node, fresh seeds
+#                    for SECONDS (default 300; tests/oracle; docs/testing.md)
 # With CI set (CI=true ./dev.sh test), a test skipped because something is missing fails instead.
 # FVRML_SHARED=DIR names the shared folder (corpus, paper data) when it is not ../shared.
 set -euo pipefail
@@ -55,7 +57,7 @@ build() {
 cmd="${1:-demo}"
 install_missing "${PACKAGES[@]}"
 case "$cmd" in
-  test | fuzz | campaign) install_missing "${FUZZ_PACKAGES[@]}" || echo "note: could not install ${FUZZ_PACKAGES[*]}; fuzzing will be skipped" ;;
+  test | fuzz | campaign | oracle) install_missing "${FUZZ_PACKAGES[@]}" || echo "note: could not install ${FUZZ_PACKAGES[*]}; fuzzing will be skipped" ;;
 esac
 build
 SHARED_DIR="${FVRML_SHARED:-../shared}"
@@ -138,6 +140,13 @@ case "$cmd" in
     build_fuzz && build_fuzz_ub
     exec tests/fuzz/campaign.sh build-fuzz-ub build-fuzz "$SHARED_DIR" "${3:-3600}" "${4:-$(nproc)}" "$2"
     ;;
+  oracle)
+    install_missing nodejs
+    [ -x "$BUILD_DIR/tests/oracle/js_oracle" ] || { echo "oracle: not built (it needs libfuzzer-19-dev's FuzzedDataProvider.h)" >&2; exit 1; }
+    seed=$(date +%s)
+    echo "oracle: fresh seeds from $seed for ${2:-300} s (./dev.sh oracle SECONDS); a difference prints both programs"
+    exec "$BUILD_DIR/tests/oracle/js_oracle" --prelude tests/oracle/prelude.js --seed "$seed" --seconds "${2:-300}"
+    ;;
   mutation)
     shift
     exec tests/mutation/run.sh "$@"
@@ -148,5 +157,5 @@ case "$cmd" in
     echo "installed fscript, fvrml-run, fvrml-meshdiff and fscript-lsp in $2/bin"
     case ":$PATH:" in *":$2/bin:"*) ;; *) echo "note: $2/bin is not on PATH; add it for editors to find fscript-lsp" ;; esac
     ;;
-  *) echo "usage: ./dev.sh demo|test|build|install PREFIX|mutation|fuzz [TARGET|all] [SECONDS]|campaign TARGET [SECONDS] [WORKERS]" >&2; exit 2 ;;
+  *) echo "usage: ./dev.sh demo|test|build|install PREFIX|mutation|fuzz [TARGET|all] [SECONDS]|campaign TARGET [SECONDS] [WORKERS]|oracle [SECONDS]" >&2; exit 2 ;;
 esac

@@ -325,8 +325,9 @@ class LlvmFunctionLowering {
     llvm::Value* z = b_.CreateFMul(rf, rf);
     auto mul = [&](llvm::Value* a, llvm::Value* b) { return b_.CreateFMul(a, b); };
     // sin: ((kSin1 z + kSin2) z - kSin3) z r + r;  cos: ((kCos1 z - kCos2) z + kCos3) z z - 0.5 z + 1
-    llvm::Value* sp = b_.CreateFAdd(
-        mul(mul(b_.CreateFSub(mul(b_.CreateFAdd(mul(f(kSin1), z), f(kSin2)), z), f(kSin3)), z), rf), rf);
+    // sin with r's sign: the sum is +0 at r = -0, where sin(-0) is -0.
+    llvm::Value* sp = b_.CreateBinaryIntrinsic(llvm::Intrinsic::copysign, b_.CreateFAdd(
+        mul(mul(b_.CreateFSub(mul(b_.CreateFAdd(mul(f(kSin1), z), f(kSin2)), z), f(kSin3)), z), rf), rf), rf);
     llvm::Value* cp = b_.CreateFAdd(
         b_.CreateFSub(mul(mul(b_.CreateFAdd(mul(b_.CreateFSub(mul(f(kCos1), z), f(kCos2)), z), f(kCos3)), z), z),
                       mul(f(0.5f), z)),

@@ -324,6 +324,9 @@ class LaneCode {
     a_.mulps(t3, t1);
     a_.mulps(t3, t0);
     a_.addps(t3, t0);
+    a_.movaps(Xmm::x1, t0);  // with r's sign: the sum is +0 at r = -0, where sin(-0) is -0
+    a_.andps(Xmm::x1, bits(0x80000000u));
+    a_.orps(t3, Xmm::x1);
     a_.movaps(cp, k(kCos1));  // cos: ((kCos1 z - kCos2) z + kCos3) z z - 0.5 z + 1
     a_.mulps(cp, t1);
     a_.subps(cp, k(kCos2));

@@ -20,9 +20,10 @@ namespace {
 using namespace trig;
 
 // sin and cos on the reduced argument r in [-pi/4, pi/4] (trig_constants.h).
+// sin keeps r's sign: r + (-0) * ... is +0 at r = -0, where sin(-0) is -0 (the node oracle).
 inline float sin_poly(float r) {
   float z = r * r;
-  return ((kSin1 * z + kSin2) * z - kSin3) * z * r + r;
+  return std::copysign(((kSin1 * z + kSin2) * z - kSin3) * z * r + r, r);
 }
 inline float cos_poly(float r) {
   float z = r * r;

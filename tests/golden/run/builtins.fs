@@ -21,6 +21,8 @@ function f_sqrt(x) { return sqrt(x); }
 function f_math(x) { return Math.max(x, Math.PI); }
 function f_pi() { return pi; }
 function f_sin(x) { return sin(x); }
+// sin(-0) is -0 (the polynomial's r + (-0) gave +0 in every backend's batch code; the node oracle).
+function f_sin_zero(x) { return 1 / sin(x) + 1 / sin(x * 2); }
 function f_exp(x) { return exp(x); }
 function f_log(x) { return log(x); }
 function f_atan2(y, x) { return atan2(y, x); }
@@ -68,6 +70,8 @@ function f_noise(x, y, z) { return noise(x, y, z); }
 // run: f_pi() == 3.14159274
 // run: f_sin(0) == 0
 // run: f_sin(1) ~= 0.841470957
+// run: f_sin_zero(-0) == -inf
+// run: f_sin_zero(0) == inf
 // run: f_exp(1) ~= 2.71828175
 // run: f_exp(100) == inf
 // run: f_exp(-200) == 0

@@ -48,7 +48,7 @@ class Kernel {
   virtual bool eval(const float* inputs, float* outputs, RuntimeError& err) const = 0;
   // Rows of a grid: row r is the points (first[i], rest[0][r], rest[1][r], ...) for i < count, and
   // its results go to outputs[o][r * count + i]. The same results as eval_batch over those points;
-  // kernels with a row split (backends/row_kernel.h) compute what does not depend on the first
+  // kernels with a row split (backends/row_split_kernel.h) compute what does not depend on the first
   // input once per row.
   virtual bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows,
                          float* const* outputs, RuntimeError& err) const;

@@ -113,6 +113,30 @@ bool run_padded(uint32_t width, size_t num_inputs, size_t num_outputs, const flo
   return true;
 }
 
+// What a JIT kernel's shape is to run a batch: its inputs and outputs, the arrays its code keeps
+// per call and the lanes they are laid out for, its budgets and row parameters.
+struct JitShape {
+  size_t num_inputs = 0, num_outputs = 0;
+  const std::vector<std::string>* array_names = nullptr;
+  uint32_t array_lanes = 4;
+  Budgets budgets;
+  uint32_t row_from = 0;
+};
+
+// A batch through generated batch code `f` at `width` lanes (both JITs): padded groups, lane
+// arrays of this call's own (batches may run on several threads at once), the code's status as
+// `err`.
+template <typename Fn>
+bool run_generated(Fn f, uint32_t width, const JitShape& k, const float* const* inputs, float* const* outputs, size_t n,
+                   RuntimeError& err) {
+  LaneArrays arrays;
+  if (!k.array_names->empty()) arrays.init(k.array_lanes, k.budgets.max_array_elements, *k.array_names);
+  return run_padded(width, k.num_inputs, k.num_outputs, inputs, outputs, n, [&](auto in, auto out, size_t count) {
+    uint64_t code = call_generated([&] { return f(in, out, 0, count, &arrays, stack_limit()); });
+    return jit_status(code, arrays, k.budgets, err);
+  }, k.row_from);
+}
+
 // A JIT kernel's eval_rows: with row parameters (from `row_from` on, not 0) one eval_batch per
 // row, whose compiled code reads each row parameter's one value; without, the points expanded.
 template <typename JitKernel>

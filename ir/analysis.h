@@ -19,11 +19,9 @@ std::vector<Block*> reverse_post_order(const Function& fn);
 class DomTree {
  public:
   explicit DomTree(const Function& fn);
-  Block* idom(Block* b) const { return idom_.at(b); }
   bool dominates(Block* a, Block* b) const;  // reflexive
   const std::vector<Block*>& rpo() const { return rpo_; }
   const std::vector<Block*>& children(Block* b) const;
-  size_t rpo_index(Block* b) const { return index_.at(b); }
   bool reachable(const Block* b) const { return index_.count(const_cast<Block*>(b)) != 0; }
 
  private:

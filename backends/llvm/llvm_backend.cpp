@@ -37,7 +37,8 @@ std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, con
 std::unique_ptr<backends::Kernel> LlvmBackend::compile(const ir::Module& m, const backends::Budgets& budgets,
                                                       std::string& error) const {
   Lowered lowered;
-  std::shared_ptr<Program> code = compile_module(m, width_, budgets, true, lowered, last_ms_, error);
+  double ms = 0;
+  std::shared_ptr<Program> code = compile_module(m, width_, budgets, true, lowered, ms, error);
   if (!code) return nullptr;
   const Program& p = *code;
   return std::make_unique<LlvmKernel>(std::move(code), width_, p.num_inputs, p.num_outputs, budgets, p.array_names,
@@ -70,13 +71,8 @@ bool LlvmKernel::eval_batch(const float* const* inputs, float* const* outputs, s
   if (param_bound_ > 0 && !backends::inputs_in_range(inputs, inputs_, n, param_bound_, row_from_,
                                                               row_ranges_.empty() ? nullptr : row_ranges_.data()) && !(f = general(err)))
     return false;
-  // Per call: batches may run on several threads at once. Only kernels with arrays need it.
-  backends::LaneArrays arrays;
-  if (!arrays_.empty()) arrays.init(width_, budgets_.max_array_elements, arrays_);
-  return backends::run_padded(width_, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
-    uint64_t code = backends::call_generated([&] { return f(in, out, 0, count, &arrays, backends::stack_limit()); });
-    return backends::jit_status(code, arrays, budgets_, err);
-  }, row_from_);
+  return backends::run_generated(f, width_, {inputs_, outputs_, &arrays_, width_, budgets_, row_from_}, inputs, outputs,
+                                 n, err);
 }
 
 bool LlvmKernel::eval_rows(const float* first, size_t count, const float* const* rest, size_t rows,

@@ -52,12 +52,9 @@ class LlvmBackend : public backends::Backend {
   explicit LlvmBackend(uint32_t width = 0) : width_(width ? width : host_width()) {}
   std::string name() const override { return "llvm"; }
   std::unique_ptr<backends::Kernel> compile(const ir::Module& m, const backends::Budgets& b, std::string& error) const override;
-  // The time the last compile() took in LLVM (0: the code came from the cache).
-  double last_compile_ms() const { return last_ms_; }
 
  private:
   uint32_t width_;
-  mutable double last_ms_ = 0;
 };
 
 // Compiles the module's kernel at `width` lanes; `bounded` as in lower_to_llvm().

@@ -59,13 +59,8 @@ bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, si
 
 bool SseKernel::run(KernelFn f, uint32_t lanes, const float* const* inputs, float* const* outputs, size_t n,
                     backends::RuntimeError& err) const {
-  // Per call: batches may run on several threads at once. Only kernels with arrays need it.
-  backends::LaneArrays arrays;
-  if (!arrays_.empty()) arrays = fresh_arrays();
-  return backends::run_padded(lanes, inputs_, outputs_, inputs, outputs, n, [&](auto in, auto out, size_t count) {
-    uint64_t code = backends::call_generated([&] { return f(in, out, 0, count, &arrays, backends::stack_limit()); });
-    return backends::jit_status(code, arrays, budgets_, err);
-  }, row_from_);
+  return backends::run_generated(f, lanes, {inputs_, outputs_, &arrays_, 4, budgets_, row_from_}, inputs, outputs, n,
+                                 err);
 }
 
 bool SseKernel::eval_rows(const float* first, size_t count, const float* const* rest, size_t rows,

@@ -21,7 +21,7 @@
 #include <map>
 
 #include "backends/jit_support.h"
-#include "backends/sse/lane_code.h"
+#include "backends/sse/sse_compile_lanes.h"
 #include "backends/sse/sse_backend.h"
 #include "ir/analysis.h"
 #include "ir/passes/passes.h"
@@ -363,7 +363,7 @@ class Codegen : public detail::LaneCode {
       case Op::Not: case Op::Truth: case Op::Select: return logic(in, pos), true;
       case Op::Mod: return call(in, pos, reinterpret_cast<const void*>(&mod_batch));
       // Batch rows of ir/math_ops.def call runtime/math's batch function; Trig rows inline it
-      // (lane_code.h); Lane rows have their own cases above.
+      // (sse_compile_lanes.h); Lane rows have their own cases above.
 #define FS_SSE_Lane(N, FN)
 #define FS_SSE_Batch(N, FN) \
   case Op::N: return call(in, pos, reinterpret_cast<const void*>(&math::FN##_batch));

@@ -21,7 +21,7 @@
 namespace fscript::vm {
 
 // Measured (docs/performance.md): with fused pairs 1,024 beats 2,048 and 512 on straight-line
-// kernels (prospero 7%, csg8 points 3%; eleventh session), 4,096 is far worse (out of L2); 512
+// kernels (prospero 7%, csg8 points 3%), 4,096 is far worse (out of L2); 512
 // beats 2,048 on a divergent loop.
 constexpr uint32_t kChunkLanes = 1024;
 constexpr uint32_t kBranchyChunkLanes = 512;

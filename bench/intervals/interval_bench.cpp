@@ -6,7 +6,7 @@
 #include <cstdlib>
 
 #include "ir/interval_eval.h"
-#include "runtime/driver/driver.h"
+#include "engine/driver/driver.h"
 #include "runtime/support/files.h"
 
 using namespace fscript;

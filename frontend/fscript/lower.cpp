@@ -413,13 +413,19 @@ class AstLowering {
     seal(rhs);
     cur_ = rhs;
     Inst* b = emit(Op::Truth, {expr(e->kids[1])});
-    Block* rhs_end = cur_;
+    return merge(join, short_value, from, b);
+  }
+
+  // Ends the current block with a jump to `join` and goes on there with the phi of the two ways
+  // in: `a` from `a_end`, `b` from the current block.
+  Inst* merge(Block* join, Inst* a, Block* a_end, Inst* b) {
+    Block* b_end = cur_;
     jump(join);
     seal(join);
     cur_ = join;
     Inst* p = phi_at(join);
-    p->args = {short_value, b};
-    p->targets = {from, rhs_end};
+    p->args = {a, b};
+    p->targets = {a_end, b_end};
     return p;
   }
 
@@ -437,14 +443,7 @@ class AstLowering {
     jump(join);
     cur_ = b_b;
     Inst* vb = expr(e->kids[2]);
-    Block* b_end = cur_;
-    jump(join);
-    seal(join);
-    cur_ = join;
-    Inst* p = phi_at(join);
-    p->args = {va, vb};
-    p->targets = {a_end, b_end};
-    return p;
+    return merge(join, va, a_end, vb);
   }
 
   Inst* assign(Expr* e) {

@@ -1,6 +1,6 @@
 #pragma once
 // A loaded script: its source, syntax tree and analysis. Lowering it to a kernel (and optimising
-// and compiling that) is the compile driver's job, in runtime/driver.
+// and compiling that) is the compile driver's job, in engine/driver.
 #include <memory>
 #include <string>
 #include <vector>

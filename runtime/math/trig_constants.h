@@ -2,7 +2,7 @@
 // The constants of the batch sine and cosine (and tan's reduction): the argument reduced in double
 // by a two-part pi/2, then Cephes' minimax polynomials in float. One copy for every implementation
 // that must agree with runtime/math's batch functions bit for bit: batch.cpp, batch_double.cpp,
-// the SSE emitter (backends/sse/lane_code.h) and the LLVM lowering (backends/llvm/llvm_lower.cpp).
+// the SSE emitter (backends/sse/sse_compile_lanes.h) and the LLVM lowering (backends/llvm/llvm_lower.cpp).
 // Each writes the polynomials in the same order:
 //   sin(r) = ((kSin1 z + kSin2) z - kSin3) z r + r              z = r * r, |r| <= pi/4
 //   cos(r) = ((kCos1 z - kCos2) z + kCos3) z z - 0.5 z + 1

@@ -15,7 +15,7 @@
 #include <memory>
 
 #include "backends/backend.h"
-#include "runtime/driver/driver.h"
+#include "engine/driver/driver.h"
 #include "tests/fuzz/fuzz_support.h"
 #include "tests/fuzz/program_gen.h"
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A long campaign of one target (./dev.sh campaign calls this; docs/reliability.md, "The campaign"):
+# A long campaign of one target (./dev.sh campaign calls this; docs/reliability.md, "Running them"):
 #   tests/fuzz/campaign.sh BUILD_FUZZ_UB BUILD_FUZZ SHARED SECONDS WORKERS TARGET
 # WORKERS processes of the UBSan-only build share one corpus, BUILD_FUZZ/corpus/TARGET (kept between
 # runs, and what the ASan build replays afterwards), beside builds and tests without slowing them.

@@ -9,7 +9,7 @@
 #include "ir/passes/gradient.h"
 #include "ir/text.h"
 #include "ir/verifier.h"
-#include "runtime/driver/driver.h"
+#include "engine/driver/driver.h"
 #include "runtime/support/big_stack.h"
 #include "tests/fuzz/fuzz_support.h"
 

@@ -13,7 +13,7 @@
 #include <thread>
 
 #include "backends/backend.h"
-#include "runtime/driver/driver.h"
+#include "engine/driver/driver.h"
 #include "tests/unit/backend_cases.h"
 #include "runtime/support/big_stack.h"
 

@@ -10,7 +10,7 @@
 
 #include "backends/vm/vm_backend.h"
 #include "ir/interval_eval.h"
-#include "runtime/driver/driver.h"
+#include "engine/driver/driver.h"
 #include "tests/fuzz/fuzz_support.h"
 #include "tests/fuzz/program_gen.h"
 

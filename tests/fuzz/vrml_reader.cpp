@@ -10,7 +10,7 @@
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "frontend/vrml/writer.h"
-#include "runtime/scene/scene_model.h"
+#include "engine/scene/scene_model.h"
 #include "runtime/support/big_stack.h"
 #include "tests/fuzz/fuzz_support.h"
 

@@ -21,7 +21,7 @@
 
 #include "backends/backend.h"
 #include "runtime/support/big_stack.h"
-#include "runtime/driver/driver.h"
+#include "engine/driver/driver.h"
 #include "ir/passes/passes.h"
 #include "ir/text.h"
 #include "ir/verifier.h"

@@ -5,7 +5,7 @@ green). usage: run.py [--work DIR] [--only ID,ID...] [--report FILE]
 
 mutants.txt, one mutant per block (blank lines between blocks, '#' lines are comments):
     id: time-end-boundary
-    file: runtime/scene/time_model.cpp
+    file: engine/scene/time_model.cpp
     find: if (end <= 0) return s;
     replace: if (end < 0) return s;
     tests: unit_time_model|cli

@@ -18,7 +18,7 @@
 #include <unistd.h>
 
 #include "backends/backend.h"
-#include "runtime/driver/driver.h"
+#include "engine/driver/driver.h"
 #include "tests/fuzz/program_gen.h"
 #include "tests/oracle/oracle_points.h"
 

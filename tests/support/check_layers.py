@@ -19,15 +19,15 @@ ALLOWED = {
     "ir/passes": ["ir"] + BOTTOM,
     "frontend": ["ir"] + BOTTOM,
     "backends": ["ir", "ir/passes"] + BOTTOM,
-    "runtime/driver": ["frontend", "ir", "ir/passes", "backends"] + BOTTOM,
-    "runtime/mesh": ["backends", "ir"] + BOTTOM,
-    "runtime/render": ["runtime/mesh", "backends", "ir"] + BOTTOM,
-    "runtime/scene": ["runtime/driver", "runtime/mesh", "runtime/render", "frontend", "backends", "ir"] + BOTTOM,
+    "engine/driver": ["frontend", "ir", "ir/passes", "backends"] + BOTTOM,
+    "engine/mesh": ["backends", "ir"] + BOTTOM,
+    "engine/render": ["engine/mesh", "backends", "ir"] + BOTTOM,
+    "engine/scene": ["engine/driver", "engine/mesh", "engine/render", "frontend", "backends", "ir"] + BOTTOM,
     "lsp": ["frontend", "ir"] + BOTTOM,
 }
 # The top: executables, tests and benchmarks may include anything.
 TOP = ["tools", "tests", "bench"]
-SOURCE_DIRS = ["runtime", "ir", "frontend", "backends", "lsp"]
+SOURCE_DIRS = ["runtime", "ir", "frontend", "backends", "engine", "lsp"]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 
 

@@ -11,18 +11,18 @@ bad() { echo "FAIL: $*"; fails=$((fails + 1)); }
 
 python3 "$here/check_layers.py" "$root" || bad "the tree itself breaks the layering"
 
-for d in runtime ir frontend backends lsp; do cp -r "$root/$d" "$tmp/"; done
+for d in runtime ir frontend backends engine lsp; do cp -r "$root/$d" "$tmp/"; done
 python3 "$here/check_layers.py" "$tmp" || bad "a plain copy of the tree fails"
 
-printf '#include "runtime/scene/scene_model.h"\n' >> "$tmp/ir/eval.cpp"
+printf '#include "engine/scene/scene_model.h"\n' >> "$tmp/ir/eval.cpp"
 printf '#include "ir/passes/passes.h"\n' >> "$tmp/frontend/check.cpp"
-printf '#include "tools/fscript/common.h"\n' >> "$tmp/runtime/mesh/mesh.cpp"
+printf '#include "tools/fscript/common.h"\n' >> "$tmp/engine/mesh/mesh.cpp"
 out=$(python3 "$here/check_layers.py" "$tmp" 2>&1); rc=$?
 [ $rc -eq 1 ] || bad "an include pointing up gave status $rc, not 1"
 n=$(wc -l < "$tmp/ir/eval.cpp")
-for want in "ir/eval.cpp:$n: error: ir includes runtime/scene/scene_model.h (runtime/scene)" \
+for want in "ir/eval.cpp:$n: error: ir includes engine/scene/scene_model.h (engine/scene)" \
             "frontend/check.cpp:" "frontend includes ir/passes/passes.h (ir/passes)" \
-            "runtime/mesh includes tools/fscript/common.h, which is the top layer" "3 include(s)"; do
+            "engine/mesh includes tools/fscript/common.h, which is the top layer" "3 include(s)"; do
   grep -qF -- "$want" <<< "$out" || bad "missing from the report: $want (got: $out)"
 done
 

@@ -10,7 +10,7 @@
 #include <functional>
 #include <thread>
 
-#include "backends/row_kernel.h"
+#include "backends/row_split_kernel.h"
 #include "backends/runtime_errors.h"
 #include "backends/sse/sse_backend.h"
 #include "backends/tiered/tiered.h"

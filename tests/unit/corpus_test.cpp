@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 
-#include "runtime/driver/driver.h"
+#include "engine/driver/driver.h"
 #include "frontend/fscript/embedded.h"
 #include "frontend/vrml/scene_scripts.h"
 #include "frontend/vrml/vrml_parser.h"

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "runtime/mesh/distance.h"
-#include "runtime/mesh/dual_contour.h"
+#include "engine/mesh/distance.h"
+#include "engine/mesh/dual_contour.h"
 #include "tests/unit/field_helpers.h"
 
 using namespace fscript;

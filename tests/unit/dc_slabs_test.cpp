@@ -8,8 +8,8 @@
 #include <cstring>
 #include <memory>
 
-#include "runtime/mesh/dc_slabs.h"
-#include "runtime/mesh/dual_contour.h"
+#include "engine/mesh/dc_slabs.h"
+#include "engine/mesh/dual_contour.h"
 #include "tests/unit/field_helpers.h"
 
 using namespace fscript;

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdint>
 
-#include "runtime/mesh/dc_cells.h"
-#include "runtime/mesh/dual_contour.h"
-#include "runtime/mesh/implicit.h"
+#include "engine/mesh/dc_cells.h"
+#include "engine/mesh/dual_contour.h"
+#include "engine/mesh/marching_tetrahedra.h"
 #include "tests/unit/field_helpers.h"
 
 using namespace fscript;

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <functional>
 
-#include "runtime/mesh/dual_contour.h"
-#include "runtime/mesh/implicit.h"
+#include "engine/mesh/dual_contour.h"
+#include "engine/mesh/marching_tetrahedra.h"
 #include "tests/unit/field_helpers.h"
 
 using namespace fscript;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <functional>
 
-#include "runtime/mesh/implicit.h"
+#include "engine/mesh/marching_tetrahedra.h"
 
 namespace fscript::test {
 

@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 
-#include "runtime/mesh/frame_cache.h"
-#include "runtime/mesh/gltf.h"
-#include "runtime/mesh/implicit.h"
+#include "engine/mesh/frame_cache.h"
+#include "engine/mesh/gltf.h"
+#include "engine/mesh/marching_tetrahedra.h"
 #include "tests/unit/helpers.h"
 
 using namespace fscript;

@@ -9,8 +9,8 @@
 #include "backends/backend.h"
 #include "ir/passes/gradient.h"
 #include "ir/verifier.h"
-#include "runtime/scene/shape_field.h"
-#include "runtime/scene/shape_mesh.h"
+#include "engine/scene/shape_field.h"
+#include "engine/scene/shape_mesh.h"
 #include "tests/unit/helpers.h"
 #include "tests/unit/scene_helpers.h"
 
@@ -78,8 +78,18 @@ TEST_CASE("gradient: every op with a rule against central differences") {
       "sqrt(x*x + 2) * exp(y)", "pow(x + 2, 1.5) + pow(2, y) + pow(y + 3, z)", "log(x + 3) + log10(y + 4) * z",
       "sin(x) * cos(y) + tan(z)", "asin(x * 0.5) + acos(y * 0.5) + atan(z)", "atan2(y + 0.1, x + 2) + hypot(x, z + 1)",
       "sinh(x) + cosh(y) * tanh(z)", "clamp(x * 3, -0.5, 0.5) + clamp(y, z - 9, z + 9)",
-      "(x > y ? x * z : y * y) + floor(z) + round(x) + sign(y)", "x < 0.5 && y > -1 ? exp(z) : 0",
-      "Math.pow(x + 2, y) * t", "noise(1, 2, 3) * x"};
+      "(x > y ? x * z : y * y) + floor(z) + round(x) + sign(y) + ceil(y)", "x < 0.5 && y > -1 ? exp(z) : 0",
+      "Math.pow(x + 2, y) * t", "noise(1, 2, 3) * x", "fabs(x) * mod(y + 2, 0.7)"};
+  // Every built-in of the language's table is in some body (a new one cannot be left out).
+  for (const char* name : {
+#define FS_BUILTIN(N, A, OP, SIG, DOC) N,
+#include "frontend/fscript/builtins.def"
+       }) {
+    bool used = false;
+    for (const char* body : bodies) used |= std::string(body).find(std::string(name) + "(") != std::string::npos;
+    INFO("no body of this test calls " << name);
+    CHECK(used);
+  }
   const float pts[][3] = {{0.13f, 0.27f, 0.31f}, {-0.41f, 0.12f, -0.23f}, {0.37f, -0.29f, 0.44f}};
   const double h = 1e-3;
   for (const char* body : bodies) {

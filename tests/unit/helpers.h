@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "backends/backend.h"
-#include "runtime/driver/driver.h"
+#include "engine/driver/driver.h"
 #include "runtime/support/cancel.h"
 
 namespace fscript::test {

@@ -2,8 +2,11 @@
 // every backend's batch code, rounding included) lies in the interval the rules give. Per op of the
 // table, for the shared benchmarks and examples, and for thousands of random programs.
 #include <catch2/catch.hpp>
+#include <array>
 #include <cmath>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "backends/vm/vm_backend.h"
 #include "backends/vm/vm_points.h"
@@ -11,7 +14,7 @@
 #include "ir/interval_eval.h"
 #include "ir/interval_lanes.h"
 #include "ir/tape.h"
-#include "runtime/render/quadtree.h"
+#include "engine/render/quadtree.h"
 #include "ir/text.h"
 #include "runtime/support/files.h"
 #include "tests/unit/backend_cases.h"
@@ -283,21 +286,30 @@ TEST_CASE("intervals: benchmarks and examples bound every point of random boxes,
 
 namespace {
 
-// A random expression over x, y, z with every kind of operation the language has.
+// A random expression over x, y, z with every kind of operation the language has: every built-in
+// of frontend/fscript/builtins.def by its arity, so a new one is in these programs at once.
 std::string random_expr(std::mt19937& rng, int depth) {
   static const char* leaves[] = {"x", "y", "z", "0.5", "2", "-3", "0", "1e3"};
-  static const char* unary[] = {"sqrt", "abs", "sin", "cos", "tan", "exp", "log", "log10", "floor", "ceil", "round",
-                                "sign", "asin", "acos", "atan", "sinh", "cosh", "tanh", "-"};
+  static const std::array<std::vector<std::string>, 4> calls = [] {
+    std::array<std::vector<std::string>, 4> by_arity;
+#define FS_BUILTIN(N, A, OP, SIG, DOC) by_arity[A].push_back(N);
+#include "frontend/fscript/builtins.def"
+    by_arity[1].push_back("-");
+    return by_arity;
+  }();
   static const char* binary[] = {"+", "-", "*", "/", "%", "<", "<=", ">", ">=", "==", "!=", "&&", "||"};
-  static const char* calls2[] = {"min", "max", "pow", "atan2", "hypot"};
   if (depth == 0 || rng() % 5 == 0) return leaves[rng() % 8];
   std::string a = random_expr(rng, depth - 1), b = random_expr(rng, depth - 1);
+  auto call = [&](int arity) { return calls[arity][rng() % calls[arity].size()]; };
   switch (rng() % 6) {
-    case 0: return std::string(unary[rng() % 19]) + "(" + a + ")";
+    case 0: return call(1) + "(" + a + ")";
     case 1: case 2: return "(" + a + " " + binary[rng() % 13] + " " + b + ")";
-    case 3: return std::string(calls2[rng() % 5]) + "(" + a + ", " + b + ")";
+    case 3: return call(2) + "(" + a + ", " + b + ")";
     case 4: return "(" + a + " < " + b + " ? " + random_expr(rng, depth - 1) + " : " + b + ")";
-    default: return rng() % 2 ? "clamp(" + a + ", -1, " + b + ")" : "noise(" + a + ", " + b + ", z)";
+    default: {
+      std::string f = call(3);
+      return f + "(" + a + (f == "clamp" ? ", -1, " + b + ")" : ", " + b + ", z)");
+    }
   }
 }
 

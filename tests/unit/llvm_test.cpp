@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 #include "backends/llvm_module.h"
-#include "backends/row_kernel.h"
+#include "backends/row_split_kernel.h"
 #include "backends/tiered/tiered.h"
 #include "tests/unit/backend_cases.h"
 #include "tests/unit/helpers.h"

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "runtime/mesh/implicit.h"
-#include "runtime/mesh/parametric.h"
+#include "engine/mesh/marching_tetrahedra.h"
+#include "engine/mesh/parametric.h"
 #include "runtime/support/cancel.h"
 #include "tests/unit/helpers.h"
 
@@ -91,7 +91,7 @@ TEST_CASE("mesh: two separate spheres, a thin plate, and time") {
   CHECK(r == Approx(0.5).epsilon(0.001));
 }
 
-#include "runtime/mesh/parametric.h"
+#include "engine/mesh/parametric.h"
 
 static mesh::Mesh sample(const std::string& src, mesh::ParametricKind kind, std::array<double, 6> dom, int n) {
   auto b = test::build(src);
@@ -148,9 +148,9 @@ TEST_CASE("mesh: a parametric curve is a polyline of N+1 samples; a solid is its
   CHECK(vol == Approx(6.0));
 }
 
-#include "runtime/mesh/distance.h"
-#include "runtime/mesh/mesh_io.h"
-#include "runtime/mesh/mesh_read.h"
+#include "engine/mesh/distance.h"
+#include "engine/mesh/mesh_io.h"
+#include "engine/mesh/mesh_read.h"
 #include "runtime/support/files.h"
 
 TEST_CASE("mesh: distances with known answers, and every writer read back") {

@@ -4,7 +4,7 @@
 #include <thread>
 #include <vector>
 
-#include "runtime/mesh/implicit.h"
+#include "engine/mesh/marching_tetrahedra.h"
 #include "runtime/support/progress.h"
 #include "tests/unit/helpers.h"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "runtime/mesh/qef.h"
+#include "engine/mesh/qef.h"
 
 using fscript::mesh::Qef;
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "frontend/vrml/vrml_parser.h"
-#include "runtime/scene/scene_model.h"
+#include "engine/scene/scene_model.h"
 
 namespace fscript::test {
 

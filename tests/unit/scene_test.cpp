@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "frontend/vrml/vrml_parser.h"
-#include "runtime/mesh/mesh.h"
-#include "runtime/scene/scene_model.h"
-#include "runtime/scene/shape_mesh.h"
+#include "engine/mesh/mesh.h"
+#include "engine/scene/scene_model.h"
+#include "engine/scene/shape_mesh.h"
 #include "runtime/support/cancel.h"
 #include "tests/unit/helpers.h"
 #include "tests/unit/scene_helpers.h"
@@ -245,7 +245,7 @@ TEST_CASE("scene: FMaterial strings set the material; none leaves the viewer's d
   CHECK(!b.material);
 }
 
-#include "runtime/scene/standard_geometry.h"
+#include "engine/scene/standard_geometry.h"
 
 TEST_CASE("scene: standard VRML97 geometry becomes meshes for pictures, with materials and Transforms") {
   auto l = load(R"W(Background { skyColor 0 0 1 }

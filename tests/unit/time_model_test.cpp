@@ -1,7 +1,7 @@
 // The TimeSensor rules of VRML97, case by case.
 #include <catch2/catch.hpp>
 
-#include "runtime/scene/time_model.h"
+#include "engine/scene/time_model.h"
 
 using namespace fscript::scene;
 

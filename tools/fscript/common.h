@@ -7,7 +7,7 @@
 
 #include "backends/backend.h"
 #include "frontend/diagnostics.h"
-#include "runtime/driver/driver.h"
+#include "engine/driver/driver.h"
 
 namespace fscript::cli {
 

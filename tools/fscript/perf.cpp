@@ -10,10 +10,10 @@
 #include <sstream>
 
 #include "backends/llvm_module.h"
-#include "backends/row_kernel.h"
+#include "backends/row_split_kernel.h"
 #include "backends/tiered/tiered.h"
-#include "runtime/render/png.h"
-#include "runtime/render/quadtree.h"
+#include "engine/render/png.h"
+#include "engine/render/quadtree.h"
 #include "runtime/support/files.h"
 #include "runtime/support/parallel.h"
 #include "runtime/support/progress.h"
@@ -144,7 +144,7 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
   }
   if (rows) {  // the row split's kernels are compiled on the first rows: compile time is not timed
     GridRows few = g;
-    few.rows = std::min<size_t>(g.rows, 64);  // enough points that the split runs (row_kernel.cpp)
+    few.rows = std::min<size_t>(g.rows, 64);  // enough points that the split runs (row_split_kernel.cpp)
     if (!bench_rows(*c.kernel, few, outs, 1, err)) {
       print_runtime_error(*c.script.file, err);
       return kExitInput;

@@ -4,8 +4,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "runtime/mesh/distance.h"
-#include "runtime/mesh/mesh_read.h"
+#include "engine/mesh/distance.h"
+#include "engine/mesh/mesh_read.h"
 #include "runtime/support/version.h"
 
 namespace {

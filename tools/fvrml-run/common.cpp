@@ -6,10 +6,10 @@
 #include <mutex>
 
 #include "frontend/fscript/embedded.h"
-#include "runtime/mesh/field.h"
-#include "runtime/mesh/mesh_io.h"
-#include "runtime/scene/shape_mesh.h"
-#include "runtime/scene/standard_geometry.h"
+#include "engine/mesh/field.h"
+#include "engine/mesh/mesh_io.h"
+#include "engine/scene/shape_mesh.h"
+#include "engine/scene/standard_geometry.h"
 #include "runtime/support/progress.h"
 #include "tools/fvrml-run/memo.h"
 #include "tools/fvrml-run/run.h"

@@ -14,10 +14,10 @@
 #include <thread>
 
 #include "backends/backend.h"
-#include "backends/row_kernel.h"
+#include "backends/row_split_kernel.h"
 #include "backends/tiered/tiered.h"
-#include "runtime/mesh/dual_contour.h"
-#include "runtime/mesh/octree.h"
+#include "engine/mesh/dual_contour.h"
+#include "engine/mesh/sample_pruning.h"
 #include "runtime/support/big_stack.h"
 #include "runtime/support/files.h"
 #include "runtime/support/progress.h"
@@ -72,7 +72,7 @@ bool parse_view(const std::string& s, double& az, double& el) {
   return true;
 }
 
-// The octree's figures over every implicit shape meshed (runtime/mesh/octree.h).
+// The octree's figures over every implicit shape meshed (engine/mesh/sample_pruning.h).
 nlohmann::json prune_json() {
   const mesh::PruneStats& p = mesh::prune_totals();
   nlohmann::json levels = nlohmann::json::array();
@@ -82,7 +82,7 @@ nlohmann::json prune_json() {
           {"evaluated_fraction", p.points ? double(p.evaluated) / double(p.points) : 1.0}, {"fallbacks", p.fallbacks}};
 }
 
-// Dual contouring's figures over every implicit shape it meshed (runtime/mesh/dc_octree.h).
+// Dual contouring's figures over every implicit shape it meshed (engine/mesh/dc_cell_merge.h).
 nlohmann::json dual_contouring_json() {
   mesh::DualContourStats d = mesh::dual_contour_totals();
   return {{"shapes", d.jobs}, {"vertices", d.cells}, {"merged_cells", d.merged}, {"triangles", d.triangles},

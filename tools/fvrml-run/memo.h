@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "runtime/mesh/frame_cache.h"
+#include "engine/mesh/frame_cache.h"
 #include "tools/fvrml-run/run.h"
 
 namespace fvrml_run {

@@ -13,10 +13,10 @@
 
 #include "frontend/diagnostics.h"
 #include "frontend/vrml/scene_graph.h"
-#include "runtime/mesh/implicit.h"
-#include "runtime/mesh/mesh.h"
-#include "runtime/render/raster.h"
-#include "runtime/scene/scene_model.h"
+#include "engine/mesh/marching_tetrahedra.h"
+#include "engine/mesh/mesh.h"
+#include "engine/render/raster.h"
+#include "engine/scene/scene_model.h"
 
 namespace fvrml_run {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "runtime/mesh/dc_slabs.h"
-#include "runtime/mesh/frame_cache.h"
+#include "engine/mesh/dc_slabs.h"
+#include "engine/mesh/frame_cache.h"
 
 namespace fvrml_run {
 

@@ -12,7 +12,7 @@ function f_min(a, b) { return min(a, b); }
 function f_max(a, b) { return max(a, b); }
 function f_clamp(x) { return clamp(x, 0, 1); }
 // Equal zeros: min and max return their first operand, so min(-0, min(y, -0)) is -0 at y = +0
-// (LLVM 19 folded the nested selects to min(y, -0), +0; backend_diff, 2026-12-04).
+// (LLVM 19 folded the nested selects to min(y, -0), +0; found by backend_diff).
 function f_min_zeros(y) { return 1 / min(min(-0, -0), min(y, -0)); }
 function f_max_zeros(y) { return 1 / max(max(0, 0), max(y, 0)); }
 function f_pow(a, b) { return pow(a, b); }

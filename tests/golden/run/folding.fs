@@ -15,9 +15,9 @@ function z3(y) { return 1 / (y - -0); }
 function z4(y) { return 1 / (y + -0); }
 function z5(y) { return 1 / (y - 0); }
 function zero(p) { return 0; }
-function z6(y) { var v = 3e38 / (y += zero(y)); return v; }  // backend_diff, 2026-12-04: inlined, y + 0
+function z6(y) { var v = 3e38 / (y += zero(y)); return v; }  // found by backend_diff: inlined, y + 0
 // min and max keep their operands' order: of -0 and +0 they return the first, so GVN must not
-// take min(y, -0) for min(-0, y) (backend_diff in CI, 2026-12-04, seventh session).
+// take min(y, -0) for min(-0, y) (found by backend_diff).
 function z7(y) { var a = min(-0, y); var b = min(y, -0); return 1 / b + 0 * a; }
 function z8(y) { var a = max(0, y); var b = max(y, 0); return 1 / b + 0 * a; }
 // run: a(3) == -3

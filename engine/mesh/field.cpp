@@ -1,0 +1,95 @@
+// Fields and kernels evaluated in batches: the kernel field the polygonizers sample, its interval
+// bound, and the batching that lets a cancelled run (support/cancel.h) stop within one batch.
+#include "engine/mesh/field.h"
+
+#include <algorithm>
+
+namespace fscript::mesh {
+
+std::atomic<uint64_t>& evaluation_ns() {
+  static std::atomic<uint64_t> total{0};
+  return total;
+}
+
+math::Interval kernel_bound(const ir::IntervalTape& tape, const Box3& b, const std::vector<math::Interval>& extra) {
+  thread_local std::vector<math::Interval> in;
+  thread_local ir::IntervalEval ev;
+  in.clear();
+  for (int a = 0; a < 3; ++a) in.push_back({b.lo[a], b.hi[a], false});
+  in.insert(in.end(), extra.begin(), extra.end());
+  tape.eval(in, ev);
+  return ev.outputs.empty() ? math::Interval::everything() : ev.outputs[0];
+}
+
+math::Interval KernelField::bound(const Box3& b) const {
+  if (!intervals_) return math::Interval::everything();
+  return kernel_bound(*intervals_, b, {math::Interval::point(t_)});
+}
+
+bool KernelField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
+                       backends::RuntimeError& err) const {
+  if (stop_if_cancelled(err)) return false;
+  // Reused per thread: the polygonizer calls this for every plane and block.
+  thread_local std::vector<float> ts, extra;
+  ts.assign(n, t_);
+  extra.resize(k_.num_outputs() > 1 ? n * (k_.num_outputs() - 1) : 0);
+  const float* in[4] = {x, y, z, ts.data()};
+  std::vector<float*> outs(k_.num_outputs());
+  outs[0] = out;
+  for (size_t o = 1; o < outs.size(); ++o) outs[o] = extra.data() + (o - 1) * n;
+  return k_.eval_batch(in, outs.data(), n, err);
+}
+
+bool Field::eval_gradient(const float*, const float*, const float*, size_t, float* const[4],
+                          backends::RuntimeError& err) const {
+  err.message = "internal error: this field has no gradient";
+  return false;
+}
+
+bool KernelField::eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
+                                backends::RuntimeError& err) const {
+  if (stop_if_cancelled(err)) return false;
+  thread_local std::vector<float> ts;
+  ts.assign(n, t_);
+  const float* in[4] = {x, y, z, ts.data()};
+  return gradient_->eval_batch(in, out, n, err);
+}
+
+bool Field::eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
+                      backends::RuntimeError& err) const {
+  thread_local std::vector<float> xs, ys, zs;
+  size_t n = count * rows;
+  xs.resize(n), ys.resize(n), zs.resize(n);
+  for (size_t r = 0; r < rows; ++r)
+    for (size_t i = 0; i < count; ++i) xs[r * count + i] = x[i], ys[r * count + i] = y[r], zs[r * count + i] = z[r];
+  return eval(xs.data(), ys.data(), zs.data(), n, out, err);
+}
+
+bool KernelField::eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
+                            backends::RuntimeError& err) const {
+  if (stop_if_cancelled(err)) return false;
+  thread_local std::vector<float> ts, extra;
+  ts.assign(rows, t_);
+  size_t n = count * rows;
+  extra.resize(k_.num_outputs() > 1 ? n * (k_.num_outputs() - 1) : 0);
+  const float* rest[3] = {y, z, ts.data()};
+  std::vector<float*> outs(k_.num_outputs());
+  outs[0] = out;
+  for (size_t o = 1; o < outs.size(); ++o) outs[o] = extra.data() + (o - 1) * n;
+  return k_.eval_rows(x, count, rest, rows, outs.data(), err);
+}
+
+bool eval_in_batches(const backends::Kernel& k, const float* const* in, float* const* out, size_t n,
+                     backends::RuntimeError& err) {
+  std::vector<const float*> ins(k.num_inputs());
+  std::vector<float*> outs(k.num_outputs());
+  for (size_t b = 0; b < n; b += kEvalBatch) {
+    if (stop_if_cancelled(err)) return false;
+    for (size_t i = 0; i < ins.size(); ++i) ins[i] = in[i] + b;
+    for (size_t o = 0; o < outs.size(); ++o) outs[o] = out[o] + b;
+    if (!k.eval_batch(ins.data(), outs.data(), std::min(kEvalBatch, n - b), err)) return false;
+  }
+  return true;
+}
+
+}  // namespace fscript::mesh

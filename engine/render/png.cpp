@@ -1,0 +1,55 @@
+// PNG writer (libpng), atomic by rename.
+#include "engine/render/png.h"
+
+#include <png.h>
+
+#include <string>
+
+#include "runtime/support/files.h"
+
+namespace fscript::render {
+
+namespace {
+
+void append(png_structp png, png_bytep data, png_size_t n) {
+  static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), n);
+}
+void flush(png_structp) {}
+
+// Encodes into memory; the file is then written atomically.
+bool encode(uint32_t w, uint32_t h, int channels, const std::vector<uint8_t>& px, std::string& out, std::string& error) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!png || !info) {
+    png_destroy_write_struct(&png, &info);
+    error = "cannot initialise libpng";
+    return false;
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    error = "libpng failed while encoding";
+    return false;
+  }
+  int type = channels == 1 ? PNG_COLOR_TYPE_GRAY : channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGBA;
+  png_set_write_fn(png, &out, append, flush);
+  png_set_IHDR(png, info, w, h, 8, type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (uint32_t y = 0; y < h; ++y) png_write_row(png, const_cast<png_bytep>(px.data() + size_t(y) * w * channels));
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return true;
+}
+
+}  // namespace
+
+bool write_png(const std::string& path, uint32_t width, uint32_t height, int channels,
+               const std::vector<uint8_t>& pixels, std::string& error) {
+  if (pixels.size() != size_t(width) * height * channels || width == 0 || height == 0) {
+    error = "bad image size";
+    return false;
+  }
+  std::string bytes;
+  return encode(width, height, channels, pixels, bytes, error) && support::write_file_atomic(path, bytes, error);
+}
+
+}  // namespace fscript::render

@@ -1,0 +1,300 @@
+// The quadtree renderer: batched interval evaluation of each region's children, tape
+// simplification per region, dense batches for the open tiles of the last level. Every region
+// writes only its own pixels, so the picture is the same bits for any thread count and schedule.
+#include "engine/render/quadtree.h"
+
+#include <algorithm>
+#include <atomic>
+#include <memory>
+
+#include "ir/interval_eval.h"
+#include "backends/vm/vm_backend.h"
+#include "backends/vm/vm_points.h"
+#include "ir/tape.h"
+#include "runtime/support/parallel.h"
+
+namespace fscript::render {
+
+float PlaneGrid::x(uint32_t col) const {
+  return w > 1 ? x0 + static_cast<float>(col) * (x1 - x0) / static_cast<float>(w - 1) : x0;
+}
+
+float PlaneGrid::y(uint32_t row) const {
+  return h > 1 ? y1 - static_cast<float>(row) * (y1 - y0) / static_cast<float>(h - 1) : y1;
+}
+
+namespace {
+
+// Region sides per level; the open regions of the last are evaluated densely, on the tape of the
+// level above. Each level splits a region into 4x4 children, bounded together in one batched
+// interval pass (ir::IntervalTape::eval_batch, 16 lanes). Chosen by measurement (docs/performance.md):
+// a fourth level (4x4 pixels) decides two thirds of the remaining pixels, but its simplified tapes
+// and their compiles cost more than the points they save.
+constexpr uint32_t kSizes[] = {256, 64, 16, 4};
+constexpr size_t kLevels = sizeof(kSizes) / sizeof(kSizes[0]);
+
+struct Rect {
+  uint32_t c0, r0, c1, r1;  // columns [c0, c1), rows [r0, r1)
+};
+
+// A tape's kernel once a dense batch needs it; shared by every region that keeps the tape.
+struct Compiled {
+  const backends::Kernel* kernel = nullptr;
+  std::unique_ptr<backends::Kernel> owned;
+};
+
+// A tape: flat, for intervals and simplification, and compiled when needed.
+struct Tape {
+  std::shared_ptr<const ir::IntervalTape> flat;
+  std::shared_ptr<Compiled> compiled;  // made when first needed, shared by the tapes that share it
+  size_t ops = 0;
+};
+
+// The regions of side `s` that cover r, row by row.
+std::vector<Rect> split(Rect r, uint32_t s) {
+  std::vector<Rect> out;
+  for (uint32_t row = r.r0; row < r.r1; row += s)
+    for (uint32_t col = r.c0; col < r.c1; col += s) out.push_back({col, row, std::min(col + s, r.c1), std::min(row + s, r.r1)});
+  return out;
+}
+
+class Renderer {
+ public:
+  Renderer(const backends::Kernel& dense, const PlaneGrid& g, const InsideOptions& o, std::vector<uint8_t>& px)
+      : dense_(dense), g_(g), o_(o), px_(px) {
+    for (uint32_t s : kSizes) stats_.levels.push_back({s, 0, 0, 0, 0});
+    for (uint32_t c = 0; c < g.w; ++c) xs_.push_back(g.x(c));
+    for (uint32_t r = 0; r < g.h; ++r) ys_.push_back(g.y(r));
+  }
+
+  // Bounds `rects` (regions of `level`) on `tape` in batches; fills the decided ones and hands each
+  // open one, with its batch evaluation and lane, to `open`. False on a runtime error.
+  template <typename Open>
+  bool bound(const Tape& tape, const std::vector<Rect>& rects, size_t level, Open open) {
+    QuadtreeLevel& st = stats_.levels[level];
+    ir::IntervalBatchEval& ev = scratch_[level];  // per level: a parent's evaluation outlives its children's
+    std::vector<ir::IntervalLanes> in(dense_.num_inputs());
+    for (auto& lanes : in)
+      for (size_t k = 0; k < ir::kIntervalLanes; ++k) lanes.set(k, math::Interval{0, 0, false});
+    for (size_t first = 0; first < rects.size(); first += ir::kIntervalLanes) {
+      size_t n = std::min(ir::kIntervalLanes, rects.size() - first);
+      for (size_t k = 0; k < ir::kIntervalLanes; ++k) {
+        const Rect& r = rects[first + std::min(k, n - 1)];
+        in[0].set(k, math::iv::hull(math::Interval::point(xs_[r.c0]), math::Interval::point(xs_[r.c1 - 1])));
+        in[1].set(k, math::iv::hull(math::Interval::point(ys_[r.r0]), math::Interval::point(ys_[r.r1 - 1])));
+      }
+      tape.flat->eval_batch(in, ev);
+      for (size_t k = 0; k < n; ++k) {
+        const Rect& r = rects[first + k];
+        math::Interval f = ev.output(0, k);
+        if (!f.nan && f.lo >= 0) {
+          ++st.full, fill(r, 255);
+        } else if (f.empty() || f.hi < 0) {
+          ++st.empty, fill(r, 0);  // NaN is outside too
+        } else {
+          ++st.ambiguous;
+          if (!open(r, ev, k)) return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  // Region r, open at `level` (ev, lane: its bounds on `tape`): its children at the next level on
+  // a tape simplified for r; the last level's open children densely, in one batch on that tape.
+  bool region(Tape& tape, Rect r, size_t level, ir::IntervalBatchEval& ev, size_t lane) {
+    Tape child = simplified(tape, ev, lane);
+    stats_.levels[level].tape_ops += child.ops;
+    // Bounding the last level's small tiles pays only when the bounds run as SIMD: a tape with
+    // transcendentals (bounded lane by lane) evaluates this region's pixels instead.
+    if (level + 1 == kLevels || (level + 2 == kLevels && !child.flat->simd_only())) return dense(child, {r});
+    std::vector<Rect> pending;
+    bool last = level + 2 == kLevels;
+    bool ok = bound(child, split(r, kSizes[level + 1]), level + 1,
+                    [&](Rect c, ir::IntervalBatchEval& cev, size_t k) {
+                      if (last) return pending.push_back(c), true;
+                      return region(child, c, level + 1, cev, k);
+                    });
+    return ok && (pending.empty() || dense(child, pending));
+  }
+
+  // Every pixel of the rects, in one batch on the tape's kernel.
+  bool dense(Tape& tape, const std::vector<Rect>& rects) {
+    if (rects.size() == 1 && tape.compiled && tape.compiled->kernel == &dense_) return dense_rows(rects[0]);
+    size_t n = 0;
+    for (const Rect& r : rects) n += size_t(r.c1 - r.c0) * (r.r1 - r.r0);
+    cols_.resize(dense_.num_inputs());
+    for (auto& c : cols_) c.assign(n, 0.0f);
+    where_.resize(n);
+    size_t i = 0;
+    for (const Rect& r : rects)
+      for (uint32_t row = r.r0; row < r.r1; ++row)
+        for (uint32_t col = r.c0; col < r.c1; ++col, ++i) {
+          cols_[0][i] = xs_[col];
+          cols_[1][i] = ys_[row];
+          where_[i] = size_t(row) * g_.w + col;
+        }
+    std::vector<const float*> in;
+    for (auto& c : cols_) in.push_back(c.data());
+    outs_.resize(dense_.num_outputs());
+    for (auto& v : outs_) v.resize(std::max(n, vm::kPointLanes));
+    if (tape.flat && n <= vm::kPointLanes) {  // a few points on a short tape: run it, do not compile it
+      vm::eval_tape_points(*tape.flat, in.data(), in.size(), n, outs_[0].data());
+      ++stats_.direct;
+    } else {
+      if (!tape.compiled) tape.compiled = std::make_shared<Compiled>();
+      if (!tape.compiled->kernel && !compile(tape)) return false;
+      std::vector<float*> out;
+      for (auto& v : outs_) out.push_back(v.data());
+      if (!tape.compiled->kernel->eval_batch(in.data(), out.data(), n, err_)) return false;
+    }
+    for (size_t k = 0; k < n; ++k) px_[where_[k]] = outs_[0][k] >= 0.0f ? 255 : 0;
+    stats_.points += n;
+    return true;
+  }
+
+  // One rect on the full kernel, as grid rows (Kernel::eval_rows: what depends only on y once a row).
+  bool dense_rows(const Rect& r) {
+    size_t count = r.c1 - r.c0, rows = r.r1 - r.r0, n = count * rows;
+    cols_.resize(dense_.num_inputs());
+    cols_[0].assign(ys_.begin() + r.r0, ys_.begin() + r.r1);
+    for (size_t k = 1; k < cols_.size(); ++k) cols_[k].assign(rows, 0.0f);
+    std::vector<const float*> rest;
+    for (auto& c : cols_) rest.push_back(c.data());
+    outs_.resize(dense_.num_outputs());
+    std::vector<float*> out;
+    for (auto& v : outs_) v.resize(n), out.push_back(v.data());
+    if (!dense_.eval_rows(xs_.data() + r.c0, count, rest.data(), rows, out.data(), err_)) return false;
+    for (size_t row = 0; row < rows; ++row)
+      for (size_t col = 0; col < count; ++col)
+        px_[(r.r0 + row) * g_.w + r.c0 + col] = outs_[0][row * count + col] >= 0.0f ? 255 : 0;
+    stats_.points += n;
+    return true;
+  }
+
+  QuadtreeStats stats_;
+  backends::RuntimeError err_;
+
+ private:
+  void fill(Rect r, uint8_t v) {
+    for (uint32_t row = r.r0; row < r.r1; ++row)
+      std::fill_n(px_.begin() + static_cast<long>(size_t(row) * g_.w + r.c0), r.c1 - r.c0, v);
+  }
+
+  // The parent's tape specialised to the region, or the parent's itself when that saves little.
+  Tape simplified(Tape& parent, ir::IntervalBatchEval& ev, size_t lane) {
+    auto s = std::make_shared<const ir::IntervalTape>(parent.flat->simplified(ev, lane));
+    if (s->length() * 10 > parent.ops * 9) {  // under 10% shorter: the parent, sharing its kernel too
+      if (!parent.compiled) parent.compiled = std::make_shared<Compiled>();
+      return parent;
+    }
+    Tape t;
+    t.flat = std::move(s);
+    t.ops = t.flat->length();
+    return t;
+  }
+
+  // Simplified tapes run on the VM whatever the dense kernel's backend, compiled straight from the
+  // flat tape: that compile pays for a region, the sse emitter's and llvm's do not
+  // (docs/performance.md), and every backend gives the same bits.
+  bool compile(Tape& tape) {
+    Compiled& c = *tape.compiled;
+    c.owned = vm::compile_tape(*tape.flat, o_.budgets);
+    c.kernel = c.owned.get();
+    ++stats_.kernels;
+    return true;
+  }
+
+  ir::IntervalBatchEval scratch_[kLevels];
+  std::vector<float> xs_, ys_;  // the grid's coordinates, once
+  std::vector<std::vector<float>> cols_, outs_;  // dense batches' inputs and outputs, reused
+  std::vector<size_t> where_;
+  const backends::Kernel& dense_;
+  const PlaneGrid& g_;
+  const InsideOptions& o_;
+  std::vector<uint8_t>& px_;
+};
+
+void merge(QuadtreeStats& into, const QuadtreeStats& part) {
+  for (size_t l = 0; l < into.levels.size(); ++l) {
+    into.levels[l].empty += part.levels[l].empty;
+    into.levels[l].full += part.levels[l].full;
+    into.levels[l].ambiguous += part.levels[l].ambiguous;
+    into.levels[l].tape_ops += part.levels[l].tape_ops;
+  }
+  into.points += part.points;
+  into.direct += part.direct;
+  into.kernels += part.kernels;
+}
+
+}  // namespace
+
+bool render_inside(const ir::Module& m, const backends::Kernel& dense, const PlaneGrid& g, const InsideOptions& o,
+                   std::vector<uint8_t>& px, QuadtreeStats& stats, backends::RuntimeError& err) {
+  px.assign(size_t(g.w) * g.h, 0);
+  const ir::Function& fn = m.kernel_function();
+  stats = {};
+  stats.full_tape_ops = ir::tape_length(fn);
+  bool prune = o.prune && dense.num_inputs() >= 2 && dense.num_outputs() >= 1 && ir::interval_evaluable(fn);
+  if (!prune) dense.expect_points(uint64_t(g.w) * g.h);  // every pixel ahead: a tiered kernel compiles at once
+  std::vector<Rect> tiles;  // the top level's regions, shared out to the threads by index
+  uint32_t s = prune ? kSizes[0] : 64;
+  for (uint32_t row = 0; row < g.h; row += s)
+    for (uint32_t col = 0; col < g.w; col += s) tiles.push_back({col, row, std::min(col + s, g.w), std::min(row + s, g.h)});
+  int parts = static_cast<int>(std::max(1u, std::min<unsigned>(o.threads, static_cast<unsigned>(tiles.size()))));
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  for (int p = 0; p < parts; ++p) renderers.push_back(std::make_unique<Renderer>(dense, g, o, px));
+  Tape full;
+  if (prune) full.flat = std::make_shared<const ir::IntervalTape>(fn);
+  full.ops = stats.full_tape_ops;
+  full.compiled = std::make_shared<Compiled>();
+  full.compiled->kernel = &dense;  // the full tape is what `dense` was compiled from
+  // The top level is bounded up front, in batches; its open tiles go to whichever thread is free.
+  // Each writes only its own pixels, so the picture does not depend on the schedule.
+  struct Open {
+    Rect r;
+    size_t batch, lane;  // its bounds: top[batch], lane
+  };
+  std::vector<Open> open;
+  std::vector<ir::IntervalBatchEval> top;
+  bool ok = true;
+  if (prune) {
+    Renderer& r0 = *renderers[0];
+    size_t kept_for = SIZE_MAX;  // the batch whose evaluation top.back() is
+    for (size_t first = 0; first < tiles.size(); first += ir::kIntervalLanes) {
+      std::vector<Rect> part(tiles.begin() + static_cast<long>(first),
+                             tiles.begin() + static_cast<long>(std::min(tiles.size(), first + ir::kIntervalLanes)));
+      ok = ok && r0.bound(full, part, 0, [&](Rect r, ir::IntervalBatchEval& ev, size_t k) {
+        if (kept_for != first) top.push_back(ev), kept_for = first;
+        open.push_back({r, top.size() - 1, k});
+        return true;
+      });
+    }
+  }
+  for (auto& ev : top) full.flat->lane_masks(ev);  // before the threads share them
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  size_t count = prune ? open.size() : tiles.size();
+  if (o.progress) o.progress->set_units(count);
+  ok = ok && support::run_parts(parts, [&](int p) {
+    Renderer& r = *renderers[static_cast<size_t>(p)];
+    for (size_t t; !failed && (t = next.fetch_add(1)) < count;) {
+      bool done = prune ? r.region(full, open[t].r, 0, top[open[t].batch], open[t].lane) : r.dense(full, {tiles[t]});
+      if (!done) return failed = true, false;
+      if (o.progress) o.progress->advance(1);
+    }
+    return true;
+  });
+  stats.pruned = prune;
+  for (uint32_t sz : kSizes) stats.levels.push_back({sz, 0, 0, 0, 0});
+  for (const auto& r : renderers) merge(stats, r->stats_);
+  if (!prune) stats.levels.clear();
+  for (const auto& r : renderers)  // the first part's error, whatever the schedule
+    if (!r->err_.message.empty()) {
+      err = r->err_;
+      break;
+    }
+  return ok;
+}
+
+}  // namespace fscript::render

@@ -1,0 +1,251 @@
+// Rasteriser: project, clip against the near plane (triangles wholly behind are dropped), fill
+// with barycentric interpolation of depth, colour and normal, shade per sample, downsample.
+#include "engine/render/raster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace fscript::render {
+namespace {
+
+using V3 = std::array<double, 3>;
+V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+V3 norm(V3 a) {
+  double l = std::sqrt(dot(a, a));
+  return l > 0 ? V3{a[0] / l, a[1] / l, a[2] / l} : a;
+}
+
+// Rodrigues rotation of v by the VRML rotation r.
+V3 rotate(const std::array<double, 4>& r, V3 v) {
+  V3 k = norm({r[0], r[1], r[2]});
+  double c = std::cos(r[3]), s = std::sin(r[3]);
+  V3 kv = cross(k, v);
+  double kd = dot(k, v);
+  return {v[0] * c + kv[0] * s + k[0] * kd * (1 - c), v[1] * c + kv[1] * s + k[1] * kd * (1 - c),
+          v[2] * c + kv[2] * s + k[2] * kd * (1 - c)};
+}
+
+struct View {
+  V3 eye, right, up, back;  // camera frame: looking along -back
+  double focal;             // pixels
+  double cx, cy;
+};
+
+// Where the automatic camera stands: the view direction from azimuth and elevation, then the
+// distance at which the mesh's outline, measured across the view at its middle depth, fills 80%
+// of the smaller side (and its nearest points still fit), looking at the outline's centre.
+void frame_mesh(const mesh::Mesh& m, const RenderOptions& o, double fov, uint32_t w, uint32_t h, View& v) {
+  const double deg = 3.14159265358979323846 / 180;
+  double az = o.azimuth * deg, el = std::clamp(o.elevation, -89.0, 89.0) * deg;
+  v.back = {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
+  v.right = norm(cross({0, 1, 0}, v.back));
+  v.up = cross(v.back, v.right);
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};  // along right, up, back
+  for (const auto& p : m.positions) {
+    V3 q = {p[0], p[1], p[2]};
+    if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2])) continue;
+    double c[3] = {dot(q, v.right), dot(q, v.up), dot(q, v.back)};
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  }
+  if (lo[0] > hi[0])
+    for (int a = 0; a < 3; ++a) lo[a] = -1, hi[a] = 1;
+  double half_r = std::max(1e-6, (hi[0] - lo[0]) / 2), half_u = std::max(1e-6, (hi[1] - lo[1]) / 2);
+  double side = std::min(w, h);
+  double tan_r = std::tan(fov / 2) * w / side, tan_u = std::tan(fov / 2) * h / side;
+  double zoom = o.zoom > 0 ? o.zoom : 1;
+  double fit = 0.8 * zoom, near_fit = 0.95 * zoom;
+  double depth = (hi[2] - lo[2]) / 2;
+  double dist = std::max({half_r / (fit * tan_r), half_u / (fit * tan_u),
+                          depth + std::max(half_r / (near_fit * tan_r), half_u / (near_fit * tan_u))});
+  double mid[3] = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2 + dist};
+  for (int k = 0; k < 3; ++k) v.eye[k] = v.right[k] * mid[0] + v.up[k] * mid[1] + v.back[k] * mid[2];
+}
+
+View make_view(const mesh::Mesh& m, const RenderOptions& o, uint32_t w, uint32_t h) {
+  View v;
+  bool fixed = o.camera && !o.view_given;
+  double fov = fixed ? o.camera->field_of_view : 0.6;
+  if (fixed) {
+    v.eye = {o.camera->position[0], o.camera->position[1], o.camera->position[2]};
+    v.right = rotate(o.camera->orientation, {1, 0, 0});
+    v.up = rotate(o.camera->orientation, {0, 1, 0});
+    v.back = rotate(o.camera->orientation, {0, 0, 1});
+    if (o.zoom > 0 && o.zoom != 1) fov = 2 * std::atan(std::tan(fov / 2) / o.zoom);
+  } else {
+    frame_mesh(m, o, fov, w, h, v);
+  }
+  v.focal = 0.5 * std::min(w, h) / std::tan(fov / 2);
+  v.cx = w / 2.0, v.cy = h / 2.0;
+  return v;
+}
+
+struct Sample {
+  std::vector<float> depth;
+  std::vector<std::array<float, 3>> rgb;
+};
+
+class Raster {
+ public:
+  Raster(const mesh::Mesh& m, const RenderOptions& o)
+      : m_(m), o_(o), w_(o.width * o.supersample), h_(o.height * o.supersample), v_(make_view(m, o, w_, h_)) {
+    depth_.assign(size_t(w_) * h_, std::numeric_limits<float>::infinity());
+    rgb_.assign(size_t(w_) * h_, o.background);
+  }
+
+  std::vector<uint8_t> run() {
+    if (m_.normals.size() != m_.positions.size()) corner_ = mesh::crease_normals(m_, o_.crease_angle);
+    proj_.resize(m_.positions.size());
+    for (size_t i = 0; i < m_.positions.size(); ++i) proj_[i] = project(m_.positions[i]);
+    for (size_t t = 0; t < m_.triangles.size(); ++t) triangle(t);
+    for (const auto& l : m_.polylines)
+      for (size_t k = 0; k + 1 < l.size(); ++k) line(l[k], l[k + 1]);
+    return downsample();
+  }
+
+ private:
+  // Screen x, y and view depth (positive in front of the eye).
+  V3 project(const mesh::Vec3& p) const {
+    V3 d = sub({p[0], p[1], p[2]}, v_.eye);
+    double z = -dot(d, v_.back);
+    return {v_.cx + v_.focal * dot(d, v_.right) / z, v_.cy - v_.focal * dot(d, v_.up) / z, z};
+  }
+
+  std::array<float, 3> colour(uint32_t i) const {
+    if (m_.colours.size() == m_.positions.size()) return m_.colours[i];
+    return m_.material ? m_.material->diffuse : o_.default_colour;
+  }
+
+  // Two-sided (back faces lit as front). With scene lights: the VRML97 model (emissive, ambient,
+  // diffuse, specular with exponent 128 * shininess) for each light and the headlight; without:
+  // a headlight and a key light, with white highlights unless the material says otherwise.
+  std::array<float, 3> shade(std::array<float, 3> base, V3 n, V3 view_dir) const {
+    n = norm(n);
+    if (dot(n, view_dir) < 0) n = {-n[0], -n[1], -n[2]};
+    mesh::Material mat = m_.material.value_or(mesh::Material{});
+    std::array<float, 3> out;
+    if (o_.lights.empty()) {
+      V3 key = norm({v_.back[0] + v_.up[0] + 0.5 * v_.right[0], v_.back[1] + v_.up[1] + 0.5 * v_.right[1],
+                     v_.back[2] + v_.up[2] + 0.5 * v_.right[2]});
+      double diff = (o_.headlight ? 0.55 * std::max(0.0, dot(n, view_dir)) : 0.0) + 0.35 * std::max(0.0, dot(n, key));
+      V3 hv = norm({key[0] + view_dir[0], key[1] + view_dir[1], key[2] + view_dir[2]});
+      double exponent = m_.material ? std::max(1.0, 128.0 * mat.shininess) : 40.0;
+      double spec = std::pow(std::max(0.0, dot(n, hv)), exponent);
+      for (int k = 0; k < 3; ++k) {
+        double s = m_.material ? 0.6 * mat.specular[k] : 0.25;
+        out[k] = static_cast<float>(std::min(1.0, mat.emissive[k] + base[k] * (0.2 + diff) + s * spec));
+      }
+      return out;
+    }
+    std::array<double, 3> sum{mat.emissive[0], mat.emissive[1], mat.emissive[2]};
+    auto add = [&](V3 to_light, const std::array<float, 3>& colour, double intensity, double ambient) {
+      double d = std::max(0.0, dot(n, to_light));
+      V3 h = norm({to_light[0] + view_dir[0], to_light[1] + view_dir[1], to_light[2] + view_dir[2]});
+      double s = d > 0 ? std::pow(std::max(0.0, dot(n, h)), std::max(1.0, 128.0 * mat.shininess)) : 0.0;
+      for (int k = 0; k < 3; ++k)
+        sum[k] += colour[k] * (ambient * mat.ambient_intensity * base[k] + intensity * (base[k] * d + mat.specular[k] * s));
+    };
+    if (o_.headlight) add(view_dir, {1, 1, 1}, 1.0, 0.0);
+    for (const auto& l : o_.lights) add(norm({-l.direction[0], -l.direction[1], -l.direction[2]}), l.colour, l.intensity, l.ambient);
+    for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(std::clamp(sum[k], 0.0, 1.0));
+    return out;
+  }
+
+  void triangle(size_t ti) {
+    const std::array<uint32_t, 3>& t = m_.triangles[ti];
+    const V3 &a = proj_[t[0]], &b = proj_[t[1]], &c = proj_[t[2]];
+    if (a[2] <= 1e-6 || b[2] <= 1e-6 || c[2] <= 1e-6) return;  // behind or at the eye
+    double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    if (area == 0 || !std::isfinite(area)) return;
+    int x0 = std::max(0, int(std::floor(std::min({a[0], b[0], c[0]}))));
+    int x1 = std::min(int(w_) - 1, int(std::ceil(std::max({a[0], b[0], c[0]}))));
+    int y0 = std::max(0, int(std::floor(std::min({a[1], b[1], c[1]}))));
+    int y1 = std::min(int(h_) - 1, int(std::ceil(std::max({a[1], b[1], c[1]}))));
+    bool normals = m_.normals.size() == m_.positions.size();
+    V3 face = cross(sub(to3(m_.positions[t[1]]), to3(m_.positions[t[0]])),
+                    sub(to3(m_.positions[t[2]]), to3(m_.positions[t[0]])));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        double px = x + 0.5, py = y + 0.5;
+        double w0 = ((b[0] - px) * (c[1] - py) - (b[1] - py) * (c[0] - px)) / area;
+        double w1 = ((c[0] - px) * (a[1] - py) - (c[1] - py) * (a[0] - px)) / area;
+        double w2 = 1 - w0 - w1;
+        if (w0 < 0 || w1 < 0 || w2 < 0) continue;
+        // Perspective-correct interpolation through 1/z.
+        double iz = w0 / a[2] + w1 / b[2] + w2 / c[2];
+        double z = 1 / iz;
+        size_t idx = size_t(y) * w_ + x;
+        if (z >= depth_[idx]) continue;
+        depth_[idx] = static_cast<float>(z);
+        double q0 = w0 / a[2] * z, q1 = w1 / b[2] * z, q2 = w2 / c[2] * z;
+        std::array<float, 3> base;
+        auto ca = colour(t[0]), cb = colour(t[1]), cc = colour(t[2]);
+        for (int k = 0; k < 3; ++k) base[k] = static_cast<float>(q0 * ca[k] + q1 * cb[k] + q2 * cc[k]);
+        V3 n = face;
+        const mesh::Vec3* c = normals ? nullptr : &corner_[3 * ti];  // no vertex normals: by corner
+        auto normal = [&](int q) { return normals ? m_.normals[t[static_cast<size_t>(q)]] : c[q]; };
+        if (normals || (face[0] != 0 || face[1] != 0 || face[2] != 0))
+          for (int k = 0; k < 3; ++k) n[k] = q0 * normal(0)[k] + q1 * normal(1)[k] + q2 * normal(2)[k];
+        V3 p;
+        for (int k = 0; k < 3; ++k)
+          p[k] = q0 * m_.positions[t[0]][k] + q1 * m_.positions[t[1]][k] + q2 * m_.positions[t[2]][k];
+        rgb_[idx] = shade(base, n, norm(sub(v_.eye, p)));
+      }
+  }
+
+  static V3 to3(const mesh::Vec3& p) { return {p[0], p[1], p[2]}; }
+
+  // Polylines: a few samples wide, depth-tested, unlit.
+  void line(uint32_t i, uint32_t j) {
+    const V3 &a = proj_[i], &b = proj_[j];
+    if (a[2] <= 1e-6 || b[2] <= 1e-6) return;
+    double len = std::max(std::fabs(b[0] - a[0]), std::fabs(b[1] - a[1]));
+    int steps = std::max(1, int(std::ceil(len)));
+    int half = std::max(1, o_.supersample);
+    auto ca = colour(i), cb = colour(j);
+    for (int s = 0; s <= steps; ++s) {
+      double f = double(s) / steps;
+      double x = a[0] + f * (b[0] - a[0]), y = a[1] + f * (b[1] - a[1]), z = a[2] + f * (b[2] - a[2]);
+      for (int dy = -half; dy <= half; ++dy)
+        for (int dx = -half; dx <= half; ++dx) {
+          int px = int(x) + dx, py = int(y) + dy;
+          if (px < 0 || py < 0 || px >= int(w_) || py >= int(h_)) continue;
+          size_t idx = size_t(py) * w_ + px;
+          if (z >= depth_[idx]) continue;
+          depth_[idx] = static_cast<float>(z);
+          for (int k = 0; k < 3; ++k) rgb_[idx][k] = static_cast<float>(0.8 * (ca[k] + f * (cb[k] - ca[k])));
+        }
+    }
+  }
+
+  std::vector<uint8_t> downsample() const {
+    int s = o_.supersample;
+    std::vector<uint8_t> out(size_t(o_.width) * o_.height * 3);
+    for (uint32_t y = 0; y < o_.height; ++y)
+      for (uint32_t x = 0; x < o_.width; ++x)
+        for (int k = 0; k < 3; ++k) {
+          double sum = 0;
+          for (int dy = 0; dy < s; ++dy)
+            for (int dx = 0; dx < s; ++dx) sum += rgb_[size_t(y * s + dy) * w_ + x * s + dx][k];
+          out[(size_t(y) * o_.width + x) * 3 + k] = static_cast<uint8_t>(std::lround(std::clamp(sum / (s * s), 0.0, 1.0) * 255));
+        }
+    return out;
+  }
+
+  const mesh::Mesh& m_;
+  std::vector<mesh::Vec3> corner_;  // crease_normals, where the mesh has no vertex normals
+  const RenderOptions& o_;
+  uint32_t w_, h_;
+  View v_;
+  std::vector<V3> proj_;
+  std::vector<float> depth_;
+  std::vector<std::array<float, 3>> rgb_;
+};
+
+}  // namespace
+
+std::vector<uint8_t> render(const mesh::Mesh& m, const RenderOptions& opts) { return Raster(m, opts).run(); }
+
+}  // namespace fscript::render

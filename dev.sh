@@ -2,6 +2,8 @@
 # One entry point for setting up, building and testing, on a fresh Debian bookworm machine.
 #   ./dev.sh demo    install what is missing, build, render the paper's Figure 1 to out/ (PNG, VRML97)
 #   ./dev.sh test    install what is missing, build, run every test (ctest)
+#   ./dev.sh test --fast   build, then every test but the third-party clients, fuzzing and the
+#                    slow ones (ctest -LE 'clients|fuzz|slow'): the inner loop, under 2 minutes warm
 #   SANITIZE=1 ./dev.sh test   the same with AddressSanitizer + UndefinedBehaviorSanitizer
 #   ./dev.sh build   build only
 #   ./dev.sh install PREFIX   build, then put the tools in PREFIX/bin (cmake --install; e.g. ~/.local)
@@ -50,7 +52,7 @@ build() {
   fi
   [ -n "${FVRML_SHARED:-}" ] && extra+=(-DFS_SHARED_DIR="$(cd "$FVRML_SHARED" && pwd)")
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" "${extra[@]}" >/dev/null
-  ninja -C "$dir" >&2
+  ninja -C "$dir" -k 0 >&2  # -k 0: every failing file in one build (a table change names every missing case)
   BUILD_DIR=$dir
 }
 
@@ -102,14 +104,18 @@ install_npm_tools() {
 case "$cmd" in
   build) ;;
   test)
-    install_missing "${TEST_PACKAGES[@]}" || echo "note: could not install ${TEST_PACKAGES[*]}; the VRML97 browser test will be skipped"
-    install_npm_tools
     export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
     export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
     rm -f "$BUILD_DIR/skipped.txt"
     status=0
-    (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)") || status=$?
-    FS_SKIP_LOG="$PWD/$BUILD_DIR/skipped.txt" fuzz_briefly || status=1
+    if [ "${2:-}" = --fast ]; then  # the inner loop: no third-party clients, no fuzzing, nothing slow
+      (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)" -LE 'clients|fuzz|slow') || status=$?
+    else
+      install_missing "${TEST_PACKAGES[@]}" || echo "note: could not install ${TEST_PACKAGES[*]}; the VRML97 browser test will be skipped"
+      install_npm_tools
+      (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)") || status=$?
+      FS_SKIP_LOG="$PWD/$BUILD_DIR/skipped.txt" fuzz_briefly || status=1
+    fi
     # Every skip, in CI or not, shows here (tests/support/skip.*).
     if [ -s "$BUILD_DIR/skipped.txt" ]; then
       echo "---- skipped checks ($(wc -l < "$BUILD_DIR/skipped.txt")):"

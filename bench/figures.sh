@@ -15,7 +15,7 @@ OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 BACKENDS="vm sse llvm"
 
-best() { sort -g | head -1; }
+best() { sort -g | head -1 | xargs printf '%.3g\n' 2>/dev/null || true; }
 # ns per point of `fscript bench` (best of RUNS)
 ns() { for _ in $(seq "$RUNS"); do "$F" bench "$@" 2>/dev/null | sed -n 's/^\([0-9.]*\) ns\/eval$/\1/p'; done | best; }
 # ms of one render2d picture (best of RUNS processes of --repeat 5)
@@ -25,9 +25,9 @@ pic() {
       --repeat 5 --threads 1 "$@" 2>/dev/null | sed -n 2p | cut -d' ' -f1
   done | best
 }
-# whole-process wall time in ms (best of RUNS)
+# whole-process wall time in ms (best of RUNS, or of N for `N=3 wall ...`)
 wall() {
-  for _ in $(seq "$RUNS"); do
+  for _ in $(seq "${N:-$RUNS}"); do
     local t0 t1
     t0=$(date +%s%N)
     "$R" "$@" --threads 1 --force > /dev/null 2>&1
@@ -36,11 +36,13 @@ wall() {
   done | best
 }
 
-echo "Machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(nproc) cores;" \
+cpu() { grep -m1 "^$1" /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'; }
+isa=AVX2; grep -qw avx512f /proc/cpuinfo && isa=AVX-512
+echo "Machine: $(cpu 'model name') (family $(cpu 'cpu family') model $(cpu 'model'), $isa), $(nproc) cores;" \
   "$(date -u +%Y-%m-%d); commit $(git rev-parse --short HEAD); one thread, best of $RUNS."
 echo
-C=$(bench/c/run.sh 2>/dev/null || true)
-cval() { grep -F "$1" <<< "$C" | sed -E 's/.*: *([0-9.]+).*/\1/' | head -1; }
+C=$(for _ in 1 2 3; do bench/c/run.sh 2>/dev/null || true; done)  # the best of three runs of each C program
+cval() { grep -F "$1" <<< "$C" | sed -E 's/.*: *([0-9.]+).*/\1/' | best; }
 echo "| ns per point | vm | sse | llvm | C gcc -O3 -march=x86-64-v2 | C clang -O3 -march=native |"
 echo "|---|---|---|---|---|---|"
 for fn in gyroid csg8; do
@@ -74,3 +76,12 @@ for job in examples/paper/figure1-morphing.wrl examples/paper/figure2-texture.wr
   for b in $BACKENDS auto; do row+=" $(wall "$job" -o "$OUT/x.$ext" --backend "$b") |"; done
   echo "$row"
 done
+# The union of 400 balls (about 3,200 operations) in a box of 2 at 256^3: seconds a run, so best of 3.
+if [ -f "$SHARED/data/spheres400.fs" ]; then
+  { printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { bboxSize 2 2 2 resolution [256] definition "'
+    cat "$SHARED/data/spheres400.fs"
+    printf '" } }\n'; } > "$OUT/spheres400.wrl"
+  row="| spheres400 at 256^3 (ply) |"
+  for b in $BACKENDS auto; do row+=" $(N=3 wall "$OUT/spheres400.wrl" -o "$OUT/x.ply" --backend "$b") |"; done
+  echo "$row"
+fi

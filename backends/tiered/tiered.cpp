@@ -31,7 +31,7 @@ constexpr size_t kChunk = 16384;         // points per VM call: timed, and a cha
 // A kernel whose LLVM code is estimated further off than this (its compile, and the module's load
 // on a process's first compile) gets the SSE emitter's code first (about 1 ms per 1,000
 // operations) to run while LLVM works: prospero's dense picture, 0.4 s of LLVM compile, would
-// otherwise spend it on the VM (docs/performance.md, "Tiered execution").
+// otherwise spend it on the VM (docs/performance.md, "Decisions": `auto`).
 constexpr double kMiddleTierNs = 50e6;
 
 // An SSE compile of `ops` operations (the middle tier, or the native code without LLVM).

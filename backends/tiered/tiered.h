@@ -27,7 +27,7 @@ struct TierStats {
 TierStats tier_stats();
 
 // The estimated time to compile a module of `ops` operations natively, in nanoseconds (measured:
-// docs/performance.md, "Tiered execution").
+// docs/performance.md, "Decisions": `auto`).
 double native_compile_ns(size_t ops);
 
 class TieredBackend : public Backend {

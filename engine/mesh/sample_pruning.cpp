@@ -13,7 +13,7 @@ namespace fscript::mesh {
 namespace {
 
 // Region sides per level, in grid points; the last is the brick. Chosen by measurement
-// (docs/performance.md, "Meshes by octree").
+// (docs/performance.md, "Decisions": octree bricks).
 constexpr int kSizes[] = {64, 32, 16, BrickMap::kBrick};
 constexpr size_t kLevels = sizeof(kSizes) / sizeof(kSizes[0]);
 // Within one top region, a level stops being split further once kTrials of its regions were bounded

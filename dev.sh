@@ -6,6 +6,7 @@
 #                    slow ones (ctest -LE 'clients|fuzz|slow'): the inner loop, under 2 minutes warm
 #   SANITIZE=1 ./dev.sh test   the same with AddressSanitizer + UndefinedBehaviorSanitizer
 #   ./dev.sh build   build only
+#   ./dev.sh setup   install every Debian and npm package the build and the tests use, build nothing
 #   ./dev.sh install PREFIX   build, then put the tools in PREFIX/bin (cmake --install; e.g. ~/.local)
 #   ./dev.sh mutation [--only ID,...]   mutation testing (tests/mutation/run.sh; docs/testing.md)
 #   ./dev.sh fuzz [TARGET|all] [SECONDS]   coverage-guided fuzzing with clang-19's libFuzzer
@@ -43,15 +44,16 @@ install_missing() {
 }
 
 build() {
-  local dir=build type=Release extra=()
+  # The presets of CMakePresets.json: dev (build/) or asan (build-asan/), warnings as errors.
+  local preset=dev dir=build extra=()
   # ccache (when installed) keyed by paths relative to the folder above the checkout, so a second
   # checkout beside this one (a CI clone) reuses what this one compiled.
   export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(dirname "$PWD")}"
   if [ "${SANITIZE:-0}" = 1 ]; then
-    dir=build-asan type=RelWithDebInfo extra=(-DFS_SANITIZE=ON)
+    preset=asan dir=build-asan
   fi
   [ -n "${FVRML_SHARED:-}" ] && extra+=(-DFS_SHARED_DIR="$(cd "$FVRML_SHARED" && pwd)")
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" "${extra[@]}" >/dev/null
+  cmake --preset "$preset" "${extra[@]}" >/dev/null
   ninja -C "$dir" -k 0 >&2  # -k 0: every failing file in one build (a table change names every missing case)
   BUILD_DIR=$dir
 }
@@ -61,7 +63,7 @@ install_missing "${PACKAGES[@]}"
 case "$cmd" in
   test | fuzz | campaign | oracle) install_missing "${FUZZ_PACKAGES[@]}" || echo "note: could not install ${FUZZ_PACKAGES[*]}; fuzzing will be skipped" ;;
 esac
-build
+if [ "$cmd" = setup ]; then BUILD_DIR=build; else build; fi
 SHARED_DIR="${FVRML_SHARED:-../shared}"
 
 # build-fuzz: every library instrumented for libFuzzer + ASan + UBSan (clang-19), the targets only.
@@ -69,14 +71,14 @@ have_fuzz_toolchain() {
   command -v clang++-19 > /dev/null && [ -n "$(find /usr/lib/llvm-19 -name libclang_rt.fuzzer-x86_64.a 2>/dev/null)" ]
 }
 build_fuzz() {
-  CC=clang-19 CXX=clang++-19 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFS_FUZZ=ON > /dev/null
+  cmake --preset fuzz > /dev/null
   ninja -C build-fuzz >&2
 }
 # Fuzzing's part of ./dev.sh test: every target for 60 s, two at a time (3 minutes on 2 cores).
 # build-fuzz-ub: the same without ASan, for long campaigns (three to four times the executions).
 build_fuzz_ub() {
   CC=clang-19 CXX=clang++-19 cmake -S . -B build-fuzz-ub -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFS_FUZZ=ON \
-    -DFS_FUZZ_SANITIZERS=undefined > /dev/null
+    -DFS_WERROR=ON -DFS_FUZZ_SANITIZERS=undefined > /dev/null
   ninja -C build-fuzz-ub >&2
 }
 fuzz_briefly() {
@@ -103,6 +105,11 @@ install_npm_tools() {
 
 case "$cmd" in
   build) ;;
+  setup)  # everything the build and the tests use, nothing built
+    install_missing "${TEST_PACKAGES[@]}" "${FUZZ_PACKAGES[@]}"
+    install_npm_tools
+    echo "setup: the Debian packages and npm tools of the build and the tests are installed"
+    ;;
   test)
     export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
     export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
@@ -163,5 +170,5 @@ case "$cmd" in
     echo "installed fscript, fvrml-run, fvrml-meshdiff and fscript-lsp in $2/bin"
     case ":$PATH:" in *":$2/bin:"*) ;; *) echo "note: $2/bin is not on PATH; add it for editors to find fscript-lsp" ;; esac
     ;;
-  *) echo "usage: ./dev.sh demo|test|build|install PREFIX|mutation|fuzz [TARGET|all] [SECONDS]|campaign TARGET [SECONDS] [WORKERS]|oracle [SECONDS]" >&2; exit 2 ;;
+  *) echo "usage: ./dev.sh demo|test [--fast]|build|setup|install PREFIX|mutation|fuzz [TARGET|all] [SECONDS]|campaign TARGET [SECONDS] [WORKERS]|oracle [SECONDS]" >&2; exit 2 ;;
 esac

@@ -8,6 +8,7 @@ set -u
 F="$1"
 SRC="$2"
 R="$3"
+D="${4:-}"
 . "$SRC/tests/cli/lib.sh"
 
 cat > "$T/s.wrl" <<'WRL'
@@ -49,4 +50,24 @@ gzip -c "$T/s.wrl" > "$T/z.wrl.gz"
 check "fmt of a gzipped scene prints it" 0 "r = 1; g = x; b = 0;" -- "$F" fmt "$T/z.wrl.gz"
 check "fmt -i of a gzipped scene is refused" 2 "is gzipped: fmt prints it formatted, and -i would write it uncompressed" -- "$F" fmt -i "$T/z.wrl.gz"
 
+
+# fmt of scripts.
+. "$SRC/tests/cli/fixtures.sh"
+# fmt: canonical output, idempotent
+printf 'function f(x){var a=x*2;if(a>1){return a}else{return -a^2}}\n' > "$T/ugly.fs"
+"$F" fmt "$T/ugly.fs" > "$T/pretty.fs"
+"$F" fmt "$T/pretty.fs" > "$T/pretty2.fs"
+cmp -s "$T/pretty.fs" "$T/pretty2.fs" || { echo "FAIL fmt-idempotent"; fails=$((fails + 1)); }
+check fmt-layout 0 '^  if \(a > 1\) \{$' -- "$F" fmt "$T/ugly.fs"
+check fmt-error 1 'expected an expression' -- "$F" fmt "$T/bad.fs"
+# fmt --check says whether a file is formatted; -i rewrites it (and never a file that does not parse).
+cp "$T/ugly.fs" "$T/inplace.fs"
+check fmt-check-ugly 1 'inplace.fs: not formatted \(fscript fmt -i' -- "$F" fmt --check "$T/inplace.fs"
+check fmt-in-place 0 '' -- "$F" fmt -i "$T/inplace.fs"
+cmp -s "$T/inplace.fs" "$T/pretty.fs" || fail "fmt-in-place: the file is not what fmt prints"
+check fmt-check-pretty 0 '' -- "$F" fmt --check "$T/inplace.fs"
+cp "$T/bad.fs" "$T/bad-copy.fs"
+check fmt-in-place-error 1 'expected an expression' -- "$F" fmt -i "$T/bad-copy.fs"
+cmp -s "$T/bad.fs" "$T/bad-copy.fs" || fail "fmt-in-place-error: a file with errors was rewritten"
+check fmt-in-place-stdin 2 'standard input has none' -- "$F" fmt -i - < "$T/ugly.fs"
 finish fmt

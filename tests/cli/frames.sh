@@ -8,6 +8,7 @@ set -u
 F="$1"
 SRC="$2"
 R="$3"
+D="${4:-}"
 . "$SRC/tests/cli/lib.sh"
 
 mkdir -p "$T/f"
@@ -49,4 +50,29 @@ check "--frames 6 -o sheet.png says one contact sheet" 0 "^wrote $T/f/sheet.png:
 [ -e "$T/f/sheet-0.png" ] && fail "--frames 6 -o sheet.png wrote numbered pictures"
 check "--frames 12 -o m.stl: two-digit numbers" 0 "^wrote $T/f/t-00.stl \.\.\. $T/f/t-11.stl: 12 frame files" -- "$R" "$T/f/grow.wrl" --frames 12 -o "$T/f/t.stl"
 
+
+# Frames: the limit, glTF STEP timing, contact sheets.
+. "$SRC/tests/cli/fixtures.sh"
+# ---- Frames: the limit, glTF STEP timing, contact sheets ----
+printf '#VRML V2.0 utf8\nFShape { frames 1500 geometry FGeometry { definition "0.5^2-x^2-y^2-z^2+0.01*t" bboxSize 2 2 2 resolution [4] } }\n' > "$T/many.wrl"
+check "a file's frames above 1000 are an error at the field" 1 'many.wrl:2:10: error: frames 1500 is over the limit of 1000 for one node' \
+  -- "$R" "$T/many.wrl" --stats -o "$T/many.glb"
+[ -e "$T/many.glb" ] && fail "a refused animation wrote many.glb"
+sed -i 's/frames 1500/frames 1000/' "$T/many.wrl"
+jcheck "a file's frames of 1000 are made" err "j['animations'][0]['frames'] == 1000" -- "$R" "$T/many.wrl" --stats -o "$T/many.glb"
+check "--frames above 1000 is refused" 2 'frames: Value 1001 not in range 1 to 1000' -- "$R" "$T/many.wrl" --frames 1001 -o "$T/x.glb"
+"$R" "$P/figure1-morphing.wrl" --frames 4 -o "$T/anim.glb" --resolution-scale 0.3 2> /dev/null
+# Figure 1's cycleInterval is 5: frame k shows during [1.25k, 1.25(k+1)), a last key at 5 repeats the first.
+jcheck "glTF: 4 frames switched by STEP scale keys over the 5 s cycle" out "
+len(j['channels']) == 4 and all(c['interpolation'] == 'STEP' and c['path'] == 'scale' for c in j['channels']) and
+all(near(a, b, 1e-6) for c in j['channels'] for a, b in zip(c['times'], [0, 1.25, 2.5, 3.75, 5])) and
+all(len(c['times']) == 5 for c in j['channels']) and
+all(c['values'][i] == ([1.0, 1.0, 1.0] if i % 4 == k else [0.0, 0.0, 0.0]) for k, c in enumerate(j['channels']) for i in range(5))
+" -- python3 "$SRC/tests/clients/gltf_probe.py" "$T/anim.glb"
+"$R" "$P/figure1-morphing.wrl" --frames 4 -o "$T/sheet.png" --width 128 --height 96 2> /dev/null
+# A 2 x 2 sheet of 64 x 48 tiles, each holding a drawn frame, the frames different.
+jcheck "contact sheet: 2 x 2 tiles of 64 x 48, each drawn, the morph changing" out "
+j['width'] == 128 and j['height'] == 96 and len(j['tiles']) == 4 and
+all(t['drawn'] > 200 for t in j['tiles']) and len(set(t['digest'] for t in j['tiles'])) == 4
+" -- python3 "$SRC/tests/clients/png_probe.py" "$T/sheet.png" --tiles 2 2
 finish frames

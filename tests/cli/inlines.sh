@@ -7,6 +7,7 @@ set -u
 F="$1"
 SRC="$2"
 R="$3"
+D="${4:-}"
 . "$SRC/tests/cli/lib.sh"
 
 # ---- Inline of local files: read (relative to the file that names them), meshed and drawn ----

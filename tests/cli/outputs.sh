@@ -8,6 +8,7 @@ set -u
 F="$1"
 SRC="$2"
 R="$3"
+D="${4:-}"
 . "$SRC/tests/cli/lib.sh"
 
 BALL='FShape { geometry FGeometry { definition "0.3^2 - x^2 - y^2 - z^2" bboxSize 1 1 1 resolution [16] } }'

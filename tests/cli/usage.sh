@@ -6,6 +6,7 @@ set -u
 F="$1"
 SRC="$2"
 R="$3"
+D="${4:-}"
 . "$SRC/tests/cli/lib.sh"
 
 printf 'function main(x) { return x; }\n' > "$T/id.fs"

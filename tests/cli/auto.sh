@@ -2,12 +2,7 @@
 # `--backend auto`: the switch visible in --stats, a forced switch in the middle of a job changing no byte.
 # usage: auto.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # auto: the switch is visible in --stats, and a forced one in the middle of a big job changes no byte.
 if [ -n "$R" ]; then

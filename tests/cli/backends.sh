@@ -3,12 +3,7 @@
 # the llvm disk cache (the second run loads what the first stored), unknown backends and commands.
 # usage: backends.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # A straight-line kernel runs eight lanes where the CPU has AVX2; four at FSCRIPT_ISA=base.
 if grep -q ' avx2 ' /proc/cpuinfo; then

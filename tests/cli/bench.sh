@@ -2,12 +2,7 @@
 # `emit-ir --gradient`, the VM's listing, and `fscript bench`: figures that agree, the row split.
 # usage: bench.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # --gradient: f and its three partial derivatives, what the meshers evaluate for normals.
 check emit-ir-gradient 0 'fn @kernel.gradient\(4\) -> 4 kernel' -- "$F" emit-ir --gradient "$T/sphere.fs"

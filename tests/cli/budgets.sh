@@ -3,12 +3,7 @@
 # runtime error in a .wrl at the script's own line; a resolution over the limit refused.
 # usage: budgets.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # ---- Budgets and their ceilings, the same on every backend ----
 printf 'function down(n) { if (n <= 0) return 0; return 1 + down(n - 1); }\n' > "$T/down.fs"

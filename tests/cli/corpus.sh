@@ -2,12 +2,7 @@
 # The shared corpus through `fscript check`, and prospero's known answer on every backend.
 # usage: corpus.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # The shared corpus and the paper's data (a skip when absent, a failure under CI).
 [ -d "$SHARED/corpus" ] || skip_missing corpus "the shared corpus $SHARED/corpus is absent"

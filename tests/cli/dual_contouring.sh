@@ -3,12 +3,7 @@
 # normals from the gradient, every output format with colours, displacement, time and frames.
 # usage: dual_contouring.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # ---- fvrml-run FILE.fs: an implicit script as one FShape; errors at the script's own lines ----
 printf '// a ball\nfunction FRep(x, y, z, t) {\n  return 0.8 - sqrt(x*x + y*y + z*z);\n}\n' > "$T/ball.fs"

@@ -2,12 +2,7 @@
 # `fscript eval` of rows, `fscript check` of scenes (gzip, positions), `emit-ir` and its passes.
 # usage: eval_emit.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 printf '0,0,0\n# a comment\n\n1,0,0\n0.5,0.5,0\nnan,0,0\n' > "$T/pts.csv"
 check eval-rows 0 '^0\.5$' -- "$F" eval "$T/sphere.fs" --entry FRep --points "$T/pts.csv"

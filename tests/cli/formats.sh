@@ -2,12 +2,7 @@
 # `--format`: the format named, whatever the file is called; binary STL's layout.
 # usage: formats.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # ---- --format: the format named, whatever the file is called ----
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "0.5^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [8] } }\n' > "$T/ball.wrl"

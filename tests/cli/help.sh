@@ -3,12 +3,7 @@
 # subcommand.
 # usage: help.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # Every tool says its version; fscript repl starts the REPL; --help mentions it and fscript < FILE.
 LSP="$(dirname "$F")/../../lsp/fscript-lsp"

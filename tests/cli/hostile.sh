@@ -2,12 +2,7 @@
 # Hostile input: deep nesting, a 1 MB expression, an unterminated comment, bytes that are not text.
 # usage: hostile.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # Hostile input: deep nesting, a 1 MB expression, an unterminated comment.
 python3 -c "print('function f(x) { return ' + '('*100000 + 'x' + ')'*100000 + '; }')" > "$T/deep.fs"

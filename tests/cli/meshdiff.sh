@@ -2,12 +2,7 @@
 # `fvrml-meshdiff`: known answers, formats, topology of one mesh, bad input; `fvrml-run --check`.
 # usage: meshdiff.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # fvrml-meshdiff: known answers, formats, bad input.
 if [ -n "$D" ] && [ -n "$R" ]; then

@@ -2,12 +2,7 @@
 # The progress line on a terminal (one line redrawn, erased at the end) and none on a pipe.
 # usage: progress.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # ---- progress on a terminal: one line redrawn in place, erased at the end; nothing on a pipe ----
 # (FVRML_PROGRESS_AFTER=0 shows it from the first redraw, a quarter second in, instead of after 1 s.)

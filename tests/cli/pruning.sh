@@ -2,12 +2,7 @@
 # Meshing pruned by the octree: the same file bytes as --no-prune, on every backend and thread count.
 # usage: pruning.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # ---- fvrml-run prunes implicit meshing by an octree: the same file bytes as --no-prune ----
 # same_mesh NAME SCENE ARGS...: pruned (1 and 2 threads) and dense outputs byte for byte, every backend.

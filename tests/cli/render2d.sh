@@ -3,12 +3,7 @@
 # pruning by interval arithmetic: the same PNG bytes as --no-prune on every backend and thread count.
 # usage: render2d.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # render2d: a disc of radius 1 sampled on 101x101 over [-1.5, 1.5]^2; the count is computed
 # independently here (float arithmetic as the tool samples it).

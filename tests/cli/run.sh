@@ -2,12 +2,7 @@
 # `fscript run`: results, entry points, arguments, errors at their line:col, budgets.
 # usage: run.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 check run-frep 0 '^0$' -- "$F" run "$T/sphere.fs" 1 0 0
 check run-frep-nan-arg 0 '^nan$' -- "$F" run "$T/sphere.fs" nan 0 0

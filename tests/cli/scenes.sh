@@ -3,12 +3,7 @@
 # default outputs and summaries, every format, bad scenes at their line:col.
 # usage: scenes.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # fvrml-run: the scene layer (--stats) on the paper's examples, the corpus and bad scenes.
 if [ -n "$R" ]; then

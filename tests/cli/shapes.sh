@@ -3,12 +3,7 @@
 # closed surface, bigger than the union), mirroring Transforms (faces kept outward).
 # usage: shapes.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # ---- Colours through patternKey / patternColor: piecewise linear in the value, clamped ----
 printf '#VRML V2.0 utf8\nFShape { appearance FAppearance { material FMaterial { diffuseColor "x" patternKey [-0.5 0 0.5] patternColor [1 0 0, 0 1 0, 0 0 1] } }\n geometry FGeometry { definition "0.8^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [12] } }\n' > "$T/pattern.wrl"

@@ -2,12 +2,7 @@
 # Every `--stats` field, with its meaning checked.
 # usage: stats.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # ---- Every --stats field ----
 jcheck "--stats fields of a single run" err "

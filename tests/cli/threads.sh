@@ -2,12 +2,7 @@
 # The same bytes for any --threads, every format, several scenes, dual contouring and frames.
 # usage: threads.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # ---- The same bytes for any --threads, every format, several scenes ----
 for w in figure1-morphing figure2-texture figure6-blends listing1-operation; do

@@ -3,12 +3,7 @@
 # given times, cycles restarted, sensors that ended at load.
 # usage: time_model.sh FSCRIPT SOURCE_DIR FVRML_RUN FVRML_MESHDIFF
 set -u
-F="$1"
-SRC="$2"
-R="${3:-}"
-D="${4:-}"
-. "$SRC/tests/cli/lib.sh"
-. "$SRC/tests/cli/fixtures.sh"
+. "$(dirname "$0")/feature.sh"
 
 # ---- The time model through ROUTEs (docs/scenes.md, VRML97 TimeSensor rules) ----
 # fractions SCENE NODE SPAN0 SPAN1 TIME:FRACTION...: the shape's fraction at each --time, and the t

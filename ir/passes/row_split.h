@@ -23,7 +23,7 @@ struct RowSplit {
 // `out` untouched, when the kernel has another shape or when the split would not pay: the work
 // hoisted (a runtime call counted as kCallWeight operations) must exceed kRowValueCost operations
 // per row value the body takes (a load or broadcast per group, and a register; measured,
-// docs/performance.md "Grid rows": csg8's 25 operations for 12 values win, prospero's 734 for 571
+// docs/performance.md, "Decisions": csg8's 25 operations for 12 values win, prospero's 734 for 571
 // lose).
 bool split_rows(const Module& m, RowSplit& out);
 constexpr size_t kCallWeight = 8;

@@ -3,11 +3,14 @@
 // cases that matter to it. FSCRIPT_BLESS=1 rewrites the expectations.
 //   ; comment lines start with a semicolon
 //   ; passes: fold,dce        the passes to run, as `fscript emit-ir --passes` names them, or
-//                             row-split: the row split's prologue and body (ir/passes/row_split.h)
+//                             row-split: the row split's prologue and body (ir/passes/row_split.h),
+//                             or tape-simplify [lo,hi] ...: the kernel's interval tape simplified
+//                             for the region of those input intervals (ir/interval_eval.h)
 //   <the module as the printer writes it: it must read back to exactly this text>
 //   ; expect:
 //   <the module after the passes>
 #include <catch2/catch.hpp>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -15,7 +18,9 @@
 #include <vector>
 
 #include "ir/passes/passes.h"
+#include "ir/interval_eval.h"
 #include "ir/passes/row_split.h"
+#include "ir/tape.h"
 #include "ir/text.h"
 #include "ir/verifier.h"
 
@@ -63,6 +68,28 @@ std::string first_difference(const std::string& got, const std::string& want) {
   }
 }
 
+// The kernel's tape simplified for the region given as "[lo,hi] [lo,hi] ..." (one per input), as
+// IR, after a line with the number of choices decided.
+std::string simplified_tape(const ir::Module& m, const std::string& region) {
+  std::vector<math::Interval> inputs;
+  std::istringstream in(region);
+  for (std::string word; in >> word;) {
+    float lo = 0, hi = 0;
+    REQUIRE(std::sscanf(word.c_str(), "[%f,%f]", &lo, &hi) == 2);
+    inputs.push_back(math::Interval{lo, hi, 0});
+  }
+  ir::IntervalTape tape(m.kernel_function());
+  REQUIRE(inputs.size() == tape.num_params());
+  ir::IntervalEval ev;
+  tape.eval(inputs, ev);
+  size_t collapsed = 0;
+  ir::IntervalTape simple = tape.simplified(ev, &collapsed);
+  auto module = ir::tape_module(simple);
+  REQUIRE(ir::verify(*module) == "");
+  return "; " + std::to_string(collapsed) + " choices decided, " + std::to_string(tape.length()) + " -> " +
+         std::to_string(simple.length()) + " steps\n" + ir::print(*module);
+}
+
 void run_pass_file(const fs::path& p, bool bless) {
   PassFile f = parse(p);
   INFO(p.string());
@@ -79,7 +106,9 @@ void run_pass_file(const fs::path& p, bool bless) {
   }
   REQUIRE(ir::verify(*m) == "");
   std::string got;
-  if (f.passes == "row-split") {
+  if (f.passes.rfind("tape-simplify", 0) == 0) {
+    got = simplified_tape(*m, f.passes.substr(13));
+  } else if (f.passes == "row-split") {
     ir::RowSplit rs;
     if (ir::split_rows(*m, rs)) {
       REQUIRE(ir::verify(*rs.prologue) == "");

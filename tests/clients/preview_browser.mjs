@@ -95,8 +95,11 @@ try {
   await check('a missing Inline: its warning over the scene, which is still drawn', async () => {
     const before = await shown();
     write(original + '\nInline { url "nothere.wrl" }\n');
+    // Wait for this save's run (its warning), not for the end of the run before it, whose last
+    // frames can arrive after the save.
     await until((v) => Number(document.body.dataset.shown) > v && document.body.dataset.state === 'ok' &&
-                document.body.dataset.shownFrames === 'all', 10000, before);
+                document.body.dataset.shownFrames === 'all' &&
+                document.getElementById('overlay').textContent.includes('nothere.wrl'), 10000, before);
     const text = await page.$eval('#overlay', (el) => (getComputedStyle(el).display === 'none' ? '' : el.textContent));
     assert.match(text, /warning: Inline 'nothere.wrl': cannot read .*nothere.wrl/, text);
     const p = await picture();

@@ -50,8 +50,8 @@ class Kernel {
   // its results go to outputs[o][r * count + i]. The same results as eval_batch over those points;
   // kernels with a row split (backends/row_split_kernel.h) compute what does not depend on the first
   // input once per row.
-  virtual bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows,
-                         float* const* outputs, RuntimeError& err) const;
+  virtual bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
+                         RuntimeError& err) const;
   // A caller that knows its job says `points` evaluations are ahead: a tiered kernel compiles
   // natively at once when that pays; others ignore it.
   virtual void expect_points(uint64_t points) const { (void)points; }

@@ -46,7 +46,8 @@ bool prepare_program(const ir::Module& m, JitProgram& out, std::string& error) {
   for (size_t i = 0; i < out.functions.size(); ++i)
     for (const auto& blk : p.functions[static_cast<size_t>(out.functions[i])]->blocks)
       for (const ir::Inst* in : blk->insts) {
-        if (in->op == ir::Op::GLoad || in->op == ir::Op::GStore) out.num_globals = std::max(out.num_globals, in->aux + 1);
+        if (in->op == ir::Op::GLoad || in->op == ir::Op::GStore)
+          out.num_globals = std::max(out.num_globals, in->aux + 1);
         if (in->op == ir::Op::Call && !seen[static_cast<size_t>(in->aux)]) {
           seen[static_cast<size_t>(in->aux)] = true;
           out.functions.push_back(in->aux);
@@ -71,9 +72,7 @@ bool jit_status(uint64_t code, const LaneArrays& arrays, const Budgets& budgets,
     case 2: err.message = arrays.message; break;
     case 3: err.message = errors::call_depth(budgets.max_call_depth); break;
     case 5: err.message = errors::cancelled(); break;
-    default:
-      err.message = errors::recursion_stack(budgets.max_call_depth);
-      break;
+    default: err.message = errors::recursion_stack(budgets.max_call_depth); break;
   }
   return false;
 }
@@ -117,7 +116,8 @@ extern "C" uint32_t fs_ticks_carry(int32_t* counters, uint64_t budget) {
       over = 1;
       continue;
     }
-    int64_t start = kThreshold - std::min<int64_t>(kThreshold, static_cast<int64_t>(budget - static_cast<uint64_t>(ticks)));
+    int64_t start =
+        kThreshold - std::min<int64_t>(kThreshold, static_cast<int64_t>(budget - static_cast<uint64_t>(ticks)));
     counters[i] = static_cast<int32_t>(start);
     totals[i] = ticks - start;
   }

@@ -131,10 +131,13 @@ bool run_generated(Fn f, uint32_t width, const JitShape& k, const float* const* 
                    RuntimeError& err) {
   LaneArrays arrays;
   if (!k.array_names->empty()) arrays.init(k.array_lanes, k.budgets.max_array_elements, *k.array_names);
-  return run_padded(width, k.num_inputs, k.num_outputs, inputs, outputs, n, [&](auto in, auto out, size_t count) {
-    uint64_t code = call_generated([&] { return f(in, out, 0, count, &arrays, stack_limit()); });
-    return jit_status(code, arrays, k.budgets, err);
-  }, k.row_from);
+  return run_padded(
+      width, k.num_inputs, k.num_outputs, inputs, outputs, n,
+      [&](auto in, auto out, size_t count) {
+        uint64_t code = call_generated([&] { return f(in, out, 0, count, &arrays, stack_limit()); });
+        return jit_status(code, arrays, k.budgets, err);
+      },
+      k.row_from);
 }
 
 // A JIT kernel's eval_rows: with row parameters (from `row_from` on, not 0) one eval_batch per

@@ -56,9 +56,9 @@ const Loaded& load() {
     }
     if (!handle) {
       l.error = "the llvm backend's module could not be loaded: " +
-                (first_error.empty() ? std::string("libfs_llvm.so is neither beside this binary (../" FS_INSTALL_LIBDIR
-                                                   "/fvrml) nor in its build tree")
-                                     : first_error);
+          (first_error.empty() ? std::string("libfs_llvm.so is neither beside this binary (../" FS_INSTALL_LIBDIR
+                                             "/fvrml) nor in its build tree")
+                               : first_error);
       return l;
     }
     auto entry = reinterpret_cast<const LlvmModule* (*)()>(::dlsym(handle, "fs_llvm_module_v1"));

@@ -40,7 +40,10 @@ class DiagnosticSink {
   bool has_errors() const { return errors_ > 0; }
   size_t error_count() const { return errors_; }
   const std::vector<Diagnostic>& all() const { return diags_; }
-  void clear() { diags_.clear(); errors_ = 0; }
+  void clear() {
+    diags_.clear();
+    errors_ = 0;
+  }
 
  private:
   std::vector<Diagnostic> diags_;

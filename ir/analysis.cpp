@@ -93,7 +93,8 @@ std::vector<KnownOutOfRange> known_out_of_range(const Module& m) {
       for (const Inst* i : b->insts) {
         if (i->op != Op::ANew) continue;
         long n = i->args[0]->op == Op::Const && std::isfinite(i->args[0]->imm) && i->args[0]->imm >= 0
-                     ? std::lround(i->args[0]->imm) : -1;
+            ? std::lround(i->args[0]->imm)
+            : -1;
         auto [it, fresh] = length.emplace(key(*i, static_cast<int>(f)), n);
         if (!fresh && it->second != n) it->second = -1;
       }
@@ -107,12 +108,14 @@ std::vector<KnownOutOfRange> known_out_of_range(const Module& m) {
         float index = i->args[0]->imm;
         if (math::array_index(index, it->second) < 0) {  // the backends' own rule (rounding, NaN)
           const auto& names = i->array_global ? m.arrays : m.functions[f]->arrays;
-          std::string name = i->aux >= 0 && static_cast<size_t>(i->aux) < names.size() ? names[static_cast<size_t>(i->aux)] : "?";
+          std::string name =
+              i->aux >= 0 && static_cast<size_t>(i->aux) < names.size() ? names[static_cast<size_t>(i->aux)] : "?";
           // The name as written: inlining and renaming made it "caller.name.N".
           size_t end = name.size();
           while (end > 0) {
             size_t dot = name.rfind('.', end - 1);
-            std::string seg = name.substr(dot == std::string::npos ? 0 : dot + 1, end - (dot == std::string::npos ? 0 : dot + 1));
+            std::string seg =
+                name.substr(dot == std::string::npos ? 0 : dot + 1, end - (dot == std::string::npos ? 0 : dot + 1));
             if (!seg.empty() && seg.find_first_not_of("0123456789") != std::string::npos) {
               name = seg;
               break;

@@ -18,10 +18,20 @@ bool eval_pure(Op op, const float* a, float& out) {
 #define FS_MATH(N, FN, A, HOW) \
   case Op::N: out = apply(&m::FN, a); return true;
 #include "ir/math_ops.def"
-    case Op::Const: case Op::Param: case Op::Phi: case Op::GLoad: case Op::GStore: case Op::ANew:
-    case Op::ALoad: case Op::AStore: case Op::ALen: case Op::Call: case Op::Tick: case Op::Jump:
-    case Op::Branch: case Op::Ret:
-      return false;
+    case Op::Const:
+    case Op::Param:
+    case Op::Phi:
+    case Op::GLoad:
+    case Op::GStore:
+    case Op::ANew:
+    case Op::ALoad:
+    case Op::AStore:
+    case Op::ALen:
+    case Op::Call:
+    case Op::Tick:
+    case Op::Jump:
+    case Op::Branch:
+    case Op::Ret: return false;
   }
   return false;
 }

@@ -56,9 +56,19 @@ namespace {
 #undef FS_IV_3
     case Op::Const: return Interval::point(imm);
     // Parameters come from the region; memory, calls and control flow are not bounded here.
-    case Op::Param: case Op::Phi: case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad:
-    case Op::AStore: case Op::ALen: case Op::Call: case Op::Tick: case Op::Jump: case Op::Branch: case Op::Ret:
-      return Interval::everything();
+    case Op::Param:
+    case Op::Phi:
+    case Op::GLoad:
+    case Op::GStore:
+    case Op::ANew:
+    case Op::ALoad:
+    case Op::AStore:
+    case Op::ALen:
+    case Op::Call:
+    case Op::Tick:
+    case Op::Jump:
+    case Op::Branch:
+    case Op::Ret: return Interval::everything();
   }
   return Interval::everything();
 }
@@ -82,8 +92,14 @@ IntervalTape::IntervalTape(const Function& fn) : values_(fn.next_value), params_
       for (const Inst* a : in->args) outputs_.push_back(a->id);
       break;
     }
-    Step s{in->op, in->op == Op::Mul && in->args[0] == in->args[1], static_cast<uint8_t>(std::min<size_t>(in->args.size(), 3)),
-           in->id, 0, 0, 0, in->imm};
+    Step s{in->op,
+           in->op == Op::Mul && in->args[0] == in->args[1],
+           static_cast<uint8_t>(std::min<size_t>(in->args.size(), 3)),
+           in->id,
+           0,
+           0,
+           0,
+           in->imm};
     uint32_t* slot[] = {&s.a, &s.b, &s.c};
     for (size_t k = 0; k < s.arity; ++k) *slot[k] = in->args[k]->id;
     if (in->op == Op::Param) s.a = static_cast<uint32_t>(in->aux);
@@ -202,8 +218,9 @@ IntervalTape IntervalTape::simplified(IntervalBatchEval& ev, size_t lane) const 
   if (!ev.masks) lane_masks(ev);
   uint16_t bit = static_cast<uint16_t>(1u << lane);
   const uint16_t *need = ev.needed.data(), *stand = ev.stands.data();
-  return emit(ev.choices.data() + lane, kIntervalLanes,
-              [need, bit](uint32_t v) { return (need[v] & bit) != 0; }, [stand, bit](uint32_t v) { return (stand[v] & bit) != 0; });
+  return emit(
+      ev.choices.data() + lane, kIntervalLanes, [need, bit](uint32_t v) { return (need[v] & bit) != 0; },
+      [stand, bit](uint32_t v) { return (stand[v] & bit) != 0; });
 }
 
 void IntervalTape::eval(const std::vector<Interval>& inputs, IntervalEval& out) const {
@@ -216,7 +233,8 @@ void IntervalTape::eval(const std::vector<Interval>& inputs, IntervalEval& out) 
       continue;
     }
     v[s.dst] = apply(s.op, s.square, s.imm, v[s.a], v[s.b], v[s.c]);
-    if (s.op == Op::Min || s.op == Op::Max || s.op == Op::Select) out.choices[s.dst] = choice_of(s.op, v[s.a], v[s.b], v[s.c]);
+    if (s.op == Op::Min || s.op == Op::Max || s.op == Op::Select)
+      out.choices[s.dst] = choice_of(s.op, v[s.a], v[s.b], v[s.c]);
   }
   out.outputs.clear();
   for (uint32_t o : outputs_) out.outputs.push_back(v[o]);

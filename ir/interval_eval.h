@@ -46,7 +46,7 @@ struct IntervalBatchEval {
 // scalar rule lane by lane, an order of magnitude slower.
 constexpr bool simd_interval_op(Op op) {
   return op == Op::Param || op == Op::Const || op == Op::Add || op == Op::Sub || op == Op::Mul || op == Op::Neg ||
-         op == Op::Min || op == Op::Max || op == Op::Sqrt;
+      op == Op::Min || op == Op::Max || op == Op::Sqrt;
 }
 
 // Whether `fn` is straight-line pure code (one block of value ops ending in ret): what interval

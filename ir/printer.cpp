@@ -33,7 +33,10 @@ static std::string operands(const Module& m, const Function& fn, const Inst& i) 
     case Op::Param: return " " + std::to_string(i.aux);
     case Op::GLoad: return " @" + m.globals.at(i.aux);
     case Op::GStore: return " @" + m.globals.at(i.aux) + ", " + val(i.args[0]);
-    case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
+    case Op::ANew:
+    case Op::ALoad:
+    case Op::AStore:
+    case Op::ALen:
       s = " " + array_ref(m, fn, i);
       for (Inst* a : i.args) s += ", " + val(a);
       return s;
@@ -62,9 +65,9 @@ static std::string operands(const Module& m, const Function& fn, const Inst& i) 
 }
 
 std::string print(const Module& m, const Function& fn) {
-  std::string out = "fn @" + fn.name + "(" + std::to_string(fn.num_params) + ") -> " +
-                    std::to_string(fn.num_results) + (fn.recursive ? " recursive" : "") + (fn.kernel ? " kernel" : "") +
-                    (fn.row_params_from ? " rows " + std::to_string(fn.row_params_from) : "");
+  std::string out = "fn @" + fn.name + "(" + std::to_string(fn.num_params) + ") -> " + std::to_string(fn.num_results) +
+      (fn.recursive ? " recursive" : "") + (fn.kernel ? " kernel" : "") +
+      (fn.row_params_from ? " rows " + std::to_string(fn.row_params_from) : "");
   if (!fn.row_param_ranges.empty()) {
     out += " ranges";
     for (const ParamRange& r : fn.row_param_ranges)

@@ -46,9 +46,13 @@ int nan_tests(const Function& fn, const std::vector<Range>& r) {
   for (const auto& blk : fn.blocks)
     for (const Inst* in : blk->insts) {
       switch (in->op) {
-        case Op::Min: case Op::Max: n += may_be_nan(in->args[1], r); break;
+        case Op::Min:
+        case Op::Max: n += may_be_nan(in->args[1], r); break;
         case Op::Clamp: n += may_be_nan(in->args[1], r) + may_be_nan(in->args[2], r); break;
-        case Op::Not: case Op::Truth: case Op::Select: case Op::Branch: n += may_be_nan(in->args[0], r); break;
+        case Op::Not:
+        case Op::Truth:
+        case Op::Select:
+        case Op::Branch: n += may_be_nan(in->args[0], r); break;
         default: break;
       }
     }

@@ -26,8 +26,9 @@ struct Cursor {
   std::string word() {
     ws();
     size_t b = i;
-    while (i < s.size() && (std::isalnum(static_cast<unsigned char>(s[i])) || s[i] == '_' || s[i] == '.' || s[i] == '$' ||
-                            s[i] == '-' || s[i] == '+'))
+    while (i < s.size() &&
+           (std::isalnum(static_cast<unsigned char>(s[i])) || s[i] == '_' || s[i] == '.' || s[i] == '$' ||
+            s[i] == '-' || s[i] == '+'))
       ++i;
     return s.substr(b, i - b);
   }
@@ -220,7 +221,8 @@ class Reader {
     switch (i->op) {
       case Op::Const: i->imm = std::strtof(c.word().c_str(), nullptr); return;
       case Op::Param: i->aux = static_cast<int>(count(c.word(), "parameter index")); return;
-      case Op::GLoad: case Op::GStore: {
+      case Op::GLoad:
+      case Op::GStore: {
         if (!c.eat("@")) return fail("expected '@global'");
         std::string g = c.word();
         i->aux = -1;
@@ -230,7 +232,10 @@ class Reader {
         if (i->op == Op::GStore && c.eat(",")) p.args.push_back(number(c, 'v'));
         return;
       }
-      case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen: {
+      case Op::ANew:
+      case Op::ALoad:
+      case Op::AStore:
+      case Op::ALen: {
         i->array_global = c.eat("@");
         if (!i->array_global && !c.eat("%")) return fail("expected an array");
         std::string a = c.word();
@@ -312,8 +317,6 @@ class Reader {
 
 }  // namespace
 
-std::unique_ptr<Module> read(const std::string& text, std::string& error) {
-  return Reader(text).run(error);
-}
+std::unique_ptr<Module> read(const std::string& text, std::string& error) { return Reader(text).run(error); }
 
 }  // namespace fscript::ir

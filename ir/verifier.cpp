@@ -41,7 +41,8 @@ class Verifier {
 
   std::string block(const Block& b) {
     std::string at = " in b" + std::to_string(b.id);
-    if (b.insts.empty() || !has_flag(b.insts.back()->op, Terminator)) return fail("block does not end in a terminator" + at);
+    if (b.insts.empty() || !has_flag(b.insts.back()->op, Terminator))
+      return fail("block does not end in a terminator" + at);
     std::vector<Block*>& preds_seen = preds_seen_[&b];
     std::vector<Block*> listed = b.preds;
     std::sort(preds_seen.begin(), preds_seen.end());
@@ -73,10 +74,14 @@ class Verifier {
     for (Inst* a : i.args)
       if (!where_.count(a) || !a->defines_value()) return "operand of " + name + " is not a value of this function";
     switch (i.op) {
-      case Op::GLoad: case Op::GStore:
+      case Op::GLoad:
+      case Op::GStore:
         if (i.aux < 0 || i.aux >= static_cast<int>(m_.globals.size())) return "bad global slot";
         break;
-      case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen: {
+      case Op::ANew:
+      case Op::ALoad:
+      case Op::AStore:
+      case Op::ALen: {
         size_t n = i.array_global ? m_.arrays.size() : f_.arrays.size();
         if (i.aux < 0 || i.aux >= static_cast<int>(n)) return "bad array slot";
         break;
@@ -134,10 +139,11 @@ std::string verify(const Module& m) {
   for (auto& f : m.functions) {
     if (f->row_params_from && (!f->kernel || f->row_params_from >= f->num_params))
       return "@" + f->name + ": row parameters on a function that is not a kernel, or past its parameters";
-    if (!f->row_param_ranges.empty() && (!f->row_params_from ||
-        f->row_param_ranges.size() != kNumParamBounds * (f->num_params - std::min(f->row_params_from, f->num_params))))
+    if (!f->row_param_ranges.empty() &&
+        (!f->row_params_from ||
+         f->row_param_ranges.size() != kNumParamBounds * (f->num_params - std::min(f->row_params_from, f->num_params))))
       return "@" + f->name + ": row parameter ranges for " + std::to_string(f->row_param_ranges.size()) +
-             " values, not one per row parameter and bound";
+          " values, not one per row parameter and bound";
     if (std::string e = Verifier(m, *f).run(); !e.empty()) return e;
   }
   return "";

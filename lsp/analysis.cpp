@@ -93,7 +93,8 @@ SymbolRef symbol_at(const Analysis& a, const std::string& text, size_t offset) {
   // A user function's declaration or one of its calls; Math.NAME always names the built-in.
   int f = sema.function_index(r.word, false);
   bool user = f >= 0 && sema.functions[static_cast<size_t>(f)].decl;
-  if (user && covers(sema.functions[static_cast<size_t>(f)].decl->name_span)) return found(SymbolRef::Kind::Function, f);
+  if (user && covers(sema.functions[static_cast<size_t>(f)].decl->name_span))
+    return found(SymbolRef::Kind::Function, f);
   for (const auto& ex : prog.expr_arena) {
     if (ex->kind != frontend::ExprKind::Call || ex->name != r.word || !covers(ex->name_span)) continue;
     if (user && !ex->builtin_only) return found(SymbolRef::Kind::Function, f);
@@ -138,7 +139,8 @@ std::vector<frontend::Span> occurrences(const Analysis& a, const std::string& te
   if (out.empty() || s.kind == frontend::SymKind::Global) {
     bool have = false;
     for (const auto& o : out) have |= o.begin == s.decl.begin;
-    if (!have && s.decl.end > s.decl.begin) out.push_back({s.decl.begin, s.decl.begin + static_cast<uint32_t>(r.word.size())});
+    if (!have && s.decl.end > s.decl.begin)
+      out.push_back({s.decl.begin, s.decl.begin + static_cast<uint32_t>(r.word.size())});
   }
   return out;
 }

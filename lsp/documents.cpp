@@ -85,7 +85,9 @@ void Documents::edit(Document& d, Position from, Position to, const std::string&
 }
 
 bool is_scene_uri(const std::string& uri) {
-  auto ends = [&](const std::string& e) { return uri.size() >= e.size() && uri.compare(uri.size() - e.size(), e.size(), e) == 0; };
+  auto ends = [&](const std::string& e) {
+    return uri.size() >= e.size() && uri.compare(uri.size() - e.size(), e.size(), e) == 0;
+  };
   return ends(".wrl") || ends(".WRL") || ends(".wrz");
 }
 

@@ -27,7 +27,8 @@ std::string fvrml_run_path() {
   std::error_code ec;
   fs::path self = fs::read_symlink("/proc/self/exe", ec);
   if (!ec)
-    for (fs::path p : {self.parent_path() / "fvrml-run", self.parent_path().parent_path() / "tools/fvrml-run/fvrml-run"})
+    for (fs::path p :
+         {self.parent_path() / "fvrml-run", self.parent_path().parent_path() / "tools/fvrml-run/fvrml-run"})
       if (fs::exists(p, ec)) return p.string();
   return "fvrml-run";
 }

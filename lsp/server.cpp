@@ -113,9 +113,10 @@ json Server::request(const std::string& method, const json& params, std::vector<
     return previews_.start(args[0].is_string() ? args[0].get<std::string>() : args[0].at("uri").get<std::string>());
   }
   static const char* const kDocumentMethods[] = {
-      "textDocument/hover", "textDocument/completion", "textDocument/definition", "textDocument/documentSymbol",
-      "textDocument/formatting", "textDocument/references", "textDocument/rename", "textDocument/signatureHelp",
-      "textDocument/foldingRange", "textDocument/codeAction", "textDocument/semanticTokens/full"};
+      "textDocument/hover",          "textDocument/completion",         "textDocument/definition",
+      "textDocument/documentSymbol", "textDocument/formatting",         "textDocument/references",
+      "textDocument/rename",         "textDocument/signatureHelp",      "textDocument/foldingRange",
+      "textDocument/codeAction",     "textDocument/semanticTokens/full"};
   if (std::find(std::begin(kDocumentMethods), std::end(kDocumentMethods), method) != std::end(kDocumentMethods)) {
     Document* d = doc();
     if (!d) return no_doc();
@@ -123,9 +124,9 @@ json Server::request(const std::string& method, const json& params, std::vector<
       json in_script = in_embedded_script(*d, method, params);
       return in_script.is_null() ? scene_hover(*d, params) : in_script;
     }
-    if (d->scene && (method == "textDocument/definition" ||
-                     method == "textDocument/signatureHelp" || method == "textDocument/references" ||
-                     method == "textDocument/rename"))
+    if (d->scene &&
+        (method == "textDocument/definition" || method == "textDocument/signatureHelp" ||
+         method == "textDocument/references" || method == "textDocument/rename"))
       return in_embedded_script(*d, method, params);
     if (method == "textDocument/hover") return hover(*d, params);
     if (method == "textDocument/completion") return completion(*d, params);
@@ -177,11 +178,11 @@ json Server::in_embedded_script(const Document& scene, const std::string& method
   Position local = position_of(script.text, offset_of(scene.text, position_param(params)) - base);
   json p = params;
   p["position"] = {{"line", local.line}, {"character", local.character}};
-  json result = method == "textDocument/hover"          ? hover(script, p)
-                : method == "textDocument/definition"   ? definition(script, p)
-                : method == "textDocument/references"   ? references(script, p)
-                : method == "textDocument/rename"       ? rename(script, p)
-                                                        : signature_help(script, p);
+  json result = method == "textDocument/hover" ? hover(script, p)
+      : method == "textDocument/definition"    ? definition(script, p)
+      : method == "textDocument/references"    ? references(script, p)
+      : method == "textDocument/rename"        ? rename(script, p)
+                                               : signature_help(script, p);
   if (!result.contains("__error")) map_ranges(result, script, scene, base);
   return result;
 }

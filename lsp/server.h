@@ -14,7 +14,6 @@ namespace fscript::lsp {
 
 using json = nlohmann::json;
 
-
 class Server {
  public:
   // One message's text in; the messages to send back (responses, diagnostics) out.

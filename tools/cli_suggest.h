@@ -31,7 +31,8 @@ inline const CLI::Option* find_option(const CLI::App* app, const std::string& na
 // False, with the message in `error`, at the first unknown command or option of argv. The first
 // word that is not an option must be a command of `app` when `words_are_commands` (fscript); an
 // argument a command takes as a value ("-inf", "-1e3") is not an option.
-inline bool check_command_line(const CLI::App& app, int argc, char** argv, bool words_are_commands, std::string& error) {
+inline bool check_command_line(const CLI::App& app, int argc, char** argv, bool words_are_commands,
+                               std::string& error) {
   const CLI::App* at = &app;
   std::string where = app.get_name().empty() ? std::string(argv[0]) : app.get_name();
   for (int i = 1; i < argc; ++i) {
@@ -52,7 +53,7 @@ inline bool check_command_line(const CLI::App& app, int argc, char** argv, bool 
         return false;
       }
       bool takes_value = o->get_type_size_max() > 0 && !(is_long && arg.find('=') != std::string::npos) &&
-                         !(is_short && arg.size() > 2);
+          !(is_short && arg.size() > 2);
       if (takes_value) ++i;
       continue;
     }
@@ -67,7 +68,7 @@ inline bool check_command_line(const CLI::App& app, int argc, char** argv, bool 
         std::string near = support::nearest_name(arg, commands), list;
         for (const auto& c : commands) list += (list.empty() ? "" : ", ") + c;
         error = "unknown command '" + arg + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)") +
-                "; the commands are " + list;
+            "; the commands are " + list;
         return false;
       }
       at = sub;

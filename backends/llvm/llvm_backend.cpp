@@ -15,9 +15,9 @@ constexpr int kLoweringRevision = 5;
 
 // The cache key: everything the code depends on.
 std::string cache_key(const ir::Module& m, uint32_t width, const backends::Budgets& budgets, bool bounded) {
-  return ir::print(m) + "\nlowering " + std::to_string(kLoweringRevision) + " width " + std::to_string(width) + " bounded " + std::to_string(bounded) + " loops " +
-         std::to_string(budgets.max_loop_iterations) + " depth " + std::to_string(budgets.max_call_depth) +
-         " elements " + std::to_string(budgets.max_array_elements);
+  return ir::print(m) + "\nlowering " + std::to_string(kLoweringRevision) + " width " + std::to_string(width) +
+      " bounded " + std::to_string(bounded) + " loops " + std::to_string(budgets.max_loop_iterations) + " depth " +
+      std::to_string(budgets.max_call_depth) + " elements " + std::to_string(budgets.max_array_elements);
 }
 }  // namespace
 
@@ -35,7 +35,7 @@ std::shared_ptr<Program> compile_module(const ir::Module& m, uint32_t width, con
 }
 
 std::unique_ptr<backends::Kernel> LlvmBackend::compile(const ir::Module& m, const backends::Budgets& budgets,
-                                                      std::string& error) const {
+                                                       std::string& error) const {
   Lowered lowered;
   double ms = 0;
   std::shared_ptr<Program> code = compile_module(m, width_, budgets, true, lowered, ms, error);
@@ -68,8 +68,10 @@ KernelFn LlvmKernel::general(backends::RuntimeError& err) const {
 bool LlvmKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n,
                             backends::RuntimeError& err) const {
   KernelFn f = code_->entry();
-  if (param_bound_ > 0 && !backends::inputs_in_range(inputs, inputs_, n, param_bound_, row_from_,
-                                                              row_ranges_.empty() ? nullptr : row_ranges_.data()) && !(f = general(err)))
+  if (param_bound_ > 0 &&
+      !backends::inputs_in_range(inputs, inputs_, n, param_bound_, row_from_,
+                                 row_ranges_.empty() ? nullptr : row_ranges_.data()) &&
+      !(f = general(err)))
     return false;
   return backends::run_generated(f, width_, {inputs_, outputs_, &arrays_, width_, budgets_, row_from_}, inputs, outputs,
                                  n, err);
@@ -118,10 +120,10 @@ std::string kernel_text(const ir::Module& m, const backends::Budgets& budgets, b
   Lowered lowered;
   if (!lower_to_llvm(m, host_width(), budgets, true, lowered, error)) return "";
   std::string head = "; " + std::to_string(host_width()) + " lanes" +
-                     (lowered.param_bound > 0 ? "; inputs finite with |x| <= " + std::to_string(static_cast<int>(lowered.param_bound)) +
-                                                    " (other batches run the general code)"
-                                              : std::string()) +
-                     "\n";
+      (lowered.param_bound > 0 ? "; inputs finite with |x| <= " +
+               std::to_string(static_cast<int>(lowered.param_bound)) + " (other batches run the general code)"
+                               : std::string()) +
+      "\n";
   std::string text = assembly ? llvmjit::assembly(lowered, error) : optimized_ir(lowered, error);
   return text.empty() ? "" : head + text;
 }

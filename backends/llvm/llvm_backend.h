@@ -21,7 +21,8 @@ class LlvmKernel : public backends::Kernel {
              std::unique_ptr<ir::Module> module, uint32_t row_from);
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
-  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const override;
+  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n,
+                  backends::RuntimeError& err) const override;
   bool eval(const float* inputs, float* outputs, backends::RuntimeError& err) const override;
   bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
                  backends::RuntimeError& err) const override;
@@ -51,7 +52,8 @@ class LlvmBackend : public backends::Backend {
  public:
   explicit LlvmBackend(uint32_t width = 0) : width_(width ? width : host_width()) {}
   std::string name() const override { return "llvm"; }
-  std::unique_ptr<backends::Kernel> compile(const ir::Module& m, const backends::Budgets& b, std::string& error) const override;
+  std::unique_ptr<backends::Kernel> compile(const ir::Module& m, const backends::Budgets& b,
+                                            std::string& error) const override;
 
  private:
   uint32_t width_;

@@ -87,9 +87,10 @@ namespace {
 // the size of a function with many blocks (llvm_jit.cpp, quick compiles).
 class TwoLevelCompiler : public llvm::orc::IRCompileLayer::IRCompiler {
  public:
-  TwoLevelCompiler(std::unique_ptr<llvm::TargetMachine> full, std::unique_ptr<llvm::TargetMachine> quick, DiskCache* cache)
-      : IRCompiler(llvm::orc::irManglingOptionsFromTargetOptions(full->Options)),
-        full_(std::move(full), cache), quick_(std::move(quick), cache) {}
+  TwoLevelCompiler(std::unique_ptr<llvm::TargetMachine> full, std::unique_ptr<llvm::TargetMachine> quick,
+                   DiskCache* cache)
+      : IRCompiler(llvm::orc::irManglingOptionsFromTargetOptions(full->Options)), full_(std::move(full), cache),
+        quick_(std::move(quick), cache) {}
   llvm::Expected<std::unique_ptr<llvm::MemoryBuffer>> operator()(llvm::Module& m) override {
     return m.getModuleFlag(kQuickFlag) ? quick_(m) : full_(m);
   }

@@ -56,8 +56,8 @@ const RuntimeSymbol kRuntimeSymbols[] = {
 #undef FS_RT_Batch
 #undef FS_RT_Trig
 #define FS_LANES(f) {#f, reinterpret_cast<const void*>(&backends::f)}
-    FS_LANES(fs_lanes_reset), FS_LANES(fs_lanes_anew), FS_LANES(fs_lanes_aload), FS_LANES(fs_lanes_astore),
-    FS_LANES(fs_lanes_alen), FS_LANES(fs_lanes_enter), FS_LANES(fs_lanes_leave),
+    FS_LANES(fs_lanes_reset), FS_LANES(fs_lanes_anew),  FS_LANES(fs_lanes_aload), FS_LANES(fs_lanes_astore),
+    FS_LANES(fs_lanes_alen),  FS_LANES(fs_lanes_enter), FS_LANES(fs_lanes_leave),
 };
 #undef FS_SYM
 #undef FS_LANES
@@ -112,9 +112,8 @@ State& state() {
     DiskCache* disk = st->disk;
     auto jit = llvm::orc::LLJITBuilder()
                    .setJITTargetMachineBuilder(std::move(*jtmb))
-                   .setCompileFunctionCreator([disk](llvm::orc::JITTargetMachineBuilder j) {
-                     return make_compiler(std::move(j), disk);
-                   })
+                   .setCompileFunctionCreator(
+                       [disk](llvm::orc::JITTargetMachineBuilder j) { return make_compiler(std::move(j), disk); })
                    .create();
     if (!jit) {
       st->error = message(jit.takeError());
@@ -211,9 +210,9 @@ void optimize(llvm::Module& m, llvm::TargetMachine* tm) {
     const char* v = std::getenv("FSCRIPT_LLVM_OPT");
     return v && (v[0] == '1' || v[0] == '2' || v[0] == '3') && !v[1] ? v[0] - '0' : kOptLevel;
   }();
-  llvm::OptimizationLevel level = opt == 3   ? llvm::OptimizationLevel::O3
-                                  : opt == 1 ? llvm::OptimizationLevel::O1
-                                             : llvm::OptimizationLevel::O2;
+  llvm::OptimizationLevel level = opt == 3 ? llvm::OptimizationLevel::O3
+      : opt == 1                           ? llvm::OptimizationLevel::O1
+                                           : llvm::OptimizationLevel::O2;
   run_pipeline(m, tm, [&](llvm::PassBuilder& pb) { return pb.buildPerModuleDefaultPipeline(level); });
 }
 
@@ -280,7 +279,8 @@ std::shared_ptr<Program> compile(Lowered&& lowered, const std::string& key, doub
   program->array_names = lowered.array_names;
   program->param_bound = lowered.param_bound;
   llvm::Error e = dylib->define(llvm::orc::absoluteSymbols(std::move(symbols)));
-  if (!e) e = s.jit->addIRModule(*dylib, llvm::orc::ThreadSafeModule(std::move(lowered.module), std::move(lowered.context)));
+  if (!e)
+    e = s.jit->addIRModule(*dylib, llvm::orc::ThreadSafeModule(std::move(lowered.module), std::move(lowered.context)));
   if (e) {
     error = message(std::move(e));
     lock.unlock();

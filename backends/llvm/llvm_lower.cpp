@@ -45,7 +45,7 @@ enum CtxField : unsigned { kGlobals, kCounters, kArrays, kDepth, kStackLimit };
 class LlvmFunctionLowering {
  public:
   LlvmFunctionLowering(Shared& s, const ir::Function& fn, llvm::Function* out, bool callee, uint32_t local_arrays,
-          std::vector<ir::Range> ranges)
+                       std::vector<ir::Range> ranges)
       : s_(s), fn_(fn), f_(out), b_(s.c), callee_(callee), local_arrays_(local_arrays), ranges_(std::move(ranges)) {}
 
   void run() {
@@ -71,7 +71,7 @@ class LlvmFunctionLowering {
         if (in->defines_value()) def[in->id] = static_cast<int>(b);
         if (in->op == Op::Phi) cross_[in->id] = true;
         memory |= in->op == Op::GLoad || in->op == Op::GStore || in->op == Op::Tick || in->op == Op::Call ||
-                  in->op == Op::ANew || in->op == Op::ALoad || in->op == Op::AStore || in->op == Op::ALen;
+            in->op == Op::ANew || in->op == Op::ALoad || in->op == Op::AStore || in->op == Op::ALen;
       }
     for (size_t b = 0; b < order_.size(); ++b)
       for (const ir::Inst* in : order_[b]->insts)
@@ -131,7 +131,8 @@ class LlvmFunctionLowering {
     outputs_ = outputs;
     if (!straight_) start_group();
     blocks();
-    if (!straight_) finish_scan([&] {
+    if (!straight_)
+      finish_scan([&] {
         for (uint32_t o = 0; o < fn_.num_results; ++o) store_output(o, b_.CreateLoad(s_.vf, out_[o]));
       });
     llvm::Value* next = b_.CreateAdd(i, b_.getInt64(s_.width));
@@ -153,8 +154,8 @@ class LlvmFunctionLowering {
     ctx_ = f_->getArg(0);
     arrays_ = b_.CreateLoad(s_.ptr, b_.CreateStructGEP(s_.ctx, ctx_, kArrays));
     llvm::Value* limit = b_.CreateLoad(s_.i64, b_.CreateStructGEP(s_.ctx, ctx_, kStackLimit));
-    llvm::Value* frame = b_.CreatePtrToInt(
-        b_.CreateIntrinsic(llvm::Intrinsic::frameaddress, {s_.ptr}, {b_.getInt32(0)}), s_.i64);
+    llvm::Value* frame =
+        b_.CreatePtrToInt(b_.CreateIntrinsic(llvm::Intrinsic::frameaddress, {s_.ptr}, {b_.getInt32(0)}), s_.i64);
     trap_if(b_.CreateICmpULT(frame, limit), 4, backends::first_located(fn_));
     b_.CreateStore(b_.CreateBitCast(f_->getArg(2), s_.vb), pending_[0]);
     for (size_t b = 1; b < pending_.size(); ++b) b_.CreateStore(zero_mask(), pending_[b]);
@@ -274,7 +275,8 @@ class LlvmFunctionLowering {
     // Fewer lanes (the one-point kernel's one): through the four-lane instruction, lanes past w unused.
     std::vector<int> widen(4, -1), narrow(static_cast<size_t>(w));
     for (int i = 0; i < w; ++i) widen[static_cast<size_t>(i)] = i, narrow[static_cast<size_t>(i)] = i;
-    llvm::Value* r = b_.CreateIntrinsic(four, {}, {b_.CreateShuffleVector(first, widen), b_.CreateShuffleVector(second, widen)});
+    llvm::Value* r =
+        b_.CreateIntrinsic(four, {}, {b_.CreateShuffleVector(first, widen), b_.CreateShuffleVector(second, widen)});
     return b_.CreateShuffleVector(r, narrow);
   }
   llvm::Value* unary(llvm::Intrinsic::ID id, llvm::Value* a) { return b_.CreateUnaryIntrinsic(id, a); }
@@ -288,8 +290,7 @@ class LlvmFunctionLowering {
   // A batch function of runtime/math over the group's lanes, through the scratch area.
   llvm::Value* batch(const char* name, const ir::Inst& in) {
     std::vector<llvm::Value*> args;
-    for (size_t k = 0; k <= in.args.size(); ++k)
-      args.push_back(b_.CreateConstGEP1_64(s_.f32, scratch(), k * s_.width));
+    for (size_t k = 0; k <= in.args.size(); ++k) args.push_back(b_.CreateConstGEP1_64(s_.f32, scratch(), k * s_.width));
     for (size_t k = 0; k < in.args.size(); ++k) b_.CreateAlignedStore(val(in.args[k]), args[k], llvm::Align(4));
     args.push_back(b_.getInt64(s_.width));
     call_runtime(name, b_.getVoidTy(), args);
@@ -326,8 +327,10 @@ class LlvmFunctionLowering {
     auto mul = [&](llvm::Value* a, llvm::Value* b) { return b_.CreateFMul(a, b); };
     // sin: ((kSin1 z + kSin2) z - kSin3) z r + r;  cos: ((kCos1 z - kCos2) z + kCos3) z z - 0.5 z + 1
     // sin with r's sign: the sum is +0 at r = -0, where sin(-0) is -0.
-    llvm::Value* sp = b_.CreateBinaryIntrinsic(llvm::Intrinsic::copysign, b_.CreateFAdd(
-        mul(mul(b_.CreateFSub(mul(b_.CreateFAdd(mul(f(kSin1), z), f(kSin2)), z), f(kSin3)), z), rf), rf), rf);
+    llvm::Value* sp = b_.CreateBinaryIntrinsic(
+        llvm::Intrinsic::copysign,
+        b_.CreateFAdd(mul(mul(b_.CreateFSub(mul(b_.CreateFAdd(mul(f(kSin1), z), f(kSin2)), z), f(kSin3)), z), rf), rf),
+        rf);
     llvm::Value* cp = b_.CreateFAdd(
         b_.CreateFSub(mul(mul(b_.CreateFAdd(mul(b_.CreateFSub(mul(f(kCos1), z), f(kCos2)), z), f(kCos3)), z), z),
                       mul(f(0.5f), z)),
@@ -365,14 +368,17 @@ class LlvmFunctionLowering {
   void inst(const ir::Inst& in) {
     auto a = [&](int k) { return val(in.args[static_cast<size_t>(k)]); };
     switch (in.op) {
-      case Op::Const: case Op::Phi: return;  // constants inline; a phi's home is written on edges
+      case Op::Const:
+      case Op::Phi: return;  // constants inline; a phi's home is written on edges
       case Op::Param:
         if (callee_) return define(in, f_->getArg(3 + static_cast<unsigned>(in.aux)));
         if (fn_.row_params_from && static_cast<uint32_t>(in.aux) >= fn_.row_params_from) {  // one value per call
-          llvm::Value* base = b_.CreateLoad(s_.ptr, b_.CreateConstGEP1_64(s_.ptr, inputs_, static_cast<uint32_t>(in.aux)));
+          llvm::Value* base =
+              b_.CreateLoad(s_.ptr, b_.CreateConstGEP1_64(s_.ptr, inputs_, static_cast<uint32_t>(in.aux)));
           return define(in, b_.CreateVectorSplat(s_.width, b_.CreateAlignedLoad(s_.f32, base, llvm::Align(4))));
         }
-        return define(in, b_.CreateAlignedLoad(s_.vf, lane_ptr(inputs_, static_cast<uint32_t>(in.aux)), llvm::Align(4)));
+        return define(in,
+                      b_.CreateAlignedLoad(s_.vf, lane_ptr(inputs_, static_cast<uint32_t>(in.aux)), llvm::Align(4)));
       case Op::Add: return define(in, b_.CreateFAdd(a(0), a(1)));
       case Op::Sub: return define(in, b_.CreateFSub(a(0), a(1)));
       case Op::Mul: return define(in, b_.CreateFMul(a(0), a(1)));
@@ -423,7 +429,10 @@ class LlvmFunctionLowering {
       case Op::Select: return define(in, b_.CreateSelect(truthy(in.args[0]), a(1), a(2)));
       case Op::GLoad: return define(in, b_.CreateLoad(s_.vf, global_ptr(in.aux)));
       case Op::GStore: return masked_store(global_ptr(in.aux), a(0), active_);
-      case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen: return array_op(in);
+      case Op::ANew:
+      case Op::ALoad:
+      case Op::AStore:
+      case Op::ALen: return array_op(in);
       case Op::Call: return call(in);
       case Op::Tick: {  // per-lane iteration counters, 64-bit like the VM's
         llvm::Value* at = counters_ptr();
@@ -445,7 +454,8 @@ class LlvmFunctionLowering {
   void cancel_check(const ir::Inst& in) {
     llvm::GlobalVariable* slot = s_.m.getGlobalVariable("fs_cancel_slot");
     if (!slot)
-      slot = new llvm::GlobalVariable(s_.m, s_.ptr, false, llvm::GlobalValue::ExternalLinkage, nullptr, "fs_cancel_slot");
+      slot =
+          new llvm::GlobalVariable(s_.m, s_.ptr, false, llvm::GlobalValue::ExternalLinkage, nullptr, "fs_cancel_slot");
     llvm::LoadInst* flag_at = b_.CreateAlignedLoad(s_.ptr, slot, llvm::Align(8));
     flag_at->setAtomic(llvm::AtomicOrdering::Monotonic);
     llvm::LoadInst* flag = b_.CreateAlignedLoad(b_.getInt8Ty(), flag_at, llvm::Align(1));
@@ -592,8 +602,8 @@ Lowered::Lowered() = default;
 Lowered::~Lowered() = default;
 Lowered::Lowered(Lowered&&) noexcept = default;
 
-bool lower_to_llvm(const ir::Module& module, uint32_t width, const backends::Budgets& budgets, bool bounded, Lowered& out,
-           std::string& error) {
+bool lower_to_llvm(const ir::Module& module, uint32_t width, const backends::Budgets& budgets, bool bounded,
+                   Lowered& out, std::string& error) {
   backends::JitProgram jp;
   if (!backends::prepare_program(module, jp, error)) return false;
   const ir::Module& m = *jp.module;
@@ -601,8 +611,22 @@ bool lower_to_llvm(const ir::Module& module, uint32_t width, const backends::Bud
   out.context = std::make_unique<llvm::LLVMContext>();
   out.module = std::make_unique<llvm::Module>("fscript", *out.context);
   llvm::LLVMContext& c = *out.context;
-  Shared s{c, *out.module, m, width, budgets, llvm::Type::getFloatTy(c), llvm::Type::getInt32Ty(c),
-           llvm::Type::getInt64Ty(c), llvm::PointerType::get(c, 0), nullptr, nullptr, nullptr, nullptr, {}, 0, nullptr};
+  Shared s{c,
+           *out.module,
+           m,
+           width,
+           budgets,
+           llvm::Type::getFloatTy(c),
+           llvm::Type::getInt32Ty(c),
+           llvm::Type::getInt64Ty(c),
+           llvm::PointerType::get(c, 0),
+           nullptr,
+           nullptr,
+           nullptr,
+           nullptr,
+           {},
+           0,
+           nullptr};
   s.vf = llvm::FixedVectorType::get(s.f32, width);
   s.vi = llvm::FixedVectorType::get(s.i32, width);
   s.vb = llvm::FixedVectorType::get(llvm::Type::getInt1Ty(c), width);
@@ -623,8 +647,7 @@ bool lower_to_llvm(const ir::Module& module, uint32_t width, const backends::Bud
     std::vector<llvm::Type*> params{s.ptr, s.ptr, s.mask_bits};
     params.insert(params.end(), fn.num_params, s.vf);
     auto* t = llvm::FunctionType::get(s.i64, params, false);
-    s.fns[static_cast<size_t>(f)] =
-        llvm::Function::Create(t, llvm::Function::InternalLinkage, "fs_fn_" + fn.name, s.m);
+    s.fns[static_cast<size_t>(f)] = llvm::Function::Create(t, llvm::Function::InternalLinkage, "fs_fn_" + fn.name, s.m);
   }
   out.array_names = m.arrays;
   for (int f : fns) {
@@ -632,8 +655,8 @@ bool lower_to_llvm(const ir::Module& module, uint32_t width, const backends::Bud
     std::vector<ir::Range> ranges;
     if (f == kernel && bounded && (out.param_bound = ir::best_param_bound(fn)) > 0)
       ranges = ir::value_ranges(fn, out.param_bound);
-    LlvmFunctionLowering(s, fn, s.fns[static_cast<size_t>(f)], f != kernel, static_cast<uint32_t>(out.array_names.size()),
-            std::move(ranges))
+    LlvmFunctionLowering(s, fn, s.fns[static_cast<size_t>(f)], f != kernel,
+                         static_cast<uint32_t>(out.array_names.size()), std::move(ranges))
         .run();
     out.array_names.insert(out.array_names.end(), fn.arrays.begin(), fn.arrays.end());
     if (f == kernel) out.num_inputs = fn.num_params, out.num_outputs = fn.num_results;

@@ -49,6 +49,6 @@ struct Lowered {
 // ir::best_param_bound picks; 0 when none removes a NaN test) and drops the NaN tests the value
 // ranges prove useless.
 bool lower_to_llvm(const ir::Module& m, uint32_t width, const backends::Budgets& budgets, bool bounded, Lowered& out,
-           std::string& error);
+                   std::string& error);
 
 }  // namespace fscript::llvmjit

@@ -8,7 +8,7 @@
 namespace fscript::sse {
 
 std::unique_ptr<backends::Kernel> SseBackend::compile(const ir::Module& m, const backends::Budgets& budgets,
-                                                     std::string& error) const {
+                                                      std::string& error) const {
   if (!__builtin_cpu_supports("sse4.1")) {  // roundps, blendvps
     error = "the sse backend needs a CPU with SSE4.1";
     return nullptr;
@@ -49,7 +49,8 @@ backends::LaneArrays SseKernel::fresh_arrays() const {
   return s;
 }
 
-bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const {
+bool SseKernel::eval_batch(const float* const* inputs, float* const* outputs, size_t n,
+                           backends::RuntimeError& err) const {
   if (param_bound_ > 0 && !in_range(inputs, n)) {
     KernelFn g = general(err);
     return g && run(g, general_lanes_, inputs, outputs, n, err);
@@ -96,7 +97,8 @@ bool SseKernel::eval(const float* inputs, float* outputs, backends::RuntimeError
   if (!f) return false;
   static const backends::LaneArrays no_arrays;  // code without arrays never touches its argument
   if (arrays_.empty()) {
-    uint64_t code = backends::call_generated([&] { return f(inputs, outputs, 0, 4, nullptr, backends::stack_limit()); });
+    uint64_t code =
+        backends::call_generated([&] { return f(inputs, outputs, 0, 4, nullptr, backends::stack_limit()); });
     return backends::jit_status(code, no_arrays, budgets_, err);
   }
   backends::LaneArrays arrays = fresh_arrays();

@@ -41,7 +41,8 @@ class SseKernel : public backends::Kernel {
   }
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
-  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const override;
+  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n,
+                  backends::RuntimeError& err) const override;
   bool eval(const float* inputs, float* outputs, backends::RuntimeError& err) const override;
   bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
                  backends::RuntimeError& err) const override;
@@ -79,7 +80,8 @@ class SseKernel : public backends::Kernel {
 class SseBackend : public backends::Backend {
  public:
   std::string name() const override { return "sse"; }
-  std::unique_ptr<backends::Kernel> compile(const ir::Module& m, const backends::Budgets& b, std::string& error) const override;
+  std::unique_ptr<backends::Kernel> compile(const ir::Module& m, const backends::Budgets& b,
+                                            std::string& error) const override;
 };
 
 // The machine code of the module's kernel; empty with a message when the kernel uses what this

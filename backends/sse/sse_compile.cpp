@@ -55,8 +55,8 @@ class Codegen : public detail::LaneCode {
  public:
   Codegen(const ir::Function& fn, Assembler& a, const backends::Budgets& budgets, uint32_t local_arrays,
           const Program& program, int index, bool callee)
-      : LaneCode(fn, a, static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, kCarryAt)),
-                 local_arrays, callee),
+      : LaneCode(fn, a, static_cast<int32_t>(std::min<uint64_t>(budgets.max_loop_iterations, kCarryAt)), local_arrays,
+                 callee),
         program_(program), placeholder_(kPlaceholder + index), loop_budget_(budgets.max_loop_iterations) {}
 
   bool run(std::string& error) {
@@ -127,7 +127,8 @@ class Codegen : public detail::LaneCode {
   // The listing with this function's frame size in place of its placeholder.
   void fix_listing(std::string& text) const {
     std::string from = "rsp, " + std::to_string(placeholder_), to = "rsp, " + std::to_string(frame_bytes());
-    for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) text.replace(at, from.size(), to);
+    for (size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+      text.replace(at, from.size(), to);
   }
   void patch_frame() {
     for (size_t at : frame_fields_) a_.patch32(at, static_cast<uint32_t>(frame_bytes()));
@@ -158,8 +159,8 @@ class Codegen : public detail::LaneCode {
           memory = calls_ = true;
           max_args_ = std::max(max_args_, static_cast<int>(in->args.size()));
         }
-        bool array = in->op == ir::Op::ANew || in->op == ir::Op::ALoad || in->op == ir::Op::AStore ||
-                     in->op == ir::Op::ALen;
+        bool array =
+            in->op == ir::Op::ANew || in->op == ir::Op::ALoad || in->op == ir::Op::AStore || in->op == ir::Op::ALen;
         memory |= array;
         arrays_ |= array;
         max_phis_ = std::max(max_phis_, in->op == ir::Op::Phi ? ++phis_here_ : (phis_here_ = 0));
@@ -353,17 +354,35 @@ class Codegen : public detail::LaneCode {
     using ir::Op;
     switch (in.op) {
       case Op::Const: return true;  // read from the constant pool where used
-      case Op::Phi: return true;    // its home is written on the incoming edges
+      case Op::Phi: return true;  // its home is written on the incoming edges
       case Op::Param: return param(in, pos), true;
-      case Op::Add: case Op::Sub: case Op::Mul: case Op::Div: return arithmetic(in, pos), true;
-      case Op::Neg: case Op::Abs: return sign_bit(in, pos), true;
-      case Op::Sqrt: case Op::Floor: case Op::Ceil: case Op::Round: case Op::Sign: return rounding(in, pos), true;
-      case Op::Min: case Op::Max: case Op::Clamp: return min_max(in, pos), true;
-      case Op::Eq: case Op::Ne: case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge: return comparison(in, pos), true;
-      case Op::Not: case Op::Truth: case Op::Select: return logic(in, pos), true;
-      case Op::Mod: return call(in, pos, reinterpret_cast<const void*>(&mod_batch));
-      // Batch rows of ir/math_ops.def call runtime/math's batch function; Trig rows inline it
-      // (sse_compile_lanes.h); Lane rows have their own cases above.
+      case Op::Add:
+      case Op::Sub:
+      case Op::Mul:
+      case Op::Div: return arithmetic(in, pos), true;
+      case Op::Neg:
+      case Op::Abs: return sign_bit(in, pos), true;
+      case Op::Sqrt:
+      case Op::Floor:
+      case Op::Ceil:
+      case Op::Round:
+      case Op::Sign: return rounding(in, pos), true;
+      case Op::Min:
+      case Op::Max:
+      case Op::Clamp: return min_max(in, pos), true;
+      case Op::Eq:
+      case Op::Ne:
+      case Op::Lt:
+      case Op::Le:
+      case Op::Gt:
+      case Op::Ge: return comparison(in, pos), true;
+      case Op::Not:
+      case Op::Truth:
+      case Op::Select: return logic(in, pos), true;
+      case Op::Mod:
+        return call(in, pos, reinterpret_cast<const void*>(&mod_batch));
+        // Batch rows of ir/math_ops.def call runtime/math's batch function; Trig rows inline it
+        // (sse_compile_lanes.h); Lane rows have their own cases above.
 #define FS_SSE_Lane(N, FN)
 #define FS_SSE_Batch(N, FN) \
   case Op::N: return call(in, pos, reinterpret_cast<const void*>(&math::FN##_batch));
@@ -375,10 +394,15 @@ class Codegen : public detail::LaneCode {
 #undef FS_SSE_Batch
 #undef FS_SSE_Trig
       case Op::Ret: return ret(in), true;
-      case Op::Jump: case Op::Branch: return jump(in), true;
+      case Op::Jump:
+      case Op::Branch: return jump(in), true;
       case Op::Tick: return tick(in), true;
-      case Op::GLoad: case Op::GStore: return global(in, pos), true;
-      case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen: return array_op(in, pos), true;
+      case Op::GLoad:
+      case Op::GStore: return global(in, pos), true;
+      case Op::ANew:
+      case Op::ALoad:
+      case Op::AStore:
+      case Op::ALen: return array_op(in, pos), true;
       case Op::Call: return call_function(in, pos), true;
     }
     return unsupported(in, error);
@@ -770,7 +794,8 @@ std::vector<uint8_t> generate(const ir::Module& module, const backends::Budgets&
   if (!backends::prepare_program(module, jp, error)) return {};
   bool refused = false;
   if (try_wide(jp, uniform_lanes)) {
-    std::vector<uint8_t> code = emit_program(jp, budgets, true, error, listing, array_names, param_bound, false, refused);
+    std::vector<uint8_t> code =
+        emit_program(jp, budgets, true, error, listing, array_names, param_bound, false, refused);
     if (!refused) {
       if (lanes) *lanes = 8;
       return code;

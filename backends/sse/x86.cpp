@@ -87,12 +87,12 @@ void Assembler::vex(uint8_t pp, uint8_t opcode, Xmm d, Xmm v, const Operand& rm,
   modrm(n(d), rm, imm8 >= 0 ? 1 : 0, static_cast<uint32_t>(imm8));
 }
 
-void Assembler::wide_op(const char* name, uint8_t pp, uint8_t map, uint8_t opcode, Xmm d, const Operand& s,
-                        bool unary, int imm8) {
+void Assembler::wide_op(const char* name, uint8_t pp, uint8_t map, uint8_t opcode, Xmm d, const Operand& s, bool unary,
+                        int imm8) {
   if (listing_on_) {
     std::string text = std::string(name) + " " + operand(d) + (unary ? "" : ", " + operand(d)) + ", " +
-                       (s.is_mem ? operand(s.mem) : operand(static_cast<Xmm>(s.reg))) +
-                       (opcode == 0x4A && map == 3 ? ", ymm0" : "");  // vblendvps's mask register
+        (s.is_mem ? operand(s.mem) : operand(static_cast<Xmm>(s.reg))) +
+        (opcode == 0x4A && map == 3 ? ", ymm0" : "");  // vblendvps's mask register
     lines_.push_back({code_.size(), text});
   }
   vex(pp, opcode, d, unary ? Xmm::x0 : d, s, map, imm8);
@@ -102,14 +102,14 @@ void Assembler::wide_op(const char* name, uint8_t pp, uint8_t map, uint8_t opcod
 // Packed operations with an eight-lane form: VEX.256 in map 0F in wide mode, with the legacy
 // prefix as VEX.pp (none: single precision; 66: the double and integer ones of the inline sin/cos,
 // doubles four to a ymm register, integers eight: AVX2).
-#define FS_PACKED_DEFINE(name, prefix, pp, opcode, unary)                                          \
-  void Assembler::name(Xmm d, Xmm s) {                                                            \
-    if (wide_) return wide_op("v" #name, pp, 1, opcode, d, r(n(s)), unary);                      \
-    list(#name, d, s), sse(prefix, {0x0F, opcode}, d, r(n(s)));                                    \
-  }                                                                                               \
-  void Assembler::name(Xmm d, const Mem& s) {                                                     \
-    if (wide_) return wide_op("v" #name, pp, 1, opcode, d, m(s), unary);                         \
-    list(#name, d, s), sse(prefix, {0x0F, opcode}, d, m(s));                                       \
+#define FS_PACKED_DEFINE(name, prefix, pp, opcode, unary)                   \
+  void Assembler::name(Xmm d, Xmm s) {                                      \
+    if (wide_) return wide_op("v" #name, pp, 1, opcode, d, r(n(s)), unary); \
+    list(#name, d, s), sse(prefix, {0x0F, opcode}, d, r(n(s)));             \
+  }                                                                         \
+  void Assembler::name(Xmm d, const Mem& s) {                               \
+    if (wide_) return wide_op("v" #name, pp, 1, opcode, d, m(s), unary);    \
+    list(#name, d, s), sse(prefix, {0x0F, opcode}, d, m(s));                \
   }
 FS_PACKED_DEFINE(addps, 0, 0, 0x58, false)
 FS_PACKED_DEFINE(subps, 0, 0, 0x5C, false)
@@ -131,7 +131,7 @@ FS_PACKED_DEFINE(paddd, 0x66, 1, 0xFE, false)
 #undef FS_PACKED_DEFINE
 
 // The rest have no eight-lane form here: refused in wide mode.
-#define FS_SSE_DEFINE(name, prefix, ...)                                                          \
+#define FS_SSE_DEFINE(name, prefix, ...)                                                                           \
   void Assembler::name(Xmm d, Xmm s) { narrow(#name), list(#name, d, s), sse(prefix, {__VA_ARGS__}, d, r(n(s))); } \
   void Assembler::name(Xmm d, const Mem& s) { narrow(#name), list(#name, d, s), sse(prefix, {__VA_ARGS__}, d, m(s)); }
 FS_SSE_DEFINE(addss, 0xF3, 0x0F, 0x58)
@@ -153,30 +153,41 @@ FS_SSE_DEFINE(ucomiss, 0, 0x0F, 0x2E)
 FS_SSE_DEFINE(punpcklqdq, 0x66, 0x0F, 0x6C)
 #undef FS_SSE_DEFINE
 
-
 // Conversions between four floats or int32s (an xmm register) and four doubles (a ymm register)
 // in wide mode; the two-lane forms otherwise.
 void Assembler::cvtps2pd(Xmm d, Xmm s) {
   if (wide_) return half("vcvtps2pd", d, true, s, false), vex(0, 0x5A, d, Xmm::x0, r(n(s)));
   list("cvtps2pd", d, s), sse(0, {0x0F, 0x5A}, d, r(n(s)));
 }
-void Assembler::cvtps2pd(Xmm d, const Mem& s) { narrow("cvtps2pd"), list("cvtps2pd", d, s), sse(0, {0x0F, 0x5A}, d, m(s)); }
+void Assembler::cvtps2pd(Xmm d, const Mem& s) {
+  narrow("cvtps2pd"), list("cvtps2pd", d, s), sse(0, {0x0F, 0x5A}, d, m(s));
+}
 void Assembler::cvtpd2ps(Xmm d, Xmm s) {
   if (wide_) return half("vcvtpd2ps", d, false, s, true), vex(1, 0x5A, d, Xmm::x0, r(n(s)));
   list("cvtpd2ps", d, s), sse(0x66, {0x0F, 0x5A}, d, r(n(s)));
 }
-void Assembler::cvtpd2ps(Xmm d, const Mem& s) { narrow("cvtpd2ps"), list("cvtpd2ps", d, s), sse(0x66, {0x0F, 0x5A}, d, m(s)); }
+void Assembler::cvtpd2ps(Xmm d, const Mem& s) {
+  narrow("cvtpd2ps"), list("cvtpd2ps", d, s), sse(0x66, {0x0F, 0x5A}, d, m(s));
+}
 void Assembler::cvttpd2dq(Xmm d, Xmm s) {
   if (wide_) return half("vcvttpd2dq", d, false, s, true), vex(1, 0xE6, d, Xmm::x0, r(n(s)));
   list("cvttpd2dq", d, s), sse(0x66, {0x0F, 0xE6}, d, r(n(s)));
 }
-void Assembler::cvttpd2dq(Xmm d, const Mem& s) { narrow("cvttpd2dq"), list("cvttpd2dq", d, s), sse(0x66, {0x0F, 0xE6}, d, m(s)); }
+void Assembler::cvttpd2dq(Xmm d, const Mem& s) {
+  narrow("cvttpd2dq"), list("cvttpd2dq", d, s), sse(0x66, {0x0F, 0xE6}, d, m(s));
+}
 void Assembler::vextractf128(Xmm d, Xmm s, uint8_t imm) {  // d (xmm) = half imm of s (ymm)
-  if (listing_on_) lines_.push_back({code_.size(), "vextractf128 xmm" + std::to_string(n(d)) + ", ymm" + std::to_string(n(s)) + ", " + std::to_string(imm)});
+  if (listing_on_)
+    lines_.push_back(
+        {code_.size(),
+         "vextractf128 xmm" + std::to_string(n(d)) + ", ymm" + std::to_string(n(s)) + ", " + std::to_string(imm)});
   vex(1, 0x19, s, Xmm::x0, r(n(d)), 3, imm, 1);
 }
 void Assembler::vinsertf128(Xmm d, Xmm s1, Xmm s2, uint8_t imm) {  // d = s1 with half imm from s2 (xmm)
-  if (listing_on_) lines_.push_back({code_.size(), "vinsertf128 ymm" + std::to_string(n(d)) + ", ymm" + std::to_string(n(s1)) + ", xmm" + std::to_string(n(s2)) + ", " + std::to_string(imm)});
+  if (listing_on_)
+    lines_.push_back({code_.size(),
+                      "vinsertf128 ymm" + std::to_string(n(d)) + ", ymm" + std::to_string(n(s1)) + ", xmm" +
+                          std::to_string(n(s2)) + ", " + std::to_string(imm)});
   vex(1, 0x18, d, s1, r(n(s2)), 3, imm, 1);
 }
 void Assembler::half(const char* name, Xmm d, bool d_wide, Xmm s, bool s_wide) {
@@ -185,7 +196,7 @@ void Assembler::half(const char* name, Xmm d, bool d_wide, Xmm s, bool s_wide) {
   lines_.push_back({code_.size(), std::string(name) + " " + reg(d, d_wide) + ", " + reg(s, s_wide)});
 }
 
-#define FS_VEX_DEFINE(name, pp, opcode)                                                              \
+#define FS_VEX_DEFINE(name, pp, opcode)                                                                     \
   void Assembler::name(Xmm d, Xmm s1, Xmm s2) { list(#name, d, s1, s2), vex(pp, opcode, d, s1, r(n(s2))); } \
   void Assembler::name(Xmm d, Xmm s1, const Mem& s2) { list(#name, d, s1, s2), vex(pp, opcode, d, s1, m(s2)); }
 FS_VEX_DEFINE(vaddps, 0, 0x58)
@@ -217,7 +228,10 @@ void Assembler::cmpps(Xmm d, const Mem& s, Pred p) {
   sse(0, {0x0F, 0xC2}, d, m(s), static_cast<int>(p));
 }
 void Assembler::cmpss(Xmm d, Xmm s, Pred p) {
-  narrow("cmpss"); if (listing_on_) list(("cmp" + operand(p) + "ss").c_str(), d, s); sse(0xF3, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p)); }
+  narrow("cmpss");
+  if (listing_on_) list(("cmp" + operand(p) + "ss").c_str(), d, s);
+  sse(0xF3, {0x0F, 0xC2}, d, r(n(s)), static_cast<int>(p));
+}
 void Assembler::roundps(Xmm d, Xmm s, Rounding k) {
   if (wide_) {
     list("vroundps", d, s, k);
@@ -226,28 +240,52 @@ void Assembler::roundps(Xmm d, Xmm s, Rounding k) {
   list("roundps", d, s, k);
   sse(0x66, {0x0F, 0x3A, 0x08}, d, r(n(s)), static_cast<int>(k));
 }
-void Assembler::roundss(Xmm d, Xmm s, Rounding k) { narrow("roundss"); list("roundss", d, s, k); sse(0x66, {0x0F, 0x3A, 0x0A}, d, r(n(s)), static_cast<int>(k)); }
-void Assembler::shufps(Xmm d, Xmm s, uint8_t imm) { narrow("shufps"); list("shufps", d, s, imm); sse(0, {0x0F, 0xC6}, d, r(n(s)), imm); }
+void Assembler::roundss(Xmm d, Xmm s, Rounding k) {
+  narrow("roundss");
+  list("roundss", d, s, k);
+  sse(0x66, {0x0F, 0x3A, 0x0A}, d, r(n(s)), static_cast<int>(k));
+}
+void Assembler::shufps(Xmm d, Xmm s, uint8_t imm) {
+  narrow("shufps");
+  list("shufps", d, s, imm);
+  sse(0, {0x0F, 0xC6}, d, r(n(s)), imm);
+}
 void Assembler::pslld(Xmm d, uint8_t imm) {  // wide: vpslld d, d, imm (the destination in vvvv, /6)
   list(wide_ ? "vpslld" : "pslld", d, imm);
   if (wide_) return vex(1, 0x72, static_cast<Xmm>(6), d, r(n(d)), 1, imm);
   emit(0x66, false, {0x0F, 0x72}, 6, r(n(d)), 1, imm);
 }
-void Assembler::psrld(Xmm d, uint8_t imm) { narrow("psrld"); list("psrld", d, imm); emit(0x66, false, {0x0F, 0x72}, 2, r(n(d)), 1, imm); }
-void Assembler::psrad(Xmm d, uint8_t imm) { narrow("psrad"); list("psrad", d, imm); emit(0x66, false, {0x0F, 0x72}, 4, r(n(d)), 1, imm); }
-void Assembler::movhlps(Xmm d, Xmm s) { narrow("movhlps"); list("movhlps", d, s); sse(0, {0x0F, 0x12}, d, r(n(s))); }
-void Assembler::movlhps(Xmm d, Xmm s) { narrow("movlhps"); list("movlhps", d, s); sse(0, {0x0F, 0x16}, d, r(n(s))); }
+void Assembler::psrld(Xmm d, uint8_t imm) {
+  narrow("psrld");
+  list("psrld", d, imm);
+  emit(0x66, false, {0x0F, 0x72}, 2, r(n(d)), 1, imm);
+}
+void Assembler::psrad(Xmm d, uint8_t imm) {
+  narrow("psrad");
+  list("psrad", d, imm);
+  emit(0x66, false, {0x0F, 0x72}, 4, r(n(d)), 1, imm);
+}
+void Assembler::movhlps(Xmm d, Xmm s) {
+  narrow("movhlps");
+  list("movhlps", d, s);
+  sse(0, {0x0F, 0x12}, d, r(n(s)));
+}
+void Assembler::movlhps(Xmm d, Xmm s) {
+  narrow("movlhps");
+  list("movlhps", d, s);
+  sse(0, {0x0F, 0x16}, d, r(n(s)));
+}
 // Moves: VEX.256 vmovaps / vmovups in wide mode (an aligned move needs 32-byte alignment there).
-#define FS_MOVE(name, load, store)                                                              \
-  void Assembler::name(Xmm d, const Mem& s) {                                                   \
-    list(wide_ ? "v" #name : #name, d, s);                                                      \
-    if (wide_) return vex(0, load, d, Xmm::x0, m(s));                                           \
-    sse(0, {0x0F, load}, d, m(s));                                                              \
-  }                                                                                             \
-  void Assembler::name(const Mem& d, Xmm s) {                                                   \
-    list(wide_ ? "v" #name : #name, d, s);                                                      \
-    if (wide_) return vex(0, store, s, Xmm::x0, m(d));                                          \
-    sse(0, {0x0F, store}, s, m(d));                                                             \
+#define FS_MOVE(name, load, store)                     \
+  void Assembler::name(Xmm d, const Mem& s) {          \
+    list(wide_ ? "v" #name : #name, d, s);             \
+    if (wide_) return vex(0, load, d, Xmm::x0, m(s));  \
+    sse(0, {0x0F, load}, d, m(s));                     \
+  }                                                    \
+  void Assembler::name(const Mem& d, Xmm s) {          \
+    list(wide_ ? "v" #name : #name, d, s);             \
+    if (wide_) return vex(0, store, s, Xmm::x0, m(d)); \
+    sse(0, {0x0F, store}, s, m(d));                    \
   }
 FS_MOVE(movaps, 0x28, 0x29)
 FS_MOVE(movups, 0x10, 0x11)
@@ -257,32 +295,89 @@ void Assembler::movaps(Xmm d, Xmm s) {
   if (wide_) return vex(0, 0x28, d, Xmm::x0, r(n(s)));
   sse(0, {0x0F, 0x28}, d, r(n(s)));
 }
-void Assembler::movss(Xmm d, const Mem& s) { narrow("movss"); list("movss", d, s); sse(0xF3, {0x0F, 0x10}, d, m(s)); }
-void Assembler::movss(const Mem& d, Xmm s) { narrow("movss"); list("movss", d, s); sse(0xF3, {0x0F, 0x11}, s, m(d)); }
-void Assembler::movd(Xmm d, Gp s) { narrow("movd"); list("movd", d, s); emit(0x66, false, {0x0F, 0x6E}, n(d), r(n(s))); }
-void Assembler::movd(Gp d, Xmm s) { narrow("movd"); list("movd", d, s); emit(0x66, false, {0x0F, 0x7E}, n(s), r(n(d))); }
+void Assembler::movss(Xmm d, const Mem& s) {
+  narrow("movss");
+  list("movss", d, s);
+  sse(0xF3, {0x0F, 0x10}, d, m(s));
+}
+void Assembler::movss(const Mem& d, Xmm s) {
+  narrow("movss");
+  list("movss", d, s);
+  sse(0xF3, {0x0F, 0x11}, s, m(d));
+}
+void Assembler::movd(Xmm d, Gp s) {
+  narrow("movd");
+  list("movd", d, s);
+  emit(0x66, false, {0x0F, 0x6E}, n(d), r(n(s)));
+}
+void Assembler::movd(Gp d, Xmm s) {
+  narrow("movd");
+  list("movd", d, s);
+  emit(0x66, false, {0x0F, 0x7E}, n(s), r(n(d)));
+}
 void Assembler::movmskps(Gp d, Xmm s) {  // wide: eight sign bits
   list(wide_ ? "vmovmskps" : "movmskps", d, s);
   if (wide_) return vex(0, 0x50, static_cast<Xmm>(n(d)), Xmm::x0, r(n(s)));
   emit(0, false, {0x0F, 0x50}, n(d), r(n(s)));
 }
-void Assembler::cvtsi2ss(Xmm d, Gp s) { narrow("cvtsi2ss"); list("cvtsi2ss", d, s); emit(0xF3, true, {0x0F, 0x2A}, n(d), r(n(s))); }
+void Assembler::cvtsi2ss(Xmm d, Gp s) {
+  narrow("cvtsi2ss");
+  list("cvtsi2ss", d, s);
+  emit(0xF3, true, {0x0F, 0x2A}, n(d), r(n(s)));
+}
 void Assembler::vbroadcastss(Xmm d, const Mem& s) { list("vbroadcastss", d, s), vex(1, 0x18, d, Xmm::x0, m(s), 2); }
 void Assembler::vzeroupper() { list("vzeroupper"), code_.insert(code_.end(), {0xC5, 0xF8, 0x77}); }
-void Assembler::cvttss2si(Gp d, Xmm s) { narrow("cvttss2si"); list("cvttss2si", d, s); emit(0xF3, true, {0x0F, 0x2C}, n(d), r(n(s))); }
+void Assembler::cvttss2si(Gp d, Xmm s) {
+  narrow("cvttss2si");
+  list("cvttss2si", d, s);
+  emit(0xF3, true, {0x0F, 0x2C}, n(d), r(n(s)));
+}
 
 // ---- general purpose ----
-void Assembler::mov(Gp d, Gp s) { list("mov", d, s); emit(0, true, {0x89}, n(s), r(n(d))); }
-void Assembler::mov(Gp d, const Mem& s) { list("mov", d, s); emit(0, true, {0x8B}, n(d), m(s)); }
-void Assembler::mov(const Mem& d, Gp s) { list("mov", d, s); emit(0, true, {0x89}, n(s), m(d)); }
-void Assembler::mov32(Gp d, const Mem& s) { list("mov32", d, s); emit(0, false, {0x8B}, n(d), m(s)); }
-void Assembler::mov32(const Mem& d, Gp s) { list("mov32", d, s); emit(0, false, {0x89}, n(s), m(d)); }
-void Assembler::lea(Gp d, const Mem& s) { list("lea", d, s); emit(0, true, {0x8D}, n(d), m(s)); }
-void Assembler::add(Gp d, Gp s) { list("add", d, s); emit(0, true, {0x01}, n(s), r(n(d))); }
-void Assembler::sub(Gp d, Gp s) { list("sub", d, s); emit(0, true, {0x29}, n(s), r(n(d))); }
-void Assembler::cmp(Gp a, Gp b) { list("cmp", a, b); emit(0, true, {0x39}, n(b), r(n(a))); }
-void Assembler::test(Gp a, Gp b) { list("test", a, b); emit(0, true, {0x85}, n(b), r(n(a))); }
-void Assembler::imul(Gp d, Gp s) { list("imul", d, s); emit(0, true, {0x0F, 0xAF}, n(d), r(n(s))); }
+void Assembler::mov(Gp d, Gp s) {
+  list("mov", d, s);
+  emit(0, true, {0x89}, n(s), r(n(d)));
+}
+void Assembler::mov(Gp d, const Mem& s) {
+  list("mov", d, s);
+  emit(0, true, {0x8B}, n(d), m(s));
+}
+void Assembler::mov(const Mem& d, Gp s) {
+  list("mov", d, s);
+  emit(0, true, {0x89}, n(s), m(d));
+}
+void Assembler::mov32(Gp d, const Mem& s) {
+  list("mov32", d, s);
+  emit(0, false, {0x8B}, n(d), m(s));
+}
+void Assembler::mov32(const Mem& d, Gp s) {
+  list("mov32", d, s);
+  emit(0, false, {0x89}, n(s), m(d));
+}
+void Assembler::lea(Gp d, const Mem& s) {
+  list("lea", d, s);
+  emit(0, true, {0x8D}, n(d), m(s));
+}
+void Assembler::add(Gp d, Gp s) {
+  list("add", d, s);
+  emit(0, true, {0x01}, n(s), r(n(d)));
+}
+void Assembler::sub(Gp d, Gp s) {
+  list("sub", d, s);
+  emit(0, true, {0x29}, n(s), r(n(d)));
+}
+void Assembler::cmp(Gp a, Gp b) {
+  list("cmp", a, b);
+  emit(0, true, {0x39}, n(b), r(n(a)));
+}
+void Assembler::test(Gp a, Gp b) {
+  list("test", a, b);
+  emit(0, true, {0x85}, n(b), r(n(a)));
+}
+void Assembler::imul(Gp d, Gp s) {
+  list("imul", d, s);
+  emit(0, true, {0x0F, 0xAF}, n(d), r(n(s)));
+}
 
 void Assembler::mov_imm(Gp d, uint64_t imm) {
   list("mov", d, imm);
@@ -302,24 +397,27 @@ namespace {
 constexpr uint8_t kAdd = 0, kSub = 5, kCmp = 7;
 }  // namespace
 
-#define FS_GROUP1(name, digit)                                                                     \
-  void Assembler::name(Gp d, int32_t imm) {                                                        \
-    list(#name, d, imm);                                                                           \
-    bool small = fits8(imm);                                                                       \
-    emit(0, true, {static_cast<uint8_t>(small ? 0x83 : 0x81)}, digit, r(n(d)), small ? 1 : 4,      \
-         static_cast<uint32_t>(imm));                                                              \
-  }                                                                                                \
-  void Assembler::name(const Mem& d, int32_t imm) {                                                \
-    list(#name, d, imm);                                                                           \
-    bool small = fits8(imm);                                                                       \
-    emit(0, true, {static_cast<uint8_t>(small ? 0x83 : 0x81)}, digit, m(d), small ? 1 : 4,         \
-         static_cast<uint32_t>(imm));                                                              \
+#define FS_GROUP1(name, digit)                                                                \
+  void Assembler::name(Gp d, int32_t imm) {                                                   \
+    list(#name, d, imm);                                                                      \
+    bool small = fits8(imm);                                                                  \
+    emit(0, true, {static_cast<uint8_t>(small ? 0x83 : 0x81)}, digit, r(n(d)), small ? 1 : 4, \
+         static_cast<uint32_t>(imm));                                                         \
+  }                                                                                           \
+  void Assembler::name(const Mem& d, int32_t imm) {                                           \
+    list(#name, d, imm);                                                                      \
+    bool small = fits8(imm);                                                                  \
+    emit(0, true, {static_cast<uint8_t>(small ? 0x83 : 0x81)}, digit, m(d), small ? 1 : 4,    \
+         static_cast<uint32_t>(imm));                                                         \
   }
 FS_GROUP1(add, kAdd)
 FS_GROUP1(sub, kSub)
 FS_GROUP1(cmp, kCmp)
 #undef FS_GROUP1
-void Assembler::cmp8(const Mem& a, uint8_t imm) { list("cmp8", a, imm); emit(0, false, {0x80}, kCmp, m(a), 1, imm); }
+void Assembler::cmp8(const Mem& a, uint8_t imm) {
+  list("cmp8", a, imm);
+  emit(0, false, {0x80}, kCmp, m(a), 1, imm);
+}
 void Assembler::and_(Gp d, int32_t imm) {
   list("and", d, imm);
   bool small = fits8(imm);
@@ -336,9 +434,18 @@ void Assembler::pop(Gp g) {
   if (n(g) >= 8) code_.push_back(0x41);
   code_.push_back(static_cast<uint8_t>(0x58 + (n(g) & 7)));
 }
-void Assembler::call(Gp target) { list("call", target); emit(0, false, {0xFF}, 2, r(n(target))); }
-void Assembler::call(const Mem& target) { list("call", target); emit(0, false, {0xFF}, 2, m(target)); }
-void Assembler::ret() { list("ret"); code_.push_back(0xC3); }
+void Assembler::call(Gp target) {
+  list("call", target);
+  emit(0, false, {0xFF}, 2, r(n(target)));
+}
+void Assembler::call(const Mem& target) {
+  list("call", target);
+  emit(0, false, {0xFF}, 2, m(target));
+}
+void Assembler::ret() {
+  list("ret");
+  code_.push_back(0xC3);
+}
 
 void Assembler::rel32(Label l) {
   size_t at = code_.size();
@@ -428,7 +535,8 @@ std::string Assembler::operand(Rounding r) {
   return "?";
 }
 std::string Assembler::operand(Cond c) {
-  static const char* kNames[] = {"o", "no", "b", "ae", "e", "ne", "be", "a", "s", "ns", "p", "np", "l", "ge", "le", "g"};
+  static const char* kNames[] = {"o", "no", "b", "ae", "e", "ne", "be", "a",
+                                 "s", "ns", "p", "np", "l", "ge", "le", "g"};
   return kNames[static_cast<int>(c)];
 }
 std::string Assembler::operand(Label l) { return "L" + std::to_string(l.id); }

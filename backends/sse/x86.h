@@ -41,28 +41,60 @@ struct Mem {
 class Assembler {
  public:
   // ---- SSE: packed and scalar single, register or memory source ----
-#define FS_SSE_BINARY(name)                 \
-  void name(Xmm d, Xmm s);                  \
+#define FS_SSE_BINARY(name) \
+  void name(Xmm d, Xmm s);  \
   void name(Xmm d, const Mem& s);
-  FS_SSE_BINARY(addps) FS_SSE_BINARY(subps) FS_SSE_BINARY(mulps) FS_SSE_BINARY(divps)
-  FS_SSE_BINARY(minps) FS_SSE_BINARY(maxps) FS_SSE_BINARY(sqrtps) FS_SSE_BINARY(andps)
-  FS_SSE_BINARY(andnps) FS_SSE_BINARY(orps) FS_SSE_BINARY(xorps)
-  FS_SSE_BINARY(addss) FS_SSE_BINARY(subss) FS_SSE_BINARY(mulss) FS_SSE_BINARY(divss)
-  FS_SSE_BINARY(minss) FS_SSE_BINARY(maxss) FS_SSE_BINARY(sqrtss)
+  FS_SSE_BINARY(addps)
+  FS_SSE_BINARY(subps)
+  FS_SSE_BINARY(mulps)
+  FS_SSE_BINARY(divps)
+  FS_SSE_BINARY(minps)
+  FS_SSE_BINARY(maxps)
+  FS_SSE_BINARY(sqrtps)
+  FS_SSE_BINARY(andps)
+  FS_SSE_BINARY(andnps)
+  FS_SSE_BINARY(orps)
+  FS_SSE_BINARY(xorps)
+  FS_SSE_BINARY(addss)
+  FS_SSE_BINARY(subss)
+  FS_SSE_BINARY(mulss)
+  FS_SSE_BINARY(divss)
+  FS_SSE_BINARY(minss)
+  FS_SSE_BINARY(maxss)
+  FS_SSE_BINARY(sqrtss)
   FS_SSE_BINARY(blendvps)  // xmm0 is the implicit mask
-  FS_SSE_BINARY(cvtdq2ps) FS_SSE_BINARY(cvttps2dq) FS_SSE_BINARY(cvtps2dq)
-  FS_SSE_BINARY(pand) FS_SSE_BINARY(pandn) FS_SSE_BINARY(por) FS_SSE_BINARY(pxor)
-  FS_SSE_BINARY(pcmpeqd) FS_SSE_BINARY(pcmpgtd) FS_SSE_BINARY(paddd) FS_SSE_BINARY(psubd)
+  FS_SSE_BINARY(cvtdq2ps)
+  FS_SSE_BINARY(cvttps2dq)
+  FS_SSE_BINARY(cvtps2dq)
+  FS_SSE_BINARY(pand)
+  FS_SSE_BINARY(pandn)
+  FS_SSE_BINARY(por)
+  FS_SSE_BINARY(pxor)
+  FS_SSE_BINARY(pcmpeqd)
+  FS_SSE_BINARY(pcmpgtd)
+  FS_SSE_BINARY(paddd)
+  FS_SSE_BINARY(psubd)
   FS_SSE_BINARY(ucomiss)
-  FS_SSE_BINARY(cvtps2pd) FS_SSE_BINARY(cvtpd2ps) FS_SSE_BINARY(cvttpd2dq)  // low two lanes <-> doubles
-  FS_SSE_BINARY(addpd) FS_SSE_BINARY(subpd) FS_SSE_BINARY(mulpd) FS_SSE_BINARY(punpcklqdq)
+  FS_SSE_BINARY(cvtps2pd)
+  FS_SSE_BINARY(cvtpd2ps)
+  FS_SSE_BINARY(cvttpd2dq)  // low two lanes <-> doubles
+  FS_SSE_BINARY(addpd)
+  FS_SSE_BINARY(subpd)
+  FS_SSE_BINARY(mulpd)
+  FS_SSE_BINARY(punpcklqdq)
 #undef FS_SSE_BINARY
   // ---- AVX (VEX.128): the same operations in three-operand form, d = s1 op s2, no copy of s1 ----
-#define FS_VEX_BINARY(name)                 \
-  void name(Xmm d, Xmm s1, Xmm s2);         \
+#define FS_VEX_BINARY(name)         \
+  void name(Xmm d, Xmm s1, Xmm s2); \
   void name(Xmm d, Xmm s1, const Mem& s2);
-  FS_VEX_BINARY(vaddps) FS_VEX_BINARY(vsubps) FS_VEX_BINARY(vmulps) FS_VEX_BINARY(vdivps)
-  FS_VEX_BINARY(vminps) FS_VEX_BINARY(vmaxps) FS_VEX_BINARY(vandps) FS_VEX_BINARY(vxorps)
+  FS_VEX_BINARY(vaddps)
+  FS_VEX_BINARY(vsubps)
+  FS_VEX_BINARY(vmulps)
+  FS_VEX_BINARY(vdivps)
+  FS_VEX_BINARY(vminps)
+  FS_VEX_BINARY(vmaxps)
+  FS_VEX_BINARY(vandps)
+  FS_VEX_BINARY(vxorps)
 #undef FS_VEX_BINARY
   void cmpps(Xmm d, Xmm s, Pred p);
   void cmpps(Xmm d, const Mem& s, Pred p);

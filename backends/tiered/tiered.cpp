@@ -220,7 +220,8 @@ class TieredKernel : public Kernel {
       if (const Kernel* k = native(n - done)) return k->eval_batch(in.data(), out.data(), n - done, err);
       auto t0 = Clock::now();
       if (!vm_->eval_batch(in.data(), out.data(), m, err)) return false;
-      account(m, static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count()));
+      account(m,
+              static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count()));
       for (auto& p : in) p += m;
       for (auto& p : out) p += m;
       done += m;
@@ -237,11 +238,14 @@ class TieredKernel : public Kernel {
     size_t per = std::max<size_t>(1, kChunk / std::max<size_t>(count, 1));
     for (size_t done = 0; done < rows;) {
       size_t m = std::min(per, rows - done);
-      if (uint64_t vm = s_->vm_points.load(); force_after_ > vm) m = std::min<size_t>(m, (force_after_ - vm + count - 1) / count);
-      if (const Kernel* k = native((rows - done) * count)) return k->eval_rows(first, count, r.data(), rows - done, out.data(), err);
+      if (uint64_t vm = s_->vm_points.load(); force_after_ > vm)
+        m = std::min<size_t>(m, (force_after_ - vm + count - 1) / count);
+      if (const Kernel* k = native((rows - done) * count))
+        return k->eval_rows(first, count, r.data(), rows - done, out.data(), err);
       auto t0 = Clock::now();
       if (!vm_->eval_rows(first, count, r.data(), m, out.data(), err)) return false;
-      account(m * count, static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count()));
+      account(m * count,
+              static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count()));
       for (auto& p : r) p += m;
       for (auto& p : out) p += m * count;
       done += m;

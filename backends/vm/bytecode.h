@@ -40,13 +40,14 @@ constexpr uint32_t kNoReg = UINT32_MAX;
 #define FS_VM_FUSE_SQUARED(X) X(Add) X(Sub)
 constexpr uint8_t kFuseNone = 0, kFuseCLast = 1, kFuseCFirst = 2;
 #define FS_VM_FUSE_COUNT(N) +1
-constexpr int kFuseFirstOps = 0 FS_VM_FUSE_FIRST(FS_VM_FUSE_COUNT), kFuseSecondOps = 0 FS_VM_FUSE_SECOND(FS_VM_FUSE_COUNT),
+constexpr int kFuseFirstOps = 0 FS_VM_FUSE_FIRST(FS_VM_FUSE_COUNT),
+              kFuseSecondOps = 0 FS_VM_FUSE_SECOND(FS_VM_FUSE_COUNT),
               kFuseSquaredOps = 0 FS_VM_FUSE_SQUARED(FS_VM_FUSE_COUNT);
 #undef FS_VM_FUSE_COUNT
 // The op's place in each list, or -1.
 constexpr int fuse_first_index(ir::Op op) {
   int k = 0;
-#define FS_VM_FUSE_AT(N) \
+#define FS_VM_FUSE_AT(N)         \
   if (op == ir::Op::N) return k; \
   ++k;
   FS_VM_FUSE_FIRST(FS_VM_FUSE_AT)
@@ -129,10 +130,21 @@ struct VmProgram {
 // Binary ops whose operands may be immediates (kinds bits 0 and 1).
 inline bool takes_immediates(ir::Op op) {
   switch (op) {
-    case ir::Op::Add: case ir::Op::Sub: case ir::Op::Mul: case ir::Op::Div: case ir::Op::Mod: case ir::Op::Min:
-    case ir::Op::Max: case ir::Op::Pow: case ir::Op::Atan2: case ir::Op::Eq: case ir::Op::Ne: case ir::Op::Lt:
-    case ir::Op::Le: case ir::Op::Gt: case ir::Op::Ge:
-      return true;
+    case ir::Op::Add:
+    case ir::Op::Sub:
+    case ir::Op::Mul:
+    case ir::Op::Div:
+    case ir::Op::Mod:
+    case ir::Op::Min:
+    case ir::Op::Max:
+    case ir::Op::Pow:
+    case ir::Op::Atan2:
+    case ir::Op::Eq:
+    case ir::Op::Ne:
+    case ir::Op::Lt:
+    case ir::Op::Le:
+    case ir::Op::Gt:
+    case ir::Op::Ge: return true;
     default: return false;
   }
 }

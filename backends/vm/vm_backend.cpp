@@ -7,8 +7,8 @@
 namespace fscript::vm {
 
 namespace {
-bool run_isa(const VmProgram& p, const backends::Budgets& budgets, const float* const* inputs,
-             float* const* outputs, size_t n, size_t row_length, backends::RuntimeError& err, bool& out_of_stack) {
+bool run_isa(const VmProgram& p, const backends::Budgets& budgets, const float* const* inputs, float* const* outputs,
+             size_t n, size_t row_length, backends::RuntimeError& err, bool& out_of_stack) {
   switch (math::active_isa()) {
     case math::Isa::Base: return isa_base::run_batch(p, budgets, inputs, outputs, n, row_length, err, out_of_stack);
     case math::Isa::Avx2: return isa_avx2::run_batch(p, budgets, inputs, outputs, n, row_length, err, out_of_stack);
@@ -18,8 +18,8 @@ bool run_isa(const VmProgram& p, const backends::Budgets& budgets, const float* 
 }
 }  // namespace
 
-bool run_batch(const VmProgram& p, const backends::Budgets& budgets, const float* const* inputs,
-               float* const* outputs, size_t n, size_t row_length, backends::RuntimeError& err) {
+bool run_batch(const VmProgram& p, const backends::Budgets& budgets, const float* const* inputs, float* const* outputs,
+               size_t n, size_t row_length, backends::RuntimeError& err) {
   bool out_of_stack = false;
   bool ok = run_isa(p, budgets, inputs, outputs, n, row_length, err, out_of_stack);
   if (!out_of_stack) return ok;
@@ -31,7 +31,7 @@ bool run_batch(const VmProgram& p, const backends::Budgets& budgets, const float
 }
 
 std::unique_ptr<backends::Kernel> VmBackend::compile(const ir::Module& m, const backends::Budgets& b,
-                                                    std::string& error) const {
+                                                     std::string& error) const {
   VmProgram p;
   if (!compile_program(m, p, error)) return nullptr;
   return std::make_unique<VmKernel>(std::move(p), b);
@@ -42,8 +42,8 @@ bool VmKernel::eval_batch(const float* const* inputs, float* const* outputs, siz
   return run_batch(prog_, budgets_, inputs, outputs, n, n, err);  // a kernel with row parameters: one row
 }
 
-bool VmKernel::eval_rows(const float* first, size_t count, const float* const* rest, size_t rows,
-                         float* const* outputs, backends::RuntimeError& err) const {
+bool VmKernel::eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
+                         backends::RuntimeError& err) const {
   if (!prog_.row_params_from) return Kernel::eval_rows(first, count, rest, rows, outputs, err);
   std::vector<const float*> in(num_inputs());
   in[0] = first;

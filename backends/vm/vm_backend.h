@@ -11,7 +11,8 @@ class VmKernel : public backends::Kernel {
   VmKernel(VmProgram p, const backends::Budgets& b) : prog_(std::move(p)), budgets_(b) {}
   size_t num_inputs() const override { return prog_.functions[prog_.kernel].num_params; }
   size_t num_outputs() const override { return prog_.functions[prog_.kernel].num_results; }
-  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const override;
+  bool eval_batch(const float* const* inputs, float* const* outputs, size_t n,
+                  backends::RuntimeError& err) const override;
   bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
                  backends::RuntimeError& err) const override;
   bool eval(const float* inputs, float* outputs, backends::RuntimeError& err) const override;
@@ -30,7 +31,8 @@ std::unique_ptr<backends::Kernel> compile_tape(const ir::IntervalTape& t, const 
 class VmBackend : public backends::Backend {
  public:
   std::string name() const override { return "vm"; }
-  std::unique_ptr<backends::Kernel> compile(const ir::Module& m, const backends::Budgets& b, std::string& error) const override;
+  std::unique_ptr<backends::Kernel> compile(const ir::Module& m, const backends::Budgets& b,
+                                            std::string& error) const override;
 };
 
 }  // namespace fscript::vm

@@ -290,12 +290,15 @@ bool compile_program(const ir::Module& m, VmProgram& out, std::string& error) {
     }
   }
   for (const auto& f : out.functions)
-    for (const auto& v : f.code)
-      switch (v.op) {
-        case Op::Tick: case Op::Call: case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad:
-        case Op::AStore: case Op::ALen:
-          out.needs_lane_state = true;
-          break;
+    for (const auto& v : f.code) switch (v.op) {
+        case Op::Tick:
+        case Op::Call:
+        case Op::GLoad:
+        case Op::GStore:
+        case Op::ANew:
+        case Op::ALoad:
+        case Op::AStore:
+        case Op::ALen: out.needs_lane_state = true; break;
         default: break;
       }
   if (!found) error = "the module has no kernel function";
@@ -326,7 +329,9 @@ std::string disassemble(const VmProgram& p) {
           operand(1, v.b, v.imm_b);
           if (v.squared) s += " -> square";
           s += std::string(" -> ") + ir::mnemonic(v.op2);
-          std::string c = v.kinds & 4 ? "#" + ir::format_float(v.imm_c) : v.c != kNoReg ? "r" + std::to_string(v.c) : "";
+          std::string c = v.kinds & 4 ? "#" + ir::format_float(v.imm_c)
+              : v.c != kNoReg         ? "r" + std::to_string(v.c)
+                                      : "";
           if (!c.empty()) s += v.fused == kFuseCFirst ? " " + c + " _" : " _ " + c;
           s += "\n";
           continue;
@@ -336,10 +341,9 @@ std::string disassemble(const VmProgram& p) {
         operand(1, v.b, v.imm_b);
         if ((v.op == ir::Op::Sin || v.op == ir::Op::Cos) && v.c != kNoReg)  // a pair (bytecode.h)
           s += v.aux == kTrigFirst ? std::string(" (and its ") + (v.op == ir::Op::Sin ? "cos" : "sin") + " into r" +
-                                         std::to_string(v.c) + ")"
+                  std::to_string(v.c) + ")"
                                    : " (computed with its pair, from r" + std::to_string(v.c) + ")";
-        else
-          operand(2, v.c, 0);
+        else operand(2, v.c, 0);
         s += "\n";
       }
       s += "  " + std::string(ir::mnemonic(vb.term));

@@ -81,16 +81,22 @@ inline void binary(const VInst& v, float* R, const Mask* m, bool full, uint32_t 
   const float ia = v.imm_a, ib = v.imm_b;
   switch (v.kinds) {
     case 0:
-      if (full) for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i], b[i]);
-      else for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i], b[i]) : d[i];
+      if (full)
+        for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i], b[i]);
+      else
+        for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i], b[i]) : d[i];
       break;
     case 1:
-      if (full) for (uint32_t i = 0; i < n; ++i) d[i] = f(ia, b[i]);
-      else for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(ia, b[i]) : d[i];
+      if (full)
+        for (uint32_t i = 0; i < n; ++i) d[i] = f(ia, b[i]);
+      else
+        for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(ia, b[i]) : d[i];
       break;
     case 2:
-      if (full) for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i], ib);
-      else for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i], ib) : d[i];
+      if (full)
+        for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i], ib);
+      else
+        for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i], ib) : d[i];
       break;
     default:
       for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(ia, ib) : d[i];
@@ -103,8 +109,10 @@ inline void unary(const VInst& v, float* R, const Mask* m, bool full, uint32_t n
   if (n % 16 != 0) __builtin_unreachable();
   float* __restrict d = reg(R, v.dst);
   const float* __restrict a = reg(R, v.a);
-  if (full) for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i]);
-  else for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i]) : d[i];
+  if (full)
+    for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i]);
+  else
+    for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i]) : d[i];
 }
 
 template <class F>
@@ -114,12 +122,15 @@ inline void ternary(const VInst& v, float* R, const Mask* m, bool full, uint32_t
   const float* a = reg(R, v.a);
   const float* b = reg(R, v.b);
   const float* c = reg(R, v.c);
-  if (full) for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i], b[i], c[i]);
-  else for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i], b[i], c[i]) : d[i];
+  if (full)
+    for (uint32_t i = 0; i < n; ++i) d[i] = f(a[i], b[i], c[i]);
+  else
+    for (uint32_t i = 0; i < n; ++i) d[i] = m[i] ? f(a[i], b[i], c[i]) : d[i];
 }
 
 // A transcendental with a SIMD batch twin: compute every lane, keep the present ones.
-inline void batched(const VInst& v, float* R, const Mask* m, bool full, uint32_t n, void (*fn)(const float*, float*, size_t)) {
+inline void batched(const VInst& v, float* R, const Mask* m, bool full, uint32_t n,
+                    void (*fn)(const float*, float*, size_t)) {
   float* d = reg(R, v.dst);
   const float* a = reg(R, v.a);
   if (full) {
@@ -133,7 +144,8 @@ inline void batched(const VInst& v, float* R, const Mask* m, bool full, uint32_t
 
 // sin and cos: as batched, or one of a pair (bytecode.h): the first computes both, the second
 // copies its result from the pair's register. Both run under the block's one mask.
-inline void trig(const VInst& v, float* R, const Mask* m, bool full, uint32_t n, void (*fn)(const float*, float*, size_t)) {
+inline void trig(const VInst& v, float* R, const Mask* m, bool full, uint32_t n,
+                 void (*fn)(const float*, float*, size_t)) {
   if (v.c == kNoReg) return batched(v, R, m, full, n, fn);
   float* d = reg(R, v.dst);
   float* o = reg(R, v.c);
@@ -180,29 +192,40 @@ inline void batched3(const VInst& v, float* R, const Mask* m, bool full, uint32_
 // How each row of ir/math_ops.def runs, by its kind and arity: on the batch path (FS_VM_*) and on
 // the one-point path (FS_ONE_*), where transcendentals go through the same batch functions (n = 1)
 // so a point gives the same bits either way.
-#define FS_VM_Lane1(N, FN) case Op::N: unary(v, R, m, full, n, [](float a) { return M::FN(a); }); return true;
-#define FS_VM_Lane2(N, FN) case Op::N: binary(v, R, m, full, n, [](float a, float b) { return M::FN(a, b); }); return true;
+#define FS_VM_Lane1(N, FN) \
+  case Op::N: unary(v, R, m, full, n, [](float a) { return M::FN(a); }); return true;
+#define FS_VM_Lane2(N, FN) \
+  case Op::N: binary(v, R, m, full, n, [](float a, float b) { return M::FN(a, b); }); return true;
 #define FS_VM_Lane3(N, FN) \
   case Op::N: ternary(v, R, m, full, n, [](float a, float b, float c) { return M::FN(a, b, c); }); return true;
-#define FS_VM_Batch1(N, FN) case Op::N: batched(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
-#define FS_VM_Batch2(N, FN) case Op::N: batched2(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
-#define FS_VM_Batch3(N, FN) case Op::N: batched3(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
-#define FS_VM_Trig1(N, FN) case Op::N: trig(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
-#define FS_ONE_Lane1(N, FN) case Op::N: *d = M::FN(a); return true;
-#define FS_ONE_Lane2(N, FN) case Op::N: *d = M::FN(a, b); return true;
-#define FS_ONE_Lane3(N, FN) case Op::N: *d = M::FN(a, b, R[v.c]); return true;
-#define FS_ONE_Batch1(N, FN) case Op::N: I::FN##_batch(&a, d, 1); return true;
-#define FS_ONE_Batch2(N, FN) case Op::N: I::FN##_batch(&a, &b, d, 1); return true;
-#define FS_ONE_Batch3(N, FN) \
-  case Op::N: {              \
-    const float c = R[v.c];  \
+#define FS_VM_Batch1(N, FN) \
+  case Op::N: batched(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
+#define FS_VM_Batch2(N, FN) \
+  case Op::N: batched2(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
+#define FS_VM_Batch3(N, FN) \
+  case Op::N: batched3(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
+#define FS_VM_Trig1(N, FN) \
+  case Op::N: trig(v, R, m, full, n, M::FS_ISA::FN##_batch); return true;
+#define FS_ONE_Lane1(N, FN) \
+  case Op::N: *d = M::FN(a); return true;
+#define FS_ONE_Lane2(N, FN) \
+  case Op::N: *d = M::FN(a, b); return true;
+#define FS_ONE_Lane3(N, FN) \
+  case Op::N: *d = M::FN(a, b, R[v.c]); return true;
+#define FS_ONE_Batch1(N, FN) \
+  case Op::N: I::FN##_batch(&a, d, 1); return true;
+#define FS_ONE_Batch2(N, FN) \
+  case Op::N: I::FN##_batch(&a, &b, d, 1); return true;
+#define FS_ONE_Batch3(N, FN)         \
+  case Op::N: {                      \
+    const float c = R[v.c];          \
     I::FN##_batch(&a, &b, &c, d, 1); \
-    return true;             \
+    return true;                     \
   }
-#define FS_ONE_Trig1(N, FN)                                                        \
-  case Op::N:                                                                     \
-    if (v.c == kNoReg) I::FN##_batch(&a, d, 1);                                   \
-    else if (v.aux == kTrigSecond) *d = R[v.c];                                   \
+#define FS_ONE_Trig1(N, FN)                                                                    \
+  case Op::N:                                                                                  \
+    if (v.c == kNoReg) I::FN##_batch(&a, d, 1);                                                \
+    else if (v.aux == kTrigSecond) *d = R[v.c];                                                \
     else I::sincos_batch(&a, v.op == Op::Sin ? d : &R[v.c], v.op == Op::Sin ? &R[v.c] : d, 1); \
     return true;
 
@@ -432,16 +455,24 @@ bool Executor::exec(Frame& fr, const VInst& v, const Mask* m, bool full, Runtime
   switch (v.op) {
 #define FS_MATH(N, FN, A, HOW) FS_VM_##HOW##A(N, FN)
 #include "ir/math_ops.def"
-    case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
-    case Op::Call: case Op::Tick:
+    case Op::GLoad:
+    case Op::GStore:
+    case Op::ANew:
+    case Op::ALoad:
+    case Op::AStore:
+    case Op::ALen:
+    case Op::Call:
+    case Op::Tick:
       if (v.op == Op::Tick && ++chunk_ticks_ > kLaneByLaneAfter) return long_loop_ = true, false;
       for (uint32_t i = 0; i < L; ++i)
         if (m[i] && !lane_op(fr, v, i, err)) return false;
       return true;
-    case Op::Param:
-      return true;  // filled when the frame starts
-    case Op::Const: case Op::Phi: case Op::Jump: case Op::Branch: case Op::Ret:
-      return true;  // never emitted as instructions
+    case Op::Param: return true;  // filled when the frame starts
+    case Op::Const:
+    case Op::Phi:
+    case Op::Jump:
+    case Op::Branch:
+    case Op::Ret: return true;  // never emitted as instructions
   }
   return true;
 }
@@ -459,11 +490,20 @@ bool Executor::exec_one(Frame& fr, const VInst& v, RuntimeError& err) {
   switch (v.op) {
 #define FS_MATH(N, FN, A, HOW) FS_ONE_##HOW##A(N, FN)
 #include "ir/math_ops.def"
-    case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
-    case Op::Call: case Op::Tick:
-      return lane_op(fr, v, 0, err);
-    case Op::Param: case Op::Const: case Op::Phi: case Op::Jump: case Op::Branch: case Op::Ret:
-      return true;
+    case Op::GLoad:
+    case Op::GStore:
+    case Op::ANew:
+    case Op::ALoad:
+    case Op::AStore:
+    case Op::ALen:
+    case Op::Call:
+    case Op::Tick: return lane_op(fr, v, 0, err);
+    case Op::Param:
+    case Op::Const:
+    case Op::Phi:
+    case Op::Jump:
+    case Op::Branch:
+    case Op::Ret: return true;
   }
   return true;
 }
@@ -553,8 +593,8 @@ bool Executor::call(Frame& fr, const VInst& v, uint32_t i, RuntimeError& err) {
 
 }  // namespace
 
-bool run_batch(const VmProgram& p, const Budgets& budgets, const float* const* inputs, float* const* outputs,
-               size_t n, size_t row_length, RuntimeError& err, bool& out_of_stack) {
+bool run_batch(const VmProgram& p, const Budgets& budgets, const float* const* inputs, float* const* outputs, size_t n,
+               size_t row_length, RuntimeError& err, bool& out_of_stack) {
   Executor ex(p, budgets, row_length);
   size_t chunk = p.functions[p.kernel].blocks.size() == 1 ? kChunkLanes : kBranchyChunkLanes;
   for (size_t base = 0; base < n; base += chunk) {

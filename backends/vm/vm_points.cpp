@@ -22,26 +22,45 @@ void run_tape_points(const ir::IntervalTape::Step* steps, size_t count, float* v
     const float* __restrict b = values + size_t(s.b) * K;
     const float* __restrict c = values + size_t(s.c) * K;
     switch (s.op) {
-#define FS_PT_Lane1(N, FN) \
-  case Op::N: for (size_t i = 0; i < K; ++i) d[i] = M::FN(a[i]); break;
-#define FS_PT_Lane2(N, FN) \
-  case Op::N: for (size_t i = 0; i < K; ++i) d[i] = M::FN(a[i], b[i]); break;
-#define FS_PT_Lane3(N, FN) \
-  case Op::N: for (size_t i = 0; i < K; ++i) d[i] = M::FN(a[i], b[i], c[i]); break;
-#define FS_PT_Batch1(N, FN) case Op::N: M::FS_ISA::FN##_batch(a, d, K); break;
-#define FS_PT_Batch2(N, FN) case Op::N: M::FS_ISA::FN##_batch(a, b, d, K); break;
-#define FS_PT_Batch3(N, FN) case Op::N: M::FS_ISA::FN##_batch(a, b, c, d, K); break;
+#define FS_PT_Lane1(N, FN)                             \
+  case Op::N:                                          \
+    for (size_t i = 0; i < K; ++i) d[i] = M::FN(a[i]); \
+    break;
+#define FS_PT_Lane2(N, FN)                                   \
+  case Op::N:                                                \
+    for (size_t i = 0; i < K; ++i) d[i] = M::FN(a[i], b[i]); \
+    break;
+#define FS_PT_Lane3(N, FN)                                         \
+  case Op::N:                                                      \
+    for (size_t i = 0; i < K; ++i) d[i] = M::FN(a[i], b[i], c[i]); \
+    break;
+#define FS_PT_Batch1(N, FN) \
+  case Op::N: M::FS_ISA::FN##_batch(a, d, K); break;
+#define FS_PT_Batch2(N, FN) \
+  case Op::N: M::FS_ISA::FN##_batch(a, b, d, K); break;
+#define FS_PT_Batch3(N, FN) \
+  case Op::N: M::FS_ISA::FN##_batch(a, b, c, d, K); break;
 #define FS_PT_Trig1 FS_PT_Batch1
 #define FS_MATH(N, FN, A, HOW) FS_PT_##HOW##A(N, FN)
 #include "ir/math_ops.def"
       case Op::Const:
         for (size_t i = 0; i < K; ++i) d[i] = s.imm;
         break;
-      case Op::Param: break;  // placed by eval_tape_points
+      case Op::Param:
+        break;  // placed by eval_tape_points
       // Not in a straight-line tape (ir::interval_evaluable).
-      case Op::Phi: case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
-      case Op::Call: case Op::Tick: case Op::Jump: case Op::Branch: case Op::Ret:
-        break;
+      case Op::Phi:
+      case Op::GLoad:
+      case Op::GStore:
+      case Op::ANew:
+      case Op::ALoad:
+      case Op::AStore:
+      case Op::ALen:
+      case Op::Call:
+      case Op::Tick:
+      case Op::Jump:
+      case Op::Branch:
+      case Op::Ret: break;
     }
   }
 }

@@ -65,8 +65,8 @@ VmProgram tape_program(const ir::IntervalTape& t) {
     reg[s.dst] = v.dst;
     f.code.push_back(v);
     for (size_t k = 0; k < s.arity; ++k)  // operands dying here (once each, not constants)
-      if (last[operands[k]] == i && def[operands[k]]->op != ir::Op::Const &&
-          (k == 0 || operands[k] != operands[0]) && (k < 2 || operands[k] != operands[1]))
+      if (last[operands[k]] == i && def[operands[k]]->op != ir::Op::Const && (k == 0 || operands[k] != operands[0]) &&
+          (k < 2 || operands[k] != operands[1]))
         free.push_back(reg[operands[k]]);
   }
   VBlock b;

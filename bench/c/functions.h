@@ -30,4 +30,3 @@ static inline float csg8(float x, float y, float z, float t) {
   float box = fmaxf(fabsf(x) - 0.7f, fmaxf(fabsf(y) - 0.7f, fabsf(z) - 0.7f));
   return -fmaxf(d, box);
 }
-

@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
   opts.want_kernel = false;
   frontend::DiagnosticSink diag;
   driver::Compiled c;
-  if (!driver::compile(std::make_unique<frontend::SourceFile>(argv[1], text), driver::default_entry(), opts, diag, c).ok() ||
+  if (!driver::compile(std::make_unique<frontend::SourceFile>(argv[1], text), driver::default_entry(), opts, diag, c)
+           .ok() ||
       !ir::interval_evaluable(c.module->kernel_function())) {
     std::fprintf(stderr, "%s%s: error: not a straight-line kernel\n", frontend::render_all(diag).c_str(), argv[1]);
     return 1;
@@ -77,7 +78,8 @@ int main(int argc, char** argv) {
   double evals = double(repeats) * regions * ops;
   std::printf("%s: %zu operations, %zu regions x %d\n", argv[1], ops, regions, repeats);
   std::printf("  one region a pass:       %.2f ns per operation\n", one / evals * 1e9);
-  std::printf("  %zu regions a pass:       %.2f ns per operation and region\n", ir::kIntervalLanes, batched / evals * 1e9);
+  std::printf("  %zu regions a pass:       %.2f ns per operation and region\n", ir::kIntervalLanes,
+              batched / evals * 1e9);
   std::printf("  simplification:          %.2f ns per operation (mean kept %.0f)\n",
               simplify / (double(repeats) * ops) * 1e9, double(kept) / repeats);
   return 0;

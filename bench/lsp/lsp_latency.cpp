@@ -51,21 +51,25 @@ int main(int argc, char** argv) {
   std::vector<double> diag_ms, completion_ms;
   for (int k = 0; k < 200; ++k) {
     int line = 1 + (k * 37) % (total_lines - 4);
-    json change = {{"jsonrpc", "2.0"},
-                   {"method", "textDocument/didChange"},
-                   {"params",
-                    {{"textDocument", {{"uri", "file:///bench.fs"}, {"version", k + 2}}},
-                     {"contentChanges",
-                      json::array({{{"range", {{"start", {{"line", line}, {"character", 0}}}, {"end", {{"line", line}, {"character", 0}}}}},
-                                    {"text", k % 2 ? "" : " "}}})}}}};
+    json change = {
+        {"jsonrpc", "2.0"},
+        {"method", "textDocument/didChange"},
+        {"params",
+         {{"textDocument", {{"uri", "file:///bench.fs"}, {"version", k + 2}}},
+          {"contentChanges",
+           json::array({{{"range",
+                          {{"start", {{"line", line}, {"character", 0}}}, {"end", {{"line", line}, {"character", 0}}}}},
+                         {"text", k % 2 ? "" : " "}}})}}}};
     auto t = Clock::now();
     auto out = server.handle(change);  // the publishDiagnostics notification is made here
     diag_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t).count());
     if (out.empty()) return 1;
-    json complete = {{"jsonrpc", "2.0"},
-                     {"id", 1000 + k},
-                     {"method", "textDocument/completion"},
-                     {"params", {{"textDocument", {{"uri", "file:///bench.fs"}}}, {"position", {{"line", line + 1}, {"character", 10}}}}}};
+    json complete = {
+        {"jsonrpc", "2.0"},
+        {"id", 1000 + k},
+        {"method", "textDocument/completion"},
+        {"params",
+         {{"textDocument", {{"uri", "file:///bench.fs"}}}, {"position", {{"line", line + 1}, {"character", 10}}}}}};
     t = Clock::now();
     server.handle(complete);
     completion_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t).count());

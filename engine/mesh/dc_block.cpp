@@ -74,7 +74,9 @@ struct Batch {
     for (size_t r = 0, o = 0; r < rows.size(); o += rows[r].count, ++r) {
       at[r] = o;
       size_t gr = 0;
-      while (gr < first_row.size() && !(rows[first_row[gr]].xs == rows[r].xs && rows[first_row[gr]].count == rows[r].count)) ++gr;
+      while (gr < first_row.size() &&
+             !(rows[first_row[gr]].xs == rows[r].xs && rows[first_row[gr]].count == rows[r].count))
+        ++gr;
       if (gr == first_row.size()) first_row.push_back(r), start.push_back(0);
       group_of[r] = gr, ++start[gr + 1];
     }
@@ -207,7 +209,8 @@ BlockGrid::BlockGrid(const Lattice& g, const BrickMap* bricks) : g_(g) {
           b.s0[a] = b.b[a] * kBlock - 1;
           b.m[a] = std::min(kBlock, g.n[a] + 1 - b.b[a] * kBlock);
           out = out || b.s0[a] < 0 || b.s0[a] + b.m[a] >= g.n[a];
-          lo[a] = std::max(0, b.s0[a]) / BrickMap::kBrick, hi[a] = std::min(g.n[a] - 1, b.s0[a] + b.m[a]) / BrickMap::kBrick;
+          lo[a] = std::max(0, b.s0[a]) / BrickMap::kBrick,
+          hi[a] = std::min(g.n[a] - 1, b.s0[a] + b.m[a]) / BrickMap::kBrick;
         }
         bool open = !bricks;
         for (int bk = lo[2]; bk <= hi[2] && !open; ++bk)
@@ -244,14 +247,16 @@ bool BlockGrid::inside(int i, int j, int k) const {
     b[a] = std::min((s[a] + 1) / kBlock, nb_[a] - 1);
     l[a] = s[a] + 1 - b[a] * kBlock;
   }
-  int32_t slot = slot_[(static_cast<size_t>(b[2]) * nb_[1] + static_cast<size_t>(b[1])) * nb_[0] + static_cast<size_t>(b[0])];
+  int32_t slot =
+      slot_[(static_cast<size_t>(b[2]) * nb_[1] + static_cast<size_t>(b[1])) * nb_[0] + static_cast<size_t>(b[0])];
   if (slot < 0) return slot == kAllInside;
   return blocks_[static_cast<size_t>(slot)].inside(l[0], l[1], l[2]);
 }
 
 unsigned BlockGrid::mask(const int c[3]) const {
   unsigned m = 0;
-  for (int q = 0; q < 8; ++q) m |= static_cast<unsigned>(inside(c[0] + (q & 1), c[1] + (q >> 1 & 1), c[2] + (q >> 2 & 1))) << q;
+  for (int q = 0; q < 8; ++q)
+    m |= static_cast<unsigned>(inside(c[0] + (q & 1), c[1] + (q >> 1 & 1), c[2] + (q >> 2 & 1))) << q;
   return m;
 }
 
@@ -301,7 +306,8 @@ void Block::keep_rim() {
   for (int a = 0; a < kBlock; ++a)
     for (int c = 0; c < kBlock; ++c) keep(c, a, L), keep(c, L, a), keep(L, c, a);  // the faces k, j and i = L
   std::sort(rim.begin(), rim.end(), [](const RimCell& x, const RimCell& y) { return x.at < y.at; });
-  rim.erase(std::unique(rim.begin(), rim.end(), [](const RimCell& x, const RimCell& y) { return x.at == y.at; }), rim.end());
+  rim.erase(std::unique(rim.begin(), rim.end(), [](const RimCell& x, const RimCell& y) { return x.at == y.at; }),
+            rim.end());
   rim.shrink_to_fit();
   for (const Sheet& s : sheets) cells[s.cell] = CellInfo{};  // every cell written has a sheet
   cells.swap(cell_buffer());
@@ -328,7 +334,8 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
   } lend(b);
   b.f.resize(kSamples);
   float* f0 = b.f.data();
-  for (size_t q = 0; q < kSamples; ++q) f0[q] = -1.0f;  // the padding's value (a plain loop: vector::assign's is not vectorized)
+  for (size_t q = 0; q < kSamples; ++q)
+    f0[q] = -1.0f;  // the padding's value (a plain loop: vector::assign's is not vectorized)
   b.decided.assign(kSamples, 0);
   b.evaluated = 0;
   b.sound = true;
@@ -366,7 +373,8 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
           if (!runs.empty() && runs.back().at + runs.back().n == at) runs.back().n += n;  // the row's run goes on
           else runs.push_back({at, n});
           pts.add_row(xs + i, n, y, z);
-          if (j < kBlock && k < kBlock) b.evaluated += static_cast<size_t>(std::max(0, std::min(run_end, kBlock - 1) - i + 1));
+          if (j < kBlock && k < kBlock)
+            b.evaluated += static_cast<size_t>(std::max(0, std::min(run_end, kBlock - 1) - i + 1));
         } else {
           std::fill_n(b.f.begin() + static_cast<std::ptrdiff_t>(at), n, c == BrickClass::Inside ? 1.0f : -1.0f);
           std::fill_n(b.decided.begin() + static_cast<std::ptrdiff_t>(at), n, uint8_t{1});
@@ -428,7 +436,7 @@ bool probed_normal(const float* out, const Lattice& g, double normal[3]) {
 bool gradient_normal(float* const o[4], size_t q, double normal[3]) {
   for (int a = 0; a < 3; ++a) normal[a] = -double(o[1 + a][q]);
   return std::isfinite(normal[0]) && std::isfinite(normal[1]) && std::isfinite(normal[2]) &&
-         std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0;
+      std::abs(normal[0]) + std::abs(normal[1]) + std::abs(normal[2]) > 0;
 }
 
 // f and its gradient at the points of pts (the field has one), into E.grad.
@@ -443,7 +451,8 @@ bool eval_gradient(const Field& f, Batch& pts, size_t n, Edges& E, float* o[4], 
 // Newton step along the edge from there. Where that step stays in the bracket and moves less than
 // kNewtonReach of the edge, the crossing is its end and the normal the gradient, for one evaluation
 // (regula falsi took two or three, and the normal one more); the others go on to E.rest.
-bool newton(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<Plane>& planes, backends::RuntimeError& err) {
+bool newton(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<Plane>& planes,
+            backends::RuntimeError& err) {
   constexpr double kNewtonReach = 0.05;
   Batch& pts = scratch();
   const size_t n = E.real.size();
@@ -479,7 +488,8 @@ bool newton(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<Pl
 // (ir::gradient_module, one evaluation each), else central differences, kProbe cells either side
 // (forward differences from the crossing cost two evaluations less but take a sharp edge's other face
 // whole where a probe crosses it: vertices 0.16 of a cell off in unit_dc_csg, against under 0.1).
-bool normals(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<Plane>& planes, backends::RuntimeError& err) {
+bool normals(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<Plane>& planes,
+             backends::RuntimeError& err) {
   Batch& pts = scratch();
   thread_local std::vector<size_t> probe;  // crossings whose normal the differences give
   probe.clear();
@@ -529,7 +539,7 @@ bool normals(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<P
 bool hermite(const Field& f, const Lattice& g, Block& b, std::vector<Plane>& planes, backends::RuntimeError& err) {
   thread_local Edges E;
   std::vector<size_t>& real = E.real;
-  std::vector<double> &lo_t = E.lo_t, &hi_t = E.hi_t, &lo_f = E.lo_f, &hi_f = E.hi_f, &t = E.t, &v = E.v;
+  std::vector<double>&lo_t = E.lo_t, &hi_t = E.hi_t, &lo_f = E.lo_f, &hi_f = E.hi_f, &t = E.t, &v = E.v;
   real.clear(), lo_t.clear(), hi_t.clear(), lo_f.clear(), hi_f.clear();
   E.at.resize(b.xs.size());
   planes.assign(b.xs.size(), Plane{});
@@ -614,7 +624,8 @@ void cell_signs(const BlockGrid& grid, Block& b, const int l[3], size_t c, std::
 
 }  // namespace
 
-void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& planes, std::vector<Qef>& qefs, uint8_t look_across) {
+void cell_sheets(const BlockGrid& grid, Block& b, const std::vector<Plane>& planes, std::vector<Qef>& qefs,
+                 uint8_t look_across) {
   // Given back clean by keep_rim (only its cells with sheets were written): clearing all 4,096
   // cells per block cost more than the few hundred it names.
   b.cells.swap(cell_buffer());

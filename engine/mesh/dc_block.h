@@ -43,7 +43,8 @@ struct TubeCut {
   // block, then its vertices, then the output's.
   uint32_t first = 0, second = 0;
   bool same_segment(const TubeCut& o) const {
-    return face[0] == o.face[0] && face[1] == o.face[1] && face[2] == o.face[2] && axis == o.axis && segment == o.segment;
+    return face[0] == o.face[0] && face[1] == o.face[1] && face[2] == o.face[2] && axis == o.axis &&
+        segment == o.segment;
   }
 };
 

@@ -41,7 +41,8 @@ const std::array<uint8_t, 27>& middle_of() {
 template <class Inside>
 uint32_t node_samples(Inside inside, const int s0[3], int half) {
   uint32_t in = 0;
-  for (int p = 0; p < 27; ++p) in |= static_cast<uint32_t>(inside(s0[0] + p % 3 * half, s0[1] + p / 3 % 3 * half, s0[2] + p / 9 * half)) << p;
+  for (int p = 0; p < 27; ++p)
+    in |= static_cast<uint32_t>(inside(s0[0] + p % 3 * half, s0[1] + p / 3 % 3 * half, s0[2] + p / 9 * half)) << p;
   return in;
 }
 
@@ -153,7 +154,8 @@ struct BlockTree {
   }
   static void position(int level, size_t at, int u[3]) {
     int side = kBlock >> level;
-    u[0] = static_cast<int>(at % side), u[1] = static_cast<int>(at / side % side), u[2] = static_cast<int>(at / side / side);
+    u[0] = static_cast<int>(at % side), u[1] = static_cast<int>(at / side % side),
+    u[2] = static_cast<int>(at / side / side);
   }
   const Node* at(int level, const int u[3]) const {
     uint16_t s = slot[level][index(level, u)];
@@ -231,7 +233,7 @@ struct BlockTree {
 // A node above the blocks: level L covers lattice cells u * 2^L - 1 .. (u + 1) * 2^L - 2 per axis.
 uint64_t node_key(int level, const int u[3]) {
   return static_cast<uint64_t>(level) << 57 | static_cast<uint64_t>(u[0]) << 38 | static_cast<uint64_t>(u[1]) << 19 |
-         static_cast<uint64_t>(u[2]);
+      static_cast<uint64_t>(u[2]);
 }
 
 // One level above the blocks, its nodes in the order they were made, found by key.
@@ -250,7 +252,8 @@ struct Level {
 };
 
 void node_position(uint64_t key, int u[3]) {
-  u[0] = static_cast<int>(key >> 38 & 0x7ffff), u[1] = static_cast<int>(key >> 19 & 0x7ffff), u[2] = static_cast<int>(key & 0x7ffff);
+  u[0] = static_cast<int>(key >> 38 & 0x7ffff), u[1] = static_cast<int>(key >> 19 & 0x7ffff),
+  u[2] = static_cast<int>(key & 0x7ffff);
 }
 
 uint64_t parent(uint64_t key) {
@@ -297,7 +300,8 @@ void unfold(const Lattice& g, Block& b, std::vector<std::array<float, 3>>& posit
     const Crossing& c = b.xs[e];
     uint32_t ring[4];
     bool here = true;
-    for (size_t q = 0; q < 4 && here; ++q) here = b.ids[e][q] != Block::kNoSheet, ring[q] = here ? b.vertex[b.ids[e][q]] : 0;
+    for (size_t q = 0; q < 4 && here; ++q)
+      here = b.ids[e][q] != Block::kNoSheet, ring[q] = here ? b.vertex[b.ids[e][q]] : 0;
     if (!here) continue;
     int u = kNextAxis[c.axis], w = kNextAxis[u];
     double area = 0;  // cells_of's order goes round the edge counter-clockwise about its axis
@@ -327,7 +331,8 @@ void unfold(const Lattice& g, Block& b, std::vector<std::array<float, 3>>& posit
     if (it == back.end() || *it != v || sheets_of[static_cast<size_t>(it - back.begin())] != 1) continue;
     int c[3] = {b.sheets[s].cell % kBlock, b.sheets[s].cell / kBlock % kBlock, b.sheets[s].cell / kBlock / kBlock};
     for (int a = 0; a < 3; ++a) {
-      double lo = std::max(g.coord(a, b.s0[a] + c[a]), g.lo[a]), hi = std::min(g.coord(a, b.s0[a] + c[a] + 1), g.end(a));
+      double lo = std::max(g.coord(a, b.s0[a] + c[a]), g.lo[a]),
+             hi = std::min(g.coord(a, b.s0[a] + c[a] + 1), g.end(a));
       auto& x = positions[v][static_cast<size_t>(a)];
       x = static_cast<float>(std::clamp(double(x), lo, hi));
     }
@@ -379,7 +384,8 @@ void merge_block(const Lattice& g, Block& b, const std::vector<Qef>& qefs, doubl
   unfold(g, b, positions);
   b.positions.assign(positions.begin(), positions.end());
   b.max_rms = std::sqrt(max_square);
-  b.root = tree.built == kBlockLevels && tree.nodes[kBlockLevels].size() == 1 && tree.nodes[kBlockLevels][0].state == State::Merged;
+  b.root = tree.built == kBlockLevels && tree.nodes[kBlockLevels].size() == 1 &&
+      tree.nodes[kBlockLevels][0].state == State::Merged;
   b.root_qef = b.root ? tree.nodes[kBlockLevels][0].qef : Qef{};
 }
 

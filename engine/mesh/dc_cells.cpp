@@ -45,7 +45,8 @@ CellSigns cell_signs(unsigned inside, unsigned flips) {
     }
   CellSigns s;
   for (int c = 0; c < 8; ++c) {
-    s.in_group[c] = static_cast<uint8_t>(find(in_parent, c)), s.out_group[c] = static_cast<uint8_t>(find(out_parent, c));
+    s.in_group[c] = static_cast<uint8_t>(find(in_parent, c)),
+    s.out_group[c] = static_cast<uint8_t>(find(out_parent, c));
     bool in = (inside >> c) & 1u;
     s.regions_in += in && s.in_group[c] == c;
     s.regions_out += !in && s.out_group[c] == c;
@@ -54,7 +55,6 @@ CellSigns cell_signs(unsigned inside, unsigned flips) {
 }
 
 }  // namespace
-
 
 namespace {
 
@@ -149,9 +149,9 @@ uint8_t tube_faces(unsigned inside, const unsigned around[6]) {
     unsigned there = around[face];
     const CellSigns& b = signs_of(there, kuhn_flips(there));
     bool joined = kuhn_flips(inside) >> face & 1u
-                      ? a.out_group[out_pair[0]] == a.out_group[out_pair[1]] &&
-                            b.out_group[out_pair[0] ^ d] == b.out_group[out_pair[1] ^ d]
-                      : a.in_group[in[0]] == a.in_group[in[1]] && b.in_group[in[0] ^ d] == b.in_group[in[1] ^ d];
+        ? a.out_group[out_pair[0]] == a.out_group[out_pair[1]] &&
+            b.out_group[out_pair[0] ^ d] == b.out_group[out_pair[1] ^ d]
+        : a.in_group[in[0]] == a.in_group[in[1]] && b.in_group[in[0] ^ d] == b.in_group[in[1] ^ d];
     if (joined) out |= static_cast<uint8_t>(1u << face);
   }
   return out;
@@ -166,7 +166,8 @@ bool joins_middle(unsigned inside) {
   const CellSigns& s = signs_of(inside, kuhn_flips(inside));
   bool in0 = inside & 1u, in7 = inside >> 7 & 1u;
   if (in0 != in7) return false;
-  return in0 ? s.in_group[0] != s.in_group[7] && s.regions_out == 1 : s.out_group[0] != s.out_group[7] && s.regions_in == 1;
+  return in0 ? s.in_group[0] != s.in_group[7] && s.regions_out == 1
+             : s.out_group[0] != s.out_group[7] && s.regions_in == 1;
 }
 
 namespace {
@@ -289,7 +290,8 @@ CellCuts cell_cuts(unsigned inside, uint8_t tubes) {
   };
   std::vector<At> around;
   for (int side = 0; side < 2; ++side)
-    for (int i = 0; i < l.size[band[side]]; ++i) around.push_back({angle_about_diagonal(l.edges[band[side]][i]), side, i});
+    for (int i = 0; i < l.size[band[side]]; ++i)
+      around.push_back({angle_about_diagonal(l.edges[band[side]][i]), side, i});
   std::sort(around.begin(), around.end(), [](const At& x, const At& y) { return x.angle < y.angle; });
   int last[2] = {-1, -1};
   for (const At& a : around) last[a.loop] = a.index;
@@ -297,8 +299,9 @@ CellCuts cell_cuts(unsigned inside, uint8_t tubes) {
     int k = band[a.loop], n = l.size[k], prev = last[a.loop], apex = l.edges[band[!a.loop]][last[!a.loop]];
     int u = l.edges[k][prev], v = l.edges[k][a.index];
     bool along = a.index == (prev + 1) % n;  // the loop runs prev -> this
-    out.tris[out.n_tris++] = along ? std::array<uint8_t, 3>{static_cast<uint8_t>(v), static_cast<uint8_t>(u), static_cast<uint8_t>(apex)}
-                                   : std::array<uint8_t, 3>{static_cast<uint8_t>(u), static_cast<uint8_t>(v), static_cast<uint8_t>(apex)};
+    out.tris[out.n_tris++] = along
+        ? std::array<uint8_t, 3>{static_cast<uint8_t>(v), static_cast<uint8_t>(u), static_cast<uint8_t>(apex)}
+        : std::array<uint8_t, 3>{static_cast<uint8_t>(u), static_cast<uint8_t>(v), static_cast<uint8_t>(apex)};
     last[a.loop] = a.index;
   }
   return out;

@@ -41,43 +41,48 @@ bool gradients(const Field& f, double step, int threads, const Projection& onto,
   m.normals.resize(n);
   int parts = std::max(1, std::min<int>(threads, static_cast<int>(n / 4096) + 1));
   const bool analytic = f.has_gradient();
-  return support::run_parts(parts, [&](int k, backends::RuntimeError& e) {
-    size_t begin = n * static_cast<size_t>(k) / static_cast<size_t>(parts), end = n * static_cast<size_t>(k + 1) / static_cast<size_t>(parts);
-    constexpr size_t kBatch = kEvalBatch / 6;
-    std::vector<float> xs(6 * kBatch), ys(6 * kBatch), zs(6 * kBatch), vals(6 * kBatch), g(4 * kBatch);
-    for (size_t b0 = begin; b0 < end; b0 += kBatch) {
-      size_t c = std::min(kBatch, end - b0);
-      if (stop_if_cancelled(e)) return false;
-      EvalTimer timed;
-      if (analytic) {
-        for (size_t q = 0; q < c; ++q) xs[q] = m.positions[b0 + q][0], ys[q] = m.positions[b0 + q][1], zs[q] = m.positions[b0 + q][2];
-        float* const o[4] = {g.data(), g.data() + c, g.data() + 2 * c, g.data() + 3 * c};
-        if (!f.eval_gradient(xs.data(), ys.data(), zs.data(), c, o, e)) return false;
-        for (size_t q = 0; q < c; ++q)
-          normal_and_step({-o[1][q], -o[2][q], -o[3][q]}, o[0][q], onto, m.positions[b0 + q], m.normals[b0 + q]);
-        continue;
-      }
-      size_t p = 0;
-      for (size_t a = 0; a < 3; ++a)
-        for (int s = -1; s <= 1; s += 2)
-          for (size_t q = 0; q < c; ++q, ++p) {
-            Vec3 v = m.positions[b0 + q];
-            v[a] += static_cast<float>(s * step);
-            xs[p] = v[0], ys[p] = v[1], zs[p] = v[2];
+  return support::run_parts(
+      parts,
+      [&](int k, backends::RuntimeError& e) {
+        size_t begin = n * static_cast<size_t>(k) / static_cast<size_t>(parts),
+               end = n * static_cast<size_t>(k + 1) / static_cast<size_t>(parts);
+        constexpr size_t kBatch = kEvalBatch / 6;
+        std::vector<float> xs(6 * kBatch), ys(6 * kBatch), zs(6 * kBatch), vals(6 * kBatch), g(4 * kBatch);
+        for (size_t b0 = begin; b0 < end; b0 += kBatch) {
+          size_t c = std::min(kBatch, end - b0);
+          if (stop_if_cancelled(e)) return false;
+          EvalTimer timed;
+          if (analytic) {
+            for (size_t q = 0; q < c; ++q)
+              xs[q] = m.positions[b0 + q][0], ys[q] = m.positions[b0 + q][1], zs[q] = m.positions[b0 + q][2];
+            float* const o[4] = {g.data(), g.data() + c, g.data() + 2 * c, g.data() + 3 * c};
+            if (!f.eval_gradient(xs.data(), ys.data(), zs.data(), c, o, e)) return false;
+            for (size_t q = 0; q < c; ++q)
+              normal_and_step({-o[1][q], -o[2][q], -o[3][q]}, o[0][q], onto, m.positions[b0 + q], m.normals[b0 + q]);
+            continue;
           }
-      if (!f.eval(xs.data(), ys.data(), zs.data(), p, vals.data(), e)) return false;
-      for (size_t q = 0; q < c; ++q) {
-        Vec3 d;
-        float mean = 0;
-        for (size_t a = 0; a < 3; ++a) {
-          d[a] = -(vals[(2 * a + 1) * c + q] - vals[2 * a * c + q]) / static_cast<float>(2 * step);
-          mean += vals[(2 * a + 1) * c + q] + vals[2 * a * c + q];
+          size_t p = 0;
+          for (size_t a = 0; a < 3; ++a)
+            for (int s = -1; s <= 1; s += 2)
+              for (size_t q = 0; q < c; ++q, ++p) {
+                Vec3 v = m.positions[b0 + q];
+                v[a] += static_cast<float>(s * step);
+                xs[p] = v[0], ys[p] = v[1], zs[p] = v[2];
+              }
+          if (!f.eval(xs.data(), ys.data(), zs.data(), p, vals.data(), e)) return false;
+          for (size_t q = 0; q < c; ++q) {
+            Vec3 d;
+            float mean = 0;
+            for (size_t a = 0; a < 3; ++a) {
+              d[a] = -(vals[(2 * a + 1) * c + q] - vals[2 * a * c + q]) / static_cast<float>(2 * step);
+              mean += vals[(2 * a + 1) * c + q] + vals[2 * a * c + q];
+            }
+            normal_and_step(d, mean / 6, onto, m.positions[b0 + q], m.normals[b0 + q]);
+          }
         }
-        normal_and_step(d, mean / 6, onto, m.positions[b0 + q], m.normals[b0 + q]);
-      }
-    }
-    return true;
-  }, err);
+        return true;
+      },
+      err);
 }
 
 constexpr uint32_t kNoCopy = ~uint32_t{0};
@@ -123,7 +128,7 @@ std::vector<Rough> rough_triangles(const Mesh& m, float cos_crease, std::vector<
       if (own >> k & 1) keeps[tri[static_cast<size_t>(k)]] = 1;
     if (own == 7) continue;  // smooth: most triangles
     Vec3 side = own >> best & 1 ? m.normals[tri[static_cast<size_t>(best)]]
-                : len > 0       ? Vec3{fn[0] / len, fn[1] / len, fn[2] / len}
+        : len > 0               ? Vec3{fn[0] / len, fn[1] / len, fn[2] / len}
                                 : Vec3{0, 0, 0};
     rough.push_back({static_cast<uint32_t>(t), own, side});
   }
@@ -175,7 +180,8 @@ bool gradient_vertex_normals(const Field& f, double step, double crease, int thr
   m.split_from.resize(n);
   for (uint32_t i = 0; i < n; ++i) m.split_from[i] = i;
   m.split_from.reserve(n + copies.size());
-  for (const Copy& c : copies) m.positions.push_back(m.positions[c.from]), m.normals.push_back(c.normal), m.split_from.push_back(c.from);
+  for (const Copy& c : copies)
+    m.positions.push_back(m.positions[c.from]), m.normals.push_back(c.normal), m.split_from.push_back(c.from);
   return true;
 }
 

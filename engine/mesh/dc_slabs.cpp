@@ -25,7 +25,7 @@ bool same_lattice(ByteReader& r, const Lattice& g) {
   Lattice got{};
   r.get_bytes(got.n, sizeof got.n), r.get_bytes(got.lo, sizeof got.lo), r.get_bytes(got.h, sizeof got.h);
   return r.ok && std::memcmp(got.n, g.n, sizeof g.n) == 0 && std::memcmp(got.lo, g.lo, sizeof g.lo) == 0 &&
-         std::memcmp(got.h, g.h, sizeof g.h) == 0;
+      std::memcmp(got.h, g.h, sizeof g.h) == 0;
 }
 
 // The signs of a block's eight corner samples (0 or m along each axis): all the join reads of its
@@ -84,11 +84,11 @@ bool ring_refs(const BlockGrid& grid, const Block& b, size_t e, int first_layer,
     for (int a = 0; a < 3; ++a) in |= static_cast<uint32_t>(b.s0[a] + inside[a] - owner->s0[a] - nl[a]) << a;
     if (nb[2] < first_layer) {
       out[q] = kForeign | delta << 15 | static_cast<uint32_t>(nl[0] | nl[1] << 4 | nl[2] << 8) | in << 18 |
-               static_cast<uint32_t>(c.axis) << 21;
+          static_cast<uint32_t>(c.axis) << 21;
       continue;
     }
-    uint32_t t = owner->sheet(owner->rim_cell(nl[0], nl[1], nl[2]), static_cast<int>(in),
-                              static_cast<int>(in ^ (1u << c.axis)));
+    uint32_t t =
+        owner->sheet(owner->rim_cell(nl[0], nl[1], nl[2]), static_cast<int>(in), static_cast<int>(in ^ (1u << c.axis)));
     if (t == kNone) return false;
     out[q] = delta << 15 | owner->vertex[t];
   }
@@ -121,7 +121,8 @@ bool get_rings(const std::vector<uint16_t>& in, std::vector<Ring>& out) {
       i += 9;
     } else {
       if (in.size() - i < 4) return false;
-      r = {static_cast<uint32_t>(in[i] & 0x3fff) | (in[i] & kNarrowInside ? kLowerInside : 0), in[i + 1], in[i + 2], in[i + 3]};
+      r = {static_cast<uint32_t>(in[i] & 0x3fff) | (in[i] & kNarrowInside ? kLowerInside : 0), in[i + 1], in[i + 2],
+           in[i + 3]};
       i += 4;
     }
     out.push_back(r);
@@ -140,7 +141,8 @@ void put_block(ByteWriter& w, const BlockGrid& grid, const Block& b, int first_l
   for (size_t e = 0; e < b.xs.size(); ++e) {
     const Crossing& c = b.xs[e];
     Ring r;
-    if (c.l[0] < b.m[0] && c.l[1] < b.m[1] && c.l[2] < b.m[2] && ring_refs(grid, b, e, first_layer, r)) put_ring(rings, r);
+    if (c.l[0] < b.m[0] && c.l[1] < b.m[1] && c.l[2] < b.m[2] && ring_refs(grid, b, e, first_layer, r))
+      put_ring(rings, r);
   }
   w.put_vector(rings), w.put_vector(b.positions), w.put_vector(b.cuts), w.put_vector(b.fans);
   w.put(b.max_rms), w.put<uint64_t>(b.merged), w.put<uint8_t>(b.root), w.put(b.root_qef);
@@ -152,14 +154,14 @@ void put_block(ByteWriter& w, const BlockGrid& grid, const Block& b, int first_l
   for (size_t s = 0; s < b.vertex.size(); ++s) vertex[s] = narrow(b.vertex[s]);
   for (const Block::RimCell& c : b.rim)
     if (c.at < kFace)
-      at.push_back(c.at), signs.push_back(static_cast<uint16_t>(c.mask | c.flips << 8)), first.push_back(narrow(c.first));
-  w.put_vector(next), w.put_vector(key), w.put_vector(vertex), w.put_vector(at), w.put_vector(signs), w.put_vector(first);
+      at.push_back(c.at), signs.push_back(static_cast<uint16_t>(c.mask | c.flips << 8)),
+          first.push_back(narrow(c.first));
+  w.put_vector(next), w.put_vector(key), w.put_vector(vertex), w.put_vector(at), w.put_vector(signs),
+      w.put_vector(first);
 }
 
 // At least what put_block writes (so the slab's string is allocated once).
-size_t block_bytes(const Block& b) {
-  return 160 + b.xs.size() * 8 + b.positions.size() * 12 + sizeof(Qef);
-}
+size_t block_bytes(const Block& b) { return 160 + b.xs.size() * 8 + b.positions.size() * 12 + sizeof(Qef); }
 
 // Every index a top block holds points inside it, so a damaged part cannot lead the join astray.
 bool top_sound(const Block& b) {
@@ -195,7 +197,8 @@ bool get_block(ByteReader& r, Block& b, std::vector<Ring>& rings, const Lattice&
   std::vector<uint16_t> next = r.get_vector<uint16_t>();
   std::vector<uint16_t> key = r.get_vector<uint16_t>();
   std::vector<uint16_t> vertex = r.get_vector<uint16_t>();
-  std::vector<uint16_t> at = r.get_vector<uint16_t>(), signs = r.get_vector<uint16_t>(), first = r.get_vector<uint16_t>();
+  std::vector<uint16_t> at = r.get_vector<uint16_t>(), signs = r.get_vector<uint16_t>(),
+                        first = r.get_vector<uint16_t>();
   if (!r.ok || key.size() != next.size() || signs.size() != at.size() || first.size() != at.size()) return false;
   b.sheets.resize(next.size());
   for (size_t s = 0; s < next.size(); ++s) b.sheets[s] = Sheet{0, widen(next[s]), key[s]};  // the cell: not needed now
@@ -363,8 +366,8 @@ bool SlabSplit::read_slabs(uint32_t job, const Lattice& g, std::unique_ptr<Block
     next = s->end;
   }
   if (next != nz)
-    return error = "the parts hold block layers 0 to " + std::to_string(next) + " of this shape's " + std::to_string(nz) +
-                   " (were they made by this job?)",
+    return error = "the parts hold block layers 0 to " + std::to_string(next) + " of this shape's " +
+               std::to_string(nz) + " (were they made by this job?)",
            false;
   out = std::make_unique<BlockGrid>(g, std::move(slots), std::move(blocks));
   return true;

@@ -59,8 +59,8 @@ class SlabSplit {
   std::vector<Slab> slabs_;
 
   // The grid of job `job`'s blocks, and each block's rings.
-  bool read_slabs(uint32_t job, const Lattice& g, std::unique_ptr<BlockGrid>& out, std::vector<std::vector<Ring>>& rings,
-                  std::string& error) const;
+  bool read_slabs(uint32_t job, const Lattice& g, std::unique_ptr<BlockGrid>& out,
+                  std::vector<std::vector<Ring>>& rings, std::string& error) const;
 };
 
 }  // namespace fscript::mesh

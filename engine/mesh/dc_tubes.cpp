@@ -76,7 +76,9 @@ class Recorder {
   void build_ext() {
     std::vector<uint8_t> layer[6];
     for (int f = 0; f < 6; ++f) fill_halo(f, layer[f]);
-    auto at = [&](int f, int i, int j) { return static_cast<uint32_t>(layer[f][static_cast<size_t>(j * kBlockSamples + i)]); };
+    auto at = [&](int f, int i, int j) {
+      return static_cast<uint32_t>(layer[f][static_cast<size_t>(j * kBlockSamples + i)]);
+    };
     for (auto& plane : ext_)
       for (uint32_t& row : plane) row = 0;
     int mx = b_.m[0], my = b_.m[1], mz = b_.m[2];
@@ -84,9 +86,11 @@ class Recorder {
       for (int j = 0; j <= my; ++j)
         ext_[k + 1][j + 1] = (b_.rows[k][j] & ((2u << mx) - 1)) << 1 | at(0, j, k) | at(1, j, k) << (mx + 2);
     for (int k = 0; k <= mz; ++k)
-      for (int i = 0; i <= mx; ++i) ext_[k + 1][0] |= at(2, i, k) << (i + 1), ext_[k + 1][my + 2] |= at(3, i, k) << (i + 1);
+      for (int i = 0; i <= mx; ++i)
+        ext_[k + 1][0] |= at(2, i, k) << (i + 1), ext_[k + 1][my + 2] |= at(3, i, k) << (i + 1);
     for (int j = 0; j <= my; ++j)
-      for (int i = 0; i <= mx; ++i) ext_[0][j + 1] |= at(4, i, j) << (i + 1), ext_[mz + 2][j + 1] |= at(5, i, j) << (i + 1);
+      for (int i = 0; i <= mx; ++i)
+        ext_[0][j + 1] |= at(4, i, j) << (i + 1), ext_[mz + 2][j + 1] |= at(5, i, j) << (i + 1);
     ext_ready_ = true;
   }
   // The layer of samples just outside face `face`, from the block across it: its samples there are
@@ -236,7 +240,8 @@ void record_cuts(const BlockGrid& grid, Block& b, const std::vector<size_t>& tub
   // the faces it looks across.
   std::vector<size_t> cells;
   auto position = [](size_t c, int l[3]) {
-    l[0] = static_cast<int>(c % kBlock), l[1] = static_cast<int>(c / kBlock % kBlock), l[2] = static_cast<int>(c / kBlock / kBlock);
+    l[0] = static_cast<int>(c % kBlock), l[1] = static_cast<int>(c / kBlock % kBlock),
+    l[2] = static_cast<int>(c / kBlock / kBlock);
   };
   for (size_t c : tube_cells) {
     cells.push_back(c);
@@ -312,10 +317,12 @@ void resolve_requests(BlockGrid& grid, int first, int end) {
         // The block's crossings run by z, y, x, then axis.
         auto before = [&](const Crossing& x) {
           return std::make_tuple(int(x.l[2]), int(x.l[1]), int(x.l[0]), int(x.axis)) <
-                 std::make_tuple(lower[2], lower[1], lower[0], axis);
+              std::make_tuple(lower[2], lower[1], lower[0], axis);
         };
         auto it = std::partition_point(b.xs.begin(), b.xs.end(), before);
-        if (it == b.xs.end() || it->l[0] != lower[0] || it->l[1] != lower[1] || it->l[2] != lower[2] || it->axis != axis) break;
+        if (it == b.xs.end() || it->l[0] != lower[0] || it->l[1] != lower[1] || it->l[2] != lower[2] ||
+            it->axis != axis)
+          break;
         size_t index = static_cast<size_t>(it - b.xs.begin());
         int cells[4][3];
         cells_of(*it, cells);
@@ -333,7 +340,9 @@ void resolve_requests(BlockGrid& grid, int first, int end) {
 }
 
 void close_tubes(std::vector<TubeCut> cuts, Mesh& out) {
-  auto key = [](const TubeCut& c) { return std::make_tuple(c.face[2], c.face[1], c.face[0], c.axis, c.segment, c.high); };
+  auto key = [](const TubeCut& c) {
+    return std::make_tuple(c.face[2], c.face[1], c.face[0], c.axis, c.segment, c.high);
+  };
   std::sort(cuts.begin(), cuts.end(), [&](const TubeCut& x, const TubeCut& y) { return key(x) < key(y); });
   auto add = [&](uint32_t a, uint32_t b, uint32_t c) {
     if (a != b && b != c && a != c) out.triangles.push_back({a, b, c});

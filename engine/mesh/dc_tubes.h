@@ -10,7 +10,6 @@
 
 namespace fscript::mesh {
 
-
 // The block's sides of every cut segment on its cells' faces, and the middles of its cells' loops
 // of three or more pieces (`tube_cells`: its cells that cut their loops). A segment its cell cuts
 // across a face of the block gets a request for the other side (resolve_requests); one cut by a

@@ -56,7 +56,8 @@ class Grid {
       int lo_c[3], hi_c[3];
       for (int a = 0; a < 3; ++a) {
         double mn = 1e300, mx = -1e300;
-        for (uint32_t v : m.triangles[t]) mn = std::min(mn, double(m.positions[v][a])), mx = std::max(mx, double(m.positions[v][a]));
+        for (uint32_t v : m.triangles[t])
+          mn = std::min(mn, double(m.positions[v][a])), mx = std::max(mx, double(m.positions[v][a]));
         lo_c[a] = clampi(a, int((mn - lo_[a]) / cell_));
         hi_c[a] = clampi(a, int((mx - lo_[a]) / cell_));
       }
@@ -90,7 +91,8 @@ class Grid {
             if (x < 0 || y < 0 || z < 0 || x >= dims_[0] || y >= dims_[1] || z >= dims_[2]) continue;
             for (uint32_t t : cells_[index(x, y, z)]) {
               const auto& tri = m_.triangles[t];
-              D3 q = closest_on_triangle(p, d3(m_.positions[tri[0]]), d3(m_.positions[tri[1]]), d3(m_.positions[tri[2]]));
+              D3 q =
+                  closest_on_triangle(p, d3(m_.positions[tri[0]]), d3(m_.positions[tri[1]]), d3(m_.positions[tri[2]]));
               best = std::min(best, std::sqrt(dot(sub(p, q), sub(p, q))));
             }
           }

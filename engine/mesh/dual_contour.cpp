@@ -34,12 +34,12 @@ bool for_blocks(size_t n, int threads, Step step, backends::RuntimeError& err) {
       if (i > failed.load() || step(i, e)) continue;
       auto& mine = fails[static_cast<size_t>(k)];
       if (i < mine.first) mine = {i, e};
-      for (size_t seen = failed.load(); i < seen && !failed.compare_exchange_weak(seen, i);) {
-      }
+      for (size_t seen = failed.load(); i < seen && !failed.compare_exchange_weak(seen, i);) {}
     }
     return true;
   });
-  auto first = std::min_element(fails.begin(), fails.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  auto first =
+      std::min_element(fails.begin(), fails.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   if (first->first == SIZE_MAX) return true;
   err = first->second;
   return false;
@@ -49,8 +49,9 @@ bool for_blocks(size_t n, int threads, Step step, backends::RuntimeError& err) {
 // positions, z slowest).
 std::pair<size_t, size_t> layer_range(const std::vector<Block>& blocks, int first, int end) {
   auto at = [&](int layer) {
-    return static_cast<size_t>(std::partition_point(blocks.begin(), blocks.end(), [&](const Block& b) { return b.b[2] < layer; }) -
-                               blocks.begin());
+    return static_cast<size_t>(
+        std::partition_point(blocks.begin(), blocks.end(), [&](const Block& b) { return b.b[2] < layer; }) -
+        blocks.begin());
   };
   return {at(first), at(end)};
 }
@@ -87,11 +88,14 @@ bool sample_blocks(const ImplicitJob& job, const Lattice& g, const SlabSplit* sp
     std::pair<size_t, size_t> worked = layer_range(blocks, layers.first, layers.end);
     if (job.progress)  // sampled, then meshed
       job.progress->set_units(range.second - range.first + worked.second - worked.first);
-    return for_blocks(range.second - range.first, job.threads, [&](size_t i, backends::RuntimeError& e) {
-      bool ok = sample_block(*job.field, map, g, blocks[range.first + i], e);
-      if (job.progress) job.progress->advance(1);
-      return ok;
-    }, err);
+    return for_blocks(
+        range.second - range.first, job.threads,
+        [&](size_t i, backends::RuntimeError& e) {
+          bool ok = sample_block(*job.field, map, g, blocks[range.first + i], e);
+          if (job.progress) job.progress->advance(1);
+          return ok;
+        },
+        err);
   };
   bool ok = run(bricks.get());
   auto sound = [&] {
@@ -110,37 +114,41 @@ bool sample_blocks(const ImplicitJob& job, const Lattice& g, const SlabSplit* sp
 
 // The blocks of layers [first, end) worked from their samples to their vertices: Hermite data,
 // sheets, the octree inside the block; then only their rims are kept.
-bool work_blocks(const ImplicitJob& job, const Lattice& g, BlockGrid& grid, int first, int end, backends::RuntimeError& err) {
+bool work_blocks(const ImplicitJob& job, const Lattice& g, BlockGrid& grid, int first, int end,
+                 backends::RuntimeError& err) {
   std::vector<Block>& blocks = grid.blocks();
   std::pair<size_t, size_t> range = layer_range(blocks, first, end);
-  return for_blocks(range.second - range.first, job.threads, [&](size_t i, backends::RuntimeError& e) {
-    Block& b = blocks[range.first + i];
-    if (b.xs.empty()) {
-      if (job.progress) job.progress->advance(1);
-      return true;
-    }
-    thread_local std::vector<Plane> planes;  // scratch of this thread, reused block after block
-    thread_local std::vector<Qef> qefs;
-    if (!hermite(*job.field, g, b, planes, e)) return false;
+  return for_blocks(
+      range.second - range.first, job.threads,
+      [&](size_t i, backends::RuntimeError& e) {
+        Block& b = blocks[range.first + i];
+        if (b.xs.empty()) {
+          if (job.progress) job.progress->advance(1);
+          return true;
+        }
+        thread_local std::vector<Plane> planes;  // scratch of this thread, reused block after block
+        thread_local std::vector<Qef> qefs;
+        if (!hermite(*job.field, g, b, planes, e)) return false;
     // A shard looks across its slab's faces: the blocks there are another process's.
-    uint8_t look_across = 0;
-    if (job.mesher.slabs && b.b[2] == first && first > 0) look_across |= 1u << 4;
-    if (job.mesher.slabs && b.b[2] == end - 1 && end < BlockGrid::blocks_along(g, 2)) look_across |= 1u << 5;
-    cell_sheets(grid, b, planes, qefs, look_across);
-    merge_block(g, b, qefs, job.mesher.tolerance);
-    for (TubeCut& c : b.cuts) c.first = b.vertex[c.first], c.second = b.vertex[c.second];
-    for (auto& t : b.fans)
-      for (uint32_t& v : t) v = b.vertex[v];
-    b.keep_rim();
-    if (job.progress) job.progress->advance(1);
-    return true;
-  }, err);
+        uint8_t look_across = 0;
+        if (job.mesher.slabs && b.b[2] == first && first > 0) look_across |= 1u << 4;
+        if (job.mesher.slabs && b.b[2] == end - 1 && end < BlockGrid::blocks_along(g, 2)) look_across |= 1u << 5;
+        cell_sheets(grid, b, planes, qefs, look_across);
+        merge_block(g, b, qefs, job.mesher.tolerance);
+        for (TubeCut& c : b.cuts) c.first = b.vertex[c.first], c.second = b.vertex[c.second];
+        for (auto& t : b.fans)
+          for (uint32_t& v : t) v = b.vertex[v];
+        b.keep_rim();
+        if (job.progress) job.progress->advance(1);
+        return true;
+      },
+      err);
 }
 
 // Each sheet's vertex (Block::vertex) as its output vertex (number_blocks); the blocks' positions
 // are dropped once copied.
-void number_vertices(BlockGrid& grid, const std::vector<int32_t>& group, const std::vector<BlockGroup>& groups, Mesh& out,
-                     DualContourStats& stats) {
+void number_vertices(BlockGrid& grid, const std::vector<int32_t>& group, const std::vector<BlockGroup>& groups,
+                     Mesh& out, DualContourStats& stats) {
   std::vector<uint32_t> base;
   std::vector<bool> grouped;
   number_blocks(grid, group, groups, out, stats, base, grouped);
@@ -151,7 +159,8 @@ void number_vertices(BlockGrid& grid, const std::vector<int32_t>& group, const s
     if (grouped[i]) std::fill(b.vertex.begin(), b.vertex.end(), base[i]);
     else
       for (uint32_t& v : b.vertex) v += base[i];
-    for (TubeCut& c : b.cuts) c.first = grouped[i] ? base[i] : c.first + base[i], c.second = grouped[i] ? base[i] : c.second + base[i];
+    for (TubeCut& c : b.cuts)
+      c.first = grouped[i] ? base[i] : c.first + base[i], c.second = grouped[i] ? base[i] : c.second + base[i];
     for (auto& t : b.fans)
       for (uint32_t& v : t) v = grouped[i] ? base[i] : v + base[i];
     b.positions = {};
@@ -257,7 +266,8 @@ bool dual_contour(const ImplicitJob& job, Mesh& out, DualContourStats& stats, ba
   }
   close_tubes(std::move(cuts), out);
   stats.triangles = out.triangles.size();
-  for (const Block& b : blocks) stats.gradient_normals += b.gradient_normals, stats.difference_normals += b.difference_normals;
+  for (const Block& b : blocks)
+    stats.gradient_normals += b.gradient_normals, stats.difference_normals += b.difference_normals;
   grid.reset(), group = {}, groups = {};  // the normals' memory takes the blocks' place
   return with_normals();
 }

@@ -16,11 +16,11 @@
 namespace fscript::mesh {
 
 struct DualContourStats {
-  size_t cells = 0;      // output vertices: sheets of dual cells, or merged cells
-  size_t merged = 0;     // of those, merged cells (more than one dual cell)
+  size_t cells = 0;  // output vertices: sheets of dual cells, or merged cells
+  size_t merged = 0;  // of those, merged cells (more than one dual cell)
   size_t triangles = 0;
   double max_error = 0;  // the largest root-mean-square distance of a vertex to its planes, in cells
-  size_t jobs = 0;        // implicit shapes meshed (in totals)
+  size_t jobs = 0;  // implicit shapes meshed (in totals)
   // Crossings whose normal (and Newton step) came from the function's own gradient, and those that
   // took central differences (no gradient, or not a finite one there). Not counted for shards'
   // slabs (fvrml-run --shard): their crossings are worked in the shards' processes.

@@ -56,7 +56,7 @@ Vec3 decode_normal(uint16_t a, uint16_t b) {
 
 size_t CompactMesh::bytes() const {
   return sizeof(CompactMesh) + positions.size() * 2 + normals.size() * 2 + colours.size() + indices.size() +
-         polyline_sizes.size() * 4;
+      polyline_sizes.size() * 4;
 }
 
 CompactMesh compress(const Mesh& m) {
@@ -170,16 +170,19 @@ bool FrameCache::fill(int threads, backends::RuntimeError& err, const std::funct
     if (!has(i)) missing.push_back(i);
   int n = std::max(1, std::min<int>(threads, static_cast<int>(missing.size())));
   std::mutex report;
-  return support::run_parts(n, [&](int w, backends::RuntimeError& e) {  // frames w, w + n, ... of the order
-    for (size_t k = static_cast<size_t>(w); k < missing.size(); k += static_cast<size_t>(n)) {
-      if (!make(missing[k], e)) return false;
-      if (made) {
-        std::lock_guard<std::mutex> hold(report);
-        made(cached());
-      }
-    }
-    return true;
-  }, err);
+  return support::run_parts(
+      n,
+      [&](int w, backends::RuntimeError& e) {  // frames w, w + n, ... of the order
+        for (size_t k = static_cast<size_t>(w); k < missing.size(); k += static_cast<size_t>(n)) {
+          if (!make(missing[k], e)) return false;
+          if (made) {
+            std::lock_guard<std::mutex> hold(report);
+            made(cached());
+          }
+        }
+        return true;
+      },
+      err);
 }
 
 void FrameCache::put(size_t i, CompactMesh c) {

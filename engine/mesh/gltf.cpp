@@ -28,10 +28,10 @@ int vec3_attribute(const std::vector<Vec3>& data, bool with_bounds, std::string&
       lo[a] = std::fmin(lo[a], v[a]);
       hi[a] = std::fmax(hi[a], v[a]);
     }
-  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bin.size() - offset},
-                              {"target", kArrayBuffer}});
-  nlohmann::json acc = {{"bufferView", j["bufferViews"].size() - 1}, {"componentType", kFloat},
-                        {"count", data.size()}, {"type", "VEC3"}};
+  j["bufferViews"].push_back(
+      {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bin.size() - offset}, {"target", kArrayBuffer}});
+  nlohmann::json acc = {
+      {"bufferView", j["bufferViews"].size() - 1}, {"componentType", kFloat}, {"count", data.size()}, {"type", "VEC3"}};
   if (with_bounds) acc["min"] = lo, acc["max"] = hi;
   j["accessors"].push_back(acc);
   return static_cast<int>(j["accessors"].size()) - 1;
@@ -44,7 +44,8 @@ int add_material(const Mesh& m, nlohmann::json& j) {
   bool coloured = m.colours.size() == m.positions.size() && !m.positions.empty();
   Vec3 base = coloured ? Vec3{1, 1, 1} : mat.diffuse;
   float alpha = std::clamp(1.0f - mat.transparency, 0.0f, 1.0f);
-  nlohmann::json pbr = {{"baseColorFactor", {base[0], base[1], base[2], alpha}}, {"metallicFactor", 0.0},
+  nlohmann::json pbr = {{"baseColorFactor", {base[0], base[1], base[2], alpha}},
+                        {"metallicFactor", 0.0},
                         {"roughnessFactor", std::clamp(1.0f - mat.shininess, 0.0f, 1.0f)}};
   nlohmann::json out = {{"pbrMetallicRoughness", pbr}, {"doubleSided", true}};
   if (mat.emissive != Vec3{0, 0, 0}) out["emissiveFactor"] = {mat.emissive[0], mat.emissive[1], mat.emissive[2]};
@@ -101,12 +102,15 @@ nlohmann::json add_primitive(const Mesh& m, bool lines, std::string& bin, nlohma
   if (m.colours.size() == m.positions.size()) attrs["COLOR_0"] = vec3_attribute(m.colours, false, bin, j);
   size_t offset = bin.size();
   for (uint32_t i : index) put(bin, i);
-  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bin.size() - offset},
-                              {"target", kElementBuffer}});
-  j["accessors"].push_back({{"bufferView", j["bufferViews"].size() - 1}, {"componentType", kUint},
-                            {"count", index.size()}, {"type", "SCALAR"}});
+  j["bufferViews"].push_back(
+      {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bin.size() - offset}, {"target", kElementBuffer}});
+  j["accessors"].push_back({{"bufferView", j["bufferViews"].size() - 1},
+                            {"componentType", kUint},
+                            {"count", index.size()},
+                            {"type", "SCALAR"}});
   int material = add_material(m, j);
-  return {{"attributes", attrs}, {"indices", j["accessors"].size() - 1}, {"mode", lines ? 1 : 4}, {"material", material}};
+  return {
+      {"attributes", attrs}, {"indices", j["accessors"].size() - 1}, {"mode", lines ? 1 : 4}, {"material", material}};
 }
 
 // Appends the mesh: a primitive of its triangles and one of its lines (the standard geometry of a
@@ -131,10 +135,13 @@ int float_accessor(const std::vector<float>& data, const char* type, bool with_b
   for (float v : data) put(bin, v);
   j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bin.size() - offset}});
   size_t per = std::string(type) == "VEC3" ? 3 : 1;
-  nlohmann::json acc = {{"bufferView", j["bufferViews"].size() - 1}, {"componentType", kFloat},
-                        {"count", data.size() / per}, {"type", type}};
-  if (with_bounds) acc["min"] = {*std::min_element(data.begin(), data.end())},
-                   acc["max"] = {*std::max_element(data.begin(), data.end())};
+  nlohmann::json acc = {{"bufferView", j["bufferViews"].size() - 1},
+                        {"componentType", kFloat},
+                        {"count", data.size() / per},
+                        {"type", type}};
+  if (with_bounds)
+    acc["min"] = {*std::min_element(data.begin(), data.end())},
+    acc["max"] = {*std::max_element(data.begin(), data.end())};
   j["accessors"].push_back(acc);
   return static_cast<int>(j["accessors"].size()) - 1;
 }
@@ -164,8 +171,8 @@ void add_animation(const GltfAnimation& a, std::string& bin, nlohmann::json& j) 
       float v = (k % n) == f ? 1.0f : 0.0f;
       scales.insert(scales.end(), {v, v, v});
     }
-    samplers.push_back({{"input", input}, {"output", float_accessor(scales, "VEC3", false, bin, j)},
-                        {"interpolation", "STEP"}});
+    samplers.push_back(
+        {{"input", input}, {"output", float_accessor(scales, "VEC3", false, bin, j)}, {"interpolation", "STEP"}});
     channels.push_back({{"sampler", samplers.size() - 1}, {"target", {{"node", index}, {"path", "scale"}}}});
   }
   j["nodes"].push_back(parent);
@@ -181,7 +188,8 @@ std::string encode_glb(const Mesh& m, const std::vector<GltfAnimation>& animatio
   j["scene"] = 0;
   j["scenes"] = {{{"nodes", {0}}}};
   j["nodes"] = {nlohmann::json::object()};
-  for (const char* k : {"bufferViews", "accessors", "meshes", "materials", "animations"}) j[k] = nlohmann::json::array();
+  for (const char* k : {"bufferViews", "accessors", "meshes", "materials", "animations"})
+    j[k] = nlohmann::json::array();
   std::string bin;
   if (int mesh = add_mesh(m, bin, j); mesh >= 0) j["nodes"][0]["mesh"] = mesh;
   for (const auto& a : animations) add_animation(a, bin, j);

@@ -36,7 +36,8 @@ struct CubeTable {
     int id[8][8], n = 0;
     for (int l = 0; l < 8; ++l)
       for (int d = 1; d < 8; ++d)
-        if (!(l & d) && (l | d) < 8) lo[n] = static_cast<uint8_t>(l), dir[n] = static_cast<uint8_t>(d), id[l][l | d] = n++;
+        if (!(l & d) && (l | d) < 8)
+          lo[n] = static_cast<uint8_t>(l), dir[n] = static_cast<uint8_t>(d), id[l][l | d] = n++;
     for (int mask = 0; mask < 256; ++mask) {
       used[mask] = 0, count[mask] = 0;
       for (const auto& tet : kTets) add_tet(mask, tet, id);
@@ -136,7 +137,8 @@ class Slab {
     exact_hi_.assign(plane, 1);
     plane_coordinates();
     std::vector<uint8_t> quad_lo(plane, 0), quad_hi(plane, 0);
-    if (!sample(k0_, values_lo_, exact_lo_, inexact_lo_, err) || !sample(k0_ + 1, values_hi_, exact_hi_, inexact_hi_, err))
+    if (!sample(k0_, values_lo_, exact_lo_, inexact_lo_, err) ||
+        !sample(k0_ + 1, values_hi_, exact_hi_, inexact_hi_, err))
       return false;
     quads(values_lo_, quad_lo);
     quads(values_hi_, quad_hi);
@@ -397,9 +399,12 @@ template <class Fn>
 bool split(size_t n, int threads, Fn fn, backends::RuntimeError& err) {
   int t = std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(1, n / 4096))));
   size_t parts = static_cast<size_t>(t);
-  return support::run_parts(t, [&](int k, backends::RuntimeError& e) {
-    return fn(n * static_cast<size_t>(k) / parts, n * static_cast<size_t>(k + 1) / parts, e);
-  }, err);
+  return support::run_parts(
+      t,
+      [&](int k, backends::RuntimeError& e) {
+        return fn(n * static_cast<size_t>(k) / parts, n * static_cast<size_t>(k + 1) / parts, e);
+      },
+      err);
 }
 
 // Regula falsi on the real function along each interior edge, in blocks of vertices so the
@@ -407,39 +412,42 @@ bool split(size_t n, int threads, Fn fn, backends::RuntimeError& err) {
 bool refine(const Grid& g, const Field& f, std::vector<Edge>& edges, Mesh& m, int steps, int threads,
             backends::RuntimeError& err) {
   m.positions.resize(edges.size());
-  return split(edges.size(), threads, [&](size_t b, size_t e, backends::RuntimeError& er) {
-    std::vector<uint32_t> todo;
-    std::vector<float> lo, hi, flo, fhi, xs, ys, zs, out;
-    for (size_t b0 = b; b0 < e; b0 += kEvalBatch) {
-      size_t b1 = std::min(e, b0 + kEvalBatch);
-      todo.clear();
-      for (size_t v = b0; v < b1; ++v)
-        if (!edges[v].cap && std::isfinite(edges[v].fout)) todo.push_back(static_cast<uint32_t>(v));
-      size_t n = todo.size();
-      lo.assign(n, 0.0f), hi.assign(n, 1.0f), flo.resize(n), fhi.resize(n);
-      xs.resize(n), ys.resize(n), zs.resize(n), out.resize(n);
-      for (size_t q = 0; q < n; ++q) flo[q] = edges[todo[q]].fin, fhi[q] = edges[todo[q]].fout;
-      for (int step = 0; step < steps && n > 0; ++step) {
-        for (size_t q = 0; q < n; ++q) {
-          Vec3 p = position(g, edges[todo[q]], edges[todo[q]].t);
-          xs[q] = p[0], ys[q] = p[1], zs[q] = p[2];
+  return split(
+      edges.size(), threads,
+      [&](size_t b, size_t e, backends::RuntimeError& er) {
+        std::vector<uint32_t> todo;
+        std::vector<float> lo, hi, flo, fhi, xs, ys, zs, out;
+        for (size_t b0 = b; b0 < e; b0 += kEvalBatch) {
+          size_t b1 = std::min(e, b0 + kEvalBatch);
+          todo.clear();
+          for (size_t v = b0; v < b1; ++v)
+            if (!edges[v].cap && std::isfinite(edges[v].fout)) todo.push_back(static_cast<uint32_t>(v));
+          size_t n = todo.size();
+          lo.assign(n, 0.0f), hi.assign(n, 1.0f), flo.resize(n), fhi.resize(n);
+          xs.resize(n), ys.resize(n), zs.resize(n), out.resize(n);
+          for (size_t q = 0; q < n; ++q) flo[q] = edges[todo[q]].fin, fhi[q] = edges[todo[q]].fout;
+          for (int step = 0; step < steps && n > 0; ++step) {
+            for (size_t q = 0; q < n; ++q) {
+              Vec3 p = position(g, edges[todo[q]], edges[todo[q]].t);
+              xs[q] = p[0], ys[q] = p[1], zs[q] = p[2];
+            }
+            if (!evaluate(f, xs.data(), ys.data(), zs.data(), n, out.data(), er)) return false;
+            for (size_t q = 0; q < n; ++q) {
+              Edge& ed = edges[todo[q]];
+              float val = out[q], t = ed.t;
+              if (!std::isfinite(val)) continue;
+              if (val > 0) lo[q] = t, flo[q] = val;
+              else hi[q] = t, fhi[q] = val;
+              float denom = flo[q] - fhi[q];
+              float next = denom != 0 ? lo[q] + (hi[q] - lo[q]) * flo[q] / denom : 0.5f * (lo[q] + hi[q]);
+              ed.t = std::clamp(next, lo[q], hi[q]);
+            }
+          }
+          for (size_t v = b0; v < b1; ++v) m.positions[v] = position(g, edges[v], edges[v].t);
         }
-        if (!evaluate(f, xs.data(), ys.data(), zs.data(), n, out.data(), er)) return false;
-        for (size_t q = 0; q < n; ++q) {
-          Edge& ed = edges[todo[q]];
-          float val = out[q], t = ed.t;
-          if (!std::isfinite(val)) continue;
-          if (val > 0) lo[q] = t, flo[q] = val;
-          else hi[q] = t, fhi[q] = val;
-          float denom = flo[q] - fhi[q];
-          float next = denom != 0 ? lo[q] + (hi[q] - lo[q]) * flo[q] / denom : 0.5f * (lo[q] + hi[q]);
-          ed.t = std::clamp(next, lo[q], hi[q]);
-        }
-      }
-      for (size_t v = b0; v < b1; ++v) m.positions[v] = position(g, edges[v], edges[v].t);
-    }
-    return true;
-  }, err);
+        return true;
+      },
+      err);
 }
 
 // Minus the field's own gradient at vertices b0 .. b0 + n - 1 (ir::gradient_module), into d[3 q ..]
@@ -449,7 +457,8 @@ bool gradient_normals(const Field& f, const Mesh& m, size_t b0, size_t n, float*
                       std::vector<float>& d, backends::RuntimeError& err, bool& usable) {
   thread_local std::vector<float> g;
   g.resize(4 * n);
-  for (size_t q = 0; q < n; ++q) xs[q] = m.positions[b0 + q][0], ys[q] = m.positions[b0 + q][1], zs[q] = m.positions[b0 + q][2];
+  for (size_t q = 0; q < n; ++q)
+    xs[q] = m.positions[b0 + q][0], ys[q] = m.positions[b0 + q][1], zs[q] = m.positions[b0 + q][2];
   float* const o[4] = {g.data(), g.data() + n, g.data() + 2 * n, g.data() + 3 * n};
   {
     EvalTimer timed;
@@ -472,37 +481,42 @@ bool normals(const Grid& g, const Field& f, const std::vector<Edge>& edges, Mesh
   m.normals.resize(m.positions.size());
   constexpr size_t kBlock = kEvalBatch / 6;
   const bool analytic = f.has_gradient();
-  return split(m.positions.size(), threads, [&](size_t b, size_t e, backends::RuntimeError& er) {
-    std::vector<float> xs(6 * kBlock), ys(6 * kBlock), zs(6 * kBlock), out(6 * kBlock), grad;
-    for (size_t b0 = b; b0 < e; b0 += kBlock) {
-      size_t n = std::min(kBlock, e - b0), p = 0;
-      bool usable = false;
-      if (analytic && !gradient_normals(f, m, b0, n, xs.data(), ys.data(), zs.data(), grad, er, usable)) return false;
-      if (!usable) {
-        for (int a = 0; a < 3; ++a)
-          for (int s = -1; s <= 1; s += 2)
-            for (size_t v = b0; v < b0 + n; ++v, ++p) {
-              Vec3 q = m.positions[v];
-              q[a] += static_cast<float>(s * 0.1 * g.h[a]);
-              xs[p] = q[0], ys[p] = q[1], zs[p] = q[2];
+  return split(
+      m.positions.size(), threads,
+      [&](size_t b, size_t e, backends::RuntimeError& er) {
+        std::vector<float> xs(6 * kBlock), ys(6 * kBlock), zs(6 * kBlock), out(6 * kBlock), grad;
+        for (size_t b0 = b; b0 < e; b0 += kBlock) {
+          size_t n = std::min(kBlock, e - b0), p = 0;
+          bool usable = false;
+          if (analytic && !gradient_normals(f, m, b0, n, xs.data(), ys.data(), zs.data(), grad, er, usable))
+            return false;
+          if (!usable) {
+            for (int a = 0; a < 3; ++a)
+              for (int s = -1; s <= 1; s += 2)
+                for (size_t v = b0; v < b0 + n; ++v, ++p) {
+                  Vec3 q = m.positions[v];
+                  q[a] += static_cast<float>(s * 0.1 * g.h[a]);
+                  xs[p] = q[0], ys[p] = q[1], zs[p] = q[2];
+                }
+            if (!evaluate(f, xs.data(), ys.data(), zs.data(), p, out.data(), er)) return false;
+          }
+          for (size_t q = 0; q < n; ++q) {
+            const Edge& ed = edges[b0 + q];
+            std::array<float, 3> d;
+            for (int a = 0; a < 3; ++a)
+              d[a] = usable ? grad[3 * q + a]
+                            : -(out[(2 * a + 1) * n + q] - out[2 * a * n + q]) / static_cast<float>(0.2 * g.h[a]);
+            float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            if (ed.cap || !(len > 0) || !std::isfinite(len)) {
+              for (int a = 0; a < 3; ++a) d[a] = static_cast<float>(ed.step[a]);
+              len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
             }
-        if (!evaluate(f, xs.data(), ys.data(), zs.data(), p, out.data(), er)) return false;
-      }
-      for (size_t q = 0; q < n; ++q) {
-        const Edge& ed = edges[b0 + q];
-        std::array<float, 3> d;
-        for (int a = 0; a < 3; ++a)
-          d[a] = usable ? grad[3 * q + a] : -(out[(2 * a + 1) * n + q] - out[2 * a * n + q]) / static_cast<float>(0.2 * g.h[a]);
-        float len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (ed.cap || !(len > 0) || !std::isfinite(len)) {
-          for (int a = 0; a < 3; ++a) d[a] = static_cast<float>(ed.step[a]);
-          len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            for (int a = 0; a < 3; ++a) m.normals[b0 + q][a] = d[a] / len;
+          }
         }
-        for (int a = 0; a < 3; ++a) m.normals[b0 + q][a] = d[a] / len;
-      }
-    }
-    return true;
-  }, err);
+        return true;
+      },
+      err);
 }
 
 // Concatenates the slabs in order, resolving each slab's placeholders against the one below.
@@ -547,14 +561,16 @@ bool merge(std::vector<Slab>& slabs, Mesh& m, std::vector<Edge>& edges, backends
 
 // Samples and marches the grid in z-slabs, then merges them. A slab whose decided points were
 // contradicted by the function sets st.fallbacks (the caller runs again without bricks).
-bool march(const Grid& g, const Field& f, const BrickMap* bricks, int threads, support::ProgressJob* progress, Mesh& out,
-           std::vector<Edge>& edges, PruneStats& st, backends::RuntimeError& err) {
+bool march(const Grid& g, const Field& f, const BrickMap* bricks, int threads, support::ProgressJob* progress,
+           Mesh& out, std::vector<Edge>& edges, PruneStats& st, backends::RuntimeError& err) {
   // Cube layers -1 .. nz-1, in contiguous slabs of at least 8 layers.
   int layers = g.nz + 1;
   int parts = std::max(1, std::min(threads, layers / 8));
   std::vector<Slab> slabs;
-  for (int s = 0; s < parts; ++s) slabs.emplace_back(g, f, bricks, -1 + layers * s / parts, -1 + layers * (s + 1) / parts, progress);
-  bool ok = support::run_parts(parts, [&](int s, backends::RuntimeError& e) { return slabs[static_cast<size_t>(s)].run(e); }, err);
+  for (int s = 0; s < parts; ++s)
+    slabs.emplace_back(g, f, bricks, -1 + layers * s / parts, -1 + layers * (s + 1) / parts, progress);
+  bool ok = support::run_parts(
+      parts, [&](int s, backends::RuntimeError& e) { return slabs[static_cast<size_t>(s)].run(e); }, err);
   st.evaluated = 0;
   for (const Slab& s : slabs) st.evaluated += s.evaluated, st.fallbacks += s.unsound;
   if (!ok) return false;
@@ -601,7 +617,7 @@ bool polygonize_implicit(const ImplicitJob& job, Mesh& out, backends::RuntimeErr
   add_prune_totals(st);
   if (job.stats) *job.stats = st;
   return ok && refine(g, *job.field, edges, out, job.refine_steps, job.threads, err) &&
-         normals(g, *job.field, edges, out, job.threads, err);
+      normals(g, *job.field, edges, out, job.threads, err);
 }
 
 }  // namespace fscript::mesh

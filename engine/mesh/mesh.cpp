@@ -28,7 +28,8 @@ void Mesh::append(const Mesh& o) {
   }
   // Normals stay where every part with faces has them: a part of lines alone (a scene's axes
   // beside its shapes) needs none, and gets zeros rather than taking the shapes' away.
-  bool my_normals = normals.size() == n || triangles.empty(), their_normals = o.normals.size() == on || o.triangles.empty();
+  bool my_normals = normals.size() == n || triangles.empty(),
+       their_normals = o.normals.size() == on || o.triangles.empty();
   if (my_normals && their_normals && (normals.size() == n || o.normals.size() == on) && n + on > 0) {
     normals.resize(n, Vec3{0, 0, 0});
     if (o.normals.size() == on) normals.insert(normals.end(), o.normals.begin(), o.normals.end());
@@ -39,7 +40,8 @@ void Mesh::append(const Mesh& o) {
   if (!split_from.empty() || !o.split_from.empty()) {
     for (uint32_t i = static_cast<uint32_t>(split_from.size()); i < n; ++i) split_from.push_back(i);
     for (size_t i = 0; i < on; ++i)
-      split_from.push_back(static_cast<uint32_t>(n) + (i < o.split_from.size() ? o.split_from[i] : static_cast<uint32_t>(i)));
+      split_from.push_back(static_cast<uint32_t>(n) +
+                           (i < o.split_from.size() ? o.split_from[i] : static_cast<uint32_t>(i)));
   }
   if (params.size() == n && o.params.size() == on) params.insert(params.end(), o.params.begin(), o.params.end());
   else params.clear();
@@ -57,7 +59,8 @@ namespace {
 // Each vertex as the vertex it was split from (Mesh::split_from), or itself.
 std::vector<uint32_t> welded(const Mesh& m) {
   std::vector<uint32_t> out(m.positions.size());
-  for (uint32_t i = 0; i < out.size(); ++i) out[i] = i < m.split_from.size() && m.split_from[i] < out.size() ? m.split_from[i] : i;
+  for (uint32_t i = 0; i < out.size(); ++i)
+    out[i] = i < m.split_from.size() && m.split_from[i] < out.size() ? m.split_from[i] : i;
   return out;
 }
 
@@ -74,8 +77,8 @@ void components(const Mesh& m, const std::vector<std::array<uint32_t, 3>>& tris,
   for (const auto& tri : tris) {
     const Vec3 &a = m.positions[tri[0]], &b = m.positions[tri[1]], &c = m.positions[tri[2]];
     double det = double(a[0]) * (double(b[1]) * c[2] - double(b[2]) * c[1]) -
-                 double(a[1]) * (double(b[0]) * c[2] - double(b[2]) * c[0]) +
-                 double(a[2]) * (double(b[0]) * c[1] - double(b[1]) * c[0]);
+        double(a[1]) * (double(b[0]) * c[2] - double(b[2]) * c[0]) +
+        double(a[2]) * (double(b[0]) * c[1] - double(b[1]) * c[0]);
     volume[find(tri[0])] += det / 6;
   }
   t.components = volume.size();
@@ -114,8 +117,7 @@ Topology topology(const Mesh& mesh) {
   t.oriented = true;
   size_t edges = 0;
   for (size_t i = 0, j; i < undirected.size(); i = j, ++edges) {
-    for (j = i; j < undirected.size() && undirected[j] == undirected[i]; ++j) {
-    }
+    for (j = i; j < undirected.size() && undirected[j] == undirected[i]; ++j) {}
     if (j - i != 2) t.watertight = false;
     if (j - i == 1) ++t.boundary_edges;
   }
@@ -157,7 +159,8 @@ std::vector<Vec3> crease_normals(const Mesh& m, double crease) {
   std::vector<std::array<double, 3>> face(nt);  // area-weighted
   std::vector<double> length(nt);
   for (size_t t = 0; t < nt; ++t) {
-    const Vec3 &a = m.positions[m.triangles[t][0]], &b = m.positions[m.triangles[t][1]], &c = m.positions[m.triangles[t][2]];
+    const Vec3 &a = m.positions[m.triangles[t][0]], &b = m.positions[m.triangles[t][1]],
+               &c = m.positions[m.triangles[t][2]];
     double u[3] = {double(b[0]) - a[0], double(b[1]) - a[1], double(b[2]) - a[2]};
     double v[3] = {double(c[0]) - a[0], double(c[1]) - a[1], double(c[2]) - a[2]};
     face[t] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
@@ -184,7 +187,8 @@ std::vector<Vec3> crease_normals(const Mesh& m, double crease) {
         for (int a = 0; a < 3; ++a) n[a] += face[o][a];
       }
       double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      for (int a = 0; a < 3; ++a) out[3 * t + static_cast<size_t>(k)][static_cast<size_t>(a)] = len > 0 ? float(n[a] / len) : 0.0f;
+      for (int a = 0; a < 3; ++a)
+        out[3 * t + static_cast<size_t>(k)][static_cast<size_t>(a)] = len > 0 ? float(n[a] / len) : 0.0f;
     }
   return out;
 }

@@ -30,7 +30,9 @@ class Out {
   }
   void text(std::string_view t) { put(t.data(), t.size()); }
   template <class T>
-  void value(T v) { put(&v, sizeof(T)); }
+  void value(T v) {
+    put(&v, sizeof(T));
+  }
   void reserve(size_t n) {
     if (s_) s_->reserve(s_->size() + n);
   }
@@ -114,14 +116,15 @@ void obj(const Mesh& m, Out& out) {
   auto line = [&](int n) { out.put(buf, static_cast<size_t>(n)); };
   for (size_t i = 0; i < m.positions.size(); ++i)
     if (!split || m.split_from[i] == i)
-      line(std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\n", m.positions[i][0], m.positions[i][1], m.positions[i][2]));
+      line(std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\n", m.positions[i][0], m.positions[i][1],
+                         m.positions[i][2]));
   if (normals)
     for (const auto& n : m.normals) line(std::snprintf(buf, sizeof buf, "vn %.9g %.9g %.9g\n", n[0], n[1], n[2]));
   for (const auto& t : m.triangles) {
     if (normals)
-      line(std::snprintf(buf, sizeof buf, "f %u//%u %u//%u %u//%u\n", at[t[0]], t[0] + 1, at[t[1]], t[1] + 1, at[t[2]], t[2] + 1));
-    else
-      line(std::snprintf(buf, sizeof buf, "f %u %u %u\n", at[t[0]], at[t[1]], at[t[2]]));
+      line(std::snprintf(buf, sizeof buf, "f %u//%u %u//%u %u//%u\n", at[t[0]], t[0] + 1, at[t[1]], t[1] + 1, at[t[2]],
+                         t[2] + 1));
+    else line(std::snprintf(buf, sizeof buf, "f %u %u %u\n", at[t[0]], at[t[1]], at[t[2]]));
   }
   for (const auto& l : m.polylines) {
     std::string s = "l";
@@ -169,10 +172,13 @@ std::string encode_mesh(const Mesh& m, MeshFormat f) {
 }
 
 bool write_mesh(const Mesh& m, MeshFormat f, const std::string& path, std::string& error) {
-  return support::write_file_atomic(path, [&](std::FILE* file) {
-    Out out(file);
-    return encode(m, f, out);
-  }, error);
+  return support::write_file_atomic(
+      path,
+      [&](std::FILE* file) {
+        Out out(file);
+        return encode(m, f, out);
+      },
+      error);
 }
 
 }  // namespace fscript::mesh

@@ -49,14 +49,33 @@ class BinaryReader {
     std::memcpy(buf, b_.data() + pos_, n);
     if (big_) std::reverse(buf, buf + n);
     pos_ += n;
-    if (type == "float" || type == "float32") { float f; std::memcpy(&f, buf, 4); out = f; }
-    else if (type == "double" || type == "float64") { double d; std::memcpy(&d, buf, 8); out = d; }
-    else if (type == "char" || type == "int8") out = static_cast<int8_t>(buf[0]);
+    if (type == "float" || type == "float32") {
+      float f;
+      std::memcpy(&f, buf, 4);
+      out = f;
+    } else if (type == "double" || type == "float64") {
+      double d;
+      std::memcpy(&d, buf, 8);
+      out = d;
+    } else if (type == "char" || type == "int8") out = static_cast<int8_t>(buf[0]);
     else if (type == "uchar" || type == "uint8") out = buf[0];
-    else if (type == "short" || type == "int16") { int16_t v; std::memcpy(&v, buf, 2); out = v; }
-    else if (type == "ushort" || type == "uint16") { uint16_t v; std::memcpy(&v, buf, 2); out = v; }
-    else if (type == "int" || type == "int32") { int32_t v; std::memcpy(&v, buf, 4); out = v; }
-    else { uint32_t v; std::memcpy(&v, buf, 4); out = v; }
+    else if (type == "short" || type == "int16") {
+      int16_t v;
+      std::memcpy(&v, buf, 2);
+      out = v;
+    } else if (type == "ushort" || type == "uint16") {
+      uint16_t v;
+      std::memcpy(&v, buf, 2);
+      out = v;
+    } else if (type == "int" || type == "int32") {
+      int32_t v;
+      std::memcpy(&v, buf, 4);
+      out = v;
+    } else {
+      uint32_t v;
+      std::memcpy(&v, buf, 4);
+      out = v;
+    }
     return true;
   }
   size_t pos() const { return pos_; }
@@ -104,7 +123,9 @@ bool parse_ply(const std::string& bytes, Mesh& m, std::string& error) {
   bool ascii = format == "ascii";
   std::istringstream text(ascii ? bytes.substr(data) : std::string());
   BinaryReader bin(bytes, data, format == "binary_big_endian");
-  auto next = [&](const std::string& type, double& v) { return ascii ? static_cast<bool>(text >> v) : bin.read(type, v); };
+  auto next = [&](const std::string& type, double& v) {
+    return ascii ? static_cast<bool>(text >> v) : bin.read(type, v);
+  };
   bool normals = false;
   for (const auto& e : elems)
     for (const auto& pr : e.props) normals |= e.name == "vertex" && pr.name == "nx";
@@ -121,7 +142,10 @@ bool parse_ply(const std::string& bytes, Mesh& m, std::string& error) {
             return false;
           }
           for (int k = 0; k < static_cast<int>(n); ++k) {
-            if (!next(pr.type, v)) { error = "PLY: truncated data"; return false; }
+            if (!next(pr.type, v)) {
+              error = "PLY: truncated data";
+              return false;
+            }
             face.push_back(static_cast<uint32_t>(v));
           }
           continue;
@@ -133,7 +157,8 @@ bool parse_ply(const std::string& bytes, Mesh& m, std::string& error) {
         if (pr.name == "x") p[0] = static_cast<float>(v);
         if (pr.name == "y") p[1] = static_cast<float>(v);
         if (pr.name == "z") p[2] = static_cast<float>(v);
-        if (pr.name == "nx" || pr.name == "ny" || pr.name == "nz") n[static_cast<size_t>(pr.name[1] - 'x')] = static_cast<float>(v);
+        if (pr.name == "nx" || pr.name == "ny" || pr.name == "nz")
+          n[static_cast<size_t>(pr.name[1] - 'x')] = static_cast<float>(v);
       }
       if (e.name == "vertex") m.positions.push_back(p);
       if (e.name == "vertex" && normals) m.normals.push_back(n);
@@ -251,8 +276,8 @@ bool parse_stl(const std::string& bytes, Mesh& m, std::string& error) {
 bool parse_mesh(const std::string& bytes, const std::string& name, Mesh& out, std::string& error) {
   out = Mesh{};
   bool ok = ends_with(name, ".ply") ? parse_ply(bytes, out, error)
-          : ends_with(name, ".obj") ? parse_obj(bytes, out, error)
-          : ends_with(name, ".stl") ? parse_stl(bytes, out, error)
+      : ends_with(name, ".obj")     ? parse_obj(bytes, out, error)
+      : ends_with(name, ".stl")     ? parse_stl(bytes, out, error)
                                     : (error = "unknown mesh format (use .ply, .obj or .stl)", false);
   if (!ok) return false;
   for (const auto& t : out.triangles)

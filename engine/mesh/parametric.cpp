@@ -72,7 +72,7 @@ bool derivative_normals(const ParametricJob& job, Mesh& m, backends::RuntimeErro
     Vec3 c = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2], du[0] * dv[1] - du[1] * dv[0]};
     float len = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
     float scale = std::sqrt(du[0] * du[0] + du[1] * du[1] + du[2] * du[2]) *
-                  std::sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
+        std::sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]);
     const Vec3& face = m.normals[i];
     if (!(len > 1e-3f * scale) || !std::isfinite(len)) continue;
     Vec3 d = {c[0] / len, c[1] / len, c[2] / len};
@@ -86,10 +86,9 @@ void keep_params(const std::vector<std::array<float, 3>>& uvw, Mesh& m) {
   for (const auto& p : uvw) m.params.push_back({p[0], p[1], p[2]});
 }
 
-
 // One grid patch: axis a varies along rows, axis b along columns, the third fixed at `fixed`.
-void patch(const ParametricJob& job, int a, int b, int c, double fixed, bool flip, std::vector<std::array<float, 3>>& uvw,
-           std::vector<std::array<uint32_t, 3>>& tris) {
+void patch(const ParametricJob& job, int a, int b, int c, double fixed, bool flip,
+           std::vector<std::array<float, 3>>& uvw, std::vector<std::array<uint32_t, 3>>& tris) {
   int na = job.intervals[a], nb = job.intervals[b];
   uint32_t base = static_cast<uint32_t>(uvw.size());
   for (int j = 0; j <= nb; ++j)

@@ -22,8 +22,8 @@ class ParametricField {
                     backends::RuntimeError& err) const = 0;
   // Rows of the (u, v) grid: point r * count + i is (u[i], v[r], w[r]). The same values as eval over
   // those points; a kernel computes what does not depend on u once per row (Kernel::eval_rows).
-  virtual bool eval_rows(const float* u, size_t count, const float* v, const float* w, size_t rows, float* x,
-                         float* y, float* z, backends::RuntimeError& err) const;
+  virtual bool eval_rows(const float* u, size_t count, const float* v, const float* w, size_t rows, float* x, float* y,
+                         float* z, backends::RuntimeError& err) const;
 };
 
 // A parametric kernel: inputs (u, v, w, t), outputs (x, y, z).

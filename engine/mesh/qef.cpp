@@ -56,7 +56,9 @@ bool dominant(const Eigen::Matrix3d& a, double cutoff, Eigen::Vector3d& v, doubl
   int k = 0;
   for (int i = 1; i < 3; ++i)
     if (diagonal[i] > diagonal[k]) k = i;
-  v = k == 0 ? Eigen::Vector3d(m[0], m[1], m[2]) : k == 1 ? Eigen::Vector3d(m[1], m[3], m[4]) : Eigen::Vector3d(m[2], m[4], m[5]);
+  v = k == 0   ? Eigen::Vector3d(m[0], m[1], m[2])
+      : k == 1 ? Eigen::Vector3d(m[1], m[3], m[4])
+               : Eigen::Vector3d(m[2], m[4], m[5]);
   // Normalised by the squared length: no square root on the chain (the residual is compared squared).
   double length2 = v.squaredNorm();
   if (!(length2 > 0) || !std::isfinite(length2)) return false;
@@ -64,7 +66,8 @@ bool dominant(const Eigen::Matrix3d& a, double cutoff, Eigen::Vector3d& v, doubl
   Eigen::Vector3d av = a * v;
   lambda = v.dot(av);
   // The sum of the others, with room for the estimate's own error, under the cutoff.
-  return lambda > 0 && (trace - lambda) + 1e-12 * trace < cutoff * lambda && (av - lambda * v).squaredNorm() < 1e-18 * trace * trace;
+  return lambda > 0 && (trace - lambda) + 1e-12 * trace < cutoff * lambda &&
+      (av - lambda * v).squaredNorm() < 1e-18 * trace * trace;
 }
 
 }  // namespace

@@ -17,7 +17,8 @@ void append(png_structp png, png_bytep data, png_size_t n) {
 void flush(png_structp) {}
 
 // Encodes into memory; the file is then written atomically.
-bool encode(uint32_t w, uint32_t h, int channels, const std::vector<uint8_t>& px, std::string& out, std::string& error) {
+bool encode(uint32_t w, uint32_t h, int channels, const std::vector<uint8_t>& px, std::string& out,
+            std::string& error) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!png || !info) {

@@ -54,7 +54,8 @@ struct Tape {
 std::vector<Rect> split(Rect r, uint32_t s) {
   std::vector<Rect> out;
   for (uint32_t row = r.r0; row < r.r1; row += s)
-    for (uint32_t col = r.c0; col < r.c1; col += s) out.push_back({col, row, std::min(col + s, r.c1), std::min(row + s, r.r1)});
+    for (uint32_t col = r.c0; col < r.c1; col += s)
+      out.push_back({col, row, std::min(col + s, r.c1), std::min(row + s, r.r1)});
   return out;
 }
 
@@ -110,11 +111,10 @@ class Renderer {
     if (level + 1 == kLevels || (level + 2 == kLevels && !child.flat->simd_only())) return dense(child, {r});
     std::vector<Rect> pending;
     bool last = level + 2 == kLevels;
-    bool ok = bound(child, split(r, kSizes[level + 1]), level + 1,
-                    [&](Rect c, ir::IntervalBatchEval& cev, size_t k) {
-                      if (last) return pending.push_back(c), true;
-                      return region(child, c, level + 1, cev, k);
-                    });
+    bool ok = bound(child, split(r, kSizes[level + 1]), level + 1, [&](Rect c, ir::IntervalBatchEval& cev, size_t k) {
+      if (last) return pending.push_back(c), true;
+      return region(child, c, level + 1, cev, k);
+    });
     return ok && (pending.empty() || dense(child, pending));
   }
 
@@ -240,7 +240,8 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   std::vector<Rect> tiles;  // the top level's regions, shared out to the threads by index
   uint32_t s = prune ? kSizes[0] : 64;
   for (uint32_t row = 0; row < g.h; row += s)
-    for (uint32_t col = 0; col < g.w; col += s) tiles.push_back({col, row, std::min(col + s, g.w), std::min(row + s, g.h)});
+    for (uint32_t col = 0; col < g.w; col += s)
+      tiles.push_back({col, row, std::min(col + s, g.w), std::min(row + s, g.h)});
   int parts = static_cast<int>(std::max(1u, std::min<unsigned>(o.threads, static_cast<unsigned>(tiles.size()))));
   std::vector<std::unique_ptr<Renderer>> renderers;
   for (int p = 0; p < parts; ++p) renderers.push_back(std::make_unique<Renderer>(dense, g, o, px));
@@ -277,14 +278,15 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   size_t count = prune ? open.size() : tiles.size();
   if (o.progress) o.progress->set_units(count);
   ok = ok && support::run_parts(parts, [&](int p) {
-    Renderer& r = *renderers[static_cast<size_t>(p)];
-    for (size_t t; !failed && (t = next.fetch_add(1)) < count;) {
-      bool done = prune ? r.region(full, open[t].r, 0, top[open[t].batch], open[t].lane) : r.dense(full, {tiles[t]});
-      if (!done) return failed = true, false;
-      if (o.progress) o.progress->advance(1);
-    }
-    return true;
-  });
+         Renderer& r = *renderers[static_cast<size_t>(p)];
+         for (size_t t; !failed && (t = next.fetch_add(1)) < count;) {
+           bool done =
+               prune ? r.region(full, open[t].r, 0, top[open[t].batch], open[t].lane) : r.dense(full, {tiles[t]});
+           if (!done) return failed = true, false;
+           if (o.progress) o.progress->advance(1);
+         }
+         return true;
+       });
   stats.pruned = prune;
   for (uint32_t sz : kSizes) stats.levels.push_back({sz, 0, 0, 0, 0});
   for (const auto& r : renderers) merge(stats, r->stats_);

@@ -145,10 +145,12 @@ class Raster {
       V3 h = norm({to_light[0] + view_dir[0], to_light[1] + view_dir[1], to_light[2] + view_dir[2]});
       double s = d > 0 ? std::pow(std::max(0.0, dot(n, h)), std::max(1.0, 128.0 * mat.shininess)) : 0.0;
       for (int k = 0; k < 3; ++k)
-        sum[k] += colour[k] * (ambient * mat.ambient_intensity * base[k] + intensity * (base[k] * d + mat.specular[k] * s));
+        sum[k] +=
+            colour[k] * (ambient * mat.ambient_intensity * base[k] + intensity * (base[k] * d + mat.specular[k] * s));
     };
     if (o_.headlight) add(view_dir, {1, 1, 1}, 1.0, 0.0);
-    for (const auto& l : o_.lights) add(norm({-l.direction[0], -l.direction[1], -l.direction[2]}), l.colour, l.intensity, l.ambient);
+    for (const auto& l : o_.lights)
+      add(norm({-l.direction[0], -l.direction[1], -l.direction[2]}), l.colour, l.intensity, l.ambient);
     for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(std::clamp(sum[k], 0.0, 1.0));
     return out;
   }
@@ -229,7 +231,8 @@ class Raster {
           double sum = 0;
           for (int dy = 0; dy < s; ++dy)
             for (int dx = 0; dx < s; ++dx) sum += rgb_[size_t(y * s + dy) * w_ + x * s + dx][k];
-          out[(size_t(y) * o_.width + x) * 3 + k] = static_cast<uint8_t>(std::lround(std::clamp(sum / (s * s), 0.0, 1.0) * 255));
+          out[(size_t(y) * o_.width + x) * 3 + k] =
+              static_cast<uint8_t>(std::lround(std::clamp(sum / (s * s), 0.0, 1.0) * 255));
         }
     return out;
   }

@@ -53,9 +53,22 @@ Mat4 rotate(const double r[4], double sign = 1) {
   if (len == 0) return identity();
   x /= len, y /= len, z /= len;
   double c = std::cos(a), s = std::sin(a), t = 1 - c;
-  return {t * x * x + c,     t * x * y + s * z, t * x * z - s * y, 0, t * x * y - s * z, t * y * y + c,
-          t * y * z + s * x, 0,                 t * x * z + s * y, t * y * z - s * x, t * z * z + c, 0,
-          0,                 0,                 0,                 1};
+  return {t * x * x + c,
+          t * x * y + s * z,
+          t * x * z - s * y,
+          0,
+          t * x * y - s * z,
+          t * y * y + c,
+          t * y * z + s * x,
+          0,
+          t * x * z + s * y,
+          t * y * z - s * x,
+          t * z * z + c,
+          0,
+          0,
+          0,
+          0,
+          1};
 }
 
 Mat4 scale(const double v[3]) {
@@ -128,8 +141,7 @@ enum class Role { Geometry, Point, Operation };
 class Builder {
  public:
   Builder(const vrml::Scene& s, const ModelOptions& o, frontend::DiagnosticSink& d, SceneModel& out)
-      : scene_(s), opts_(o), diag_(d), out_(out) {
-  }
+      : scene_(s), opts_(o), diag_(d), out_(out) {}
 
   bool run() {
     size_t before = diag_.error_count();
@@ -160,9 +172,9 @@ class Builder {
     auto file = std::make_unique<frontend::SourceFile>(from.path(), v->strs[0], lc.line, lc.col);
     file->set_outer_lines(lines_of(from));
     auto entry = [&](const frontend::SemaResult& sema, frontend::KernelSpec& spec, std::string& err) {
-      bool ok = role == Role::Point       ? frontend::point_spec(sema, spec, out.rgb, err)
-                : role == Role::Operation ? frontend::named_inputs_spec(sema, operation_inputs(), spec, err)
-                                          : frontend::default_spec(sema, spec, err);
+      bool ok = role == Role::Point ? frontend::point_spec(sema, spec, out.rgb, err)
+          : role == Role::Operation ? frontend::named_inputs_spec(sema, operation_inputs(), spec, err)
+                                    : frontend::default_spec(sema, spec, err);
       if (implicit) *implicit = sema.entry.frep >= 0 || sema.form == frontend::ScriptForm::Expression;
       if (ok && role == Role::Geometry && !*implicit) ok = geometry_outputs(sema, spec, err);
       return ok;
@@ -178,7 +190,8 @@ class Builder {
     }
     keep(c, out);
     if (role == Role::Geometry && implicit && *implicit && c.module)
-      out.gradient = std::make_shared<const LazyGradient>(std::move(c.module), opts_.compile.backend, opts_.compile.budgets);
+      out.gradient =
+          std::make_shared<const LazyGradient>(std::move(c.module), opts_.compile.backend, opts_.compile.budgets);
     out.field = field;
     return true;
   }
@@ -225,13 +238,15 @@ class Builder {
     frontend::LineCol lc = file_of(n).position(v->str_spans[0].begin);
     whole.line = lc.line;
     whole.col = lc.col;
-    size_t want = std::string(field).find("otation") != std::string::npos || std::string(field) == "scaleOrientation" ? 4 : 3;
+    size_t want =
+        std::string(field).find("otation") != std::string::npos || std::string(field) == "scaleOrientation" ? 4 : 3;
     auto parts = frontend::split_components(whole);
     if (parts.size() != want) {
       auto file = std::make_unique<frontend::SourceFile>(file_of(n).path(), whole.text, whole.line, whole.col);
       file->set_outer_lines(lines_of(file_of(n)));
-      diag_.error(*file, {0, 1}, "'" + std::string(field) + "' of FTransform needs " + std::to_string(want) +
-                                     " components, found " + std::to_string(parts.size()));
+      diag_.error(*file, {0, 1},
+                  "'" + std::string(field) + "' of FTransform needs " + std::to_string(want) + " components, found " +
+                      std::to_string(parts.size()));
       return false;
     }
     for (const auto& p : parts) {
@@ -253,7 +268,8 @@ class Builder {
     driver::Outcome r = driver::compile(std::move(file), entry, options(), diag_, c);
     if (r.stage == driver::Stage::Source) return false;
     if (!r.ok()) {
-      diag_.error(*c.script.file, {0, 1}, r.stage == driver::Stage::Entry ? r.error : "cannot compile '" + e.field + "': " + r.error);
+      diag_.error(*c.script.file, {0, 1},
+                  r.stage == driver::Stage::Entry ? r.error : "cannot compile '" + e.field + "': " + r.error);
       return false;
     }
     keep(c, out);
@@ -293,14 +309,16 @@ class Builder {
       return s;
     }
     TimeSensorFields own = time_fields(n);
-    if (&file_of(n) != scene_.file.get()) return evaluate_time_sensor(own, opts_.now);  // an Inline's file: its own names
+    if (&file_of(n) != scene_.file.get())
+      return evaluate_time_sensor(own, opts_.now);  // an Inline's file: its own names
     for (const auto& r : scene_.routes) {
       if (r.to_node != n.def_name || n.def_name.empty()) continue;
       auto src = scene_.defs.find(r.from_node);
       if (src == scene_.defs.end() || src->second->type != "TimeSensor") continue;
       TimeSensorState ext = evaluate_time_sensor(time_fields(*src->second), opts_.now);
       if (r.to_field == "set_fraction" && r.from_field == "fraction_changed") return ext;
-      if ((r.to_field == "startTime" || r.to_field == "set_startTime") && r.from_field == "cycleTime" && ext.ever_active)
+      if ((r.to_field == "startTime" || r.to_field == "set_startTime") && r.from_field == "cycleTime" &&
+          ext.ever_active)
         own.start_time = ext.cycle_time;
     }
     return evaluate_time_sensor(own, opts_.now);
@@ -328,11 +346,10 @@ class Builder {
     if (++walked_ > kMaxExpandedNodes || depth > kMaxExpandedDepth) {
       too_large_ = true;
       diag_.error(file_of(*n), n->span,
-                  walked_ > kMaxExpandedNodes
-                      ? "the scene expands to more than " + std::to_string(kMaxExpandedNodes) +
-                            " nodes (every PROTO instance and every USE counted again); refused"
-                      : "nodes nested more than " + std::to_string(kMaxExpandedDepth) +
-                            " deep through PROTO instances (PROTOs whose bodies are instances of PROTOs); refused");
+                  walked_ > kMaxExpandedNodes ? "the scene expands to more than " + std::to_string(kMaxExpandedNodes) +
+                          " nodes (every PROTO instance and every USE counted again); refused"
+                                              : "nodes nested more than " + std::to_string(kMaxExpandedDepth) +
+                          " deep through PROTO instances (PROTOs whose bodies are instances of PROTOs); refused");
       return;
     }
     if (n->type == "FShape") return shape(*n, m, group);
@@ -431,10 +448,10 @@ class Builder {
     std::string why;
     if (!(c.samples <= max_samples))
       why = "asks for " + count_text(c.samples) + " sample points, over the limit of " + count_text(max_samples) +
-            " for one shape";
+          " for one shape";
     else if (!(c.bytes <= memory))
-      why = "needs about " + bytes_text(c.bytes) + " of memory (" + count_text(c.samples) + " sample points), over the " +
-            bytes_text(memory) + " of --max-memory";
+      why = "needs about " + bytes_text(c.bytes) + " of memory (" + count_text(c.samples) +
+          " sample points), over the " + bytes_text(memory) + " of --max-memory";
     if (why.empty()) return true;
     int used = kind == ShapeKind::Curve ? 1 : kind == ShapeKind::Surface ? 2 : 3;
     std::string text = "resolution [";
@@ -457,10 +474,10 @@ class Builder {
       scaled[k] = r * opts_.resolution_scale;
     }
     std::string poly = s.fshape ? str(*s.fshape, "polygonizer") : "";
-    s.kind = implicit ? ShapeKind::Implicit
-             : (dims <= 1 || poly == "analytical_curve") ? ShapeKind::Curve
-             : dims == 2                                  ? ShapeKind::Surface
-                                                          : ShapeKind::Solid;
+    s.kind = implicit                               ? ShapeKind::Implicit
+        : (dims <= 1 || poly == "analytical_curve") ? ShapeKind::Curve
+        : dims == 2                                 ? ShapeKind::Surface
+                                                    : ShapeKind::Solid;
     bool refused = !within_cost(s.kind, scaled, geo);
     for (int k = 0; k < 3; ++k)
       s.resolution[k] = refused ? 1 : std::max(1, static_cast<int>(std::lround(std::min(scaled[k], 2e9))));

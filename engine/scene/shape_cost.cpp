@@ -35,12 +35,8 @@ ShapeCost shape_cost(ShapeKind kind, const std::array<double, 3>& r) {
       c.bytes = kCurveBytes * c.samples;
       c.kept = kKeptBytes * c.samples;
       return c;
-    case ShapeKind::Surface:
-      c.samples = n[0] * n[1];
-      break;
-    case ShapeKind::Solid:
-      c.samples = 2 * (n[0] * n[1] + n[1] * n[2] + n[2] * n[0]);
-      break;
+    case ShapeKind::Surface: c.samples = n[0] * n[1]; break;
+    case ShapeKind::Solid: c.samples = 2 * (n[0] * n[1] + n[1] * n[2] + n[2] * n[0]); break;
   }
   c.bytes = kSurfaceBytes * c.samples;
   c.kept = kKeptBytes * c.samples;

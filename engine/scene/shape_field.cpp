@@ -36,7 +36,8 @@ bool ShapeField::eval_rows(const float* x, size_t count, const float* y, const f
 
 math::Interval ShapeField::bound(const mesh::Box3& b) const {
   if (!can_bound()) return math::Interval::everything();
-  math::Interval f = mesh::kernel_bound(*s_.geometry.intervals, b, {math::Interval::point(static_cast<float>(s_.geometry.t))});
+  math::Interval f =
+      mesh::kernel_bound(*s_.geometry.intervals, b, {math::Interval::point(static_cast<float>(s_.geometry.t))});
   if (!s_.texture) return f;
   std::vector<math::Interval> uvw_t;  // the texture sees (x, y, z, u, v, w, t) with u, v, w = x, y, z
   for (int a = 0; a < 3; ++a) uvw_t.push_back({b.lo[a], b.hi[a], false});
@@ -48,7 +49,8 @@ bool ShapeField::has_gradient() const { return !s_.texture && s_.geometry.gradie
 
 bool ShapeField::eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                                backends::RuntimeError& err) const {
-  mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(s_.geometry.t), nullptr, s_.geometry.gradient->get());
+  mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(s_.geometry.t), nullptr,
+                             s_.geometry.gradient->get());
   return geometry.eval_gradient(x, y, z, n, out, err);
 }
 
@@ -127,8 +129,8 @@ math::Interval blend_bound(math::Interval f, math::Interval g, double sign, doub
   double lo = part(fl, gl) + std::min(b1, b2), hi = part(fh, gh) + std::max(b1, b2);
   double slack = 1e-6 * (3 * std::max({std::fabs(fl), std::fabs(fh), std::fabs(gl), std::fabs(gh)}) + std::fabs(a0));
   if (!std::isfinite(lo) || !std::isfinite(hi)) return math::Interval::everything();
-  return {std::nextafter(static_cast<float>(lo - slack), -INFINITY), std::nextafter(static_cast<float>(hi + slack), INFINITY),
-          f.nan || g.nan};
+  return {std::nextafter(static_cast<float>(lo - slack), -INFINITY),
+          std::nextafter(static_cast<float>(hi + slack), INFINITY), f.nan || g.nan};
 }
 
 }  // namespace
@@ -177,7 +179,8 @@ void gather_children(const SceneModel& m, const Group& g, bool implicit, std::ve
       kids.push_back(std::move(f));
     } else {
       const Shape& s = m.shapes[index];
-      if ((s.kind == ShapeKind::Implicit) != implicit) invalid = "an FTransform cannot mix implicit and parametric children";
+      if ((s.kind == ShapeKind::Implicit) != implicit)
+        invalid = "an FTransform cannot mix implicit and parametric children";
       shapes.push_back(&s);
       kids.push_back(leaf(s));
     }
@@ -204,7 +207,8 @@ bool GroupField::valid(std::string& why) const {
 std::array<double, 6> GroupField::box() const {
   std::array<double, 6> b = {1e300, -1e300, 1e300, -1e300, 1e300, -1e300};
   auto grow = [&b](const std::array<double, 6>& d) {
-    for (int a = 0; a < 3; ++a) b[2 * a] = std::min(b[2 * a], d[2 * a]), b[2 * a + 1] = std::max(b[2 * a + 1], d[2 * a + 1]);
+    for (int a = 0; a < 3; ++a)
+      b[2 * a] = std::min(b[2 * a], d[2 * a]), b[2 * a + 1] = std::max(b[2 * a + 1], d[2 * a + 1]);
   };
   size_t k = 0;
   for (auto [is_group, index] : g_.children) {  // nested boxes come back in this group's frame
@@ -217,7 +221,8 @@ std::array<double, 6> GroupField::box() const {
   for (int corner = 0; corner < 8; ++corner) {
     float p[3] = {float(b[corner & 1]), float(b[2 + ((corner >> 1) & 1)]), float(b[4 + ((corner >> 2) & 1)])};
     apply(matrix_, p[0], p[1], p[2]);
-    for (int a = 0; a < 3; ++a) moved[2 * a] = std::min(moved[2 * a], double(p[a])), moved[2 * a + 1] = std::max(moved[2 * a + 1], double(p[a]));
+    for (int a = 0; a < 3; ++a)
+      moved[2 * a] = std::min(moved[2 * a], double(p[a])), moved[2 * a + 1] = std::max(moved[2 * a + 1], double(p[a]));
   }
   return moved;
 }
@@ -274,8 +279,8 @@ GroupField::SetOp GroupField::set_op() const {
   SetOp s;
   const std::string& op = g_.operation;
   s.kind = op == "intersection"                           ? SetOp::Intersection
-           : op == "subtraction" || op == "difference"    ? SetOp::Subtraction
-           : op == "blend_union" || op == "blend_intersection" ? SetOp::Blend
+      : op == "subtraction" || op == "difference"         ? SetOp::Subtraction
+      : op == "blend_union" || op == "blend_intersection" ? SetOp::Blend
                                                           : SetOp::Union;  // and any unknown name, reported
   s.sign = op == "blend_union" ? 1 : -1;
   const vrml::Value* p = g_.node->get("parameters");
@@ -297,7 +302,8 @@ void GroupField::fold(float* out, const float* rest, size_t n) const {
       for (size_t i = 0; i < n; ++i) {
         float f = out[i], h = g[i];  // f + h is a float sum, the rest double
         double fa = f / op.a1, ga = h / op.a2;
-        out[i] = static_cast<float>(f + h + op.sign * std::sqrt(double(f) * f + double(h) * h) + op.a0 / (1 + fa * fa + ga * ga));
+        out[i] = static_cast<float>(f + h + op.sign * std::sqrt(double(f) * f + double(h) * h) +
+                                    op.a0 / (1 + fa * fa + ga * ga));
       }
     } else {
       for (size_t i = 0; i < n; ++i) out[i] = math::max(out[i], g[i]);  // union (and any unknown name, reported)
@@ -325,7 +331,8 @@ bool GroupField::eval_gradient(const float* x, const float* y, const float* z, s
   for (size_t i = 0; i < n; ++i) {  // d/dp_j = sum over i of d/dl_i dl_i/dp_j, with l = M^-1 p
     double l[3] = {out[1][i], out[2][i], out[3][i]};
     for (int j = 0; j < 3; ++j)
-      out[1 + j][i] = static_cast<float>(l[0] * inverse_[4 * j] + l[1] * inverse_[4 * j + 1] + l[2] * inverse_[4 * j + 2]);
+      out[1 + j][i] =
+          static_cast<float>(l[0] * inverse_[4 * j] + l[1] * inverse_[4 * j + 1] + l[2] * inverse_[4 * j + 2]);
   }
   return true;
 }
@@ -361,7 +368,8 @@ bool GroupField::eval_operator(const float* x, const float* y, const float* z, s
   std::vector<const float*> in;
   in.push_back(vals[0].data());
   in.push_back(kids_.size() > 1 ? vals[1].data() : zero.data());
-  for (int k = 0; k < kMaxOperands; ++k) in.push_back(k < static_cast<int>(kids_.size()) ? vals[k].data() : zero.data());
+  for (int k = 0; k < kMaxOperands; ++k)
+    in.push_back(k < static_cast<int>(kids_.size()) ? vals[k].data() : zero.data());
   in.push_back(t.data());
   float* outs[1] = {out};
   return g_.op_kernel->kernel->eval_batch(in.data(), outs, n, err);
@@ -416,7 +424,7 @@ GroupParametric::GroupParametric(const SceneModel& m, int group) : g_(m.groups[g
   });
   if (!g_.op_kernel && kids_.size() > 1)
     invalid_ = "the set operation '" + (g_.operation.empty() ? std::string("union") : g_.operation) +
-               "' over parametric children has no single surface; use type \"analytical\"";
+        "' over parametric children has no single surface; use type \"analytical\"";
 }
 
 bool GroupParametric::valid(std::string& why) const {
@@ -432,7 +440,9 @@ ShapeKind GroupParametric::kind() const {
   return best;
 }
 
-std::array<double, 6> GroupParametric::domain() const { return shapes_.empty() ? std::array<double, 6>{} : shapes_[0]->domain; }
+std::array<double, 6> GroupParametric::domain() const {
+  return shapes_.empty() ? std::array<double, 6>{} : shapes_[0]->domain;
+}
 
 std::array<int, 3> GroupParametric::intervals() const {
   std::array<int, 3> c = {1, 1, 1};
@@ -459,7 +469,8 @@ bool GroupParametric::eval(const float* u, const float* v, const float* w, size_
     std::vector<const float*> in;
     in.push_back(vals[0][c].data());
     in.push_back(kids_.size() > 1 ? vals[1][c].data() : zero.data());
-    for (int k = 0; k < kMaxOperands; ++k) in.push_back(k < static_cast<int>(kids_.size()) ? vals[k][c].data() : zero.data());
+    for (int k = 0; k < kMaxOperands; ++k)
+      in.push_back(k < static_cast<int>(kids_.size()) ? vals[k][c].data() : zero.data());
     in.push_back(t.data());
     float* outs[1] = {out[c]};
     if (!g_.op_kernel->kernel->eval_batch(in.data(), outs, n, err)) return false;

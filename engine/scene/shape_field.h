@@ -58,7 +58,8 @@ class GroupField : public mesh::Field {
 
  private:
   // An analytical operation (the FTransform's operation as a script) over the children's values.
-  bool eval_operator(const float* x, const float* y, const float* z, size_t n, float* out, backends::RuntimeError& err) const;
+  bool eval_operator(const float* x, const float* y, const float* z, size_t n, float* out,
+                     backends::RuntimeError& err) const;
   // Points into the FTransform's own frame, where its children live (kept in lx, ly, lz; nothing
   // to do when it does not move them).
   void to_local(const float*& x, const float*& y, const float*& z, size_t n, std::vector<float>& lx,

@@ -105,10 +105,12 @@ bool displace(const Shape& s, mesh::Mesh& m, backends::RuntimeError& err) {
   if (!s.texture || n == 0 || m.normals.size() != n) return true;
   std::vector<std::vector<float>> in(7, std::vector<float>(n));
   for (size_t i = 0; i < n; ++i)
-    for (int a = 0; a < 3; ++a) in[a][i] = m.positions[i][a], in[3 + a][i] = m.params.size() == n ? m.params[i][a] : 0.0f;
+    for (int a = 0; a < 3; ++a)
+      in[a][i] = m.positions[i][a], in[3 + a][i] = m.params.size() == n ? m.params[i][a] : 0.0f;
   std::fill(in[6].begin(), in[6].end(), static_cast<float>(s.texture->t));
   std::vector<float> d(n), r(n), g(n), b(n);
-  const float* ins[7] = {in[0].data(), in[1].data(), in[2].data(), in[3].data(), in[4].data(), in[5].data(), in[6].data()};
+  const float* ins[7] = {in[0].data(), in[1].data(), in[2].data(), in[3].data(),
+                         in[4].data(), in[5].data(), in[6].data()};
   float* outs[4] = {d.data(), r.data(), g.data(), b.data()};
   {
     mesh::EvalTimer timer;
@@ -128,22 +130,23 @@ void transform_mesh(const Mat4& t, mesh::Mesh& m) {
   if (t == identity()) return;
   for (auto& p : m.positions) {
     mesh::Vec3 q;
-    for (int r = 0; r < 3; ++r)
-      q[r] = static_cast<float>(t[r] * p[0] + t[4 + r] * p[1] + t[8 + r] * p[2] + t[12 + r]);
+    for (int r = 0; r < 3; ++r) q[r] = static_cast<float>(t[r] * p[0] + t[4 + r] * p[1] + t[8 + r] * p[2] + t[12 + r]);
     p = q;
   }
   Mat4 inv;
   if (!invert_affine(t, inv)) return;
   for (auto& n : m.normals) {
     mesh::Vec3 q;
-    for (int r = 0; r < 3; ++r) q[r] = static_cast<float>(inv[r * 4] * n[0] + inv[r * 4 + 1] * n[1] + inv[r * 4 + 2] * n[2]);
+    for (int r = 0; r < 3; ++r)
+      q[r] = static_cast<float>(inv[r * 4] * n[0] + inv[r * 4 + 1] * n[1] + inv[r * 4 + 2] * n[2]);
     float len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
     if (len > 0)
       for (float& v : q) v /= len;
     n = q;
   }
   // A mirroring matrix turns the faces inside out: keep them outward.
-  double det = t[0] * (t[5] * t[10] - t[9] * t[6]) - t[4] * (t[1] * t[10] - t[9] * t[2]) + t[8] * (t[1] * t[6] - t[5] * t[2]);
+  double det =
+      t[0] * (t[5] * t[10] - t[9] * t[6]) - t[4] * (t[1] * t[10] - t[9] * t[2]) + t[8] * (t[1] * t[6] - t[5] * t[2]);
   if (det < 0)
     for (auto& tri : m.triangles) std::swap(tri[1], tri[2]);
 }
@@ -196,7 +199,8 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bo
     mesh::ParametricJob job;
     job.field = &map;
     job.kind = s.kind == ShapeKind::Curve ? mesh::ParametricKind::Curve
-             : s.kind == ShapeKind::Surface ? mesh::ParametricKind::Surface : mesh::ParametricKind::Solid;
+        : s.kind == ShapeKind::Surface    ? mesh::ParametricKind::Surface
+                                          : mesh::ParametricKind::Solid;
     job.domain = s.domain;
     job.intervals = s.resolution;
     ok = mesh::polygonize_parametric(job, out, err) && (s.kind == ShapeKind::Curve || displace(s, out, err));
@@ -220,7 +224,7 @@ bool mesh_parametric_group(const SceneModel& m, int group, mesh::Mesh& out, back
     for (auto [is_group, index] : g.children) {
       mesh::Mesh part;
       if (!(is_group ? mesh_group(m, index, part, err, false, threads, prune)
-                    : mesh_shape(m.shapes[index], part, err, false, threads, prune)))
+                     : mesh_shape(m.shapes[index], part, err, false, threads, prune)))
         return false;
       transform_mesh(matrix, part);
       out.append(part);
@@ -237,12 +241,13 @@ bool mesh_parametric_group(const SceneModel& m, int group, mesh::Mesh& out, back
   job.field = &field;
   ShapeKind kind = field.kind();
   job.kind = kind == ShapeKind::Curve ? mesh::ParametricKind::Curve
-           : kind == ShapeKind::Surface ? mesh::ParametricKind::Surface : mesh::ParametricKind::Solid;
+      : kind == ShapeKind::Surface    ? mesh::ParametricKind::Surface
+                                      : mesh::ParametricKind::Solid;
   job.domain = field.domain();
   job.intervals = field.intervals();
   const Shape* first = field.first_shape();
   return mesh::polygonize_parametric(job, out, err) && colour_vertices(*first, out, err) &&
-         evaluate_material(*first, out, err);
+      evaluate_material(*first, out, err);
 }
 
 const Shape* first_shape_below(const SceneModel& m, int group) {
@@ -255,8 +260,8 @@ const Shape* first_shape_below(const SceneModel& m, int group) {
 
 }  // namespace
 
-bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::RuntimeError& err, bool world,
-                int threads, bool prune, const mesh::MesherOptions& mesher) {
+bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::RuntimeError& err, bool world, int threads,
+                bool prune, const mesh::MesherOptions& mesher) {
   out = mesh::Mesh{};
   support::ProgressJob progress;
   for (const Shape& s : m.shapes)

@@ -168,7 +168,8 @@ void sphere(const vrml::Node* g, mesh::Mesh& m) {
 
 // Cylinder (top radius = bottom) and Cone (top radius 0) along y, with their caps.
 void round_solid(const vrml::Node* g, bool cone, mesh::Mesh& m) {
-  float r = static_cast<float>(number(g, cone ? "bottomRadius" : "radius", 1)), h = static_cast<float>(number(g, "height", 2));
+  float r = static_cast<float>(number(g, cone ? "bottomRadius" : "radius", 1)),
+        h = static_cast<float>(number(g, "height", 2));
   float top_r = cone ? 0.0f : r, y0 = -h / 2, y1 = h / 2;
   float slope = r - top_r;
   for (int i = 0; i < kSegments; ++i) {
@@ -181,8 +182,11 @@ void round_solid(const vrml::Node* g, bool cone, mesh::Mesh& m) {
     };
     if (number(g, "side", 1) != 0) {
       uint32_t base = static_cast<uint32_t>(m.positions.size());
-      m.positions.insert(m.positions.end(), {{r * d0[0], y0, r * d0[2]}, {r * d1[0], y0, r * d1[2]},
-                                             {top_r * d1[0], y1, top_r * d1[2]}, {top_r * d0[0], y1, top_r * d0[2]}});
+      m.positions.insert(m.positions.end(),
+                         {{r * d0[0], y0, r * d0[2]},
+                          {r * d1[0], y0, r * d1[2]},
+                          {top_r * d1[0], y1, top_r * d1[2]},
+                          {top_r * d0[0], y1, top_r * d0[2]}});
       m.normals.insert(m.normals.end(), {side_n(d0), side_n(d1), side_n(d1), side_n(d0)});
       m.triangles.push_back({base, base + 1, base + 2});
       m.triangles.push_back({base, base + 2, base + 3});

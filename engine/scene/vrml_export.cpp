@@ -136,16 +136,17 @@ NodePtr frame_script(int frames) {
   NodePtr script = make("Script");
   script->script_decls.push_back(decl("set_fraction", FieldType::SFFloat, vrml::Access::EventIn));
   script->script_decls.push_back(decl("frame_changed", FieldType::SFInt32, vrml::Access::EventOut));
-  script->script_decls.push_back(decl("frames", FieldType::SFInt32, vrml::Access::Field,
-                                      numbers(FieldType::SFInt32, {double(frames)})));
-  set(*script, "url", strings({"javascript:\n"
-                               "function set_fraction(f, t) {\n"
-                               "  var i = Math.floor(f * frames);\n"
-                               "  frame_changed = i < 0 ? 0 : (i >= frames ? frames - 1 : i);\n"
-                               "}",
-                               "castlescript:\n"
-                               "function set_fraction(f, t)\n"
-                               "  frame_changed := max(0, min(frames - 1, floor(f * frames)))"}));
+  script->script_decls.push_back(
+      decl("frames", FieldType::SFInt32, vrml::Access::Field, numbers(FieldType::SFInt32, {double(frames)})));
+  set(*script, "url",
+      strings({"javascript:\n"
+               "function set_fraction(f, t) {\n"
+               "  var i = Math.floor(f * frames);\n"
+               "  frame_changed = i < 0 ? 0 : (i >= frames ? frames - 1 : i);\n"
+               "}",
+               "castlescript:\n"
+               "function set_fraction(f, t)\n"
+               "  frame_changed := max(0, min(frames - 1, floor(f * frames)))"}));
   return script;
 }
 
@@ -154,7 +155,8 @@ NodePtr frame_script(int frames) {
 // Remote URLs, "file:" and absolute ones, and "#viewpoint" alone are left as they are.
 std::string rebased(const std::string& url, const std::filesystem::path& from, const std::filesystem::path& to) {
   namespace fs = std::filesystem;
-  if (url.empty() || url[0] == '#' || url[0] == '/' || vrml::is_remote_url(url) || url.rfind("file:", 0) == 0) return url;
+  if (url.empty() || url[0] == '#' || url[0] == '/' || vrml::is_remote_url(url) || url.rfind("file:", 0) == 0)
+    return url;
   size_t hash = url.find('#');
   std::string path = url.substr(0, hash), fragment = hash == std::string::npos ? "" : url.substr(hash);
   std::error_code ec;
@@ -273,8 +275,9 @@ std::string export_vrml(const vrml::Scene& in, const std::map<const Node*, mesh:
   vrml::Scene out;
   Exporter ex(in, meshes, animations);
   if (!output_path.empty() && output_path != "-")
-    ex.output_dir = std::filesystem::path(output_path).parent_path().empty() ? std::filesystem::path(".")
-                                                                                : std::filesystem::path(output_path).parent_path();
+    ex.output_dir = std::filesystem::path(output_path).parent_path().empty()
+        ? std::filesystem::path(".")
+        : std::filesystem::path(output_path).parent_path();
   for (auto [kind, i] : in.order) {
     switch (kind) {
       case vrml::Scene::Kind::Proto:

@@ -41,7 +41,19 @@ struct Expr {
 };
 
 enum class StmtKind : uint8_t {
-  Block, Var, ExprStmt, If, For, While, DoWhile, Break, Continue, Return, Function, Empty, Error
+  Block,
+  Var,
+  ExprStmt,
+  If,
+  For,
+  While,
+  DoWhile,
+  Break,
+  Continue,
+  Return,
+  Function,
+  Empty,
+  Error
 };
 
 struct Decl {

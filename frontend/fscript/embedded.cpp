@@ -9,10 +9,10 @@ bool is_fscript_field(const std::string& node_type, const std::string& n) {
   if (node_type == "FGeometry" || node_type == "FTexture3D") return n == "definition";
   if (node_type == "FMaterial")
     return n == "diffuseColor" || n == "ambientIntensity" || n == "emissiveColor" || n == "shininess" ||
-           n == "specularColor" || n == "transparency";
+        n == "specularColor" || n == "transparency";
   if (node_type == "FTransform")
     return n == "operation" || n == "center" || n == "rotation" || n == "scale" || n == "scaleOrientation" ||
-           n == "translation";
+        n == "translation";
   return false;
 }
 
@@ -57,7 +57,8 @@ bool single_token(const std::string& t) {
   if (t.empty()) return false;
   for (size_t i = 0; i < t.size(); ++i) {
     char ch = t[i];
-    bool ok = std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '.' || ((ch == '-' || ch == '+') && i == 0);
+    bool ok =
+        std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '.' || ((ch == '-' || ch == '+') && i == 0);
     if (!ok) return false;
   }
   return true;

@@ -92,8 +92,9 @@ bool default_spec(const SemaResult& s, KernelSpec& spec, std::string& error) {
     return true;
   }
   if (s.functions.size() == 1) return function_spec(s, s.functions[0].name, spec, error);  // the only function
-  error = "no entry point: define FRep(x, y, z[, t]), parametric_x/y/z(u, v, w[, t]) or parametric_r/g/b, "
-          "or name a function with --entry";
+  error =
+      "no entry point: define FRep(x, y, z[, t]), parametric_x/y/z(u, v, w[, t]) or parametric_r/g/b, "
+      "or name a function with --entry";
   return false;
 }
 

@@ -30,10 +30,18 @@ int level(const Expr* e) {
       switch (e->op) {
         case Tok::Pipe: return 5;
         case Tok::Amp: return 6;
-        case Tok::EqEq: case Tok::NotEq: case Tok::EqEqEq: case Tok::NotEqEq: return 7;
-        case Tok::Less: case Tok::LessEq: case Tok::Greater: case Tok::GreaterEq: return 8;
-        case Tok::Plus: case Tok::Minus: return 9;
-        case Tok::Caret: case Tok::StarStar: return 12;
+        case Tok::EqEq:
+        case Tok::NotEq:
+        case Tok::EqEqEq:
+        case Tok::NotEqEq: return 7;
+        case Tok::Less:
+        case Tok::LessEq:
+        case Tok::Greater:
+        case Tok::GreaterEq: return 8;
+        case Tok::Plus:
+        case Tok::Minus: return 9;
+        case Tok::Caret:
+        case Tok::StarStar: return 12;
         default: return 10;
       }
     case ExprKind::Unary: return 11;
@@ -98,7 +106,8 @@ class Formatter {
       case StmtKind::While: body_stmt("while (" + expr(s->expr) + ")", s->body, indent); break;
       case StmtKind::For: {
         std::string init = !s->init ? "" : s->init->kind == StmtKind::Var ? var_text(s->init) : expr(s->init->expr);
-        std::string head = "for (" + init + "; " + (s->expr ? expr(s->expr) : "") + "; " + (s->step ? expr(s->step) : "") + ")";
+        std::string head =
+            "for (" + init + "; " + (s->expr ? expr(s->expr) : "") + "; " + (s->step ? expr(s->step) : "") + ")";
         body_stmt(head, s->body, indent);
         break;
       }
@@ -194,17 +203,16 @@ class Formatter {
         bool clash = (op == "-" && operand[0] == '-') || (op == "+" && operand[0] == '+');
         return op + (clash ? " " : "") + operand;
       }
-      case ExprKind::Binary: case ExprKind::Logical: {
+      case ExprKind::Binary:
+      case ExprKind::Logical: {
         int l = level(e);
         bool power = l == 12;
         std::string lhs = sub(e->kids[0], power ? 13 : l);
         std::string rhs = sub(e->kids[1], power ? 11 : l + 1);
         return lhs + " " + token_spelling(e->op == Tok::StarStar ? Tok::Caret : e->op) + " " + rhs;
       }
-      case ExprKind::Conditional:
-        return sub(e->kids[0], 3) + " ? " + sub(e->kids[1], 1) + " : " + sub(e->kids[2], 1);
-      case ExprKind::Assign:
-        return sub(e->kids[0], 13) + " " + token_spelling(e->op) + " " + sub(e->kids[1], 1);
+      case ExprKind::Conditional: return sub(e->kids[0], 3) + " ? " + sub(e->kids[1], 1) + " : " + sub(e->kids[2], 1);
+      case ExprKind::Assign: return sub(e->kids[0], 13) + " " + token_spelling(e->op) + " " + sub(e->kids[1], 1);
       case ExprKind::Update:
         return e->prefix ? token_spelling(e->op) + sub(e->kids[0], 13) : sub(e->kids[0], 13) + token_spelling(e->op);
       case ExprKind::Call: return e->name + "(" + list(e->kids) + ")";

@@ -10,8 +10,10 @@ namespace fscript::frontend {
 
 const char* token_spelling(Tok t) {
   switch (t) {
-#define FS_TOKEN(N, S) case Tok::N: return S;
-#define FS_KEYWORD(N, S, D) case Tok::N: return S;
+#define FS_TOKEN(N, S) \
+  case Tok::N: return S;
+#define FS_KEYWORD(N, S, D) \
+  case Tok::N: return S;
 #include "frontend/fscript/tokens.def"
   }
   return "?";
@@ -19,7 +21,8 @@ const char* token_spelling(Tok t) {
 
 bool is_keyword(Tok t) {
   switch (t) {
-#define FS_KEYWORD(N, S, D) case Tok::N: return true;
+#define FS_KEYWORD(N, S, D) \
+  case Tok::N: return true;
 #include "frontend/fscript/tokens.def"
     default: return false;
   }
@@ -42,17 +45,16 @@ struct Punct {
   Tok tok;
 };
 constexpr Punct kPuncts[] = {
-    {"===", Tok::EqEqEq}, {"!==", Tok::NotEqEq}, {"==", Tok::EqEq}, {"!=", Tok::NotEq},
-    {"<=", Tok::LessEq}, {">=", Tok::GreaterEq}, {"&&", Tok::AndAnd}, {"||", Tok::OrOr},
-    {"++", Tok::PlusPlus}, {"--", Tok::MinusMinus}, {"**", Tok::StarStar},
-    {"+=", Tok::PlusAssign}, {"-=", Tok::MinusAssign}, {"*=", Tok::StarAssign},
-    {"/=", Tok::SlashAssign}, {"%=", Tok::PercentAssign}, {"^=", Tok::CaretAssign},
-    {"(", Tok::LParen}, {")", Tok::RParen}, {"{", Tok::LBrace}, {"}", Tok::RBrace},
-    {"[", Tok::LBracket}, {"]", Tok::RBracket}, {",", Tok::Comma}, {";", Tok::Semi},
-    {".", Tok::Dot}, {"?", Tok::Question}, {":", Tok::Colon}, {"=", Tok::Assign},
-    {"|", Tok::Pipe}, {"&", Tok::Amp}, {"<", Tok::Less}, {">", Tok::Greater},
-    {"+", Tok::Plus}, {"-", Tok::Minus}, {"*", Tok::Star}, {"/", Tok::Slash},
-    {"%", Tok::Percent}, {"!", Tok::Bang}, {"^", Tok::Caret},
+    {"===", Tok::EqEqEq},     {"!==", Tok::NotEqEq},   {"==", Tok::EqEq},        {"!=", Tok::NotEq},
+    {"<=", Tok::LessEq},      {">=", Tok::GreaterEq},  {"&&", Tok::AndAnd},      {"||", Tok::OrOr},
+    {"++", Tok::PlusPlus},    {"--", Tok::MinusMinus}, {"**", Tok::StarStar},    {"+=", Tok::PlusAssign},
+    {"-=", Tok::MinusAssign}, {"*=", Tok::StarAssign}, {"/=", Tok::SlashAssign}, {"%=", Tok::PercentAssign},
+    {"^=", Tok::CaretAssign}, {"(", Tok::LParen},      {")", Tok::RParen},       {"{", Tok::LBrace},
+    {"}", Tok::RBrace},       {"[", Tok::LBracket},    {"]", Tok::RBracket},     {",", Tok::Comma},
+    {";", Tok::Semi},         {".", Tok::Dot},         {"?", Tok::Question},     {":", Tok::Colon},
+    {"=", Tok::Assign},       {"|", Tok::Pipe},        {"&", Tok::Amp},          {"<", Tok::Less},
+    {">", Tok::Greater},      {"+", Tok::Plus},        {"-", Tok::Minus},        {"*", Tok::Star},
+    {"/", Tok::Slash},        {"%", Tok::Percent},     {"!", Tok::Bang},         {"^", Tok::Caret},
 };
 
 bool is_ident_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
@@ -205,12 +207,9 @@ class Lexer {
     }
     i_ += len;
     std::string what;
-    if (c == '#')
-      what = "'#' is not a comment in FScript; use // or /* */";
-    else if (c >= 0x20 && c < 0x7f)
-      what = std::string("unexpected character '") + static_cast<char>(c) + "'";
-    else
-      what = "unexpected byte in source text";
+    if (c == '#') what = "'#' is not a comment in FScript; use // or /* */";
+    else if (c >= 0x20 && c < 0x7f) what = std::string("unexpected character '") + static_cast<char>(c) + "'";
+    else what = "unexpected byte in source text";
     diag_.error(f_, {u(start), u(i_)}, what);
     t.kind = Tok::Error;
     t.span = {u(start), u(i_)};

@@ -33,11 +33,14 @@ Op binary_op(Tok t) {
     case Tok::Star: return Op::Mul;
     case Tok::Slash: return Op::Div;
     case Tok::Percent: return Op::Mod;
-    case Tok::Caret: case Tok::StarStar: return Op::Pow;
+    case Tok::Caret:
+    case Tok::StarStar: return Op::Pow;
     case Tok::Amp: return Op::Min;
     case Tok::Pipe: return Op::Max;
-    case Tok::EqEq: case Tok::EqEqEq: return Op::Eq;
-    case Tok::NotEq: case Tok::NotEqEq: return Op::Ne;
+    case Tok::EqEq:
+    case Tok::EqEqEq: return Op::Eq;
+    case Tok::NotEq:
+    case Tok::NotEqEq: return Op::Ne;
     case Tok::Less: return Op::Lt;
     case Tok::LessEq: return Op::Le;
     case Tok::Greater: return Op::Gt;
@@ -234,7 +237,9 @@ class AstLowering {
         emit(Op::Ret, {s->expr ? expr(s->expr) : konst(kNaN)});
         cur_ = nullptr;
         break;
-      case StmtKind::Function: case StmtKind::Empty: case StmtKind::Error: break;
+      case StmtKind::Function:
+      case StmtKind::Empty:
+      case StmtKind::Error: break;
     }
   }
 
@@ -382,7 +387,9 @@ class AstLowering {
         array_op(l, e->sym);
         return l;
       }
-      case ExprKind::ArrayLit: case ExprKind::NewArray: case ExprKind::Error: return konst(kNaN);
+      case ExprKind::ArrayLit:
+      case ExprKind::NewArray:
+      case ExprKind::Error: return konst(kNaN);
     }
     return konst(kNaN);
   }
@@ -532,7 +539,7 @@ class AstLowering {
 }  // namespace
 
 std::unique_ptr<ir::Module> lower_to_ir(const Program& prog, const SemaResult& sema, const KernelSpec& spec,
-                                  const SourceFile& file, DiagnosticSink& diag) {
+                                        const SourceFile& file, DiagnosticSink& diag) {
   auto mod = std::make_unique<ir::Module>();
   mod->globals = sema.globals;
   mod->arrays = sema.global_arrays;

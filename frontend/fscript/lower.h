@@ -35,6 +35,6 @@ constexpr const char* kKernelName = "kernel";
 // Lowers every user function and the kernel (last in the module). Warnings (maybe-unassigned,
 // missing return) go to `diag`.
 std::unique_ptr<ir::Module> lower_to_ir(const Program& prog, const SemaResult& sema, const KernelSpec& spec,
-                                  const SourceFile& file, DiagnosticSink& diag);
+                                        const SourceFile& file, DiagnosticSink& diag);
 
 }  // namespace fscript::frontend

@@ -17,26 +17,39 @@ int binary_prec(Tok t) {
     case Tok::AndAnd: return 4;
     case Tok::Pipe: return 5;
     case Tok::Amp: return 6;
-    case Tok::EqEq: case Tok::NotEq: case Tok::EqEqEq: case Tok::NotEqEq: return 7;
-    case Tok::Less: case Tok::LessEq: case Tok::Greater: case Tok::GreaterEq: return 8;
-    case Tok::Plus: case Tok::Minus: return 9;
-    case Tok::Star: case Tok::Slash: case Tok::Percent: return 10;
+    case Tok::EqEq:
+    case Tok::NotEq:
+    case Tok::EqEqEq:
+    case Tok::NotEqEq: return 7;
+    case Tok::Less:
+    case Tok::LessEq:
+    case Tok::Greater:
+    case Tok::GreaterEq: return 8;
+    case Tok::Plus:
+    case Tok::Minus: return 9;
+    case Tok::Star:
+    case Tok::Slash:
+    case Tok::Percent: return 10;
     default: return 0;
   }
 }
 
 bool is_assign_op(Tok t) {
   switch (t) {
-    case Tok::Assign: case Tok::PlusAssign: case Tok::MinusAssign: case Tok::StarAssign:
-    case Tok::SlashAssign: case Tok::PercentAssign: case Tok::CaretAssign: return true;
+    case Tok::Assign:
+    case Tok::PlusAssign:
+    case Tok::MinusAssign:
+    case Tok::StarAssign:
+    case Tok::SlashAssign:
+    case Tok::PercentAssign:
+    case Tok::CaretAssign: return true;
     default: return false;
   }
 }
 
 class Parser {
  public:
-  Parser(const SourceFile& f, DiagnosticSink& d, std::vector<Token> toks)
-      : f_(f), diag_(d), toks_(std::move(toks)) {}
+  Parser(const SourceFile& f, DiagnosticSink& d, std::vector<Token> toks) : f_(f), diag_(d), toks_(std::move(toks)) {}
 
   std::unique_ptr<Program> run(std::vector<Comment> comments) {
     prog_ = std::make_unique<Program>();
@@ -47,8 +60,8 @@ class Parser {
       if (pos_ == before) advance();  // guarantee progress
     }
     auto& top = prog_->top;
-    prog_->single_expression = top.size() == 1 && top[0]->kind == StmtKind::ExprStmt &&
-                               top[0]->expr->kind != ExprKind::Assign;
+    prog_->single_expression =
+        top.size() == 1 && top[0]->kind == StmtKind::ExprStmt && top[0]->expr->kind != ExprKind::Assign;
     return std::move(prog_);
   }
 
@@ -66,9 +79,7 @@ class Parser {
     advance();
     return true;
   }
-  std::string_view text(Span s) const {
-    return std::string_view(f_.text()).substr(s.begin, s.end - s.begin);
-  }
+  std::string_view text(Span s) const { return std::string_view(f_.text()).substr(s.begin, s.end - s.begin); }
   Span from(Span start) const { return {start.begin, std::max(start.begin, prev().span.end)}; }
 
   // One diagnostic per mistake: after an error, stay quiet until the parser resynchronizes.
@@ -118,9 +129,9 @@ class Parser {
       if (accept(Tok::Semi)) break;
       if (at(Tok::RBrace)) break;
       Tok k = cur().kind;
-      if (cur().newline_before && (k == Tok::KwVar || k == Tok::KwLet || k == Tok::KwConst ||
-                                   k == Tok::KwIf || k == Tok::KwFor || k == Tok::KwWhile ||
-                                   k == Tok::KwDo || k == Tok::KwReturn || k == Tok::KwFunction))
+      if (cur().newline_before &&
+          (k == Tok::KwVar || k == Tok::KwLet || k == Tok::KwConst || k == Tok::KwIf || k == Tok::KwFor ||
+           k == Tok::KwWhile || k == Tok::KwDo || k == Tok::KwReturn || k == Tok::KwFunction))
         break;
       advance();
     }
@@ -160,7 +171,9 @@ class Parser {
     Span start = cur().span;
     switch (cur().kind) {
       case Tok::LBrace: return block();
-      case Tok::KwVar: case Tok::KwLet: case Tok::KwConst: {
+      case Tok::KwVar:
+      case Tok::KwLet:
+      case Tok::KwConst: {
         Stmt* s = var_decl();
         end_statement();
         s->span = from(start);
@@ -170,7 +183,8 @@ class Parser {
       case Tok::KwFor: return for_stmt();
       case Tok::KwWhile: return while_stmt();
       case Tok::KwDo: return do_stmt();
-      case Tok::KwBreak: case Tok::KwContinue: {
+      case Tok::KwBreak:
+      case Tok::KwContinue: {
         StmtKind kind = at(Tok::KwBreak) ? StmtKind::Break : StmtKind::Continue;
         Stmt* s = prog_->new_stmt(kind, advance().span);
         end_statement();
@@ -288,8 +302,7 @@ class Parser {
   // return -> 'return' expr? ';'   (a value must start on the same line, as in JavaScript)
   Stmt* return_stmt() {
     Stmt* s = prog_->new_stmt(StmtKind::Return, advance().span);
-    if (!at(Tok::Semi) && !at(Tok::RBrace) && !at(Tok::Eof) && !cur().newline_before)
-      s->expr = expression();
+    if (!at(Tok::Semi) && !at(Tok::RBrace) && !at(Tok::Eof) && !cur().newline_before) s->expr = expression();
     end_statement();
     s->span = from(s->span);
     return s;
@@ -376,7 +389,8 @@ class Parser {
       if (p == 0 || p < min_prec) return lhs;
       Token op = advance();
       Expr* rhs = binary(p + 1);
-      Expr* e = prog_->new_expr(op.kind == Tok::AndAnd || op.kind == Tok::OrOr ? ExprKind::Logical : ExprKind::Binary, lhs->span);
+      Expr* e = prog_->new_expr(op.kind == Tok::AndAnd || op.kind == Tok::OrOr ? ExprKind::Logical : ExprKind::Binary,
+                                lhs->span);
       e->op = op.kind;
       e->kids = {lhs, rhs};
       e->span = from(lhs->span);
@@ -513,7 +527,8 @@ class Parser {
       e->name_span = obj->span;
       return e;
     }
-    if (obj->kind != ExprKind::Error) error_at(m, "unknown property '" + field + "' (only 'length' of an array and 'Math.' built-ins exist)");
+    if (obj->kind != ExprKind::Error)
+      error_at(m, "unknown property '" + field + "' (only 'length' of an array and 'Math.' built-ins exist)");
     return error_expr();
   }
 
@@ -526,7 +541,8 @@ class Parser {
         e->num = t.number;
         return e;
       }
-      case Tok::KwTrue: case Tok::KwFalse: {
+      case Tok::KwTrue:
+      case Tok::KwFalse: {
         Expr* e = prog_->new_expr(ExprKind::Number, advance().span);
         e->num = t.kind == Tok::KwTrue ? 1 : 0;
         return e;
@@ -540,9 +556,7 @@ class Parser {
       case Tok::LParen: return parenthesized();
       case Tok::LBracket: return array_literal();
       case Tok::KwNew: return new_array();
-      default:
-        expected("an expression");
-        return error_expr();
+      default: expected("an expression"); return error_expr();
     }
   }
 
@@ -550,9 +564,10 @@ class Parser {
     Span open = advance().span;
     Expr* e = expression();
     if (!accept(Tok::RParen)) {
-      if (!panic_) error_at(cur().span, "expected ')' to match the '(' at column " +
-                                            std::to_string(f_.position(open.begin).col) + ", found '" +
-                                            std::string(text(cur().span)) + "'");
+      if (!panic_)
+        error_at(cur().span,
+                 "expected ')' to match the '(' at column " + std::to_string(f_.position(open.begin).col) +
+                     ", found '" + std::string(text(cur().span)) + "'");
     }
     return e;
   }

@@ -117,7 +117,8 @@ class Sema {
       FunctionInfo fi;
       fi.decl = s;
       fi.name = s->name;
-      fi.symbol = add_symbol({s->name, SymKind::Function, s->name_span, -1, static_cast<int>(r_.functions.size()), false, true, false});
+      fi.symbol = add_symbol(
+          {s->name, SymKind::Function, s->name_span, -1, static_cast<int>(r_.functions.size()), false, true, false});
       fn_syms_[s->name] = fi.symbol;
       r_.functions.push_back(fi);
     }
@@ -200,7 +201,8 @@ class Sema {
     } else {
       for (size_t i = 0; i < fn->decls.size(); ++i)
         for (size_t j = 0; j < i; ++j)
-          if (fn->decls[i].name == fn->decls[j].name) error(fn->decls[i].span, "duplicate parameter '" + fn->decls[i].name + "'");
+          if (fn->decls[i].name == fn->decls[j].name)
+            error(fn->decls[i].span, "duplicate parameter '" + fn->decls[i].name + "'");
     }
     for (auto& p : fn->decls) scopes_.front()[p.name] = p.sym;
     if (collecting_) hoist_vars(fn->body, false);
@@ -251,14 +253,17 @@ class Sema {
         --loop_depth_;
         scopes_.pop_back();
         break;
-      case StmtKind::While: case StmtKind::DoWhile:
+      case StmtKind::While:
+      case StmtKind::DoWhile:
         value(s->expr);
         ++loop_depth_;
         stmt(s->body, false);
         --loop_depth_;
         break;
-      case StmtKind::Break: case StmtKind::Continue:
-        if (loop_depth_ == 0) error(s->span, std::string("'") + (s->kind == StmtKind::Break ? "break" : "continue") + "' outside a loop");
+      case StmtKind::Break:
+      case StmtKind::Continue:
+        if (loop_depth_ == 0)
+          error(s->span, std::string("'") + (s->kind == StmtKind::Break ? "break" : "continue") + "' outside a loop");
         break;
       case StmtKind::Return:
         if (cur_fn_ < 0) error(s->span, "'return' outside a function");
@@ -266,7 +271,9 @@ class Sema {
           error(s->expr->span, "arrays cannot be returned (they are storage, not values)");
         else if (s->expr) value(s->expr);
         break;
-      case StmtKind::Function: case StmtKind::Empty: case StmtKind::Error: break;
+      case StmtKind::Function:
+      case StmtKind::Empty:
+      case StmtKind::Error: break;
     }
   }
 
@@ -383,17 +390,22 @@ class Sema {
 
   void expr(Expr* e) {
     switch (e->kind) {
-      case ExprKind::Number: case ExprKind::Error: break;
+      case ExprKind::Number:
+      case ExprKind::Error: break;
       case ExprKind::Name: name_read(e); break;
       case ExprKind::Unary: value(e->kids[0]); break;
-      case ExprKind::Binary: case ExprKind::Logical: case ExprKind::Conditional:
+      case ExprKind::Binary:
+      case ExprKind::Logical:
+      case ExprKind::Conditional:
         for (Expr* k : e->kids) value(k);
         break;
       case ExprKind::Assign: assign(e); break;
       case ExprKind::Update: update(e); break;
       case ExprKind::Call: call(e); break;
-      case ExprKind::Index: case ExprKind::Length: array_use(e); break;
-      case ExprKind::ArrayLit: case ExprKind::NewArray:
+      case ExprKind::Index:
+      case ExprKind::Length: array_use(e); break;
+      case ExprKind::ArrayLit:
+      case ExprKind::NewArray:
         error(e->span, "an array literal can only initialize an array variable");
         array_init(e);
         break;
@@ -458,8 +470,7 @@ class Sema {
     for (Expr* a : e->kids) {
       if (a->kind == ExprKind::Name && name_is_array(a->name))
         error(a->span, "arrays cannot be passed to functions (they are storage, not values)");
-      else
-        value(a);
+      else value(a);
     }
     std::string name = e->name;
     int arity = -1;
@@ -486,8 +497,9 @@ class Sema {
       arity = kBuiltins[builtin].arity;
     }
     if (static_cast<int>(e->kids.size()) != arity)
-      error(e->name_span, "'" + name + "' takes " + std::to_string(arity) + " argument" + (arity == 1 ? "" : "s") +
-                              " but " + std::to_string(e->kids.size()) + (e->kids.size() == 1 ? " was" : " were") + " given");
+      error(e->name_span,
+            "'" + name + "' takes " + std::to_string(arity) + " argument" + (arity == 1 ? "" : "s") + " but " +
+                std::to_string(e->kids.size()) + (e->kids.size() == 1 ? " was" : " were") + " given");
   }
 
   // ---- whole-program facts ----

@@ -17,7 +17,7 @@ struct Symbol {
   SymKind kind = SymKind::Local;
   Span decl;             // where it was declared (or first assigned, for an implicit global)
   int owner = -1;        // function index for locals, -1 otherwise
-  int slot = -1;         // Global: global slot (array slot if is_array); Function: function index; Builtin: table index
+  int slot = -1;  // Global: global slot (array slot if is_array); Function: function index; Builtin: table index
   bool is_array = false;
   bool is_const = false;
   bool is_param = false;
@@ -28,21 +28,21 @@ struct FunctionInfo {
   std::string name;
   std::vector<int> params;  // symbol ids
   int symbol = -1;
-  bool recursive = false;   // in a call-graph cycle
+  bool recursive = false;  // in a call-graph cycle
   std::vector<int> callees;
 };
 
 enum class ScriptForm : uint8_t {
-  Script,       // declares functions
-  Expression,   // one expression: its value is the result
+  Script,  // declares functions
+  Expression,  // one expression: its value is the result
   Assignments,  // statements assigning outputs (x=u; y=v; ...)
 };
 
 // What the script defines, by the rules of the language spec (names matched without case).
 struct EntryPoints {
-  int frep = -1;                       // function index
-  int parametric[3] = {-1, -1, -1};    // parametric_x/y/z
-  int colour[3] = {-1, -1, -1};        // parametric_r/g/b
+  int frep = -1;  // function index
+  int parametric[3] = {-1, -1, -1};  // parametric_x/y/z
+  int colour[3] = {-1, -1, -1};  // parametric_r/g/b
 };
 
 struct BuiltinInfo {
@@ -62,7 +62,7 @@ constexpr const char* kValueGlobal = "$value";  // the result of an expression-f
 struct SemaResult {
   std::vector<Symbol> symbols;
   std::vector<FunctionInfo> functions;
-  std::vector<std::string> globals;        // scalar global slots
+  std::vector<std::string> globals;  // scalar global slots
   std::vector<std::string> global_arrays;  // array global slots
   std::vector<std::vector<std::string>> local_arrays;  // per function: array slot names
   std::vector<std::string> assigned_globals;  // globals assigned anywhere, in first-seen order

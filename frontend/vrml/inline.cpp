@@ -36,7 +36,8 @@ fs::path local_path(std::string url, const fs::path& dir) {
 
 class Loader {
  public:
-  Loader(frontend::DiagnosticSink& diag, std::vector<std::string>* files, std::vector<MissingInline>& missing, bool strict)
+  Loader(frontend::DiagnosticSink& diag, std::vector<std::string>* files, std::vector<MissingInline>& missing,
+         bool strict)
       : diag_(diag), files_(files), missing_(missing), strict_(strict) {}
 
   void load(Scene& scene, std::vector<std::string>& stack) {
@@ -79,16 +80,21 @@ class Loader {
       if (!unreadable) return;  // read, or an error reported (broken, circular)
     }
     if (missing.looked_at.empty()) return;
-    report_missing(missing, std::all_of(url->strs.begin(), url->strs.end(), [](const std::string& u) { return u.empty() || is_remote_url(u); }));
+    report_missing(missing, std::all_of(url->strs.begin(), url->strs.end(), [](const std::string& u) {
+                     return u.empty() || is_remote_url(u);
+                   }));
   }
 
   void report_missing(const MissingInline& m, bool remote_only) {
     if (strict_)
-      diag_.error(*m.file, m.span, "Inline '" + m.url + "': " + (remote_only ? m.reason : "cannot read " + m.looked_at + ": " + m.reason) +
-                                       ", and --strict makes a missing Inline an error");
+      diag_.error(*m.file, m.span,
+                  "Inline '" + m.url +
+                      "': " + (remote_only ? m.reason : "cannot read " + m.looked_at + ": " + m.reason) +
+                      ", and --strict makes a missing Inline an error");
     else if (!remote_only)  // the parser warned about remote ones
-      diag_.warning(*m.file, m.span, "Inline '" + m.url + "': cannot read " + m.looked_at + ": " + m.reason +
-                                         "; the scene is drawn without it (put the file there, or --strict to make this an error)");
+      diag_.warning(*m.file, m.span,
+                    "Inline '" + m.url + "': cannot read " + m.looked_at + ": " + m.reason +
+                        "; the scene is drawn without it (put the file there, or --strict to make this an error)");
     missing_.push_back(m);
   }
 
@@ -110,14 +116,18 @@ class Loader {
           break;
         }
       if (!found) {
-        diag_.error(here, p.span, what + ": " + (name.empty() ? "the file has no PROTO" : "the file has no PROTO " + name));
+        diag_.error(here, p.span,
+                    what + ": " + (name.empty() ? "the file has no PROTO" : "the file has no PROTO " + name));
         return;
       }
       for (const FieldDecl& f : p.iface.fields) {
         const FieldDecl* d = found->iface.find(f.name);
         if (!d || d->type != f.type || d->access != f.access) {
-          diag_.error(here, f.span, what + ": " + (d ? "field '" + f.name + "' is " + access_name(d->access) + " " + type_name(d->type) + " in the PROTO"
-                                                     : "the PROTO has no field '" + f.name + "'"));
+          diag_.error(here, f.span,
+                      what + ": " +
+                          (d ? "field '" + f.name + "' is " + access_name(d->access) + " " + type_name(d->type) +
+                                   " in the PROTO"
+                             : "the PROTO has no field '" + f.name + "'"));
           return;
         }
       }
@@ -135,7 +145,8 @@ class Loader {
     fs::path canonical = fs::weakly_canonical(path, ec);
     std::string key = ec ? path.string() : canonical.string();
     if (std::find(stack.begin(), stack.end(), key) != stack.end()) {
-      diag_.error(here, at, what + " includes a file that includes it (directly or through other Inlines or EXTERNPROTOs)");
+      diag_.error(here, at,
+                  what + " includes a file that includes it (directly or through other Inlines or EXTERNPROTOs)");
       return nullptr;
     }
     if (static_cast<int>(stack.size()) > kMaxInlineDepth) {

@@ -48,7 +48,8 @@ class Copier {
 std::vector<NodePtr> instantiate(const Node& instance) {
   std::vector<NodePtr> out;
   if (!instance.proto) return out;
-  const ProtoDef& p = instance.proto->definition ? *instance.proto->definition : *instance.proto;  // an EXTERNPROTO not read has no body
+  const ProtoDef& p = instance.proto->definition ? *instance.proto->definition
+                                                 : *instance.proto;  // an EXTERNPROTO not read has no body
   Copier c(instance);
   for (const auto& n : p.body) out.push_back(c.copy(n));
   return out;

@@ -34,13 +34,13 @@ bool gunzip(const std::string& data, std::string& out, std::string& error) {
     if (out.size() > support::kMaxInputBytes) {
       inflateEnd(&z);
       error = "the gzip data inflates to more than " + std::to_string(support::kMaxInputBytes >> 20) +
-              " MiB, the limit for one scene";
+          " MiB, the limit for one scene";
       return false;
     }
     if (out.size() > kGzipRatioFloor && out.size() / kMaxGzipRatio > z.total_in) {
       inflateEnd(&z);
       error = "the gzip data inflates more than " + std::to_string(kMaxGzipRatio) +
-              " times (a compression bomb?); scenes are refused past that ratio";
+          " times (a compression bomb?); scenes are refused past that ratio";
       return false;
     }
   } while (rc != Z_STREAM_END);

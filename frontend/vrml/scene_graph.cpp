@@ -180,7 +180,7 @@ std::vector<std::string> standard_node_types() {
 
 bool is_fvrml_node(const std::string& n) {
   return n == "FGeometry" || n == "FMaterial" || n == "FTexture3D" || n == "FAppearance" || n == "FShape" ||
-         n == "FTransform";
+      n == "FTransform";
 }
 
 }  // namespace fscript::vrml

@@ -9,9 +9,18 @@ namespace {
 bool id_first(unsigned char c) {
   if (c <= 0x20 || c == 0x7f) return false;
   switch (c) {
-    case '"': case '#': case '\'': case '+': case ',': case '-': case '.': case '[': case '\\': case ']':
-    case '{': case '}':
-      return false;
+    case '"':
+    case '#':
+    case '\'':
+    case '+':
+    case ',':
+    case '-':
+    case '.':
+    case '[':
+    case '\\':
+    case ']':
+    case '{':
+    case '}': return false;
     default: return !(c >= '0' && c <= '9');
   }
 }
@@ -19,8 +28,16 @@ bool id_first(unsigned char c) {
 bool id_rest(unsigned char c) {
   if (c <= 0x20 || c == 0x7f) return false;
   switch (c) {
-    case '"': case '#': case '\'': case ',': case '.': case '[': case '\\': case ']': case '{': case '}':
-      return false;
+    case '"':
+    case '#':
+    case '\'':
+    case ',':
+    case '.':
+    case '[':
+    case '\\':
+    case ']':
+    case '{':
+    case '}': return false;
     default: return true;
   }
 }
@@ -37,7 +54,8 @@ size_t utf8_length(const std::string& s, size_t i) {
 
 class Lexer {
  public:
-  Lexer(const frontend::SourceFile& f, size_t start, frontend::DiagnosticSink& d) : f_(f), s_(f.text()), i_(start), d_(d) {}
+  Lexer(const frontend::SourceFile& f, size_t start, frontend::DiagnosticSink& d)
+      : f_(f), s_(f.text()), i_(start), d_(d) {}
 
   std::vector<VToken> run() {
     std::vector<VToken> out;
@@ -74,14 +92,27 @@ class Lexer {
   void token(VToken& t) {
     unsigned char c = static_cast<unsigned char>(s_[i_]);
     switch (c) {
-      case '[': t.kind = VTok::LBracket; ++i_; return;
-      case ']': t.kind = VTok::RBracket; ++i_; return;
-      case '{': t.kind = VTok::LBrace; ++i_; return;
-      case '}': t.kind = VTok::RBrace; ++i_; return;
+      case '[':
+        t.kind = VTok::LBracket;
+        ++i_;
+        return;
+      case ']':
+        t.kind = VTok::RBracket;
+        ++i_;
+        return;
+      case '{':
+        t.kind = VTok::LBrace;
+        ++i_;
+        return;
+      case '}':
+        t.kind = VTok::RBrace;
+        ++i_;
+        return;
       case '"': return string(t);
       default: break;
     }
-    if (std::isdigit(c) || c == '+' || c == '-' || (c == '.' && i_ + 1 < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_ + 1]))))
+    if (std::isdigit(c) || c == '+' || c == '-' ||
+        (c == '.' && i_ + 1 < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_ + 1]))))
       return number(t);
     if (c == '.') {
       t.kind = VTok::Period;
@@ -122,8 +153,7 @@ class Lexer {
         if (i_ < s_.size() && (s_[i_] == '+' || s_[i_] == '-')) ++i_;
         if (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_])))
           while (i_ < s_.size() && std::isdigit(static_cast<unsigned char>(s_[i_]))) ++i_;
-        else
-          i_ = save;
+        else i_ = save;
       }
     }
     t.kind = VTok::Number;

@@ -104,8 +104,9 @@ class Parser {
     size_t eol = s.find('\n');
     std::string first = s.substr(0, eol);
     if (s.rfind("BSCRYPT", 0) == 0) {
-      error({0, 7}, "this file is encrypted with Bitmanagement's BS Contact scheme (BSCRYPT), which no open tool "
-                    "can read; the plain-text .wrl is needed");
+      error({0, 7},
+            "this file is encrypted with Bitmanagement's BS Contact scheme (BSCRYPT), which no open tool "
+            "can read; the plain-text .wrl is needed");
       return false;
     }
     if (first.rfind("#VRML V2.0 utf8", 0) != 0) {
@@ -130,8 +131,10 @@ class Parser {
   bool declaration(Scope& sc, bool with_defaults, FieldDecl& d) {
     const VToken& kw = advance();
     d.span = kw.span;
-    d.access = kw.text == "field" ? Access::Field : kw.text == "exposedField" ? Access::ExposedField
-             : kw.text == "eventIn" ? Access::EventIn : Access::EventOut;
+    d.access = kw.text == "field"   ? Access::Field
+        : kw.text == "exposedField" ? Access::ExposedField
+        : kw.text == "eventIn"      ? Access::EventIn
+                                    : Access::EventOut;
     if (!at(VTok::Id) || !type_from_name(cur().text, d.type)) {
       error(cur().span, "expected a field type (SFFloat, MFNode, ...), found " + describe(cur()));
       return false;
@@ -181,8 +184,8 @@ class Parser {
     def->external = external;
     def->span = advance().span;
     if (!at(VTok::Id)) {
-      error(cur().span, std::string("expected ") + (external ? "an EXTERNPROTO" : "a PROTO") + " name, found " +
-                            describe(cur()));
+      error(cur().span,
+            std::string("expected ") + (external ? "an EXTERNPROTO" : "a PROTO") + " name, found " + describe(cur()));
       return nullptr;
     }
     def->iface.name = advance().text;
@@ -216,10 +219,13 @@ class Parser {
     Span start = def->span;
     Value urls;
     if (value(sc, FieldType::MFString, urls, 1)) def->urls = urls.strs;
-    bool local = std::any_of(def->urls.begin(), def->urls.end(), [](const std::string& u) { return !u.empty() && !is_remote_url(u); });
+    bool local = std::any_of(def->urls.begin(), def->urls.end(),
+                             [](const std::string& u) { return !u.empty() && !is_remote_url(u); });
     if (!is_fvrml_node(def->iface.name) && !local)  // a local file is read by load_inlines (fvrml-run)
-      d_.warning(f_, start, "EXTERNPROTO '" + def->iface.name + "' is not fetched (no network); its instances keep "
-                            "their fields but have no body");
+      d_.warning(f_, start,
+                 "EXTERNPROTO '" + def->iface.name +
+                     "' is not fetched (no network); its instances keep "
+                     "their fields but have no body");
     sc.protos[def->iface.name] = def.get();
     out_.protos.push_back(std::move(def));
   }
@@ -280,8 +286,9 @@ class Parser {
       if (const Value* url = n->get("url");
           url && !url->strs.empty() && std::all_of(url->strs.begin(), url->strs.end(), is_remote_url))
         d_.warning(f_, url->str_spans.empty() ? n->span : url->str_spans[0],
-                   "Inline '" + url->strs[0] + "' is not fetched (no network): the scene is drawn without it, and its "
-                   "VRML97 output keeps the reference (to draw a copy of the file, name it first: url [\"" +
+                   "Inline '" + url->strs[0] +
+                       "' is not fetched (no network): the scene is drawn without it, and its "
+                       "VRML97 output keeps the reference (to draw a copy of the file, name it first: url [\"" +
                        url->strs[0].substr(url->strs[0].find_last_of('/') + 1) + "\" \"" + url->strs[0] + "\"])");
     if (!def_name.empty()) sc.defs[def_name] = n;  // after the body: a node cannot USE itself
     return n;
@@ -298,7 +305,8 @@ class Parser {
       return;
     }
     n.iface = standard_interface(n.type);
-    if (!n.iface) error(at, "unknown node type '" + n.type + "' (not a VRML97 or FVRML node, and no PROTO declares it)");
+    if (!n.iface)
+      error(at, "unknown node type '" + n.type + "' (not a VRML97 or FVRML node, and no PROTO declares it)");
   }
 
   void node_body(Scope& sc, Node& n, int depth) {
@@ -328,8 +336,9 @@ class Parser {
     FieldDecl d;
     if (!declaration(sc, true, d)) return;
     if (find_field(n, d.name)) {  // one name, one type: an IS or a ROUTE could not tell which
-      error(d.span, n.iface && n.iface->find(d.name) ? "'" + d.name + "' is a field of every Script: declare another name"
-                                                       : "'" + d.name + "' is declared twice in 'Script'");
+      error(d.span,
+            n.iface && n.iface->find(d.name) ? "'" + d.name + "' is a field of every Script: declare another name"
+                                             : "'" + d.name + "' is declared twice in 'Script'");
       if (at_id("IS")) is_reference(sc, n, d.name, d.type, cur().span);
       return;
     }
@@ -360,14 +369,17 @@ class Parser {
         std::vector<std::string> names;
         for (const auto& f : n.iface->fields) names.push_back(f.name);
         std::string near = support::nearest_name(name.text, names);
-        error(name.span, "'" + n.type + "' has no field '" + name.text + "'" + (near.empty() ? "" : " (did you mean '" + near + "'?)"));
+        error(name.span,
+              "'" + n.type + "' has no field '" + name.text + "'" +
+                  (near.empty() ? "" : " (did you mean '" + near + "'?)"));
       }
       skip_value();
       return;
     }
     if (decl->access == Access::EventIn || decl->access == Access::EventOut) {
       if (!at_id("IS")) {
-        error(name.span, "'" + name.text + "' of '" + n.type + "' is an " + access_name(decl->access) + " and takes no value");
+        error(name.span,
+              "'" + name.text + "' of '" + n.type + "' is an " + access_name(decl->access) + " and takes no value");
         skip_value();
         return;
       }
@@ -486,7 +498,8 @@ class Parser {
     for (int i = 0; i < k; ++i) {
       double d;
       if (!number(d, integer))
-        return fail(k == 1 ? (integer ? "an integer from -2147483648 to 2147483647" : "a number") : std::to_string(k) + " numbers");
+        return fail(k == 1 ? (integer ? "an integer from -2147483648 to 2147483647" : "a number")
+                           : std::to_string(k) + " numbers");
       v.nums.push_back(d);
     }
     return true;
@@ -563,8 +576,9 @@ class Parser {
     const FieldDecl* d = find_field(n, name);
     Access want = out ? Access::EventOut : Access::EventIn;
     if (d && (d->access == want || d->access == Access::ExposedField)) return d;
-    std::string base = out ? (name.size() > 8 && name.substr(name.size() - 8) == "_changed" ? name.substr(0, name.size() - 8) : "")
-                           : (name.rfind("set_", 0) == 0 ? name.substr(4) : "");
+    std::string base = out
+        ? (name.size() > 8 && name.substr(name.size() - 8) == "_changed" ? name.substr(0, name.size() - 8) : "")
+        : (name.rfind("set_", 0) == 0 ? name.substr(4) : "");
     if (!base.empty())
       if (const FieldDecl* e = find_field(n, base); e && e->access == Access::ExposedField) return e;
     return nullptr;
@@ -580,8 +594,9 @@ class Parser {
     if (!a) return error(r.span, "'" + r.from_node + "' (" + from->type + ") has no eventOut '" + r.from_field + "'");
     if (!b) return error(r.span, "'" + r.to_node + "' (" + to->type + ") has no eventIn '" + r.to_field + "'");
     if (a->type != b->type)
-      error(r.span, "ROUTE connects " + std::string(type_name(a->type)) + " '" + r.from_field + "' to " +
-                        type_name(b->type) + " '" + r.to_field + "'");
+      error(r.span,
+            "ROUTE connects " + std::string(type_name(a->type)) + " '" + r.from_field + "' to " + type_name(b->type) +
+                " '" + r.to_field + "'");
   }
 
   const frontend::SourceFile& f_;

@@ -37,7 +37,10 @@ class Writer {
     for (auto [kind, i] : s_.order) {
       switch (kind) {
         case Scene::Kind::Proto: proto(*s_.protos[i]); break;
-        case Scene::Kind::Node: node(s_.roots[i].get(), 0); out_ += "\n"; break;
+        case Scene::Kind::Node:
+          node(s_.roots[i].get(), 0);
+          out_ += "\n";
+          break;
         case Scene::Kind::Route: route(s_.routes[i], 0); break;
       }
     }
@@ -111,7 +114,8 @@ class Writer {
         if (f.name == decl.name && !f.is_ref.empty()) is = &f;
       if (is) {
         indent(d + 1);
-        out_ += std::string(access_name(decl.access)) + " " + type_name(decl.type) + " " + decl.name + " IS " + is->is_ref + "\n";
+        out_ += std::string(access_name(decl.access)) + " " + type_name(decl.type) + " " + decl.name + " IS " +
+            is->is_ref + "\n";
       } else {
         declaration(decl, d + 1, true);
       }
@@ -219,12 +223,15 @@ std::string compare_scenes(const Scene& a, const Scene& b) {
     if (std::string e = c.nodes(a.roots[i].get(), b.roots[i].get(), "node " + std::to_string(i)); !e.empty()) return e;
   for (size_t i = 0; i < a.protos.size(); ++i) {
     const ProtoDef &x = *a.protos[i], &y = *b.protos[i];
-    if (x.iface.name != y.iface.name || x.iface.fields.size() != y.iface.fields.size() || x.body.size() != y.body.size())
+    if (x.iface.name != y.iface.name || x.iface.fields.size() != y.iface.fields.size() ||
+        x.body.size() != y.body.size())
       return "PROTO " + x.iface.name + " differs";
     for (size_t k = 0; k < x.iface.fields.size(); ++k) {
       const FieldDecl &f = x.iface.fields[k], &g = y.iface.fields[k];
-      if (f.name != g.name || f.type != g.type || f.access != g.access) return "PROTO " + x.iface.name + " interface differs";
-      if (std::string e = c.values(f.default_value, g.default_value, "PROTO " + x.iface.name + "." + f.name); !e.empty())
+      if (f.name != g.name || f.type != g.type || f.access != g.access)
+        return "PROTO " + x.iface.name + " interface differs";
+      if (std::string e = c.values(f.default_value, g.default_value, "PROTO " + x.iface.name + "." + f.name);
+          !e.empty())
         return e;
     }
     for (size_t k = 0; k < x.body.size(); ++k)
@@ -232,7 +239,8 @@ std::string compare_scenes(const Scene& a, const Scene& b) {
   }
   for (size_t i = 0; i < a.routes.size(); ++i) {
     const Route &x = a.routes[i], &y = b.routes[i];
-    if (x.from_node != y.from_node || x.from_field != y.from_field || x.to_node != y.to_node || x.to_field != y.to_field)
+    if (x.from_node != y.from_node || x.from_field != y.from_field || x.to_node != y.to_node ||
+        x.to_field != y.to_field)
       return "ROUTE " + std::to_string(i) + " differs";
   }
   return "";

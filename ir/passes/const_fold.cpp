@@ -42,8 +42,14 @@ Inst* identity(Inst* i) {
     case Op::Truth:
       // truth(v) is v when v is already 0 or 1 (a comparison or logic result).
       switch (a[0]->op) {
-        case Op::Eq: case Op::Ne: case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge: case Op::Not: case Op::Truth:
-          return a[0];
+        case Op::Eq:
+        case Op::Ne:
+        case Op::Lt:
+        case Op::Le:
+        case Op::Gt:
+        case Op::Ge:
+        case Op::Not:
+        case Op::Truth: return a[0];
         default: return nullptr;
       }
     case Op::Phi: {
@@ -154,8 +160,7 @@ bool run_const_fold(Function& fn) {
   }
   if (changed) {
     replace_uses(fn, rep);
-    for (auto& b : fn.blocks)
-      std::erase_if(b->insts, [&](Inst* i) { return rep[i->id] != nullptr; });
+    for (auto& b : fn.blocks) std::erase_if(b->insts, [&](Inst* i) { return rep[i->id] != nullptr; });
     fn.remove_unreachable_blocks();
   }
   return changed;

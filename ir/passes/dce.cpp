@@ -6,9 +6,7 @@
 
 namespace fscript::ir {
 
-static bool removable(const Inst* i) {
-  return has_flag(i->op, Pure) || i->op == Op::Phi || i->op == Op::GLoad;
-}
+static bool removable(const Inst* i) { return has_flag(i->op, Pure) || i->op == Op::Phi || i->op == Op::GLoad; }
 
 bool run_dce(Function& fn) {
   std::vector<bool> live(fn.next_value, false);

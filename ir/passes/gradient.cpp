@@ -70,8 +70,7 @@ class Builder {
   // cond ? a : b, component by component.
   Tangent choose(Inst* cond, const Tangent& a, const Tangent& b) {
     Tangent r{};
-    for (int k = 0; k < 3; ++k)
-      r[k] = a[k] || b[k] ? op(Op::Select, cond, or_zero(a[k]), or_zero(b[k])) : nullptr;
+    for (int k = 0; k < 3; ++k) r[k] = a[k] || b[k] ? op(Op::Select, cond, or_zero(a[k]), or_zero(b[k])) : nullptr;
     return r;
   }
 
@@ -112,7 +111,10 @@ bool rule(Builder& B, Inst* r, const std::vector<Tangent>& d, Tangent& out) {
     case Op::Max: out = B.choose(B.op(Op::Gt, a[1], a[0]), d1, d0); return true;
     case Op::Abs: out = B.scale(d0, B.op(Op::Sign, a[0])); return true;
     case Op::Sqrt: out = B.scale(d0, B.op(Op::Div, B.constant(0.5f), r)); return true;
-    case Op::Floor: case Op::Ceil: case Op::Round: case Op::Sign: return true;
+    case Op::Floor:
+    case Op::Ceil:
+    case Op::Round:
+    case Op::Sign: return true;
     case Op::Clamp: {  // min(max(a, lo), hi)
       Inst* m = B.op(Op::Max, a[0], a[1]);
       Tangent dm = B.choose(B.op(Op::Gt, a[1], a[0]), d1, d0);
@@ -131,7 +133,8 @@ bool rule(Builder& B, Inst* r, const std::vector<Tangent>& d, Tangent& out) {
     case Op::Sin: out = B.scale(d0, B.op(Op::Cos, a[0])); return true;
     case Op::Cos: out = B.negate(B.scale(d0, B.op(Op::Sin, a[0]))); return true;
     case Op::Tan: out = B.scale(d0, B.op(Op::Add, B.constant(1), B.op(Op::Mul, r, r))); return true;
-    case Op::Asin: case Op::Acos: {
+    case Op::Asin:
+    case Op::Acos: {
       Inst* root = B.op(Op::Sqrt, B.op(Op::Sub, B.constant(1), B.op(Op::Mul, a[0], a[0])));
       out = B.divide(r->op == Op::Asin ? d0 : B.negate(d0), root);
       return true;
@@ -147,14 +150,28 @@ bool rule(Builder& B, Inst* r, const std::vector<Tangent>& d, Tangent& out) {
     case Op::Cosh: out = B.scale(d0, B.op(Op::Sinh, a[0])); return true;
     case Op::Tanh: out = B.scale(d0, B.op(Op::Sub, B.constant(1), B.op(Op::Mul, r, r))); return true;
     case Op::Noise: return false;
-    case Op::Eq: case Op::Ne: case Op::Lt: case Op::Le: case Op::Gt: case Op::Ge: case Op::Not: case Op::Truth:
-      return true;
+    case Op::Eq:
+    case Op::Ne:
+    case Op::Lt:
+    case Op::Le:
+    case Op::Gt:
+    case Op::Ge:
+    case Op::Not:
+    case Op::Truth: return true;
     case Op::Select: out = B.choose(a[0], d1, d2); return true;
     case Op::Ret: return true;
     // Not in a straight-line kernel of pure operations (gradient_module checks first).
-    case Op::Phi: case Op::GLoad: case Op::GStore: case Op::ANew: case Op::ALoad: case Op::AStore: case Op::ALen:
-    case Op::Call: case Op::Tick: case Op::Jump: case Op::Branch:
-      return false;
+    case Op::Phi:
+    case Op::GLoad:
+    case Op::GStore:
+    case Op::ANew:
+    case Op::ALoad:
+    case Op::AStore:
+    case Op::ALen:
+    case Op::Call:
+    case Op::Tick:
+    case Op::Jump:
+    case Op::Branch: return false;
   }
   return false;
 }

@@ -68,8 +68,7 @@ bool run_gvn(Function& fn) {
   }
   if (!changed) return false;
   replace_uses(fn, rep);
-  for (auto& b : fn.blocks)
-    std::erase_if(b->insts, [&](Inst* i) { return rep[i->id] != nullptr; });
+  for (auto& b : fn.blocks) std::erase_if(b->insts, [&](Inst* i) { return rep[i->id] != nullptr; });
   return true;
 }
 

@@ -22,7 +22,8 @@ size_t size_of(const Function& f) {
 void place_after(Function& f, Block* after, size_t first_new) {
   auto pos = std::find_if(f.blocks.begin(), f.blocks.end(), [&](auto& b) { return b.get() == after; });
   size_t at = static_cast<size_t>(pos - f.blocks.begin()) + 1;
-  std::rotate(f.blocks.begin() + static_cast<long>(at), f.blocks.begin() + static_cast<long>(first_new), f.blocks.end());
+  std::rotate(f.blocks.begin() + static_cast<long>(at), f.blocks.begin() + static_cast<long>(first_new),
+              f.blocks.end());
 }
 
 // Splits `b` after `call`: the instructions after it move to a new block, returned.

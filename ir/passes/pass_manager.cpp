@@ -23,12 +23,9 @@ struct PassEntry {
 };
 
 constexpr PassEntry kPasses[] = {
-    {"inline", run_inline, nullptr},
-    {"promote", run_promote_globals, nullptr},
-    {"fold", nullptr, run_const_fold},
-    {"dce", nullptr, run_dce},
-    {"gvn", nullptr, run_gvn},
-    {"simplify", nullptr, run_simplify_cfg},
+    {"inline", run_inline, nullptr},     {"promote", run_promote_globals, nullptr},
+    {"fold", nullptr, run_const_fold},   {"dce", nullptr, run_dce},
+    {"gvn", nullptr, run_gvn},           {"simplify", nullptr, run_simplify_cfg},
     {"ifconv", nullptr, run_if_convert},
 };
 

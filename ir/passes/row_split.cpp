@@ -115,7 +115,8 @@ bool split_rows(const Module& m, RowSplit& out) {
   for (double bound : kParamBounds) {
     std::vector<Range> r = value_ranges(fn, bound);
     for (const Inst* v : row_values)
-      body->row_param_ranges.push_back({static_cast<float>(r[v->id].lo), static_cast<float>(r[v->id].hi), r[v->id].nan});
+      body->row_param_ranges.push_back(
+          {static_cast<float>(r[v->id].lo), static_cast<float>(r[v->id].hi), r[v->id].nan});
   }
   run_dce(*body);  // constants only the prologue reads
   out.prologue = std::make_unique<Module>();

@@ -49,8 +49,12 @@ json completion(const Document& d, const json& params) {
   auto add = [&](const std::string& label, int kind, const std::string& detail, const std::string& doc = "") {
     int r = label.empty() || label[0] == '$' ? -1 : rank(label, prefix);
     if (r < 0 || !seen.insert(label).second) return;
-    items.push_back({{"label", label}, {"kind", kind}, {"detail", detail}, {"sortText", std::to_string(r) + lower(label)},
-                     {"filterText", filter_text(label, prefix, r)}, {"textEdit", {{"range", replaced}, {"newText", label}}}});
+    items.push_back({{"label", label},
+                     {"kind", kind},
+                     {"detail", detail},
+                     {"sortText", std::to_string(r) + lower(label)},
+                     {"filterText", filter_text(label, prefix, r)},
+                     {"textEdit", {{"range", replaced}, {"newText", label}}}});
     if (!doc.empty()) items.back()["documentation"] = {{"kind", "markdown"}, {"value", doc}};
   };
   std::string node;
@@ -59,7 +63,8 @@ json completion(const Document& d, const json& params) {
     if (const vrml::Interface* iface = node.empty() ? nullptr : vrml::standard_interface(node))
       for (const auto& f : iface->fields) add(f.name, kFieldKind, vrml::declaration_text(f), field_doc(node, f));
     for (const auto& n : vrml::standard_node_types())
-      add(n, kClassKind, vrml::is_fvrml_node(n) ? "FVRML node" : "VRML97 node", node_doc(n, *vrml::standard_interface(n)));
+      add(n, kClassKind, vrml::is_fvrml_node(n) ? "FVRML node" : "VRML97 node",
+          node_doc(n, *vrml::standard_interface(n)));
     for (const char* k : {"DEF", "USE", "PROTO", "EXTERNPROTO", "ROUTE", "TO", "IS", "TRUE", "FALSE", "NULL"})
       add(k, kKeywordKind, "VRML97");
     return {{"isIncomplete", false}, {"items", items}};

@@ -7,12 +7,14 @@ namespace fscript::lsp {
 
 json range_of(const std::string& text, uint32_t line, uint32_t col, uint32_t length) {
   Position a = position_of_line_col(text, line, col), b = position_of_line_col(text, line, col + std::max(1u, length));
-  return {{"start", {{"line", a.line}, {"character", a.character}}}, {"end", {{"line", b.line}, {"character", b.character}}}};
+  return {{"start", {{"line", a.line}, {"character", a.character}}},
+          {"end", {{"line", b.line}, {"character", b.character}}}};
 }
 
 json range_of_span(const std::string& text, uint32_t begin, uint32_t end) {
   Position a = position_of(text, begin), b = position_of(text, end);
-  return {{"start", {{"line", a.line}, {"character", a.character}}}, {"end", {{"line", b.line}, {"character", b.character}}}};
+  return {{"start", {{"line", a.line}, {"character", a.character}}},
+          {"end", {{"line", b.line}, {"character", b.character}}}};
 }
 
 Position position_param(const json& params) {
@@ -36,7 +38,9 @@ json diagnostics(const Document& d) {
   all.insert(all.end(), sink.all().begin(), sink.all().end());
   json list = json::array();
   for (const auto& diag : all) {
-    int severity = diag.severity == frontend::Severity::Error ? 1 : diag.severity == frontend::Severity::Warning ? 2 : 3;
+    int severity = diag.severity == frontend::Severity::Error ? 1
+        : diag.severity == frontend::Severity::Warning        ? 2
+                                                              : 3;
     list.push_back({{"range", range_of(d.text, diag.pos.line, diag.pos.col, diag.length)},
                     {"severity", severity},
                     {"source", "fscript"},

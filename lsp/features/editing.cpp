@@ -32,13 +32,16 @@ json references(const Document& d, const json& params) {
 
 json rename(const Document& d, const json& params) {
   std::string name = params.at("newName").get<std::string>();
-  if (!valid_name(name)) return {{"__error", kInvalidParams}, {"message", "'" + name + "' is not a name a script can use"}};
-  if (d.scene) return {{"__error", kRequestFailed}, {"message", "rename works on names inside the scene's FScript strings"}};
+  if (!valid_name(name))
+    return {{"__error", kInvalidParams}, {"message", "'" + name + "' is not a name a script can use"}};
+  if (d.scene)
+    return {{"__error", kRequestFailed}, {"message", "rename works on names inside the scene's FScript strings"}};
   auto a = analyze_document(d);
   size_t at = offset_of(d.text, position_param(params));
   SymbolRef r = symbol_at(*a, d.text, at);
   if (r.kind == SymbolRef::Kind::Builtin)
-    return {{"__error", kRequestFailed}, {"message", "'" + r.word + "' is a built-in; only names the script defines can be renamed"}};
+    return {{"__error", kRequestFailed},
+            {"message", "'" + r.word + "' is a built-in; only names the script defines can be renamed"}};
   json edits = json::array();
   for (const auto& s : occurrences(*a, d.text, at))
     edits.push_back({{"range", range_of_span(d.text, s.begin, s.end)}, {"newText", name}});
@@ -118,7 +121,8 @@ json folding_ranges(const Document& d) {
     }
   };
   for (const auto& st : a->script.prog->stmt_arena)
-    if (st->kind == frontend::StmtKind::Block || st->kind == frontend::StmtKind::Function) add(st->span.begin, st->span.end, nullptr);
+    if (st->kind == frontend::StmtKind::Block || st->kind == frontend::StmtKind::Function)
+      add(st->span.begin, st->span.end, nullptr);
   for (const auto& c : a->script.prog->comments) add(c.span.begin, c.span.end, "comment");
   return list;
 }

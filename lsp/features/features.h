@@ -39,7 +39,18 @@ json semantic_tokens_legend();
 
 // Semantic tokens before their relative encoding: byte offsets in the document, a type (the
 // index in the legend) and modifier bits.
-enum class SemanticType : uint8_t { Keyword, Function, Parameter, Variable, Number, Comment, Operator, String, Type, Property };
+enum class SemanticType : uint8_t {
+  Keyword,
+  Function,
+  Parameter,
+  Variable,
+  Number,
+  Comment,
+  Operator,
+  String,
+  Type,
+  Property
+};
 constexpr int kDeclarationModifier = 1, kDefaultLibraryModifier = 2;
 struct SemanticToken {
   uint32_t begin, end;

@@ -16,8 +16,9 @@ json formatting(const Document& d) {
         break;
       }
     return {{"__error", kRequestFailed},
-            {"message", "cannot format while the script has errors (line " + std::to_string(first.pos.line) + ": " +
-                            first.message + ")"}};
+            {"message",
+             "cannot format while the script has errors (line " + std::to_string(first.pos.line) + ": " +
+                 first.message + ")"}};
   }
   std::string text = frontend::format_program(*a->script.prog, d.text);
   if (text == d.text) return json::array();

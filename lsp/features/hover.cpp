@@ -12,7 +12,8 @@ namespace {
 
 std::string signature(const frontend::SemaResult& sema, const frontend::FunctionInfo& f) {
   std::string s = "function " + f.name + "(";
-  for (size_t i = 0; i < f.params.size(); ++i) s += (i ? ", " : "") + sema.symbols[static_cast<size_t>(f.params[i])].name;
+  for (size_t i = 0; i < f.params.size(); ++i)
+    s += (i ? ", " : "") + sema.symbols[static_cast<size_t>(f.params[i])].name;
   return s + ")";
 }
 
@@ -70,11 +71,12 @@ json hover(const Document& d, const json& params) {
     case SymbolRef::Kind::Variable: {
       const frontend::Symbol& sym = sema.symbols[static_cast<size_t>(r.index)];
       Position at = position_of(d.text, sym.decl.begin);
-      const char* kind = sym.is_param ? "parameter" : sym.kind == frontend::SymKind::Local ? "local variable"
-                         : sym.kind == frontend::SymKind::Constant                        ? "constant"
-                                                                                          : "global variable";
-      result = markdown("```fscript\n" + r.word + (sym.is_array ? "[]" : "") + "\n```\n" + kind +
-                        ", defined at line " + std::to_string(d.first_line + at.line + 1));
+      const char* kind = sym.is_param               ? "parameter"
+          : sym.kind == frontend::SymKind::Local    ? "local variable"
+          : sym.kind == frontend::SymKind::Constant ? "constant"
+                                                    : "global variable";
+      result = markdown("```fscript\n" + r.word + (sym.is_array ? "[]" : "") + "\n```\n" + kind + ", defined at line " +
+                        std::to_string(d.first_line + at.line + 1));
       break;
     }
   }

@@ -120,8 +120,14 @@ json scene_symbols(const Document& d) {
   for (size_t i = 0; i < t.size(); ++i) {
     const VToken& k = t[i];
     if ((is(k, "PROTO") || is(k, "EXTERNPROTO")) && i + 1 < t.size() && t[i + 1].kind == VTok::Id) {
-      auto s = std::make_unique<Symbol>(Symbol{t[i + 1].text, kInterfaceKind, k.span.begin, t[i + 1].span.end,
-                                               t[i + 1].span.begin, t[i + 1].span.end, {}, json::array()});
+      auto s = std::make_unique<Symbol>(Symbol{t[i + 1].text,
+                                               kInterfaceKind,
+                                               k.span.begin,
+                                               t[i + 1].span.end,
+                                               t[i + 1].span.begin,
+                                               t[i + 1].span.end,
+                                               {},
+                                               json::array()});
       Symbol* p = s.get();
       parent().children.push_back(std::move(s));
       all.push_back(p);
@@ -139,8 +145,14 @@ json scene_symbols(const Document& d) {
         bool def = i >= 3 && is(t[i - 3], "DEF") && t[i - 2].kind == VTok::Id;
         std::string name = def ? t[i - 2].text + " " + type.text : type.text;
         uint32_t begin = def ? t[i - 3].span.begin : type.span.begin;
-        auto s = std::make_unique<Symbol>(Symbol{name, kClassKind, begin, k.span.end, def ? t[i - 2].span.begin : type.span.begin,
-                                                 def ? t[i - 2].span.end : type.span.end, {}, json::array()});
+        auto s = std::make_unique<Symbol>(Symbol{name,
+                                                 kClassKind,
+                                                 begin,
+                                                 k.span.end,
+                                                 def ? t[i - 2].span.begin : type.span.begin,
+                                                 def ? t[i - 2].span.end : type.span.end,
+                                                 {},
+                                                 json::array()});
         owner = s.get();
         parent().children.push_back(std::move(s));
         all.push_back(owner);
@@ -160,7 +172,9 @@ json scene_symbols(const Document& d) {
     shift_ranges(inner, s, d);
     Symbol* holder = &root;
     for (Symbol* c : all)
-      if (c->begin <= s.base && s.base < c->end && (holder == &root || c->end - c->begin <= holder->end - holder->begin)) holder = c;
+      if (c->begin <= s.base && s.base < c->end &&
+          (holder == &root || c->end - c->begin <= holder->end - holder->begin))
+        holder = c;
     for (json& x : inner) holder->scripts.push_back(x);
   }
   json list = root.scripts;
@@ -174,7 +188,8 @@ json scene_folding(const Document& d) {
   std::set<std::pair<uint32_t, uint32_t>> seen;
   auto add = [&](size_t begin, size_t end) {
     Position p = position_of(d.text, begin), q = position_of(d.text, end > begin ? end - 1 : begin);
-    if (q.line > p.line && seen.insert({p.line, q.line}).second) list.push_back({{"startLine", p.line}, {"endLine", q.line}});
+    if (q.line > p.line && seen.insert({p.line, q.line}).second)
+      list.push_back({{"startLine", p.line}, {"endLine", q.line}});
   };
   std::vector<uint32_t> braces, brackets;
   for (const VToken& k : lx.tokens) {
@@ -190,7 +205,8 @@ json scene_folding(const Document& d) {
       json moved = r;
       moved["startLine"] = r["startLine"].get<uint32_t>() + first;
       moved["endLine"] = r["endLine"].get<uint32_t>() + first;
-      if (seen.insert({moved["startLine"].get<uint32_t>(), moved["endLine"].get<uint32_t>()}).second) list.push_back(moved);
+      if (seen.insert({moved["startLine"].get<uint32_t>(), moved["endLine"].get<uint32_t>()}).second)
+        list.push_back(moved);
     }
   return list;
 }
@@ -199,8 +215,9 @@ std::vector<SemanticToken> scene_token_list(const Document& d) {
   Lexed lx = lex_scene(d);
   const std::vector<VToken>& t = lx.tokens;
   std::vector<Script> scripts = scripts_of(d);
-  static const std::set<std::string> kKeywords = {"DEF", "USE", "PROTO", "EXTERNPROTO", "ROUTE", "TO", "IS", "field",
-                                                  "exposedField", "eventIn", "eventOut", "TRUE", "FALSE", "NULL"};
+  static const std::set<std::string> kKeywords = {"DEF",      "USE",  "PROTO", "EXTERNPROTO",  "ROUTE",
+                                                  "TO",       "IS",   "field", "exposedField", "eventIn",
+                                                  "eventOut", "TRUE", "FALSE", "NULL"};
   std::vector<SemanticToken> out;
   auto split_lines = [&](uint32_t b, uint32_t e, SemanticType type) {  // a token per line
     while (b < e) {
@@ -231,14 +248,16 @@ std::vector<SemanticToken> scene_token_list(const Document& d) {
     switch (k.kind) {
       case VTok::Number: out.push_back({k.span.begin, k.span.end, SemanticType::Number, 0}); break;
       case VTok::String: {
-        auto script = std::find_if(scripts.begin(), scripts.end(), [&](const Script& s) { return s.base == k.span.begin + 1u; });
+        auto script =
+            std::find_if(scripts.begin(), scripts.end(), [&](const Script& s) { return s.base == k.span.begin + 1u; });
         if (script == scripts.end()) {
           split_lines(k.span.begin, k.span.end, SemanticType::String);
           break;
         }
         out.push_back({k.span.begin, k.span.begin + 1, SemanticType::String, 0});  // the quotes stay strings
         for (const SemanticToken& s : script_token_list(script->doc))
-          out.push_back({static_cast<uint32_t>(s.begin + script->base), static_cast<uint32_t>(s.end + script->base), s.type, s.modifiers});
+          out.push_back({static_cast<uint32_t>(s.begin + script->base), static_cast<uint32_t>(s.end + script->base),
+                         s.type, s.modifiers});
         out.push_back({k.span.end - 1, k.span.end, SemanticType::String, 0});
         break;
       }

@@ -28,15 +28,16 @@ std::map<uint32_t, Classified> names(const Analysis& a) {
     return s.is_param ? SemanticType::Parameter : SemanticType::Variable;
   };
   for (const auto& st : a.script.prog->stmt_arena) {
-    if (st->kind == frontend::StmtKind::Function) out[st->name_span.begin] = {SemanticType::Function, kDeclarationModifier};
+    if (st->kind == frontend::StmtKind::Function)
+      out[st->name_span.begin] = {SemanticType::Function, kDeclarationModifier};
     for (const auto& d : st->decls)
       if (d.sym >= 0) out[d.span.begin] = {symbol_type(d.sym), kDeclarationModifier};
   }
   for (const auto& ex : a.script.prog->expr_arena) {
     if (ex->kind == frontend::ExprKind::Call)
-      out[ex->name_span.begin] = {SemanticType::Function, frontend::find_builtin(ex->name) >= 0 ? kDefaultLibraryModifier : 0};
-    else if (ex->sym >= 0 && !out.count(ex->name_span.begin))
-      out[ex->name_span.begin] = {symbol_type(ex->sym), 0};
+      out[ex->name_span.begin] = {SemanticType::Function,
+                                  frontend::find_builtin(ex->name) >= 0 ? kDefaultLibraryModifier : 0};
+    else if (ex->sym >= 0 && !out.count(ex->name_span.begin)) out[ex->name_span.begin] = {symbol_type(ex->sym), 0};
   }
   return out;
 }
@@ -49,7 +50,9 @@ json encode(const std::string& text, const std::vector<SemanticToken>& items) {
     Position p = position_of(text, it.begin), q = position_of(text, it.end);
     if (q.line != p.line) continue;
     uint32_t dl = p.line - prev.line, dc = dl ? p.character : p.character - prev.character;
-    data.insert(data.end(), {dl, dc, q.character - p.character, static_cast<uint32_t>(it.type), static_cast<uint32_t>(it.modifiers)});
+    data.insert(
+        data.end(),
+        {dl, dc, q.character - p.character, static_cast<uint32_t>(it.type), static_cast<uint32_t>(it.modifiers)});
     prev = p;
   }
   return {{"data", data}};
@@ -58,8 +61,10 @@ json encode(const std::string& text, const std::vector<SemanticToken>& items) {
 }  // namespace
 
 json semantic_tokens_legend() {
-  return {{"tokenTypes", {"keyword", "function", "parameter", "variable", "number", "comment", "operator", "string", "type", "property"}},
-          {"tokenModifiers", {"declaration", "defaultLibrary"}}};
+  return {
+      {"tokenTypes",
+       {"keyword", "function", "parameter", "variable", "number", "comment", "operator", "string", "type", "property"}},
+      {"tokenModifiers", {"declaration", "defaultLibrary"}}};
 }
 
 std::vector<SemanticToken> script_token_list(const Document& d) {
@@ -91,12 +96,11 @@ std::vector<SemanticToken> script_token_list(const Document& d) {
       b = e + 1;
     }
   }
-  std::sort(items.begin(), items.end(), [](const SemanticToken& x, const SemanticToken& y) { return x.begin < y.begin; });
+  std::sort(items.begin(), items.end(),
+            [](const SemanticToken& x, const SemanticToken& y) { return x.begin < y.begin; });
   return items;
 }
 
-json semantic_tokens(const Document& d) {
-  return encode(d.text, d.scene ? scene_token_list(d) : script_token_list(d));
-}
+json semantic_tokens(const Document& d) { return encode(d.text, d.scene ? scene_token_list(d) : script_token_list(d)); }
 
 }  // namespace fscript::lsp

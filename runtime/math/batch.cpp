@@ -81,7 +81,12 @@ inline float exp_lane(float x) {
   float kf = (xc * 1.44269504088896341f + 12582912.0f) - 12582912.0f;
   float r = (xc - kf * 0.693359375f) - kf * -2.12194440e-4f;
   float p = ((((((1.9875691500e-4f * r + 1.3981999507e-3f) * r + 8.3334519073e-3f) * r + 4.1665795894e-2f) * r +
-               1.6666665459e-1f) * r + 5.0000001201e-1f) * r * r + r) + 1.0f;
+               1.6666665459e-1f) *
+                  r +
+              5.0000001201e-1f) *
+                 r * r +
+             r) +
+      1.0f;
   int k = static_cast<int>(kf);
   int k1 = k / 2;
   return p * pow2i(k1) * pow2i(k - k1);  // two steps, so subnormal results round only once
@@ -98,8 +103,16 @@ inline float log_lane(float x) {
   m = pick(low, (m + m) - 1.0f, m - 1.0f);
   float z = m * m;
   float y = ((((((((7.0376836292e-2f * m - 1.1514610310e-1f) * m + 1.1676998740e-1f) * m - 1.2420140846e-1f) * m +
-                 1.4249322787e-1f) * m - 1.6668057665e-1f) * m + 2.0000714765e-1f) * m - 2.4999993993e-1f) * m +
-            3.3333331174e-1f) * m * z;
+                 1.4249322787e-1f) *
+                    m -
+                1.6668057665e-1f) *
+                   m +
+               2.0000714765e-1f) *
+                  m -
+              2.4999993993e-1f) *
+                 m +
+             3.3333331174e-1f) *
+      m * z;
   float ef = static_cast<float>(e);
   y += -2.12194440e-4f * ef;
   y += -0.5f * z;

@@ -83,8 +83,8 @@ inline double sin_r(double r) {
 }
 inline double cos_r(double r) {
   double s = r * r, p = 1.0 / 20922789888000.0;
-  for (double c : {-1.0 / 87178291200.0, 1.0 / 479001600.0, -1.0 / 3628800.0, 1.0 / 40320.0, -1.0 / 720.0, 1.0 / 24.0,
-                   -0.5, 1.0})
+  for (double c :
+       {-1.0 / 87178291200.0, 1.0 / 479001600.0, -1.0 / 3628800.0, 1.0 / 40320.0, -1.0 / 720.0, 1.0 / 24.0, -0.5, 1.0})
     p = p * s + c;
   return p;
 }
@@ -197,9 +197,8 @@ void pow_batch(const float* a, const float* b, float* o, size_t n) {
   binary<pow_lane, math::pow>(a, b, o, n, [](float x, float y) { return (x > 0.0f) & finite(x) & finite(y); });
 }
 void atan2_batch(const float* y, const float* x, float* o, size_t n) {
-  binary<atan2_lane, math::atan2>(y, x, o, n, [](float yy, float xx) {
-    return finite(xx) & finite(yy) & (xx != 0.0f) & (yy != 0.0f);
-  });
+  binary<atan2_lane, math::atan2>(
+      y, x, o, n, [](float yy, float xx) { return finite(xx) & finite(yy) & (xx != 0.0f) & (yy != 0.0f); });
 }
 
 // The scalar definition's arithmetic lane by lane (so the bits agree); infinities take the scalar.

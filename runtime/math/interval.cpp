@@ -84,7 +84,7 @@ Interval pow_point(const Interval& a, double k) {
   }
   if (!integer) {  // finite negative bases give NaN, -inf gives inf or 0; on [0, hi] it is monotone
     Interval r = a.hi < 0 ? Interval::nan_only()
-                 : k < 0  ? make(p(a.hi), kInf, true, kMathUlps)
+        : k < 0           ? make(p(a.hi), kInf, true, kMathUlps)
                           : make(0, p(a.hi), true, kMathUlps);
     return a.lo == -kInfF ? iv::hull(r, Interval::point(k < 0 ? 0.0f : kInfF)) : r;
   }
@@ -153,7 +153,9 @@ Interval pow(Interval a, Interval b) {  // JavaScript's Math.pow
   return pow_point(a, b.lo);
 }
 
-Interval exp(Interval a) { return a.empty() ? a : increasing(a, [](double x) { return std::exp(x); }, a.nan); }
+Interval exp(Interval a) {
+  return a.empty() ? a : increasing(a, [](double x) { return std::exp(x); }, a.nan);
+}
 
 Interval log(Interval a) {
   if (a.empty() || a.hi < 0) return Interval::nan_only();
@@ -167,8 +169,12 @@ Interval log10(Interval a) {
               a.nan || a.lo < 0, kMathUlps);
 }
 
-Interval sin(Interval a) { return periodic(a, [](double x) { return std::sin(x); }, kPi / 2, -kPi / 2); }
-Interval cos(Interval a) { return periodic(a, [](double x) { return std::cos(x); }, 0, kPi); }
+Interval sin(Interval a) {
+  return periodic(a, [](double x) { return std::sin(x); }, kPi / 2, -kPi / 2);
+}
+Interval cos(Interval a) {
+  return periodic(a, [](double x) { return std::cos(x); }, 0, kPi);
+}
 
 Interval tan(Interval a) {
   if (a.empty()) return Interval::nan_only();
@@ -190,7 +196,9 @@ Interval acos(Interval a) {
               a.nan || a.lo < -1 || a.hi > 1, kMathUlps);
 }
 
-Interval atan(Interval a) { return a.empty() ? a : increasing(a, [](double x) { return std::atan(x); }, a.nan); }
+Interval atan(Interval a) {
+  return a.empty() ? a : increasing(a, [](double x) { return std::atan(x); }, a.nan);
+}
 
 Interval atan2(Interval y, Interval x) {
   if (y.empty() || x.empty()) return Interval::nan_only();
@@ -200,13 +208,15 @@ Interval atan2(Interval y, Interval x) {
 Interval hypot(Interval x, Interval y) {  // Math.hypot: +inf when either is infinite, even beside NaN
   if (x.empty() || y.empty()) return {0, kInfF, true};
   double mx = most_magnitude(x), my = most_magnitude(y);
-  Interval r = make(std::max(least_magnitude(x), least_magnitude(y)), std::sqrt(mx * mx + my * my), x.nan || y.nan,
-                    kMathUlps);
+  Interval r =
+      make(std::max(least_magnitude(x), least_magnitude(y)), std::sqrt(mx * mx + my * my), x.nan || y.nan, kMathUlps);
   r.lo = std::max(r.lo, 0.0f);  // computed in double and rounded once: never below zero
   return r;
 }
 
-Interval sinh(Interval a) { return a.empty() ? a : increasing(a, [](double x) { return std::sinh(x); }, a.nan); }
+Interval sinh(Interval a) {
+  return a.empty() ? a : increasing(a, [](double x) { return std::sinh(x); }, a.nan);
+}
 
 Interval cosh(Interval a) {
   if (a.empty()) return a;
@@ -215,7 +225,9 @@ Interval cosh(Interval a) {
   return r;
 }
 
-Interval tanh(Interval a) { return a.empty() ? a : increasing(a, [](double x) { return std::tanh(x); }, a.nan); }
+Interval tanh(Interval a) {
+  return a.empty() ? a : increasing(a, [](double x) { return std::tanh(x); }, a.nan);
+}
 
 Interval noise(Interval x, Interval y, Interval z) {  // clamped to [-1, 1]; NaN on NaN or infinity
   if (x.empty() || y.empty() || z.empty()) return Interval::nan_only();

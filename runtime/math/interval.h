@@ -115,7 +115,9 @@ constexpr float kInfF = std::numeric_limits<float>::infinity();
   return f;
 }
 
-[[gnu::always_inline]] inline Interval make(double lo, double hi, bool nan, int ulps) { return {down(lo, ulps), up(hi, ulps), nan}; }
+[[gnu::always_inline]] inline Interval make(double lo, double hi, bool nan, int ulps) {
+  return {down(lo, ulps), up(hi, ulps), nan};
+}
 inline bool has_zero(const Interval& a) { return a.lo <= 0 && a.hi >= 0; }
 inline bool has_inf(const Interval& a) { return a.lo == -kInfF || a.hi == kInfF; }
 
@@ -133,7 +135,9 @@ namespace iv {
 }
 
 [[gnu::always_inline]] inline Interval neg(Interval a) { return {-a.hi, -a.lo, a.nan}; }
-[[gnu::always_inline]] inline Interval sub(Interval a, Interval b) { return add(a, neg(b)); }  // a - b is a + (-b), bit for bit
+[[gnu::always_inline]] inline Interval sub(Interval a, Interval b) {
+  return add(a, neg(b));
+}  // a - b is a + (-b), bit for bit
 
 [[gnu::always_inline]] inline Interval mul(Interval a, Interval b) {
   using namespace detail;
@@ -143,8 +147,8 @@ namespace iv {
                 static_cast<double>(a.hi) * b.hi};
   for (double v : p)
     if (v != v) return {-kInfF, kInfF, true};
-  return make(std::min(std::min(p[0], p[1]), std::min(p[2], p[3])), std::max(std::max(p[0], p[1]), std::max(p[2], p[3])),
-              nan, 0);
+  return make(std::min(std::min(p[0], p[1]), std::min(p[2], p[3])),
+              std::max(std::max(p[0], p[1]), std::max(p[2], p[3])), nan, 0);
 }
 
 [[gnu::always_inline]] inline Interval square(Interval a) {

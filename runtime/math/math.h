@@ -5,9 +5,9 @@
 #include <cstddef>
 
 // The parameter list of a batch function of `arity` inputs (batch_functions.def), and its names.
-#define FS_BATCH_PARAMS_1 const float* a, float* out, size_t n
-#define FS_BATCH_PARAMS_2 const float* a, const float* b, float* out, size_t n
-#define FS_BATCH_PARAMS_3 const float* a, const float* b, const float* c, float* out, size_t n
+#define FS_BATCH_PARAMS_1 const float *a, float *out, size_t n
+#define FS_BATCH_PARAMS_2 const float *a, const float *b, float *out, size_t n
+#define FS_BATCH_PARAMS_3 const float *a, const float *b, const float *c, float *out, size_t n
 #define FS_BATCH_ARGS_1 a, out, n
 #define FS_BATCH_ARGS_2 a, b, out, n
 #define FS_BATCH_ARGS_3 a, b, c, out, n

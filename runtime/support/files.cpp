@@ -35,7 +35,7 @@ bool read_file(const std::string& path, std::string& out, std::string& error, si
   uintmax_t size = std::filesystem::file_size(path, ec);
   if (!ec && size > max_bytes) {
     error = "the file is " + std::to_string(size >> 20) + " MiB, over the limit of " + std::to_string(max_bytes >> 20) +
-            " MiB for one file";
+        " MiB for one file";
     return false;
   }
   // A regular file straight into a string of its size (a part file of a sharded mesh is hundreds of
@@ -86,11 +86,14 @@ bool write_file_atomic(const std::string& path, const std::string& bytes, std::s
 }
 
 bool write_file_atomic(const std::string& path, const std::vector<std::string_view>& pieces, std::string& error) {
-  return write_file_atomic(path, [&](std::FILE* f) {
-    for (std::string_view p : pieces)
-      if (std::fwrite(p.data(), 1, p.size(), f) != p.size()) return false;
-    return true;
-  }, error);
+  return write_file_atomic(
+      path,
+      [&](std::FILE* f) {
+        for (std::string_view p : pieces)
+          if (std::fwrite(p.data(), 1, p.size(), f) != p.size()) return false;
+        return true;
+      },
+      error);
 }
 
 bool write_file_atomic(const std::string& path, const std::function<bool(std::FILE*)>& fill, std::string& error) {

@@ -54,7 +54,8 @@ HugeHeap reserve_huge_heap(size_t bytes) {
   constexpr size_t kMaxReserve = size_t{1} << 30;  // mallopt takes an int; the trim threshold is twice it
   bytes = std::min(bytes, kMaxReserve);
   if (!g_prepared || g_heap.reserved || bytes < (size_t{4} << 20)) return g_heap;
-  if (mallopt(M_MMAP_THRESHOLD, kMmapThreshold) != 1 || mallopt(M_TRIM_THRESHOLD, static_cast<int>(2 * bytes - 1)) != 1 ||
+  if (mallopt(M_MMAP_THRESHOLD, kMmapThreshold) != 1 ||
+      mallopt(M_TRIM_THRESHOLD, static_cast<int>(2 * bytes - 1)) != 1 ||
       mallopt(M_TOP_PAD, static_cast<int>(bytes)) != 1)
     return g_heap;
   // A request larger than the free top of the heap makes malloc grow it, by the request plus the pad.

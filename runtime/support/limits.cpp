@@ -16,7 +16,6 @@
 #include "runtime/support/files.h"
 #include "runtime/support/sanitizers.h"
 
-
 namespace fscript::support {
 namespace {
 

@@ -36,8 +36,7 @@ void ProgressJob::advance(uint64_t n) {
   if (units == 0) return;
   int64_t now = static_cast<int64_t>(std::min<uint64_t>(kWhole, done * kWhole / units));
   int64_t before = reported_.load();
-  while (now > before && !reported_.compare_exchange_weak(before, now)) {
-  }
+  while (now > before && !reported_.compare_exchange_weak(before, now)) {}
   if (now > before) partial += now - before;
 }
 
@@ -64,7 +63,10 @@ std::string progress_text(const ProgressState& s, double elapsed_s) {
   if (s.fraction >= 0.02 && s.fraction < 1) {  // too early, the estimate is noise
     double left = elapsed_s * (1 - s.fraction) / s.fraction;
     if (left < 1) out += ", under a second left";
-    else std::snprintf(buf, sizeof buf, left < 60 ? ", about %.0f s left" : ", about %.0f min left", left < 60 ? left : left / 60), out += buf;
+    else
+      std::snprintf(buf, sizeof buf, left < 60 ? ", about %.0f s left" : ", about %.0f min left",
+                    left < 60 ? left : left / 60),
+          out += buf;
   }
   return out;
 }

@@ -24,8 +24,9 @@ using namespace fscript;
 namespace {
 
 const float kInf = INFINITY, kNan = NAN;
-const float kValues[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, 3.0f, kInf, -kInf, kNan, 1e-40f, -1e-45f,
-                         3.4e38f, -3e38f, 1e30f, 0.1f, 7.25f, -100.0f, 2.0f, 0.49999997f, 1e-7f, 16777216.0f, 6.2831855f};
+const float kValues[] = {0.0f,  -0.0f,   1.0f,   -1.0f,       0.5f,    -2.5f,       3.0f,      kInf,
+                         -kInf, kNan,    1e-40f, -1e-45f,     3.4e38f, -3e38f,      1e30f,     0.1f,
+                         7.25f, -100.0f, 2.0f,   0.49999997f, 1e-7f,   16777216.0f, 6.2831855f};
 constexpr size_t kPoints = 67;  // no multiple of any vector width: the padded tails run too
 
 struct Run {
@@ -71,7 +72,8 @@ void compare(const std::string& name, const backends::Kernel& want, const backen
   for (size_t p = 0; p < kPoints; ++p) {
     Run x = run_batch(want, cols, p, 1), y = run_batch(got, cols, p, 1);
     if (x.ok != y.ok || x.error != y.error)
-      fuzz::finding(name + " fails differently at " + describe(cols, p) + ": '" + x.error + "' vs '" + y.error + "'", text);
+      fuzz::finding(name + " fails differently at " + describe(cols, p) + ": '" + x.error + "' vs '" + y.error + "'",
+                    text);
     for (size_t i = 0; x.ok && i < x.out.size(); ++i)
       if (!fuzz::same(x.out[i], y.out[i])) fuzz::finding(name + " differs at " + describe(cols, p), text);
   }
@@ -103,9 +105,10 @@ std::unique_ptr<ir::Module> build(const std::string& text, bool optimize, std::u
   driver::CompileOptions o = fuzz::compile_options(optimize);
   frontend::DiagnosticSink diag;
   driver::Compiled c;
-  driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>("gen.fs", text), driver::default_entry(), o,
-                                      diag, c);
-  if (!r.ok()) fuzz::finding("a generated program does not compile: " + r.error + "\n" + frontend::render_all(diag), text);
+  driver::Outcome r =
+      driver::compile(std::make_unique<frontend::SourceFile>("gen.fs", text), driver::default_entry(), o, diag, c);
+  if (!r.ok())
+    fuzz::finding("a generated program does not compile: " + r.error + "\n" + frontend::render_all(diag), text);
   vm = std::move(c.kernel);
   return std::move(c.module);
 }

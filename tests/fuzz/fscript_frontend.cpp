@@ -21,8 +21,8 @@ void one_input(const std::string& text) {
   driver::CompileOptions o = fuzz::compile_options(true);
   frontend::DiagnosticSink diag;
   driver::Compiled c;
-  driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>("fuzz.fs", text), driver::default_entry(), o,
-                                      diag, c);
+  driver::Outcome r =
+      driver::compile(std::make_unique<frontend::SourceFile>("fuzz.fs", text), driver::default_entry(), o, diag, c);
   if (r.stage == driver::Stage::Internal) fuzz::finding("the verifier rejected the compiler's IR: " + r.error, text);
   if (r.stage == driver::Stage::Source && !diag.has_errors()) fuzz::finding("refused without an error", text);
   frontend::render_all(diag);  // every diagnostic renders (source line, caret)
@@ -46,10 +46,12 @@ void one_input(const std::string& text) {
   if (!g) return;
   if (std::string gv = ir::verify(*g); !gv.empty()) fuzz::finding("verifier, gradient module: " + gv, text);
   std::unique_ptr<backends::Kernel> gk;
-  if (!driver::compile_kernel(*g, "vm", o.budgets, gk).ok()) fuzz::finding("the gradient module does not compile", text);
+  if (!driver::compile_kernel(*g, "vm", o.budgets, gk).ok())
+    fuzz::finding("the gradient module does not compile", text);
   float d[4];
   if (!ran || !gk->eval(in.data(), d, err)) return;  // a straight-line kernel has no runtime error
-  if (!(d[0] == out[0] || (d[0] != d[0] && out[0] != out[0]))) fuzz::finding("the gradient kernel's f is not the kernel's", text);
+  if (!(d[0] == out[0] || (d[0] != d[0] && out[0] != out[0])))
+    fuzz::finding("the gradient kernel's f is not the kernel's", text);
 }
 
 }  // namespace

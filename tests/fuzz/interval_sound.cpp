@@ -18,8 +18,8 @@ using namespace fscript;
 
 namespace {
 
-const float kBounds[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, 3.0f, INFINITY, -INFINITY, 1e-40f, 3e38f, -3e38f,
-                         1e30f, 0.1f, 100.0f, 1.5707964f, 3.1415927f, -6.2831855f, 1e-7f};
+const float kBounds[] = {0.0f,  -0.0f,  1.0f,  -1.0f, 0.5f,   -2.5f,      3.0f,       INFINITY,    -INFINITY, 1e-40f,
+                         3e38f, -3e38f, 1e30f, 0.1f,  100.0f, 1.5707964f, 3.1415927f, -6.2831855f, 1e-7f};
 
 float bound(FuzzedDataProvider& in) {
   if (in.ConsumeBool()) return kBounds[in.ConsumeIntegralInRange<size_t>(0, std::size(kBounds) - 1)];
@@ -55,7 +55,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   driver::CompileOptions o = fuzz::compile_options(true);
   frontend::DiagnosticSink diag;
   driver::Compiled c;
-  if (!driver::compile(std::make_unique<frontend::SourceFile>("gen.fs", prog.text), driver::default_entry(), o, diag, c).ok())
+  if (!driver::compile(std::make_unique<frontend::SourceFile>("gen.fs", prog.text), driver::default_entry(), o, diag, c)
+           .ok())
     fuzz::finding("a generated program does not compile:\n" + frontend::render_all(diag), prog.text);
   const ir::Function& fn = c.module->kernel_function();
   if (!ir::interval_evaluable(fn)) return 0;  // if-conversion left control flow: runs dense, no claim
@@ -86,20 +87,23 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::vector<float*> fo, so;
   for (size_t k = 0; k < nout; ++k) fo.push_back(full[k].data()), so.push_back(simple[k].data());
   backends::RuntimeError err;
-  if (!c.kernel->eval_batch(ins.data(), fo.data(), kSamples, err)) fuzz::finding("straight-line code failed: " + err.message, prog.text);
-  if (!simplified->eval_batch(ins.data(), so.data(), kSamples, err)) fuzz::finding("the simplified tape failed", prog.text);
+  if (!c.kernel->eval_batch(ins.data(), fo.data(), kSamples, err))
+    fuzz::finding("straight-line code failed: " + err.message, prog.text);
+  if (!simplified->eval_batch(ins.data(), so.data(), kSamples, err))
+    fuzz::finding("the simplified tape failed", prog.text);
   for (size_t p = 0; p < kSamples; ++p) {
     std::vector<float> point;
     for (size_t i = 0; i < nin; ++i) point.push_back(cols[i][p]);
     for (size_t k = 0; k < nout; ++k) {
       float v = full[k][p];
       if (!ev.outputs[k].contains(v))
-        fuzz::finding("output " + std::to_string(k) + " = " + std::to_string(v) + " outside [" + std::to_string(ev.outputs[k].lo) +
-                          ", " + std::to_string(ev.outputs[k].hi) + "] nan " + std::to_string(ev.outputs[k].nan) + ", " +
-                          describe(box, point),
+        fuzz::finding("output " + std::to_string(k) + " = " + std::to_string(v) + " outside [" +
+                          std::to_string(ev.outputs[k].lo) + ", " + std::to_string(ev.outputs[k].hi) + "] nan " +
+                          std::to_string(ev.outputs[k].nan) + ", " + describe(box, point),
                       prog.text);
       if (!bev.output(k, p % ir::kIntervalLanes).contains(v))
-        fuzz::finding("the batched interval evaluator misses " + std::to_string(v) + ", " + describe(box, point), prog.text);
+        fuzz::finding("the batched interval evaluator misses " + std::to_string(v) + ", " + describe(box, point),
+                      prog.text);
       if (!fuzz::same(v, simple[k][p]))
         fuzz::finding("the simplified tape gives " + std::to_string(simple[k][p]) + " for " + std::to_string(v) + ", " +
                           describe(box, point),

@@ -19,11 +19,19 @@ using lsp::json;
 namespace {
 
 const char* const kUris[] = {"file:///fuzz/a.fs", "file:///fuzz/b.wrl", "file:///fuzz/c.fs"};
-const char* const kRequests[] = {
-    "textDocument/hover",        "textDocument/completion",   "textDocument/definition",
-    "textDocument/documentSymbol", "textDocument/formatting", "textDocument/references",
-    "textDocument/rename",       "textDocument/signatureHelp", "textDocument/foldingRange",
-    "textDocument/codeAction",   "textDocument/semanticTokens/full", "shutdown", "no/such/method"};
+const char* const kRequests[] = {"textDocument/hover",
+                                 "textDocument/completion",
+                                 "textDocument/definition",
+                                 "textDocument/documentSymbol",
+                                 "textDocument/formatting",
+                                 "textDocument/references",
+                                 "textDocument/rename",
+                                 "textDocument/signatureHelp",
+                                 "textDocument/foldingRange",
+                                 "textDocument/codeAction",
+                                 "textDocument/semanticTokens/full",
+                                 "shutdown",
+                                 "no/such/method"};
 
 struct Session {
   lsp::Server server;
@@ -83,7 +91,8 @@ std::string utf8(const std::string& s) {
 }
 
 json position(FuzzedDataProvider& in) {
-  return {{"line", in.ConsumeIntegralInRange<uint32_t>(0, 40)}, {"character", in.ConsumeIntegralInRange<uint32_t>(0, 90)}};
+  return {{"line", in.ConsumeIntegralInRange<uint32_t>(0, 40)},
+          {"character", in.ConsumeIntegralInRange<uint32_t>(0, 90)}};
 }
 
 void step(Session& s, FuzzedDataProvider& in) {
@@ -91,25 +100,41 @@ void step(Session& s, FuzzedDataProvider& in) {
   json doc = {{"uri", uri}};
   switch (in.ConsumeIntegralInRange(0, 6)) {
     case 0:
-      s.send({{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
-              {"params", {{"textDocument", {{"uri", uri}, {"languageId", uri.back() == 'l' ? "vrml" : "fscript"},
-                                            {"version", 1}, {"text", utf8(in.ConsumeRandomLengthString(4000))}}}}}});
+      s.send({{"jsonrpc", "2.0"},
+              {"method", "textDocument/didOpen"},
+              {"params",
+               {{"textDocument",
+                 {{"uri", uri},
+                  {"languageId", uri.back() == 'l' ? "vrml" : "fscript"},
+                  {"version", 1},
+                  {"text", utf8(in.ConsumeRandomLengthString(4000))}}}}}});
       return;
-    case 1: case 2: {
+    case 1:
+    case 2: {
       json change = {{"text", utf8(in.ConsumeRandomLengthString(200))}};
       if (in.ConsumeIntegralInRange(0, 7) != 0) change["range"] = {{"start", position(in)}, {"end", position(in)}};
-      s.send({{"jsonrpc", "2.0"}, {"method", "textDocument/didChange"},
-              {"params", {{"textDocument", {{"uri", uri}, {"version", 2}}}, {"contentChanges", json::array({change})}}}});
+      s.send(
+          {{"jsonrpc", "2.0"},
+           {"method", "textDocument/didChange"},
+           {"params", {{"textDocument", {{"uri", uri}, {"version", 2}}}, {"contentChanges", json::array({change})}}}});
       return;
     }
-    case 3: case 4: {
-      json params = {{"textDocument", doc}, {"position", position(in)}, {"newName", "q"},
-                     {"context", {{"includeDeclaration", in.ConsumeBool()}}}, {"range", {{"start", position(in)}, {"end", position(in)}}}};
-      s.send({{"jsonrpc", "2.0"}, {"id", s.next_id++},
-              {"method", kRequests[in.ConsumeIntegralInRange<size_t>(0, std::size(kRequests) - 1)]}, {"params", params}});
+    case 3:
+    case 4: {
+      json params = {{"textDocument", doc},
+                     {"position", position(in)},
+                     {"newName", "q"},
+                     {"context", {{"includeDeclaration", in.ConsumeBool()}}},
+                     {"range", {{"start", position(in)}, {"end", position(in)}}}};
+      s.send({{"jsonrpc", "2.0"},
+              {"id", s.next_id++},
+              {"method", kRequests[in.ConsumeIntegralInRange<size_t>(0, std::size(kRequests) - 1)]},
+              {"params", params}});
       return;
     }
-    case 5: s.send({{"jsonrpc", "2.0"}, {"method", "textDocument/didClose"}, {"params", {{"textDocument", doc}}}}); return;
+    case 5:
+      s.send({{"jsonrpc", "2.0"}, {"method", "textDocument/didClose"}, {"params", {{"textDocument", doc}}}});
+      return;
     default: s.send_text(in.ConsumeRandomLengthString(1000)); return;
   }
 }

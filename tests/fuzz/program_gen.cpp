@@ -84,13 +84,13 @@ std::string js_literal(const std::string& fs) {
 
 // Literals that reach every corner of float arithmetic: signed zeros, denormals, the largest
 // finite values, infinities (1e39 rounds to inf) and NaN (0/0).
-const char* const kLiterals[] = {"0",     "1",        "2",      "0.5",  "3",    "0.1",   "7.25",  "1e30",  "1e-40",
-                                 "3e38",  "1e39",     "(0/0)",  "-0",   "pi",   "true",  "false", "0x10",  "1e-7",
-                                 "0.49999997", "16777217", "2.5", "100", "-1", "1e-45"};
-const char* const kBinary[] = {"+", "-", "*", "/", "%", "^", "**", "<", "<=", ">", ">=", "==", "!=", "===",
-                               "!==", "&&", "||", "&", "|"};
-const char* const kExactBinary[] = {"+", "-", "*", "/", "%", "<", "<=", ">", ">=", "==", "!=", "===",
-                                    "!==", "&&", "||", "&", "|"};
+const char* const kLiterals[] = {"0",     "1",    "2",          "0.5",      "3",   "0.1", "7.25", "1e30",
+                                 "1e-40", "3e38", "1e39",       "(0/0)",    "-0",  "pi",  "true", "false",
+                                 "0x10",  "1e-7", "0.49999997", "16777217", "2.5", "100", "-1",   "1e-45"};
+const char* const kBinary[] = {"+",  "-",  "*",  "/",   "%",   "^",  "**", "<", "<=", ">",
+                               ">=", "==", "!=", "===", "!==", "&&", "||", "&", "|"};
+const char* const kExactBinary[] = {
+    "+", "-", "*", "/", "%", "<", "<=", ">", ">=", "==", "!=", "===", "!==", "&&", "||", "&", "|"};
 const char* const kCompound[] = {"=", "+=", "-=", "*=", "/=", "%=", "^="};
 const int kExactCompound = 6;  // without ^=
 
@@ -226,7 +226,8 @@ class Generator {
     std::string in = indent(depth);
     int kind = pick(0, opt_.straight_line ? 3 : 9);
     switch (kind) {
-      case 0: case 1: {
+      case 0:
+      case 1: {
         std::string v = fresh("v");
         Code e = expr(3);
         emit({in + "var " + v + " = " + e.fs + ";\n", in + "var " + v + " = " + e.js + ";\n"});
@@ -258,7 +259,8 @@ class Generator {
         emit(in + "}\n");
         return;
       }
-      case 4: case 5: return loop(depth, loops);
+      case 4:
+      case 5: return loop(depth, loops);
       case 6: {
         std::string a = fresh("a");
         int n = pick(0, 5);
@@ -285,14 +287,15 @@ class Generator {
         Code value = expr(2);
         // The index is checked (and rounded) once, before the value, as in every backend.
         emit({in + a.name + "[" + at.fs + "] " + op + " " + value.fs + ";\n",
-              in + "{ let __k = __idx(" + a.name + ", " + at.js + "); " +
-                  js_compound(op, a.name + "[__k]", value.js) + "; }\n"});
+              in + "{ let __k = __idx(" + a.name + ", " + at.js + "); " + js_compound(op, a.name + "[__k]", value.js) +
+                  "; }\n"});
         return;
       }
       case 8: {
         Code cond = expr(2);
         Code value = expr(2);
-        emit({in + "if (" + cond.fs + ") return " + value.fs + ";\n", in + "if (" + cond.js + ") return " + value.js + ";\n"});
+        emit({in + "if (" + cond.fs + ") return " + value.fs + ";\n",
+              in + "if (" + cond.js + ") return " + value.js + ";\n"});
         return;
       }
       default:
@@ -327,8 +330,8 @@ class Generator {
     if (flag()) {
       emit(in + "for (var " + i + " = 0; " + i + " < " + std::to_string(trips) + "; " + i + "++) {\n");
     } else {
-      emit(in + "var " + i + " = 0;\n" + in + "while (" + i + " < " + std::to_string(trips) + ") {\n" + indent(depth + 1) +
-           i + " = " + i + " + 1;\n");
+      emit(in + "var " + i + " = 0;\n" + in + "while (" + i + " < " + std::to_string(trips) + ") {\n" +
+           indent(depth + 1) + i + " = " + i + " + 1;\n");
     }
     locals().push_back(i);
     block(depth, loops + 1);
@@ -365,7 +368,8 @@ class Generator {
         std::string js = op == "!" ? "((" + e.js + ") ? 0 : 1)" : "(" + op + "(" + e.js + "))";
         return {op + "(" + e.fs + ")", js};
       }
-      case 2: case 3: {
+      case 2:
+      case 3: {
         std::string op = opt_.exact_only ? kExactBinary[pick(0, std::size(kExactBinary) - 1)]
                                          : kBinary[pick(0, std::size(kBinary) - 1)];
         if (op == "^" || op == "**") transcendental_ = true;
@@ -377,9 +381,11 @@ class Generator {
         Code cond = expr(depth - 1);
         Code yes = expr(depth - 1);
         Code no = expr(depth - 1);
-        return {"(" + cond.fs + " ? " + yes.fs + " : " + no.fs + ")", "((" + cond.js + ") ? " + yes.js + " : " + no.js + ")"};
+        return {"(" + cond.fs + " ? " + yes.fs + " : " + no.fs + ")",
+                "((" + cond.js + ") ? " + yes.js + " : " + no.js + ")"};
       }
-      case 5: case 6: {
+      case 5:
+      case 6: {
         const std::vector<Builtin>& table = opt_.exact_only ? exact_builtins() : builtins();
         const Builtin& b = table[static_cast<size_t>(pick(0, static_cast<int>(table.size()) - 1))];
         transcendental_ |= b.runtime;
@@ -436,7 +442,8 @@ class Generator {
   }
   // scalar() may fall back to a literal when nothing is in scope.
   static std::string scalar_js(const std::string& s) {
-    return std::isalpha(static_cast<unsigned char>(s[0])) && s != "pi" && s != "true" && s != "false" ? s : js_literal(s);
+    return std::isalpha(static_cast<unsigned char>(s[0])) && s != "pi" && s != "true" && s != "false" ? s
+                                                                                                      : js_literal(s);
   }
 
   FuzzedDataProvider& in_;

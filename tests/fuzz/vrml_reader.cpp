@@ -32,7 +32,8 @@ void model(const vrml::Scene& scene, std::optional<double> fraction, double now)
 
 void one_input(const std::string& bytes) {
   std::string text = bytes, error;
-  if (bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f && static_cast<unsigned char>(bytes[1]) == 0x8b) {
+  if (bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f &&
+      static_cast<unsigned char>(bytes[1]) == 0x8b) {
     if (!vrml::gunzip(bytes, text, error)) {
       if (error.empty()) fuzz::finding("gunzip refused without a reason", bytes);
       return;

@@ -215,7 +215,8 @@ void check_ir_blocks(Case& c, const frontend::Script& s, const frontend::KernelS
       continue;
     }
     INFO(c.path << ":" << b.line << ": IR after '" << b.passes << "' differs (FSCRIPT_BLESS=1 rewrites it)\n--- got:\n"
-                << got << "--- want:\n" << b.want);
+                << got << "--- want:\n"
+                << b.want);
     CHECK(got == b.want);
   }
 }
@@ -245,7 +246,8 @@ std::map<std::string, int> g_ran, g_batched;
 size_t g_files_total = 0, g_files_run = 0;  // golden files, and those a filter (-c) let run
 
 // The result of one point on `k` (false with the message on a runtime error).
-bool eval_point(const backends::Kernel& k, std::vector<float> in, std::vector<float>& out, backends::RuntimeError& err) {
+bool eval_point(const backends::Kernel& k, std::vector<float> in, std::vector<float>& out,
+                backends::RuntimeError& err) {
   in.resize(k.num_inputs(), 0.0f);
   out.assign(k.num_outputs(), 0.0f);
   return k.eval(in.data(), out.data(), err);
@@ -291,7 +293,8 @@ void check_batch(const Case& c, const backends::Kernel& k, const std::vector<con
     if (eval_point(k, in, out, err)) pool.push_back({in, out, nullptr});
   }
   size_t n = pool.size() * 3 + 5;
-  std::vector<std::vector<float>> cols(k.num_inputs(), std::vector<float>(n)), outs(k.num_outputs(), std::vector<float>(n));
+  std::vector<std::vector<float>> cols(k.num_inputs(), std::vector<float>(n)),
+      outs(k.num_outputs(), std::vector<float>(n));
   std::vector<size_t> which(n);
   for (size_t i = 0; i < n; ++i) {
     which[i] = (i * 7 + i / pool.size()) % pool.size();
@@ -315,7 +318,8 @@ void check_batch(const Case& c, const backends::Kernel& k, const std::vector<con
 }
 
 // Every run of function `fn`, on every backend, before and after optimisation.
-void check_runs(const Case& c, const frontend::Script& s, const std::string& fn, const std::vector<const RunLine*>& runs) {
+void check_runs(const Case& c, const frontend::Script& s, const std::string& fn,
+                const std::vector<const RunLine*>& runs) {
   frontend::KernelSpec spec;
   std::string err;
   bool have = fn == "$" ? frontend::default_spec(s.sema, spec, err) : frontend::function_spec(s.sema, fn, spec, err);
@@ -414,8 +418,8 @@ TEST_CASE("golden cases: every backend of the build ran them all") {
     CHECK(g_batched["vm"] > 200);
   }
   for (const auto& name : built) {
-    INFO("backend " << name << ": " << g_ran[name] << " runs, " << g_batched[name] << " batches; the VM "
-                    << g_ran["vm"] << " and " << g_batched["vm"]);
+    INFO("backend " << name << ": " << g_ran[name] << " runs, " << g_batched[name] << " batches; the VM " << g_ran["vm"]
+                    << " and " << g_batched["vm"]);
     CHECK(g_ran[name] == g_ran["vm"]);
     CHECK(g_batched[name] == g_batched["vm"]);
   }

@@ -64,7 +64,8 @@ std::string first_difference(const std::string& got, const std::string& want) {
     bool more_a = static_cast<bool>(std::getline(a, la)), more_b = static_cast<bool>(std::getline(b, lb));
     if (!more_a && !more_b) return "none";
     if (!more_a || !more_b || la != lb)
-      return "line " + std::to_string(n) + ": got '" + (more_a ? la : "(end)") + "', want '" + (more_b ? lb : "(end)") + "'";
+      return "line " + std::to_string(n) + ": got '" + (more_a ? la : "(end)") + "', want '" + (more_b ? lb : "(end)") +
+          "'";
   }
 }
 
@@ -87,7 +88,7 @@ std::string simplified_tape(const ir::Module& m, const std::string& region) {
   auto module = ir::tape_module(simple);
   REQUIRE(ir::verify(*module) == "");
   return "; " + std::to_string(collapsed) + " choices decided, " + std::to_string(tape.length()) + " -> " +
-         std::to_string(simple.length()) + " steps\n" + ir::print(*module);
+      std::to_string(simple.length()) + " steps\n" + ir::print(*module);
 }
 
 void run_pass_file(const fs::path& p, bool bless) {
@@ -101,7 +102,8 @@ void run_pass_file(const fs::path& p, bool bless) {
   REQUIRE(m);
   {
     INFO("the input is not in the printer's form, " << first_difference(ir::print(*m), f.input)
-                                                   << "; it reads back as:\n" << ir::print(*m));
+                                                    << "; it reads back as:\n"
+                                                    << ir::print(*m));
     CHECK(ir::print(*m) == f.input);
   }
   REQUIRE(ir::verify(*m) == "");
@@ -132,7 +134,9 @@ void run_pass_file(const fs::path& p, bool bless) {
     return;
   }
   INFO("IR after '" << f.passes << "' differs at " << first_difference(got, f.want)
-                     << " (FSCRIPT_BLESS=1 rewrites it)\n--- got:\n" << got << "--- want:\n" << f.want);
+                    << " (FSCRIPT_BLESS=1 rewrites it)\n--- got:\n"
+                    << got << "--- want:\n"
+                    << f.want);
   CHECK(got == f.want);
 }
 

@@ -45,7 +45,7 @@ struct Result {
 
 bool is_budget(const std::string& m) {
   return m.find("budget") != std::string::npos || m.rfind("recursion too deep", 0) == 0 ||
-         m.find("sizes must be whole numbers") != std::string::npos;
+      m.find("sizes must be whole numbers") != std::string::npos;
 }
 
 std::vector<Result> evaluate(const backends::Kernel& k, const std::vector<float>& points) {
@@ -129,7 +129,8 @@ bool run_ours(Case& c, Tally& t, const Options& o) {
       if (!same_result(c.ours[p], got[p])) {
         if (t.shown++ < o.show)
           std::cerr << "oracle: " << c.name << ": " << name << " differs from the VM at " << show_point(c.points, p)
-                    << ": " << show_result(got[p]) << " vs " << show_result(c.ours[p]) << "\n" << c.fs;
+                    << ": " << show_result(got[p]) << " vs " << show_result(c.ours[p]) << "\n"
+                    << c.fs;
         ++t.differences;
       }
   }
@@ -235,8 +236,9 @@ bool compare_with_node(std::vector<Case>& cases, Tally& t, const Options& o) {
       ++t.differences;
       if (t.shown++ < o.show)
         std::cerr << "oracle: " << c.name << " differs from node at " << show_point(c.points, p) << ": ours "
-                  << show_result(ours) << ", node " << token << "\n---- FScript ----\n" << c.fs
-                  << "---- JavaScript ----\n" << c.js << "----\n";
+                  << show_result(ours) << ", node " << token << "\n---- FScript ----\n"
+                  << c.fs << "---- JavaScript ----\n"
+                  << c.js << "----\n";
     }
   }
   return true;
@@ -285,8 +287,9 @@ bool parse(int argc, char** argv, Options& o) {
     std::string a = argv[i];
     auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
     const char* v = nullptr;
-    if ((a == "--node" || a == "--prelude" || a == "--keep" || a == "--seed" || a == "--programs" ||
-         a == "--seconds" || a == "--points" || a == "--show") && !(v = value())) {
+    if ((a == "--node" || a == "--prelude" || a == "--keep" || a == "--seed" || a == "--programs" || a == "--seconds" ||
+         a == "--points" || a == "--show") &&
+        !(v = value())) {
       std::cerr << "oracle: " << a << " needs a value\n";
       return false;
     }
@@ -325,7 +328,8 @@ int main(int argc, char** argv) {
   } while (o.seconds > 0 && elapsed() < o.seconds && t.differences == 0);
   std::string backends;
   for (const std::string& b : backends::available_backends()) backends += " " + b;
-  std::printf("oracle: %d programs (seeds %" PRIu64 "..%" PRIu64 "), %d points compared with node bit for bit, %d "
+  std::printf("oracle: %d programs (seeds %" PRIu64 "..%" PRIu64
+              "), %d points compared with node bit for bit, %d "
               "left out (budgets), %d differences; backends:%s (%.0f s)\n",
               t.programs, o.seed, seed - 1, t.compared, t.budget, t.differences, backends.c_str(), elapsed());
   return t.differences == 0 ? 0 : 1;

@@ -12,10 +12,10 @@ namespace {
 const float kInf = INFINITY, kNan = NAN;
 // Zeros of both signs, infinities, NaN, ties at .5 (round), the float just below .5, the largest
 // and smallest floats (denormals too), 2^24 (where +1 is lost), and ordinary values.
-const float kSpecial[] = {0.0f,        -0.0f,       1.0f,        -1.0f,     0.5f,         -0.5f,      1.5f,
-                          -1.5f,       2.5f,        -2.5f,       0.49999997f, -0.49999997f, 8388607.5f, -8388607.5f,
-                          16777216.0f, kInf,        -kInf,       kNan,      1e-45f,       -1e-45f,    1e-40f,
-                          1.17549435e-38f, 3.40282347e38f, -3.40282347e38f, 1e30f, -1e-30f, 0.1f, 3.0f, -7.25f, 100.0f};
+const float kSpecial[] = {
+    0.0f,        -0.0f,           1.0f,           -1.0f,           0.5f,        -0.5f,   1.5f,  -1.5f, 2.5f,   -2.5f,
+    0.49999997f, -0.49999997f,    8388607.5f,     -8388607.5f,     16777216.0f, kInf,    -kInf, kNan,  1e-45f, -1e-45f,
+    1e-40f,      1.17549435e-38f, 3.40282347e38f, -3.40282347e38f, 1e30f,       -1e-30f, 0.1f,  3.0f,  -7.25f, 100.0f};
 
 float any_bits(std::mt19937_64& rng) {
   uint32_t u = static_cast<uint32_t>(rng());
@@ -26,7 +26,8 @@ float any_bits(std::mt19937_64& rng) {
 
 float coordinate(std::mt19937_64& rng) {
   switch (rng() % 4) {
-    case 0: case 1: return kSpecial[rng() % std::size(kSpecial)];
+    case 0:
+    case 1: return kSpecial[rng() % std::size(kSpecial)];
     case 2: return static_cast<float>(static_cast<int>(rng() % 81) - 40) * 0.25f;  // ties and small integers
     default: return any_bits(rng);
   }
@@ -55,13 +56,13 @@ std::vector<float> program_points(std::mt19937_64& rng, int n) {
 
 std::vector<BuiltinCheck> builtin_checks() {
   std::vector<BuiltinCheck> out;
-#define FS_BUILTIN(N, A, OP, SIG, DOC)                                                              \
-  if (ir::has_flag(ir::Op::OP, ir::CallsRuntime) && std::string(N) != "noise") {                   \
-    std::string args = (A) == 1 ? "x" : "x, y";                                                     \
-    std::string n = N;                                                                              \
-    bool single = n == "sin" || n == "cos" || n == "exp" || n == "log";                             \
-    out.push_back({n, "function FRep(x, y, z, t) { return " + n + "(" + args + "); }\n",            \
-                   "return __f(Math." + n + "(" + args + "));\n", (A), single ? 3 : 1});             \
+#define FS_BUILTIN(N, A, OP, SIG, DOC)                                                   \
+  if (ir::has_flag(ir::Op::OP, ir::CallsRuntime) && std::string(N) != "noise") {         \
+    std::string args = (A) == 1 ? "x" : "x, y";                                          \
+    std::string n = N;                                                                   \
+    bool single = n == "sin" || n == "cos" || n == "exp" || n == "log";                  \
+    out.push_back({n, "function FRep(x, y, z, t) { return " + n + "(" + args + "); }\n", \
+                   "return __f(Math." + n + "(" + args + "));\n", (A), single ? 3 : 1}); \
   }
 #include "frontend/fscript/builtins.def"
   return out;

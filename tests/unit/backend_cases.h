@@ -15,8 +15,9 @@
 namespace fscript::test {
 
 inline const float kInf = std::numeric_limits<float>::infinity(), kNan = std::numeric_limits<float>::quiet_NaN();
-inline const std::vector<float> kSpecial = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -0.5f, 1.5f, -2.5f, 0.49999997f, 3.0f,
-                                            kInf, -kInf, kNan, 1e-40f, -1e-40f, 1e30f, -7.25f, 100.0f, 0.1f, 2.0f};
+inline const std::vector<float> kSpecial = {0.0f,    -0.0f,       1.0f,   -1.0f,  0.5f,  -0.5f, 1.5f,
+                                            -2.5f,   0.49999997f, 3.0f,   kInf,   -kInf, kNan,  1e-40f,
+                                            -1e-40f, 1e30f,       -7.25f, 100.0f, 0.1f,  2.0f};
 
 // Bit-identical, or NaN on both sides (payloads are not part of the semantics).
 inline bool same(float a, float b) {
@@ -27,19 +28,44 @@ inline bool same(float a, float b) {
   return x == y;
 }
 
-inline const std::vector<const char*> kArithmeticBodies = {
-    "return x + y;", "return x - y;", "return x * y;", "return x / y;", "return -x;", "return abs(x);",
-    "return sqrt(x);", "return min(x, y);", "return max(x, y);", "return min(y, x);", "return floor(x);",
-    "return ceil(x);", "return round(x);", "return sign(x);", "return clamp(x, y, z);", "return x == y;",
-    "return x != y;", "return x < y;", "return x <= y;", "return x > y;", "return x >= y;", "return !x;",
-    "return x ? y : z;", "return (x && y) ? 1 : 2;", "return x * x + y * y - 0.25;", "return x % y;",
-    "return max(1, x * x - x * x) + min(y, 2 * y);"};
+inline const std::vector<const char*> kArithmeticBodies = {"return x + y;",
+                                                           "return x - y;",
+                                                           "return x * y;",
+                                                           "return x / y;",
+                                                           "return -x;",
+                                                           "return abs(x);",
+                                                           "return sqrt(x);",
+                                                           "return min(x, y);",
+                                                           "return max(x, y);",
+                                                           "return min(y, x);",
+                                                           "return floor(x);",
+                                                           "return ceil(x);",
+                                                           "return round(x);",
+                                                           "return sign(x);",
+                                                           "return clamp(x, y, z);",
+                                                           "return x == y;",
+                                                           "return x != y;",
+                                                           "return x < y;",
+                                                           "return x <= y;",
+                                                           "return x > y;",
+                                                           "return x >= y;",
+                                                           "return !x;",
+                                                           "return x ? y : z;",
+                                                           "return (x && y) ? 1 : 2;",
+                                                           "return x * x + y * y - 0.25;",
+                                                           "return x % y;",
+                                                           "return max(1, x * x - x * x) + min(y, 2 * y);"};
 
 inline const std::vector<const char*> kTranscendentalBodies = {
-    "return sin(x);", "return cos(x) * y;", "return tan(x);", "return exp(x);", "return log(x);",
-    "return log10(x);", "return pow(x, y);", "return atan2(x, y);", "return asin(x);", "return acos(x);",
-    "return atan(x);", "return sinh(x);", "return cosh(x);", "return tanh(x);", "return noise(x, y, z);",
-    "return sin(x) + cos(y) * sin(z);", "return hypot(x, y);", "return hypot(x * 1e30, y) - hypot(y, -x);"};
+    "return sin(x);",         "return cos(x) * y;",
+    "return tan(x);",         "return exp(x);",
+    "return log(x);",         "return log10(x);",
+    "return pow(x, y);",      "return atan2(x, y);",
+    "return asin(x);",        "return acos(x);",
+    "return atan(x);",        "return sinh(x);",
+    "return cosh(x);",        "return tanh(x);",
+    "return noise(x, y, z);", "return sin(x) + cos(y) * sin(z);",
+    "return hypot(x, y);",    "return hypot(x * 1e30, y) - hypot(y, -x);"};
 
 // Branches and loops whose lanes take different paths (the JITs run them masked).
 inline const std::vector<const char*> kControlFlowBodies = {
@@ -51,10 +77,12 @@ inline const std::vector<const char*> kControlFlowBodies = {
     "var n = 0; var v = abs(x); while (v > 1 && n < 50) { v = v / 2; n++; } return n + v;",
     "var s = 0; for (var i = 0; i < 8; i++) { if (i % 2 == 0) continue; s = s + i; } return s + x;",
     "var c = 0; for (var i = 0; i < 5; i++) for (var j = 0; j < 5; j++) { if (j > i + x) break; c += 1; } return c;",
-    "var k = floor(clamp(x, -3, 30)); var a = 0; var b = 1; while (k > 0) { var t = a + b; a = b; b = t; k -= 1; } return a;",
+    "var k = floor(clamp(x, -3, 30)); var a = 0; var b = 1; while (k > 0) { var t = a + b; a = b; b = t; k -= 1; } "
+    "return a;",
     "var s = 0; do { s = s + 1; } while (s < y && s < 20); return s;",
     "if (x) return sin(y); else if (y) return cos(x); return z;",
-    "var a = new Array(5); for (var i = 0; i < 5; i++) a[i] = i * x; return a[y == y ? min(abs(floor(y)), 4) : 0] + a.length;"};
+    "var a = new Array(5); for (var i = 0; i < 5; i++) a[i] = i * x; return a[y == y ? min(abs(floor(y)), 4) : 0] + "
+    "a.length;"};
 
 // Programs whose runtime errors depend on the inputs: every batch length must run exactly the
 // points given (the padding of a last, partial group of lanes must not raise an error of its own).
@@ -126,13 +154,19 @@ inline const char* kRecursivePrelude =
     "var calls = 0;\n"
     "function count(n) { calls = calls + 1; if (n <= 0) return calls; return count(n - 1); }\n"
     "var arr = new Array(4);\n"
-    "function fill(n) { var a = new Array(3); a[0] = n; if (n > 0) fill(n - 1); arr[0] = arr[0] + a[0]; return a[0]; }\n"
-    "function loopy(n) { var s = 0; for (var i = 0; i < n; i++) s += i; if (n <= 0) return s; return s + loopy(n - 1); }\n";
+    "function fill(n) { var a = new Array(3); a[0] = n; if (n > 0) fill(n - 1); arr[0] = arr[0] + a[0]; return a[0]; "
+    "}\n"
+    "function loopy(n) { var s = 0; for (var i = 0; i < n; i++) s += i; if (n <= 0) return s; return s + loopy(n - 1); "
+    "}\n";
 // n from the special values (NaN, inf, negatives, fractions): lanes recurse to different depths.
 inline const char* kRecursiveSetup = "var n = x == x ? min(abs(floor(x)), 25) : 2; ";
 inline const std::vector<const char*> kRecursiveBodies = {
-    "return fact(n);", "return fib(min(n, 12)) + y;", "return even(n) + odd(3);",
-    "return count(min(n, 20)) * 100 + calls;", "return fill(min(n, 6)) + arr[0];", "return loopy(min(n, 10));",
+    "return fact(n);",
+    "return fib(min(n, 12)) + y;",
+    "return even(n) + odd(3);",
+    "return count(min(n, 20)) * 100 + calls;",
+    "return fill(min(n, 6)) + arr[0];",
+    "return loopy(min(n, 10));",
     "return x > 0 ? fact(min(n, 10)) : (y > 0 ? fib(min(y, 10)) : -1);"};
 
 }  // namespace fscript::test

@@ -38,10 +38,11 @@ std::vector<Variant> variants() {
     if (name == "llvm") {
 #ifdef FS_HAVE_LLVM
       for (uint32_t w : {4u, 8u, 16u})
-        out.push_back({"llvm/" + std::to_string(w), [w](const ir::Module& m, const backends::Budgets& b, std::string& e) {
-                         const backends::LlvmModule* lm = backends::llvm_module(&e);
-                         return lm ? lm->backend(w)->compile(m, b, e) : nullptr;
-                       }});
+        out.push_back(
+            {"llvm/" + std::to_string(w), [w](const ir::Module& m, const backends::Budgets& b, std::string& e) {
+               const backends::LlvmModule* lm = backends::llvm_module(&e);
+               return lm ? lm->backend(w)->compile(m, b, e) : nullptr;
+             }});
 #endif
       continue;
     }
@@ -129,8 +130,22 @@ TEST_CASE("backends: the list covers every backend this binary has") {
 
 TEST_CASE("backends: every pure op of the op table matches ir::eval_pure on special values, on every backend") {
   const float inf = test::kInf, nan = test::kNan;
-  const std::vector<float> vals = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, inf, -inf, nan, 1e-38f, 1e-45f, 3e38f,
-                                   static_cast<float>(M_PI / 2), static_cast<float>(2 * M_PI), 100.0f, -100.0f};
+  const std::vector<float> vals = {0.0f,
+                                   -0.0f,
+                                   1.0f,
+                                   -1.0f,
+                                   0.5f,
+                                   -2.5f,
+                                   inf,
+                                   -inf,
+                                   nan,
+                                   1e-38f,
+                                   1e-45f,
+                                   3e38f,
+                                   static_cast<float>(M_PI / 2),
+                                   static_cast<float>(2 * M_PI),
+                                   100.0f,
+                                   -100.0f};
   int swept = 0;
   for (int k = 0; k < ir::kNumOps; ++k) {
     ir::Op op = static_cast<ir::Op>(k);
@@ -138,7 +153,8 @@ TEST_CASE("backends: every pure op of the op table matches ir::eval_pure on spec
     ++swept;
     int arity = ir::op_info(op).arity;
     std::string text = "fn @kernel(" + std::to_string(std::max(arity, 1)) + ") -> 1 kernel {\nb0:\n", args;
-    for (int a = 0; a < std::max(arity, 1); ++a) text += "  v" + std::to_string(a) + " = param " + std::to_string(a) + "\n";
+    for (int a = 0; a < std::max(arity, 1); ++a)
+      text += "  v" + std::to_string(a) + " = param " + std::to_string(a) + "\n";
     for (int a = 0; a < arity; ++a) args += (a ? ", v" : " v") + std::to_string(a);
     text += "  v9 = " + std::string(ir::mnemonic(op)) + args + "\n  ret v9\n}\n";
     std::string err;
@@ -160,8 +176,8 @@ TEST_CASE("backends: every pure op of the op table matches ir::eval_pure on spec
         if (!ok && runtime_call && std::isfinite(want) && std::isfinite(out[c]))
           ok = std::fabs(out[c] - want) <= 4 * std::fabs(std::nextafter(want, inf) - want);
         if (!ok && bad++ < 3)
-          FAIL_CHECK(v.name << " " << ir::mnemonic(op) << "(" << a[0] << ", " << a[1] << ", " << a[2] << ") = " << out[c]
-                            << ", want " << want);
+          FAIL_CHECK(v.name << " " << ir::mnemonic(op) << "(" << a[0] << ", " << a[1] << ", " << a[2]
+                            << ") = " << out[c] << ", want " << want);
       }
     }
   }
@@ -329,8 +345,10 @@ TEST_CASE("backends: the loop and array budgets stop a lane with the VM's messag
   for (const Variant& v : variants()) {
     INFO(v.name);
     CHECK(batch_error(*compile_on(v, *vl->module, small), {1, 2, 500, 3}) == "");
-    CHECK(batch_error(*compile_on(v, *vl->module, small), {1, 2, 5000, 3, 4}) == batch_error(*vl->kernel, {1, 2, 5000, 3, 4}));
-    CHECK(batch_error(*compile_on(v, *vi->module, small), {0, 1, 2, 7, 1}) == batch_error(*vi->kernel, {0, 1, 2, 7, 1}));
+    CHECK(batch_error(*compile_on(v, *vl->module, small), {1, 2, 5000, 3, 4}) ==
+          batch_error(*vl->kernel, {1, 2, 5000, 3, 4}));
+    CHECK(batch_error(*compile_on(v, *vi->module, small), {0, 1, 2, 7, 1}) ==
+          batch_error(*vi->kernel, {0, 1, 2, 7, 1}));
     CHECK(batch_error(*compile_on(v, *vs->module, small), {10}) == "");
     CHECK(batch_error(*compile_on(v, *vs->module, small), {10, 11}) == batch_error(*vs->kernel, {10, 11}));
     CHECK(batch_error(*compile_on(v, *vf->module, small), {0}) == batch_error(*vf->kernel, {0}));
@@ -338,8 +356,9 @@ TEST_CASE("backends: the loop and array budgets stop a lane with the VM's messag
 }
 
 TEST_CASE("backends: the call depth budget, not the caller's stack, decides how deep recursion goes") {
-  std::string text = "function down(n) { if (n <= 0) return 0; return 1 + down(n - 1); }\n"
-                     "function FRep(x, y, z, t) { return down(x); }";
+  std::string text =
+      "function down(n) { if (n <= 0) return 0; return 1 + down(n - 1); }\n"
+      "function FRep(x, y, z, t) { return down(x); }";
   backends::Budgets budgets;
   budgets.max_call_depth = 50;
   auto vm = test::build(text, "", true, budgets);
@@ -367,10 +386,12 @@ TEST_CASE("backends: the call depth budget, not the caller's stack, decides how 
 }
 
 TEST_CASE("backends: auto runs the VM first and native code after the switch, with the VM's bits") {
-  auto vm = test::build("function FRep(x, y, z, t) { return sin(x * 3) * cos(y * 2) + z * z - 0.5; }", "", true, {}, "vm");
+  auto vm =
+      test::build("function FRep(x, y, z, t) { return sin(x * 3) * cos(y * 2) + z * z - 0.5; }", "", true, {}, "vm");
   REQUIRE(vm->ok);
   std::vector<std::vector<float>> cols(4, std::vector<float>(1000));
-  for (size_t i = 0; i < 1000; ++i) cols[0][i] = 0.01f * i, cols[1][i] = 1 - 0.002f * i, cols[2][i] = 0.5f, cols[3][i] = 0;
+  for (size_t i = 0; i < 1000; ++i)
+    cols[0][i] = 0.01f * i, cols[1][i] = 1 - 0.002f * i, cols[2][i] = 0.5f, cols[3][i] = 0;
   backends::TierStats before = backends::tier_stats();
   setenv("FSCRIPT_AUTO_SWITCH_AFTER", "300", 1);
   std::string error;
@@ -396,7 +417,8 @@ TEST_CASE("backends: auto runs the VM first and native code after the switch, wi
   CHECK(cached.vm_points == after.vm_points);
   CHECK(cached.cached == after.cached + (backends::available_backends().back() == "llvm" ? 1 : 0));
   // Another module, without the forced switch: a small job stays on the VM and starts no compile.
-  auto other = test::build("function FRep(x, y, z, t) { return sin(x * 3) * cos(y * 2) + z * z - 0.25; }", "", true, {}, "vm");
+  auto other =
+      test::build("function FRep(x, y, z, t) { return sin(x * 3) * cos(y * 2) + z * z - 0.25; }", "", true, {}, "vm");
   REQUIRE(other->ok);
   auto small = backends::make_backend("auto")->compile(*other->module, {}, error);
   REQUIRE(small);
@@ -411,7 +433,8 @@ TEST_CASE("backends: auto runs the VM first and native code after the switch, wi
 // batch, on every backend, with special values in the row inputs and along the rows.
 TEST_CASE("backends: grid rows through the row split agree with the points, bit for bit") {
   const std::vector<std::string> bodies = {
-      "var k = 12.566370614359172; return sin(x * k + t) * cos(y * k) + sin(y * k) * cos(z * k) + sin(z * k) * cos(x * k);",
+      "var k = 12.566370614359172; return sin(x * k + t) * cos(y * k) + sin(y * k) * cos(z * k) + sin(z * k) * cos(x * "
+      "k);",
       "return x * exp(y) * log(z * z + 1) - sqrt(abs(y)) * atan2(z, y) + min(x, pow(y, 2));",
       "return sin(y) * cos(z) * exp(t) + tanh(y - z);",  // nothing depends on x
       // Lane arithmetic only: sse runs it on eight lanes, row values broadcast (vbroadcastss).
@@ -482,10 +505,12 @@ TEST_CASE("backends: grid rows through the row split agree with the points, bit 
 TEST_CASE("backends: a cancelled run stops loops and recursive calls with the VM's message") {
   backends::Budgets big;
   big.max_loop_iterations = 4'000'000'000;
-  const char* loop = "function FRep(x, y, z, t) {\n  var s = 0;\n  for (var i = 0; i < 1e8; i++) s += sin(x * i);\n"
-                     "  return s;\n}";
-  const char* tree = "function grow(n) { return n <= 0 ? 1 : grow(n - 1) + grow(n - 1); }\n"
-                     "function FRep(x, y, z, t) {\n  return grow(26) + x;\n}";
+  const char* loop =
+      "function FRep(x, y, z, t) {\n  var s = 0;\n  for (var i = 0; i < 1e8; i++) s += sin(x * i);\n"
+      "  return s;\n}";
+  const char* tree =
+      "function grow(n) { return n <= 0 ? 1 : grow(n - 1) + grow(n - 1); }\n"
+      "function FRep(x, y, z, t) {\n  return grow(26) + x;\n}";
   auto vl = test::build(loop, "", true), vb = test::build(loop, "", true, big), vt = test::build(tree, "", true),
        vp = test::build("function FRep(x, y, z, t) { return x * y + 1; }");
   REQUIRE((vl->ok && vb->ok && vt->ok && vp->ok));

@@ -81,11 +81,14 @@ constexpr double kH = 2.0 / kCells;
 constexpr double kStep = 0.05 * kH;
 
 CsgShape six_half_spaces() {
-  CsgShape s{"a cube as six half-spaces", [](const P3& p) {
+  CsgShape s{"a cube as six half-spaces",
+             [](const P3& p) {
                double f = 1e300;
                for (int a = 0; a < 3; ++a) f = std::min({f, 0.5 - p[a], 0.5 + p[a]});
                return f;
-             }, {}, 2};
+             },
+             {},
+             2};
   box_edges({0.5, 0.5, 0.5}, kStep, [](const P3&) { return true; }, s.edges);
   return s;
 }
@@ -93,7 +96,8 @@ CsgShape six_half_spaces() {
 CsgShape cube_minus_sphere() {  // a ball of radius 0.6 bitten out of a corner
   const P3 c{0.5, 0.5, 0.5};
   auto ball = [c](const P3& p) { return 0.6 - std::hypot(p[0] - c[0], p[1] - c[1], p[2] - c[2]); };
-  CsgShape s{"a cube minus a sphere", [ball](const P3& p) { return std::min(box_sdf(p, {0.5, 0.5, 0.5}), -ball(p)); }, {}, 2};
+  CsgShape s{
+      "a cube minus a sphere", [ball](const P3& p) { return std::min(box_sdf(p, {0.5, 0.5, 0.5}), -ball(p)); }, {}, 2};
   box_edges({0.5, 0.5, 0.5}, kStep, [ball](const P3& p) { return ball(p) < 0; }, s.edges);
   for (int axis = 0; axis < 3; ++axis)  // a quarter circle on each face through the corner
     for (double t = 0; t <= M_PI / 2; t += kStep / 0.6) {
@@ -130,9 +134,11 @@ CsgShape boxes_at_an_angle() {  // the union of two boxes, one turned 35 degrees
 
 CsgShape cut_cylinder() {  // radius 0.4 about z, cut by z = 0.5 and by a plane tilted 20 degrees
   const double tilt = std::tan(20 * M_PI / 180);
-  CsgShape s{"a cylinder cut by planes", [tilt](const P3& p) {
-               return std::min({0.4 - std::hypot(p[0], p[1]), 0.5 - p[2], p[2] - (-0.5 + tilt * p[0])});
-             }, {}, 2};
+  CsgShape s{
+      "a cylinder cut by planes",
+      [tilt](const P3& p) { return std::min({0.4 - std::hypot(p[0], p[1]), 0.5 - p[2], p[2] - (-0.5 + tilt * p[0])}); },
+      {},
+      2};
   for (double t = 0; t < 2 * M_PI; t += kStep / 0.4) {
     double x = 0.4 * std::cos(t), y = 0.4 * std::sin(t);
     s.edges.push_back({x, y, 0.5});
@@ -190,14 +196,16 @@ TEST_CASE("dual contouring keeps the sharp edges of CSG shapes turned off the gr
     mesh::Mesh dc = run(field, mesh::Mesher::DualContouring), mt = run(field, mesh::Mesher::MarchingTetrahedra);
     auto t = mesh::topology(dc);
     double worst_vertex = 0;
-    for (const auto& v : dc.positions) worst_vertex = std::max(worst_vertex, distance_to_surface(f, {v[0], v[1], v[2]}, kH));
+    for (const auto& v : dc.positions)
+      worst_vertex = std::max(worst_vertex, distance_to_surface(f, {v[0], v[1], v[2]}, kH));
     mesh::Mesh edge_points, mt_points;
     for (const P3& e : s.edges) {
       P3 w;
       turn.apply(e.data(), w.data(), false);
       edge_points.positions.push_back({float(w[0]), float(w[1]), float(w[2])});
     }
-    double worst_edge = mesh::mesh_distances(edge_points, dc).max_ab, mt_edge = mesh::mesh_distances(edge_points, mt).max_ab;
+    double worst_edge = mesh::mesh_distances(edge_points, dc).max_ab,
+           mt_edge = mesh::mesh_distances(edge_points, mt).max_ab;
     INFO(s.name << ": " << dc.triangles.size() << " triangles (marching tetrahedra " << mt.triangles.size()
                 << "), vertices within " << worst_vertex / kH << " of a cell, " << s.edges.size()
                 << " edge points within " << worst_edge / kH << " (marching tetrahedra " << mt_edge / kH << ")");
@@ -217,7 +225,8 @@ TEST_CASE("dual contouring of smooth shapes: no farther from a dense reference t
   FnField torus([](double x, double y, double z) { return 0.2 - std::hypot(std::hypot(x, y) - 0.55, z); });
   FnField gyroid_ball([](double x, double y, double z) {
     double k = 2 * M_PI * 1.5;
-    double g = std::sin(k * x) * std::cos(k * y) + std::sin(k * y) * std::cos(k * z) + std::sin(k * z) * std::cos(k * x);
+    double g =
+        std::sin(k * x) * std::cos(k * y) + std::sin(k * y) * std::cos(k * z) + std::sin(k * z) * std::cos(k * x);
     return std::min(g, 0.75 - std::sqrt(x * x + y * y + z * z));
   });
   struct Case {
@@ -228,16 +237,19 @@ TEST_CASE("dual contouring of smooth shapes: no farther from a dense reference t
   // where the ball cuts the gyroid, are where marching tetrahedra would be the looser reference).
   for (const Case& c : {Case{"sphere", &sphere}, Case{"torus", &torus}, Case{"gyroid in a ball", &gyroid_ball}})
     for (int cells : {32, 40}) {
-      if (cells != 32 && c.f != &gyroid_ball) continue;  // one resolution is enough where nothing is thinner than a cell
+      if (cells != 32 && c.f != &gyroid_ball)
+        continue;  // one resolution is enough where nothing is thinner than a cell
       double h = 2.0 / cells;
       mesh::Mesh reference = run(*c.f, mesh::Mesher::DualContouring, 4 * cells, 0);
-      mesh::Mesh uniform = run(*c.f, mesh::Mesher::DualContouring, cells, 0), dc = run(*c.f, mesh::Mesher::DualContouring, cells);
+      mesh::Mesh uniform = run(*c.f, mesh::Mesher::DualContouring, cells, 0),
+                 dc = run(*c.f, mesh::Mesher::DualContouring, cells);
       mesh::Mesh mt = run(*c.f, mesh::Mesher::MarchingTetrahedra, cells);
       auto d_uniform = mesh::mesh_distances(uniform, reference), d_dc = mesh::mesh_distances(dc, reference);
       auto d_mt = mesh::mesh_distances(mt, reference);
       auto t_dc = mesh::topology(dc), t_mt = mesh::topology(mt);
       INFO(c.name << " at " << cells << " cells: Hausdorff " << d_dc.hausdorff / h << " cells (without merging "
-                  << d_uniform.hausdorff / h << ", marching tetrahedra " << d_mt.hausdorff / h << "); from the mesh to the "
+                  << d_uniform.hausdorff / h << ", marching tetrahedra " << d_mt.hausdorff / h
+                  << "); from the mesh to the "
                   << "reference " << d_dc.max_ab / h << " (" << d_mt.max_ab / h << "); " << dc.triangles.size()
                   << " triangles (" << uniform.triangles.size() << ", " << mt.triangles.size() << ")");
       CHECK(t_dc.watertight);

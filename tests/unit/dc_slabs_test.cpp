@@ -23,7 +23,8 @@ namespace {
 struct BoundedSphere : FnField {
   double r;
   explicit BoundedSphere(double radius)
-      : FnField([radius](double x, double y, double z) { return radius - std::sqrt(x * x + y * y + z * z); }), r(radius) {}
+      : FnField([radius](double x, double y, double z) { return radius - std::sqrt(x * x + y * y + z * z); }),
+        r(radius) {}
   math::Interval bound(const mesh::Box3& b) const override {
     double near = 0, far = 0;
     for (int a = 0; a < 3; ++a) {
@@ -31,7 +32,8 @@ struct BoundedSphere : FnField {
       double n = lo > 0 ? lo : hi < 0 ? -hi : 0, f = std::max(std::abs(lo), std::abs(hi));
       near += n * n, far += f * f;
     }
-    return math::Interval{static_cast<float>(r - std::sqrt(far) - 1e-4), static_cast<float>(r - std::sqrt(near) + 1e-4)};
+    return math::Interval{static_cast<float>(r - std::sqrt(far) - 1e-4),
+                          static_cast<float>(r - std::sqrt(near) + 1e-4)};
   }
   bool can_bound() const override { return true; }
 };
@@ -89,13 +91,15 @@ TEST_CASE("dc slabs: the joined slabs are the whole job's mesh, for any number o
   BoundedSphere sphere(0.83);
   FnField gyroid([](double x, double y, double z) {
     double s = 0.7 - std::sqrt(x * x + y * y + z * z);
-    double g = std::sin(9 * x) * std::cos(9 * y) + std::sin(9 * y) * std::cos(9 * z) + std::sin(9 * z) * std::cos(9 * x);
+    double g =
+        std::sin(9 * x) * std::cos(9 * y) + std::sin(9 * y) * std::cos(9 * z) + std::sin(9 * z) * std::cos(9 * x);
     return std::min(s, 0.4 - std::abs(g));
   });
   FnField slab_z([](double, double, double z) { return 0.31 - std::abs(z); });  // flat: blocks merge across layers
   // Finer than the grid: tube faces, cut sheets and joined middles on every layer (dc_tubes.h).
   FnField fine([](double x, double y, double z) {
-    return std::sin(43 * x) * std::cos(41 * y) + std::sin(41 * y) * std::cos(47 * z) + std::sin(47 * z) * std::cos(43 * x);
+    return std::sin(43 * x) * std::cos(41 * y) + std::sin(41 * y) * std::cos(47 * z) +
+        std::sin(47 * z) * std::cos(43 * x);
   });
   struct Case {
     const char* name;

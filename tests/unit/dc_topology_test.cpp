@@ -23,7 +23,7 @@ struct RandomSigns {
   double inside_share;
   double at(int i, int j, int k) const {
     uint32_t h = seed ^ (static_cast<uint32_t>(i) * 73856093u) ^ (static_cast<uint32_t>(j) * 19349663u) ^
-                 (static_cast<uint32_t>(k) * 83492791u);
+        (static_cast<uint32_t>(k) * 83492791u);
     h ^= h >> 13, h *= 0x5bd1e995u, h ^= h >> 15;
     return (h & 0xffff) / 65535.0 - (1 - inside_share) + 1e-3;
   }
@@ -61,12 +61,15 @@ mesh::Mesh mesh_of(const mesh::Field& f, int n, mesh::Mesher kind) {
 // characteristic by 2).
 std::pair<int, int> middle_joins(const RandomSigns& s, int n) {
   int count = 0, banded = 0;
-  auto inside = [&](int i, int j, int k) { return i >= 0 && j >= 0 && k >= 0 && i < n && j < n && k < n && s.at(i, j, k) > 0; };
+  auto inside = [&](int i, int j, int k) {
+    return i >= 0 && j >= 0 && k >= 0 && i < n && j < n && k < n && s.at(i, j, k) > 0;
+  };
   for (int k = -1; k < n; ++k)
     for (int j = -1; j < n; ++j)
       for (int i = -1; i < n; ++i) {
         unsigned m = 0;
-        for (int q = 0; q < 8; ++q) m |= static_cast<unsigned>(inside(i + (q & 1), j + (q >> 1 & 1), k + (q >> 2 & 1))) << q;
+        for (int q = 0; q < 8; ++q)
+          m |= static_cast<unsigned>(inside(i + (q & 1), j + (q >> 1 & 1), k + (q >> 2 & 1))) << q;
         const mesh::CellSigns& c = mesh::signs_of(m, mesh::kuhn_flips(m));
         bool in0 = m & 1u, in7 = m >> 7 & 1u;
         if (in0 == in7 && (in0 ? c.in_group[0] != c.in_group[7] : c.out_group[0] != c.out_group[7]))
@@ -77,10 +80,13 @@ std::pair<int, int> middle_joins(const RandomSigns& s, int n) {
 
 // Cells with tube faces, and those of them whose loops are cut into three or more pieces.
 std::pair<int, int> tube_cells(const RandomSigns& s, int n) {
-  auto inside = [&](int i, int j, int k) { return i >= 0 && j >= 0 && k >= 0 && i < n && j < n && k < n && s.at(i, j, k) > 0; };
+  auto inside = [&](int i, int j, int k) {
+    return i >= 0 && j >= 0 && k >= 0 && i < n && j < n && k < n && s.at(i, j, k) > 0;
+  };
   auto mask = [&](int i, int j, int k) {
     unsigned m = 0;
-    for (int q = 0; q < 8; ++q) m |= static_cast<unsigned>(inside(i + (q & 1), j + (q >> 1 & 1), k + (q >> 2 & 1))) << q;
+    for (int q = 0; q < 8; ++q)
+      m |= static_cast<unsigned>(inside(i + (q & 1), j + (q >> 1 & 1), k + (q >> 2 & 1))) << q;
     return m;
   };
   int tubes = 0, fans = 0;
@@ -164,7 +170,9 @@ TEST_CASE("dual contouring: the gyroid cut by a ball has marching tetrahedra's b
   // surface, and at 200^3 as 41; the Euler characteristic was the negative of marching
   // tetrahedra's. With the box shifted by fractions of a cell, so the seam meets the grid anyhow.
   FnField f([](double x, double y, double z) {
-    double k = 5, g = std::sin(k * x) * std::cos(k * y) + std::sin(k * y) * std::cos(k * z) + std::sin(k * z) * std::cos(k * x);
+    double k = 5,
+           g = std::sin(k * x) * std::cos(k * y) + std::sin(k * y) * std::cos(k * z) +
+        std::sin(k * z) * std::cos(k * x);
     return std::min(g, 1 - x * x - y * y - z * z);
   });
   for (int cells : {64, 80, 88, 96, 128})
@@ -184,14 +192,18 @@ TEST_CASE("dual contouring: spheres whose seams graze the grid, and a cavity") {
     return r - std::sqrt((x - cx) * (x - cx) + y * y + z * z);
   };
   // Two balls whose union and intersection meet along a circle lying in a plane of samples.
-  FnField both([&](double x, double y, double z) { return std::max(ball(x, y, z, -0.3, 0.5), ball(x, y, z, 0.3, 0.5)); });
-  FnField lens([&](double x, double y, double z) { return std::min(ball(x, y, z, -0.3, 0.5), ball(x, y, z, 0.3, 0.5)); });
+  FnField both(
+      [&](double x, double y, double z) { return std::max(ball(x, y, z, -0.3, 0.5), ball(x, y, z, 0.3, 0.5)); });
+  FnField lens(
+      [&](double x, double y, double z) { return std::min(ball(x, y, z, -0.3, 0.5), ball(x, y, z, 0.3, 0.5)); });
   // A ball minus a smaller ball inside it: two components, the inner one inside out by design.
-  FnField hollow([&](double x, double y, double z) { return std::min(ball(x, y, z, 0, 0.8), -ball(x, y, z, 0.05, 0.4)); });
+  FnField hollow(
+      [&](double x, double y, double z) { return std::min(ball(x, y, z, 0, 0.8), -ball(x, y, z, 0.05, 0.4)); });
   const double centre[3] = {0, 0, 0};
   for (int cells : {20, 32, 40}) {
     INFO(cells << " cells");
-    Compared u = compare(both, cells, centre, 1), i = compare(lens, cells, centre, 1), c = compare(hollow, cells, centre, 1);
+    Compared u = compare(both, cells, centre, 1), i = compare(lens, cells, centre, 1),
+             c = compare(hollow, cells, centre, 1);
     check_same_topology(u);
     check_same_topology(i);
     check_same_topology(c);

@@ -39,7 +39,8 @@ TEST_CASE("dual contouring: a sphere is closed, oriented, of genus 0, its vertic
   mesh::DualContourStats st;
   mesh::Mesh m = closed_dc(job(sphere, 32), st);
   double h = 2.0 / 32, worst = 0;
-  for (const auto& p : m.positions) worst = std::max(worst, std::abs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 0.7));
+  for (const auto& p : m.positions)
+    worst = std::max(worst, std::abs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 0.7));
   CHECK(worst < 0.1 * h);
   // Faces leave the solid.
   size_t outward = 0;
@@ -114,7 +115,8 @@ TEST_CASE("dual contouring: a cube turned off the axes keeps its corners sharp")
       const auto &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
       double n[3] = {(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
                      (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
-                     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])}, q[3];
+                     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])},
+             q[3];
       double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       if (!(len > 0)) continue;
       for (double& x : n) x /= len;
@@ -127,7 +129,8 @@ TEST_CASE("dual contouring: a cube turned off the axes keeps its corners sharp")
       face[axis] = q[axis] > 0 ? 1 : -1;
       turn.apply(face, w, false);
       ++flat;
-      for (uint32_t v : t) cos_worst = std::min(cos_worst, w[0] * m.normals[v][0] + w[1] * m.normals[v][1] + w[2] * m.normals[v][2]);
+      for (uint32_t v : t)
+        cos_worst = std::min(cos_worst, w[0] * m.normals[v][0] + w[1] * m.normals[v][1] + w[2] * m.normals[v][2]);
     }
     INFO(flat << " triangles in the faces; worst corner normal " << std::acos(std::min(1.0, cos_worst)) * 180 / M_PI
               << " degrees off its face");
@@ -156,7 +159,8 @@ TEST_CASE("dual contouring: a gyroid too fine for the grid still gives a closed 
     for (int cells : {10, 13, 16, 19, 22, 31}) {
       double k = 3.14159265358979 * periods;
       FnField gyroid([k](double x, double y, double z) {
-        return std::sin(k * x) * std::cos(k * y) + std::sin(k * y) * std::cos(k * z) + std::sin(k * z) * std::cos(k * x);
+        return std::sin(k * x) * std::cos(k * y) + std::sin(k * y) * std::cos(k * z) +
+            std::sin(k * z) * std::cos(k * x);
       });
       mesh::Mesh m;
       mesh::DualContourStats st;
@@ -176,7 +180,8 @@ TEST_CASE("dual contouring: merged cells never pinch two sheets into one vertex"
   // two loops and gave their polygons one vertex: two fans at one vertex (the gyroid ∩ sphere).
   const double k = 4 * 3.14159265358979;
   FnField shape([k](double x, double y, double z) {
-    double g = std::sin(k * x) * std::cos(k * y) + std::sin(k * y) * std::cos(k * z) + std::sin(k * z) * std::cos(k * x);
+    double g =
+        std::sin(k * x) * std::cos(k * y) + std::sin(k * y) * std::cos(k * z) + std::sin(k * z) * std::cos(k * x);
     return std::min(g, 0.81 - x * x - y * y - z * z);
   });
   size_t pinched = 0;
@@ -309,7 +314,8 @@ TEST_CASE("dual contouring: every vertex on the surface of tilted cones cut by a
             double p[3], t, r;
             local(x, y, z, p, t, r);
             bool side = (t * slope - r) / norm < height - t;
-            for (int a = 0; a < 3; ++a) g[a] = side ? (slope * ax[a] - (r > 0 ? (p[a] - t * ax[a]) / r : 0)) / norm : -ax[a];
+            for (int a = 0; a < 3; ++a)
+              g[a] = side ? (slope * ax[a] - (r > 0 ? (p[a] - t * ax[a]) / r : 0)) / norm : -ax[a];
           });
       mesh::DualContourStats st;
       mesh::Mesh m;
@@ -323,8 +329,9 @@ TEST_CASE("dual contouring: every vertex on the surface of tilted cones cut by a
       for (const auto& q : m.positions) {  // in the plane of the axis: the side and the cap as segments
         double p[3], t, r;
         local(q[0], q[1], q[2], p, t, r);
-        worst = std::max(worst, std::min(segment_distance(t, r, 0, 0, height, height * slope),
-                                         segment_distance(t, r, height, 0, height, height * slope)));
+        worst = std::max(worst,
+                         std::min(segment_distance(t, r, 0, 0, height, height * slope),
+                                  segment_distance(t, r, height, 0, height, height * slope)));
       }
       INFO("axis " << angle << " rad off z, offset " << off << ": worst vertex " << worst / h << " of a cell");
       CHECK(worst < 0.1 * h);
@@ -343,7 +350,8 @@ TEST_CASE("dual contouring: every vertex on the surface of turned boxes with a c
       double c = std::cos(angle * 0.7), s = std::sin(angle * 0.7), m3[3][3];
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) m3[i][j] = (i == j ? c : 0) + (1 - c) * k[i] * k[j];
-      m3[0][1] -= s * k[2], m3[0][2] += s * k[1], m3[1][0] += s * k[2], m3[1][2] -= s * k[0], m3[2][0] -= s * k[1], m3[2][1] += s * k[0];
+      m3[0][1] -= s * k[2], m3[0][2] += s * k[1], m3[1][0] += s * k[2], m3[1][2] -= s * k[0], m3[2][0] -= s * k[1],
+          m3[2][1] += s * k[0];
       auto local = [&](double x, double y, double z, double q[3]) {
         double p[3] = {x - off, y + off * 0.4, z - off * 0.8};
         for (int i = 0; i < 3; ++i) q[i] = m3[0][i] * p[0] + m3[1][i] * p[1] + m3[2][i] * p[2];
@@ -352,7 +360,8 @@ TEST_CASE("dual contouring: every vertex on the surface of turned boxes with a c
           [&](double x, double y, double z) {
             double q[3];
             local(x, y, z, q);
-            return std::min(0.5 - std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2])}), std::hypot(q[0], q[1]) - rho);
+            return std::min(0.5 - std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2])}),
+                            std::hypot(q[0], q[1]) - rho);
           },
           [&](double x, double y, double z, double g[3]) {  // the gradient of the side min takes
             double q[3], d[3] = {0, 0, 0};
@@ -384,7 +393,8 @@ TEST_CASE("dual contouring: every vertex on the surface of turned boxes with a c
         for (int a = 0; a < 3; ++a)
           for (int sign = -1; sign <= 1; sign += 2) {  // the box's faces; the bore's discs out of the z faces
             int u = (a + 1) % 3, w = (a + 2) % 3;
-            double pu = std::clamp(q[u], -0.5, 0.5), pw = std::clamp(q[w], -0.5, 0.5), in_plane = std::hypot(q[u] - pu, q[w] - pw);
+            double pu = std::clamp(q[u], -0.5, 0.5), pw = std::clamp(q[w], -0.5, 0.5),
+                   in_plane = std::hypot(q[u] - pu, q[w] - pw);
             if (a == 2 && std::hypot(pu, pw) < rho) in_plane += rho - std::hypot(pu, pw);
             d = std::min(d, std::hypot(q[a] - sign * 0.5, in_plane));
           }

@@ -12,7 +12,8 @@ namespace fscript::test {
 struct FnField : mesh::Field {
   std::function<double(double, double, double)> f;
   explicit FnField(std::function<double(double, double, double)> fn) : f(std::move(fn)) {}
-  bool eval(const float* x, const float* y, const float* z, size_t n, float* out, backends::RuntimeError&) const override {
+  bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
+            backends::RuntimeError&) const override {
     for (size_t i = 0; i < n; ++i) out[i] = static_cast<float>(f(x[i], y[i], z[i]));
     return true;
   }
@@ -46,7 +47,8 @@ inline mesh::ImplicitJob job(const mesh::Field& f, int cells, double half = 1.0)
 }
 
 // The job meshed by `kind` at `tolerance`, which must succeed.
-inline mesh::Mesh meshed(mesh::ImplicitJob j, mesh::Mesher kind, double tolerance = mesh::MesherOptions::kDefaultTolerance) {
+inline mesh::Mesh meshed(mesh::ImplicitJob j, mesh::Mesher kind,
+                         double tolerance = mesh::MesherOptions::kDefaultTolerance) {
   j.mesher.kind = kind;
   j.mesher.tolerance = tolerance;
   mesh::Mesh m;
@@ -62,7 +64,8 @@ struct Turn {
     double k[3] = {1 / std::sqrt(14.0), 2 / std::sqrt(14.0), 3 / std::sqrt(14.0)}, c = std::cos(0.6), s = std::sin(0.6);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) m[i][j] = (i == j ? c : 0) + (1 - c) * k[i] * k[j];
-    m[0][1] -= s * k[2], m[0][2] += s * k[1], m[1][0] += s * k[2], m[1][2] -= s * k[0], m[2][0] -= s * k[1], m[2][1] += s * k[0];
+    m[0][1] -= s * k[2], m[0][2] += s * k[1], m[1][0] += s * k[2], m[1][2] -= s * k[0], m[2][0] -= s * k[1],
+        m[2][1] += s * k[0];
   }
   void apply(const double p[3], double out[3], bool inverse) const {
     for (int i = 0; i < 3; ++i) out[i] = 0;

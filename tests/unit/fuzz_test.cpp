@@ -20,10 +20,12 @@ using namespace fscript;
 
 namespace {
 
-const char* kPieces[] = {"(", ")", "{", "}", "[", "]", ";", ",", "=", "+=", "^", "-", "!", "?", ":", "++", "var ",
-                         "let ", "const ", "function ", "return ", "if ", "else ", "for ", "while ", "do ", "break",
-                         "continue", "new Array(", ".length", "x", "a", "f(", "0", "1e9", "nan", "\n", "/*", "*/",
-                         "//", "\"", "#", "Math.", "pi", "&&", "||", "|", "&"};
+const char* kPieces[] = {"(",      ")",    "{",      "}",         "[",          "]",       ";",     ",",
+                         "=",      "+=",   "^",      "-",         "!",          "?",       ":",     "++",
+                         "var ",   "let ", "const ", "function ", "return ",    "if ",     "else ", "for ",
+                         "while ", "do ",  "break",  "continue",  "new Array(", ".length", "x",     "a",
+                         "f(",     "0",    "1e9",    "nan",       "\n",         "/*",      "*/",    "//",
+                         "\"",     "#",    "Math.",  "pi",        "&&",         "||",      "|",     "&"};
 
 std::string mutate(std::string s, std::mt19937& rng) {
   int edits = 1 + static_cast<int>(rng() % 4);

@@ -73,13 +73,23 @@ TEST_CASE("gradient: the gyroid and the sphere against their derivatives by hand
 
 TEST_CASE("gradient: every op with a rule against central differences") {
   // Each body is smooth near the test points; h is large enough for float's rounding.
-  const char* bodies[] = {
-      "x*y - z/(y+3) + 2",     "(x % 0.7) * y",         "-x + abs(y - 0.05) * z",  "min(x, y) + max(y*z, x)",
-      "sqrt(x*x + 2) * exp(y)", "pow(x + 2, 1.5) + pow(2, y) + pow(y + 3, z)", "log(x + 3) + log10(y + 4) * z",
-      "sin(x) * cos(y) + tan(z)", "asin(x * 0.5) + acos(y * 0.5) + atan(z)", "atan2(y + 0.1, x + 2) + hypot(x, z + 1)",
-      "sinh(x) + cosh(y) * tanh(z)", "clamp(x * 3, -0.5, 0.5) + clamp(y, z - 9, z + 9)",
-      "(x > y ? x * z : y * y) + floor(z) + round(x) + sign(y) + ceil(y)", "x < 0.5 && y > -1 ? exp(z) : 0",
-      "Math.pow(x + 2, y) * t", "noise(1, 2, 3) * x", "fabs(x) * mod(y + 2, 0.7)"};
+  const char* bodies[] = {"x*y - z/(y+3) + 2",
+                          "(x % 0.7) * y",
+                          "-x + abs(y - 0.05) * z",
+                          "min(x, y) + max(y*z, x)",
+                          "sqrt(x*x + 2) * exp(y)",
+                          "pow(x + 2, 1.5) + pow(2, y) + pow(y + 3, z)",
+                          "log(x + 3) + log10(y + 4) * z",
+                          "sin(x) * cos(y) + tan(z)",
+                          "asin(x * 0.5) + acos(y * 0.5) + atan(z)",
+                          "atan2(y + 0.1, x + 2) + hypot(x, z + 1)",
+                          "sinh(x) + cosh(y) * tanh(z)",
+                          "clamp(x * 3, -0.5, 0.5) + clamp(y, z - 9, z + 9)",
+                          "(x > y ? x * z : y * y) + floor(z) + round(x) + sign(y) + ceil(y)",
+                          "x < 0.5 && y > -1 ? exp(z) : 0",
+                          "Math.pow(x + 2, y) * t",
+                          "noise(1, 2, 3) * x",
+                          "fabs(x) * mod(y + 2, 0.7)"};
   // Every built-in of the language's table is in some body (a new one cannot be left out).
   for (const char* name : {
 #define FS_BUILTIN(N, A, OP, SIG, DOC) N,
@@ -104,8 +114,9 @@ TEST_CASE("gradient: every op with a rule against central differences") {
         float q[3] = {p[0], p[1], p[2]}, r[3] = {p[0], p[1], p[2]};
         q[a] = static_cast<float>(p[a] + h), r[a] = static_cast<float>(p[a] - h);
         double fd = (double(test::eval1(*fk, {q[0], q[1], q[2], 1.5f})) - test::eval1(*fk, {r[0], r[1], r[2], 1.5f})) /
-                    (double(q[a]) - r[a]);
-        INFO(body << " at " << p[0] << "," << p[1] << "," << p[2] << " d/d" << "xyz"[a] << " " << g.g[a] << " vs " << fd);
+            (double(q[a]) - r[a]);
+        INFO(body << " at " << p[0] << "," << p[1] << "," << p[2] << " d/d" << "xyz"[a] << " " << g.g[a] << " vs "
+                  << fd);
         CHECK(close(g.g[a], fd, 2e-3));
       }
     }
@@ -241,5 +252,6 @@ TEST_CASE("gradient: a big kernel's gradient is not compiled by LLVM, which woul
   CHECK(driver::gradient_kernel(*b->module, "llvm", {}) == nullptr);
   auto small = test::build("function FRep(x,y,z,t){ return sin(x) * y; }");
   REQUIRE(small->ok);
-  for (const std::string& be : backends::available_backends()) CHECK(driver::gradient_kernel(*small->module, be, {}) != nullptr);
+  for (const std::string& be : backends::available_backends())
+    CHECK(driver::gradient_kernel(*small->module, be, {}) != nullptr);
 }

@@ -35,7 +35,8 @@ inline std::unique_ptr<Built> build(const std::string& text, const std::string& 
   o.build.verify_each = true;
   driver::Compiled c;
   b->ok = driver::compile(std::make_unique<frontend::SourceFile>("test.fs", text), driver::named_entry(entry), o,
-                          b->diag, c).ok();
+                          b->diag, c)
+              .ok();
   b->script = std::move(c.script);
   b->module = std::move(c.module);
   b->kernel = std::move(c.kernel);

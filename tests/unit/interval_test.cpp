@@ -28,9 +28,10 @@ namespace {
 
 const float kInf = test::kInf;
 // Ends of boxes: specials, small and large magnitudes, and the extrema of the periodic functions.
-const std::vector<float> kEnds = {-kInf, -1e30f, -1e6f, -100.0f, -7.25f, -3.14159274f, -2.0f, -1.5707964f, -1.0f,
-                                  -0.5f, -1e-30f, 0.0f, 1e-30f, 0.25f, 0.5f, 1.0f, 1.5707964f, 2.0f, 3.14159274f,
-                                  4.7123890f, 6.2831855f, 10.0f, 88.0f, 1e6f, 1e30f, kInf};
+const std::vector<float> kEnds = {-kInf,       -1e30f, -1e6f,      -100.0f, -7.25f,      -3.14159274f, -2.0f,
+                                  -1.5707964f, -1.0f,  -0.5f,      -1e-30f, 0.0f,        1e-30f,       0.25f,
+                                  0.5f,        1.0f,   1.5707964f, 2.0f,    3.14159274f, 4.7123890f,   6.2831855f,
+                                  10.0f,       88.0f,  1e6f,       1e30f,   kInf};
 
 struct Box {
   Interval iv;
@@ -131,7 +132,8 @@ std::vector<std::vector<float>> run_all(const std::vector<std::unique_ptr<backen
 
 // Output 0 of `fn` over each case's boxes by the batched evaluator (16 cases a pass), on every ISA
 // variant this CPU runs: [variant][case].
-std::vector<std::vector<Interval>> batch_bounds(const ir::Function& fn, const std::vector<std::vector<Interval>>& cases) {
+std::vector<std::vector<Interval>> batch_bounds(const ir::Function& fn,
+                                                const std::vector<std::vector<Interval>>& cases) {
   ir::IntervalTape tape(fn);
   using Run = decltype(&ir::isa_base::eval_lanes);
   std::vector<Run> variants = {ir::isa_base::eval_lanes};
@@ -200,7 +202,9 @@ TEST_CASE("intervals: every value op of the table holds every point result, on e
                                     << " at (" << args[0] << ", " << args[1] << ", " << args[2] << ") = " << got
                                     << " outside [" << w.lo << ", " << w.hi << "]" << (w.nan ? " or NaN" : "")
                                     << "; boxes [" << bx[0].iv.lo << ", " << bx[0].iv.hi << "]"
-                                    << (bx.size() > 1 ? " [" + std::to_string(bx[1].iv.lo) + ", " + std::to_string(bx[1].iv.hi) + "]" : ""));
+                                    << (bx.size() > 1 ? " [" + std::to_string(bx[1].iv.lo) + ", " +
+                                                std::to_string(bx[1].iv.hi) + "]"
+                                                      : ""));
       }
     }
   }
@@ -236,7 +240,8 @@ TEST_CASE("intervals: benchmarks and examples bound every point of random boxes,
   std::string shared = std::getenv("FS_SHARED_DIR") ? std::getenv("FS_SHARED_DIR") : "";
   std::string probe;
   if (shared.empty() || !support::read_file(shared + "/bench/gyroid.fs", probe, probe))
-    test::skip(test::SkipKind::Missing, "the shared folder's benchmarks (FS_SHARED_DIR) are not there; the bundled ones ran");
+    test::skip(test::SkipKind::Missing,
+               "the shared folder's benchmarks (FS_SHARED_DIR) are not there; the bundled ones ran");
   else
     for (const char* f : {"/bench/gyroid.fs", "/bench/csg8.fs", "/data/prospero.fs"}) files.push_back(shared + f);
   int evaluable = 0;
@@ -278,7 +283,8 @@ TEST_CASE("intervals: benchmarks and examples bound every point of random boxes,
       for (size_t r = 0; r < results.size(); ++r) {
         const Interval& w = want[batch.owner[i]][r % outputs];
         if (!w.contains(results[r][i]) && bad++ < 5)
-          FAIL_CHECK(f << ": output " << r % outputs << " = " << results[r][i] << " outside [" << w.lo << ", " << w.hi << "]");
+          FAIL_CHECK(f << ": output " << r % outputs << " = " << results[r][i] << " outside [" << w.lo << ", " << w.hi
+                       << "]");
       }
   }
   CHECK(evaluable >= 3);
@@ -303,7 +309,8 @@ std::string random_expr(std::mt19937& rng, int depth) {
   auto call = [&](int arity) { return calls[arity][rng() % calls[arity].size()]; };
   switch (rng() % 6) {
     case 0: return call(1) + "(" + a + ")";
-    case 1: case 2: return "(" + a + " " + binary[rng() % 13] + " " + b + ")";
+    case 1:
+    case 2: return "(" + a + " " + binary[rng() % 13] + " " + b + ")";
     case 3: return call(2) + "(" + a + ", " + b + ")";
     case 4: return "(" + a + " < " + b + " ? " + random_expr(rng, depth - 1) + " : " + b + ")";
     default: {
@@ -408,7 +415,8 @@ std::string same_bits_on_tape(const ir::Module& full, const ir::IntervalTape& ta
   vm::eval_tape_points(tape, in.data(), in.size(), n, got.data());
   for (size_t i = 0; i < n; ++i)
     if (!test::same(want[i], got[i]))
-      return "eval_tape_points at point " + std::to_string(i) + ": " + std::to_string(got[i]) + " vs " + std::to_string(want[i]);
+      return "eval_tape_points at point " + std::to_string(i) + ": " + std::to_string(got[i]) + " vs " +
+          std::to_string(want[i]);
   auto b = backends::make_backend("vm")->compile(full, {}, err);
   return same_outputs(std::move(b), vm::compile_tape(tape, {}), kernel_of(full).num_results, boxes, rng);
 }
@@ -425,7 +433,7 @@ std::string same_outputs(std::unique_ptr<backends::Kernel> a, std::unique_ptr<ba
     for (size_t i = 0; i < batch.owner.size(); ++i)
       if (!test::same(r[o][i], r[outs + o][i]))
         return "output " + std::to_string(o) + " at point " + std::to_string(i) + ": " + std::to_string(r[o][i]) +
-               " vs " + std::to_string(r[outs + o][i]);
+            " vs " + std::to_string(r[outs + o][i]);
   return "";
 }
 
@@ -519,8 +527,8 @@ TEST_CASE("quadtree rendering: the same pixels as the dense path, for random pro
     const char* be = k % 3 == 2 ? "sse" : "vm";
     auto b = test::build(texts[k], "", true, {}, be);
     if (!b->ok) continue;
-    render::PlaneGrid g{static_cast<uint32_t>(97 + rng() % 300), static_cast<uint32_t>(61 + rng() % 300), -1.3f, 1.1f,
-                        -0.9f, 1.4f};
+    render::PlaneGrid g{
+        static_cast<uint32_t>(97 + rng() % 300), static_cast<uint32_t>(61 + rng() % 300), -1.3f, 1.1f, -0.9f, 1.4f};
     render::InsideOptions o;
     o.threads = 1 + static_cast<unsigned>(k % 3);
     std::vector<uint8_t> a, d;

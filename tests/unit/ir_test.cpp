@@ -45,8 +45,9 @@ TEST_CASE("ir: print -> read -> print is exact") {
 }
 
 TEST_CASE("ir: special constants round-trip") {
-  std::string text = "fn @k(0) -> 4 kernel {\nb0:\n  v0 = const nan\n  v1 = const inf\n  v2 = const -inf\n"
-                     "  v3 = const 1.17549435e-38\n  ret v0, v1, v2, v3\n}\n";
+  std::string text =
+      "fn @k(0) -> 4 kernel {\nb0:\n  v0 = const nan\n  v1 = const inf\n  v2 = const -inf\n"
+      "  v3 = const 1.17549435e-38\n  ret v0, v1, v2, v3\n}\n";
   std::string err;
   auto m = ir::read(text, err);
   REQUIRE(m);
@@ -82,13 +83,15 @@ TEST_CASE("ir: reader refuses ids and counts past its limit, and malformed ones"
 TEST_CASE("ir: the verifier catches broken SSA") {
   std::string err;
   // v1 is used in b1 but defined in b2, which does not dominate b1.
-  auto m = ir::read("fn @f(1) -> 1 {\nb0:\n  v0 = param 0\n  cbr v0, b1, b2\nb1:\n  ret v1\nb2:\n  v1 = fneg v0\n  ret v1\n}\n", err);
+  auto m = ir::read(
+      "fn @f(1) -> 1 {\nb0:\n  v0 = param 0\n  cbr v0, b1, b2\nb1:\n  ret v1\nb2:\n  v1 = fneg v0\n  ret v1\n}\n", err);
   REQUIRE(m);
   CHECK(ir::verify(*m).find("does not dominate") != std::string::npos);
   auto m2 = ir::read("fn @f(1) -> 1 {\nb0:\n  v0 = param 0\n  v1 = fadd v0\n  ret v1\n}\n", err);
   REQUIRE(m2);
   CHECK(ir::verify(*m2).find("wrong operand count") != std::string::npos);
-  auto m3 = ir::read("fn @f(1) -> 1 {\nb0:\n  v0 = param 0\n  br b1\nb1:\n  v1 = phi [v0, b0], [v0, b1]\n  ret v1\n}\n", err);
+  auto m3 =
+      ir::read("fn @f(1) -> 1 {\nb0:\n  v0 = param 0\n  br b1\nb1:\n  v1 = phi [v0, b0], [v0, b1]\n  ret v1\n}\n", err);
   REQUIRE(m3);
   CHECK(ir::verify(*m3).find("does not match the predecessors") != std::string::npos);
 }
@@ -105,7 +108,8 @@ TEST_CASE("ir: lowering output verifies for a program with every construct") {
       s = x > 0 && y > 0 || z > 0 ? s + k : -s;
       s ^= 1; s %= 7; s /= 1; ++s; s--;
       return s + g + h(2) + c + arr.length;
-    })", "", false);
+    })",
+                       "", false);
   REQUIRE(b->ok);
   CHECK(ir::verify(*b->module) == "");
 }

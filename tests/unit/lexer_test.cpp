@@ -15,9 +15,9 @@ TEST_CASE("lexer: punctuation takes the longest match") {
   auto t = toks("a === b !== c ** d ^= e && f || g ++ -- <= >=", d);
   std::vector<Tok> kinds;
   for (auto& k : t) kinds.push_back(k.kind);
-  std::vector<Tok> want = {Tok::Ident, Tok::EqEqEq, Tok::Ident, Tok::NotEqEq, Tok::Ident, Tok::StarStar, Tok::Ident,
-                           Tok::CaretAssign, Tok::Ident, Tok::AndAnd, Tok::Ident, Tok::OrOr, Tok::Ident,
-                           Tok::PlusPlus, Tok::MinusMinus, Tok::LessEq, Tok::GreaterEq, Tok::Eof};
+  std::vector<Tok> want = {Tok::Ident, Tok::EqEqEq,      Tok::Ident,      Tok::NotEqEq, Tok::Ident,     Tok::StarStar,
+                           Tok::Ident, Tok::CaretAssign, Tok::Ident,      Tok::AndAnd,  Tok::Ident,     Tok::OrOr,
+                           Tok::Ident, Tok::PlusPlus,    Tok::MinusMinus, Tok::LessEq,  Tok::GreaterEq, Tok::Eof};
   CHECK(kinds == want);
   CHECK(!d.has_errors());
 }

@@ -34,7 +34,8 @@ const backends::LlvmModule& llvm() {
 
 const uint32_t kWidths[] = {4, 8, 16};
 
-std::unique_ptr<backends::Kernel> llvm_kernel(const ir::Module& m, uint32_t width, const backends::Budgets& budgets = {}) {
+std::unique_ptr<backends::Kernel> llvm_kernel(const ir::Module& m, uint32_t width,
+                                              const backends::Budgets& budgets = {}) {
   std::string error;
   auto k = llvm().backend(width)->compile(m, budgets, error);
   INFO(error);
@@ -49,7 +50,8 @@ std::unique_ptr<backends::Kernel> llvm_kernel(const ir::Module& m, uint32_t widt
 // gets the middle tier at once, and never loads LLVM.
 TEST_CASE("llvm: auto compiles the middle tier for a job that outlasts it, without loading LLVM") {
   REQUIRE_FALSE(backends::llvm_module_loaded());
-  auto b = test::build("function FRep(x,y,z,t){ var k = 12.5; return sin(x*k)*cos(y*k) + sin(y*k)*cos(z*k) + sin(z*k)*cos(x*k); }");
+  auto b = test::build(
+      "function FRep(x,y,z,t){ var k = 12.5; return sin(x*k)*cos(y*k) + sin(y*k)*cos(z*k) + sin(z*k)*cos(x*k); }");
   REQUIRE(b->ok);
   uint64_t before = backends::tier_stats().compiles;
   {
@@ -76,7 +78,8 @@ TEST_CASE("llvm: auto's estimate of the first native code counts the module's lo
 // first call's row length). Unannounced, it never reached its compile estimate and ran the whole
 // job on the VM (the gyroid mesh's 616,748 prologue rows).
 TEST_CASE("llvm: auto announces a row split's prologue its rows") {
-  auto b = test::build("function FRep(x,y,z,t){ var k = 12.5; return sin(x*k)*cos(y*k) + sin(y*k)*cos(z*k) + sin(z*k)*cos(x*k); }");
+  auto b = test::build(
+      "function FRep(x,y,z,t){ var k = 12.5; return sin(x*k)*cos(y*k) + sin(y*k)*cos(z*k) + sin(z*k)*cos(x*k); }");
   REQUIRE(b->ok);
   const size_t count = 16, rows = 64;
   std::vector<float> xs(count), y(rows), z(rows), t(rows, 0.0f), out(count * rows);
@@ -85,7 +88,8 @@ TEST_CASE("llvm: auto announces a row split's prologue its rows") {
   uint64_t before = backends::tier_stats().compiles;
   {
     std::string error;
-    auto k = backends::with_row_split(backends::make_backend("auto")->compile(*b->module, {}, error), "auto", *b->module, {});
+    auto k = backends::with_row_split(backends::make_backend("auto")->compile(*b->module, {}, error), "auto",
+                                      *b->module, {});
     REQUIRE(k);
     // 13 M rows of 16: the prologue's VM time outlasts its first native code's compile, with or
     // without the LLVM module loaded (then that is LLVM's, about 10 ms).
@@ -169,10 +173,12 @@ TEST_CASE("llvm: the one-point entry agrees with the VM on recursion, arrays and
 // compile (the full one took 45 s for a generated program like this), and the same answers.
 TEST_CASE("llvm: a kernel of thousands of blocks is compiled quickly and agrees with the VM") {
   std::string text =
-      "function h(p) { var s = 0; for (var i = 0; i < 3; i++) { if (p > i) s += sin(p * i); else s -= i; } return s; }\n"
+      "function h(p) { var s = 0; for (var i = 0; i < 3; i++) { if (p > i) s += sin(p * i); else s -= i; } return s; "
+      "}\n"
       "function k(p) { return h(p) + h(p + 1) * 0.5 + h(p * 2) - h(p - 1); }\n"
       "function FRep(x, y, z, t) {\n  var r = 0;\n";
-  for (int i = 0; i < 48; ++i) text += "  r = r * 0.75 + k(x * " + std::to_string(i % 7) + " + y - z * " + std::to_string(i % 5) + ");\n";
+  for (int i = 0; i < 48; ++i)
+    text += "  r = r * 0.75 + k(x * " + std::to_string(i % 7) + " + y - z * " + std::to_string(i % 5) + ");\n";
   text += "  return r;\n}";
   auto vm = test::build(text);
   REQUIRE(vm->ok);

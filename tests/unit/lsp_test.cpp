@@ -11,8 +11,9 @@
 using namespace fscript::lsp;
 
 TEST_CASE("lsp transport: Content-Length framing, bad headers, truncation") {
-  std::istringstream in("Content-Length: 2\r\n\r\n{}Content-Type: x\r\nContent-Length: 3\r\n\r\n[1]"
-                        "Content-Length: x\r\n\r\nno length\r\n\r\nContent-Length: 10\r\n\r\nshort");
+  std::istringstream in(
+      "Content-Length: 2\r\n\r\n{}Content-Type: x\r\nContent-Length: 3\r\n\r\n[1]"
+      "Content-Length: x\r\n\r\nno length\r\n\r\nContent-Length: 10\r\n\r\nshort");
   std::string body, error;
   CHECK(read_message(in, body, error) == ReadStatus::Message);
   CHECK(body == "{}");
@@ -28,7 +29,9 @@ TEST_CASE("lsp transport: Content-Length framing, bad headers, truncation") {
 }
 
 TEST_CASE("lsp documents: UTF-16 positions and edits") {
-  std::string text = "a\xC3\xA9" "b\n\xF0\x9F\x98\x80x\n";  // "aéb", then an emoji (two UTF-16 units) and x
+  std::string text =
+      "a\xC3\xA9"
+      "b\n\xF0\x9F\x98\x80x\n";  // "aéb", then an emoji (two UTF-16 units) and x
   CHECK(offset_of(text, {0, 2}) == 3);  // after "aé"
   CHECK(offset_of(text, {1, 2}) == 9);  // after the emoji
   CHECK(offset_of(text, {1, 99}) == 10);  // clamped to the line's end
@@ -39,15 +42,19 @@ TEST_CASE("lsp documents: UTF-16 positions and edits") {
   Document d;
   d.text = text;
   Documents::edit(d, {1, 2}, {1, 3}, "yz");
-  CHECK(d.text == "a\xC3\xA9" "b\n\xF0\x9F\x98\x80yz\n");
+  CHECK(d.text ==
+        "a\xC3\xA9"
+        "b\n\xF0\x9F\x98\x80yz\n");
 }
 
 TEST_CASE("lsp server: a 5 MB document, and messages of every wrong shape") {
   Server s;
   CHECK(s.handle_text("{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}").size() == 1);
   std::string big;
-  for (int i = 0; big.size() < (5u << 20); ++i) big += "function f" + std::to_string(i) + "(x) { return x * " + std::to_string(i) + "; }\n";
-  json open = {{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
+  for (int i = 0; big.size() < (5u << 20); ++i)
+    big += "function f" + std::to_string(i) + "(x) { return x * " + std::to_string(i) + "; }\n";
+  json open = {{"jsonrpc", "2.0"},
+               {"method", "textDocument/didOpen"},
                {"params", {{"textDocument", {{"uri", "file:///big.fs"}, {"version", 1}, {"text", big}}}}}};
   auto out = s.handle(open);
   REQUIRE(out.size() == 1);
@@ -73,7 +80,8 @@ TEST_CASE("lsp server: a 5 MB document, and messages of every wrong shape") {
       {"{\"id\":\"h\",\"method\":\"textDocument/hover\",\"params\":{\"textDocument\":{\"uri\":5}}}", -32602, "h"},
       {"{\"id\":2,\"method\":\"textDocument/frobnicate\",\"params\":{}}", -32601, 2},
       {"{\"method\":\"textDocument/didChange\",\"params\":{\"textDocument\":{\"uri\":\"file:///big.fs\"},"
-       "\"contentChanges\":[{\"range\":{\"start\":{\"line\":-1}}}]}}", 0, nullptr},
+       "\"contentChanges\":[{\"range\":{\"start\":{\"line\":-1}}}]}}",
+       0, nullptr},
       {"{\"method\":\"textDocument/didOpen\",\"params\":{\"textDocument\":{}}}", 0, nullptr},
       {"{\"method\":\"$/unknownNotification\"}", 0, nullptr}};
   for (const Bad& bad : bads) {
@@ -91,8 +99,11 @@ TEST_CASE("lsp server: a 5 MB document, and messages of every wrong shape") {
     CHECK_FALSE(replies[0]["error"]["message"].get<std::string>().empty());
   }
   // The document survived the bad edits, and requests still work.
-  auto hover = s.handle({{"jsonrpc", "2.0"}, {"id", 9}, {"method", "textDocument/hover"},
-                         {"params", {{"textDocument", {{"uri", "file:///big.fs"}}}, {"position", {{"line", 0}, {"character", 10}}}}}});
+  auto hover = s.handle(
+      {{"jsonrpc", "2.0"},
+       {"id", 9},
+       {"method", "textDocument/hover"},
+       {"params", {{"textDocument", {{"uri", "file:///big.fs"}}}, {"position", {{"line", 0}, {"character", 10}}}}}});
   REQUIRE(hover.size() == 1);
   CHECK(hover[0]["id"] == 9);
   CHECK(hover[0]["result"]["contents"]["value"].get<std::string>().find("f0(x)") != std::string::npos);
@@ -107,12 +118,15 @@ TEST_CASE("lsp fuzz: random and mutated byte streams through the transport and t
       "{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}",
       "{\"jsonrpc\":\"2.0\",\"method\":\"textDocument/didOpen\",\"params\":{\"textDocument\":{\"uri\":\"file:///f.fs\","
       "\"version\":1,\"text\":\"function FRep(x,y,z,t){return x*x-1;}\"}}}",
-      "{\"jsonrpc\":\"2.0\",\"id\":2,\"method\":\"textDocument/hover\",\"params\":{\"textDocument\":{\"uri\":\"file:///f.fs\"},"
+      "{\"jsonrpc\":\"2.0\",\"id\":2,\"method\":\"textDocument/hover\",\"params\":{\"textDocument\":{\"uri\":\"file:///"
+      "f.fs\"},"
       "\"position\":{\"line\":0,\"character\":30}}}",
-      "{\"jsonrpc\":\"2.0\",\"method\":\"textDocument/didChange\",\"params\":{\"textDocument\":{\"uri\":\"file:///f.fs\","
+      "{\"jsonrpc\":\"2.0\",\"method\":\"textDocument/didChange\",\"params\":{\"textDocument\":{\"uri\":\"file:///"
+      "f.fs\","
       "\"version\":2},\"contentChanges\":[{\"range\":{\"start\":{\"line\":0,\"character\":5},\"end\":{\"line\":0,"
       "\"character\":9}},\"text\":\"(\"}]}}",
-      "{\"jsonrpc\":\"2.0\",\"id\":3,\"method\":\"textDocument/completion\",\"params\":{\"textDocument\":{\"uri\":\"file:///f.fs\"},"
+      "{\"jsonrpc\":\"2.0\",\"id\":3,\"method\":\"textDocument/"
+      "completion\",\"params\":{\"textDocument\":{\"uri\":\"file:///f.fs\"},"
       "\"position\":{\"line\":0,\"character\":3}}}"};
   uint64_t rng = 0x9E3779B97F4A7C15ull;
   auto next = [&] {
@@ -128,11 +142,12 @@ TEST_CASE("lsp fuzz: random and mutated byte streams through the transport and t
       std::string body = seeds[next() % seeds.size()];
       int how = static_cast<int>(next() % 5);
       if (how == 1 && !body.empty()) body.resize(next() % body.size());                       // cut
-      if (how == 2) for (int k = 0; k < 3; ++k) body[next() % body.size()] ^= static_cast<char>(1 << (next() % 8));  // flip
+      if (how == 2)
+        for (int k = 0; k < 3; ++k) body[next() % body.size()] ^= static_cast<char>(1 << (next() % 8));  // flip
       if (how == 3) body = std::string(next() % 40, static_cast<char>(next() % 256));          // noise
       size_t claimed = how == 4 ? body.size() + next() % 20 : body.size();                      // a lying length
       stream += (next() % 7 ? "Content-Length: " + std::to_string(claimed) : std::string("Content-Lenght: 3")) +
-                "\r\n\r\n" + body;
+          "\r\n\r\n" + body;
     }
     std::istringstream in(stream);
     Server s;
@@ -177,8 +192,10 @@ static std::set<std::string> completion_labels(Server& s, const std::string& uri
 TEST_CASE("lsp completion: the locals in scope are those of the function the cursor is in") {
   Server s;
   s.handle_text("{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}");
-  std::string text = "function f(alpha) {\n  var beta = alpha;\n  return beta;\n}\nfunction g(gamma) {\n  return gamma;\n}\n";
-  s.handle({{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
+  std::string text =
+      "function f(alpha) {\n  var beta = alpha;\n  return beta;\n}\nfunction g(gamma) {\n  return gamma;\n}\n";
+  s.handle({{"jsonrpc", "2.0"},
+            {"method", "textDocument/didOpen"},
             {"params", {{"textDocument", {{"uri", "file:///s.fs"}, {"version", 1}, {"text", text}}}}}});
   auto labels_at = [&](uint32_t line, uint32_t ch) { return completion_labels(s, "file:///s.fs", line, ch); };
   auto in_f = labels_at(2, 2), in_g = labels_at(5, 2);
@@ -194,7 +211,8 @@ TEST_CASE("lsp completion in a .wrl: the enclosing node's fields, whatever the s
   Server s;
   s.handle_text("{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}");
   std::string text = "#VRML V2.0 utf8\nFShape   {\n  geo\n  geometry FGeometry\n\n   {\n    res\n  }\n}\n";
-  s.handle({{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
+  s.handle({{"jsonrpc", "2.0"},
+            {"method", "textDocument/didOpen"},
             {"params", {{"textDocument", {{"uri", "file:///w.wrl"}, {"version", 1}, {"text", text}}}}}});
   auto labels_at = [&](uint32_t line, uint32_t ch) { return completion_labels(s, "file:///w.wrl", line, ch); };
   CHECK(labels_at(2, 5) == std::set<std::string>{"geometry"});       // FShape's field, three spaces before '{'
@@ -213,11 +231,16 @@ TEST_CASE("lsp: hover, definition and references agree at every position, edges 
   Server s;
   s.handle_text("{\"jsonrpc\":\"2.0\",\"id\":1,\"method\":\"initialize\",\"params\":{}}");
   // `frep` (a variable) beside `FRep` (a function): names are exact; `sin` is a built-in.
-  std::vector<std::string> lines = {"var frep = 2;", "function FRep(x, y, z) {", "  var k = frep * x;",
-                                    "  return FRep2(k) + sin(y) - z;", "}", "function FRep2(a) { return a * frep; }"};
+  std::vector<std::string> lines = {"var frep = 2;",
+                                    "function FRep(x, y, z) {",
+                                    "  var k = frep * x;",
+                                    "  return FRep2(k) + sin(y) - z;",
+                                    "}",
+                                    "function FRep2(a) { return a * frep; }"};
   std::string text;
   for (const auto& l : lines) text += l + "\n";
-  s.handle({{"jsonrpc", "2.0"}, {"method", "textDocument/didOpen"},
+  s.handle({{"jsonrpc", "2.0"},
+            {"method", "textDocument/didOpen"},
             {"params", {{"textDocument", {{"uri", "file:///a.fs"}, {"version", 1}, {"text", text}}}}}});
   int named = 0;
   for (uint32_t line = 0; line < lines.size(); ++line)
@@ -227,8 +250,9 @@ TEST_CASE("lsp: hover, definition and references agree at every position, edges 
       json refs = request_at(s, "textDocument/references", "file:///a.fs", line, ch);
       INFO("line " << line << " char " << ch << ": hover " << hover.dump() << " definition " << def.dump()
                    << " references " << refs.dump());
-      bool builtin = !hover.is_null() && hover["contents"]["value"].get<std::string>().find("user function") == std::string::npos &&
-                     hover["contents"]["value"].get<std::string>().find("defined at") == std::string::npos;
+      bool builtin = !hover.is_null() &&
+          hover["contents"]["value"].get<std::string>().find("user function") == std::string::npos &&
+          hover["contents"]["value"].get<std::string>().find("defined at") == std::string::npos;
       // A definition exactly where there are references; hover wherever either is.
       CHECK(def.is_null() == (refs.is_null() || refs.empty()));
       if (!def.is_null()) {

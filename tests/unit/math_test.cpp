@@ -72,13 +72,13 @@ constexpr size_t kN = 2'000'000;
 
 }  // namespace
 
-#define UNARY_CASE(NAME, REF, LO, HI)                                                                   \
-  TEST_CASE("math: " #NAME " within 1 ulp of the long double reference") {                             \
-    auto in = inputs(kN, LO, HI, __LINE__);                                                           \
-    float at = 0;                                                                                     \
+#define UNARY_CASE(NAME, REF, LO, HI)                                                                         \
+  TEST_CASE("math: " #NAME " within 1 ulp of the long double reference") {                                    \
+    auto in = inputs(kN, LO, HI, __LINE__);                                                                   \
+    float at = 0;                                                                                             \
     uint64_t w = worst(in, [](float x) { return math::NAME(x); }, [](long double x) { return REF(x); }, &at); \
-    INFO("worst " << w << " ulp at " << at);                                                          \
-    CHECK(w <= 1);                                                                                    \
+    INFO("worst " << w << " ulp at " << at);                                                                  \
+    CHECK(w <= 1);                                                                                            \
   }
 
 UNARY_CASE(sin, sinl, -20.0f, 20.0f)

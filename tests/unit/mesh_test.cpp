@@ -50,7 +50,9 @@ TEST_CASE("mesh: a sphere is a watertight oriented 2-manifold with Euler charact
   double vol = 0;
   for (const auto& t : m.triangles) {
     const auto &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
-    vol += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+    vol +=
+        (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) /
+        6;
   }
   CHECK(vol == Approx(4.0 / 3 * M_PI * 0.343).epsilon(0.02));
 }
@@ -115,7 +117,8 @@ TEST_CASE("mesh: a parametric sphere welds its seam and poles into a closed surf
   CHECK(topo.watertight);
   CHECK(topo.euler == 2);
   double worst = 0;
-  for (const auto& p : m.positions) worst = std::max(worst, std::fabs(std::sqrt(p[0]*p[0] + p[1]*p[1] + p[2]*p[2]) - 0.5));
+  for (const auto& p : m.positions)
+    worst = std::max(worst, std::fabs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - 0.5));
   CHECK(worst < 1e-5);
   // Normals from the derivatives: dP/du x dP/dv points inward for this map; exact away from the
   // poles, the face average at them.
@@ -143,7 +146,9 @@ TEST_CASE("mesh: a parametric curve is a polyline of N+1 samples; a solid is its
   double vol = 0;  // outward faces give the positive volume 1 * 2 * 3
   for (const auto& t : s.triangles) {
     const auto &a = s.positions[t[0]], &b = s.positions[t[1]], &c = s.positions[t[2]];
-    vol += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+    vol +=
+        (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) /
+        6;
   }
   CHECK(vol == Approx(6.0));
 }
@@ -154,8 +159,10 @@ TEST_CASE("mesh: a parametric curve is a polyline of N+1 samples; a solid is its
 #include "runtime/support/files.h"
 
 TEST_CASE("mesh: distances with known answers, and every writer read back") {
-  auto small = polygonize("function FRep(x,y,z,t){ return 1 - x*x - y*y - z*z; }", {-1.5, 1.5, -1.5, 1.5, -1.5, 1.5}, 40);
-  auto big = polygonize("function FRep(x,y,z,t){ return 1.21 - x*x - y*y - z*z; }", {-1.5, 1.5, -1.5, 1.5, -1.5, 1.5}, 40);
+  auto small =
+      polygonize("function FRep(x,y,z,t){ return 1 - x*x - y*y - z*z; }", {-1.5, 1.5, -1.5, 1.5, -1.5, 1.5}, 40);
+  auto big =
+      polygonize("function FRep(x,y,z,t){ return 1.21 - x*x - y*y - z*z; }", {-1.5, 1.5, -1.5, 1.5, -1.5, 1.5}, 40);
   auto d = mesh::mesh_distances(small, big);
   CHECK(d.hausdorff == Approx(0.1).epsilon(0.05));
   CHECK(d.chamfer == Approx(0.1).epsilon(0.02));
@@ -164,7 +171,8 @@ TEST_CASE("mesh: distances with known answers, and every writer read back") {
   mesh::Mesh shifted = small;
   for (auto& p : shifted.positions) p[0] += 0.25f;
   CHECK(mesh::mesh_distances(small, shifted).hausdorff == Approx(0.25).epsilon(0.05));
-  for (auto [fmt, name] : {std::pair{mesh::MeshFormat::Ply, "a.ply"}, {mesh::MeshFormat::Obj, "a.obj"},
+  for (auto [fmt, name] : {std::pair{mesh::MeshFormat::Ply, "a.ply"},
+                           {mesh::MeshFormat::Obj, "a.obj"},
                            {mesh::MeshFormat::Stl, "a.stl"}}) {
     mesh::Mesh back;
     std::string err;
@@ -176,7 +184,8 @@ TEST_CASE("mesh: distances with known answers, and every writer read back") {
   }
   mesh::Mesh bad;
   std::string err;
-  CHECK(!mesh::parse_mesh("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n1\n", "x.ply", bad, err));
+  CHECK(!mesh::parse_mesh("ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n1\n", "x.ply", bad,
+                          err));
   CHECK(!mesh::parse_mesh("v 0 0 0\nf 1 2 3\n", "x.obj", bad, err));
   CHECK(err.find("refers to vertex") != std::string::npos);
   CHECK(!mesh::parse_mesh("garbage", "x.stl", bad, err));
@@ -197,8 +206,10 @@ TEST_CASE("mesh: files are streamed in chunks with the same bytes as encode_mesh
   m.colours.assign(m.positions.size(), {0.25f, 0.5f, 2.0f});  // PLY's colour bytes, one clamped
   std::string dir = (std::filesystem::temp_directory_path() / ("mesh-stream-" + std::to_string(::getpid()))).string();
   std::filesystem::create_directories(dir);
-  for (auto [fmt, name] : {std::pair{mesh::MeshFormat::Ply, "a.ply"}, {mesh::MeshFormat::Obj, "a.obj"},
-                           {mesh::MeshFormat::Stl, "a.stl"}, {mesh::MeshFormat::Glb, "a.glb"}}) {
+  for (auto [fmt, name] : {std::pair{mesh::MeshFormat::Ply, "a.ply"},
+                           {mesh::MeshFormat::Obj, "a.obj"},
+                           {mesh::MeshFormat::Stl, "a.stl"},
+                           {mesh::MeshFormat::Glb, "a.glb"}}) {
     INFO(name);
     std::string bytes = written(m, fmt, dir + "/" + name), want = mesh::encode_mesh(m, fmt);
     CHECK(want.size() > (size_t{1} << 19));
@@ -219,8 +230,10 @@ TEST_CASE("mesh: an empty mesh is a valid file in every format") {
   mesh::Mesh empty;
   std::string dir = (std::filesystem::temp_directory_path() / ("mesh-empty-" + std::to_string(::getpid()))).string();
   std::filesystem::create_directories(dir);
-  for (auto [fmt, name] : {std::pair{mesh::MeshFormat::Ply, "a.ply"}, {mesh::MeshFormat::Obj, "a.obj"},
-                           {mesh::MeshFormat::Stl, "a.stl"}, {mesh::MeshFormat::Glb, "a.glb"}}) {
+  for (auto [fmt, name] : {std::pair{mesh::MeshFormat::Ply, "a.ply"},
+                           {mesh::MeshFormat::Obj, "a.obj"},
+                           {mesh::MeshFormat::Stl, "a.stl"},
+                           {mesh::MeshFormat::Glb, "a.glb"}}) {
     INFO(name);
     std::string bytes = written(empty, fmt, dir + "/" + name), err;
     CHECK(bytes == mesh::encode_mesh(empty, fmt));
@@ -233,8 +246,9 @@ TEST_CASE("mesh: an empty mesh is a valid file in every format") {
 }
 
 TEST_CASE("mesh: the same mesh, vertex for vertex, for 1, 2 and 5 threads") {
-  auto b = test::build("function FRep(x,y,z,t){ var k = 6.283185307179586*2.0; "
-                       "return min(sin(x*k)*cos(y*k)+sin(y*k)*cos(z*k)+sin(z*k)*cos(x*k), 0.9^2-x*x-y*y-z*z); }");
+  auto b = test::build(
+      "function FRep(x,y,z,t){ var k = 6.283185307179586*2.0; "
+      "return min(sin(x*k)*cos(y*k)+sin(y*k)*cos(z*k)+sin(z*k)*cos(x*k), 0.9^2-x*x-y*y-z*z); }");
   REQUIRE(b->ok);
   mesh::KernelField field(*b->kernel, 0);
   mesh::Mesh ref;
@@ -346,7 +360,7 @@ TEST_CASE("mesh: a crossing starts at the linear estimate along its edge, exact 
   for (const auto& p : m.positions) {
     bool plane = std::fabs(p[0] - 0.3f) < 1e-5f;
     bool face = std::fabs(std::fabs(p[0]) - 1) < 1e-5f || std::fabs(std::fabs(p[1]) - 1) < 1e-5f ||
-                std::fabs(std::fabs(p[2]) - 1) < 1e-5f;
+        std::fabs(std::fabs(p[2]) - 1) < 1e-5f;
     INFO(p[0] << " " << p[1] << " " << p[2]);
     REQUIRE((plane || face));
     on_plane += plane;
@@ -379,7 +393,7 @@ TEST_CASE("crease normals: a cube's corners keep their faces' normals; a sphere'
   CHECK(std::fabs(soft[0][1]) > 0.1);
   // A sphere meshed by dual contouring: every corner's normal within a few degrees of radial.
   mesh::Mesh ball = polygonize("function FRep(x,y,z,t){ return 0.7*0.7 - x*x - y*y - z*z; }", {-1, 1, -1, 1, -1, 1}, 32,
-                                0, mesh::Mesher::DualContouring);
+                               0, mesh::Mesher::DualContouring);
   REQUIRE(ball.normals.size() == ball.positions.size());  // its own, from the gradient (dc_normals.h)
   ball.normals.clear();
   auto r = mesh::crease_normals(ball, mesh::kCreaseAngle);
@@ -398,10 +412,12 @@ TEST_CASE("crease normals: a cube's corners keep their faces' normals; a sphere'
 // batch: each mesher gives up with the cancel's message instead of finishing the shape. The flag is
 // set from another thread after a few batches; each mesh would take a minute or more otherwise.
 TEST_CASE("mesh: a cancel from another thread stops every mesher within a batch") {
-  auto b = test::build("function FRep(x,y,z,t){ var s = 0; for (var i = 0; i < 20000; i++) s += sin(x * i); "
-                       "return 0.5 - x*x - y*y - z*z + 1e-9 * s; }");
-  auto p = test::build("function FRep(u,v,w,t){ var s = 0; for (var i = 0; i < 20000; i++) s += sin(u * i); "
-                       "x = u; y = v; z = 1e-9 * s; }");
+  auto b = test::build(
+      "function FRep(x,y,z,t){ var s = 0; for (var i = 0; i < 20000; i++) s += sin(x * i); "
+      "return 0.5 - x*x - y*y - z*z + 1e-9 * s; }");
+  auto p = test::build(
+      "function FRep(u,v,w,t){ var s = 0; for (var i = 0; i < 20000; i++) s += sin(u * i); "
+      "x = u; y = v; z = 1e-9 * s; }");
   REQUIRE(b->ok);
   REQUIRE(p->ok);
   mesh::KernelField field(*b->kernel, 0);

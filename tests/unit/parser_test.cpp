@@ -33,8 +33,10 @@ TEST_CASE("parser: precedence and associativity") {
 }
 
 TEST_CASE("parser: formatting is idempotent and keeps comments") {
-  std::string src = "// head\nfunction f(x){ // trailing\n var a=[1,2,3]; if(x>0){return a[0];}else if (x<0) return 1; else {return 2}\n"
-                    "for(var i=0;i<3;i++){x+=i} do x--; while(x>0)\n /* tail */ }\n";
+  std::string src =
+      "// head\nfunction f(x){ // trailing\n var a=[1,2,3]; if(x>0){return a[0];}else if (x<0) return 1; else {return "
+      "2}\n"
+      "for(var i=0;i<3;i++){x+=i} do x--; while(x>0)\n /* tail */ }\n";
   std::string once = fmt(src);
   CHECK(fmt(once) == once);
   CHECK(once.find("// head") != std::string::npos);

@@ -17,7 +17,8 @@ static const char* kPrograms[] = {
     "function sq(v){return v*v;} function FRep(x,y,z,t){ return sqrt(sq(x)+sq(y)+sq(z)) - 0.5; }",
     "function FRep(x,y,z,t){ var s = 0; for (var i = 0; i < 5; i++) { if (x > i) s += i; else s -= y; } return s; }",
     "var c = 3; function f(v){ c = c + v; return c; } function FRep(x,y,z,t){ f(x); f(y); return c * z; }",
-    "function fib(n){ return n < 2 ? n : fib(n-1) + fib(n-2); } function FRep(x,y,z,t){ return fib(floor(abs(x)) % 10) + y; }",
+    "function fib(n){ return n < 2 ? n : fib(n-1) + fib(n-2); } function FRep(x,y,z,t){ return fib(floor(abs(x)) % 10) "
+    "+ y; }",
     "function FRep(x,y,z,t){ var a = [x, y, z]; a[1] += 2; return a[0] * a[1] - a[2] + a.length; }",
     "function FRep(x,y,z,t){ return (x && y) + (x || z) + !y + (x == y) + (x != z) + (x <= y) + (x >= z); }",
 };

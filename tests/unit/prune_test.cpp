@@ -37,7 +37,8 @@ bool same_bits(const mesh::Mesh& a, const mesh::Mesh& b) {
   auto eq = [](const auto& x, const auto& y) {
     return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0);
   };
-  return eq(a.positions, b.positions) && eq(a.normals, b.normals) && eq(a.triangles, b.triangles) && eq(a.colours, b.colours);
+  return eq(a.positions, b.positions) && eq(a.normals, b.normals) && eq(a.triangles, b.triangles) &&
+      eq(a.colours, b.colours);
 }
 
 struct Tally {
@@ -66,7 +67,8 @@ void compare_all(const Loaded& l, const std::string& where, Tally& tally) {
     CHECK(same_bits(pruned, pruned2));
     CHECK(after.fallbacks == before.fallbacks);
     ++tally.meshes;
-    if (after.pruned && after.points > before.points && after.evaluated - before.evaluated < after.points - before.points)
+    if (after.pruned && after.points > before.points &&
+        after.evaluated - before.evaluated < after.points - before.points)
       ++tally.decided;
     size_t levels_before = 0, levels_after = 0;
     for (const auto& lv : before.levels) levels_before += lv.empty + lv.full + lv.ambiguous;
@@ -76,15 +78,15 @@ void compare_all(const Loaded& l, const std::string& where, Tally& tally) {
   for (size_t i = 0; i < l.model.shapes.size(); ++i) {
     const scene::Shape& s = l.model.shapes[i];
     if (s.group >= 0 || s.kind != scene::ShapeKind::Implicit) continue;
-    one([&](mesh::Mesh& m, backends::RuntimeError& e, int threads, bool prune) {
-      return scene::mesh_shape(s, m, e, true, threads, prune);
-    }, "shape " + std::to_string(i));
+    one([&](mesh::Mesh& m, backends::RuntimeError& e, int threads,
+            bool prune) { return scene::mesh_shape(s, m, e, true, threads, prune); },
+        "shape " + std::to_string(i));
   }
   for (size_t g = 0; g < l.model.groups.size(); ++g) {
     if (l.model.groups[g].parent >= 0 || scene::parametric_group(l.model, static_cast<int>(g))) continue;
-    one([&](mesh::Mesh& m, backends::RuntimeError& e, int threads, bool prune) {
-      return scene::mesh_group(l.model, static_cast<int>(g), m, e, true, threads, prune);
-    }, "FTransform " + std::to_string(g));
+    one([&](mesh::Mesh& m, backends::RuntimeError& e, int threads,
+            bool prune) { return scene::mesh_group(l.model, static_cast<int>(g), m, e, true, threads, prune); },
+        "FTransform " + std::to_string(g));
   }
 }
 
@@ -111,9 +113,10 @@ TEST_CASE("prune: the corpus, the paper's examples and the benchmark scenes mesh
   compare_folder(FS_CORPUS_DIR, 1, corpus);
   compare_folder(FS_SOURCE_DIR "/examples", 1, paper);
   compare_folder(FS_SOURCE_DIR "/bench/scenes", 0.25, bench);
-  WARN("implicit meshes (pruned by intervals / with regions decided): corpus " << corpus.meshes << " (" << corpus.pruned
-       << " / " << corpus.decided << "), examples " << paper.meshes << " (" << paper.pruned << " / " << paper.decided
-       << "), bench " << bench.meshes << " (" << bench.pruned << " / " << bench.decided << ")");
+  WARN("implicit meshes (pruned by intervals / with regions decided): corpus "
+       << corpus.meshes << " (" << corpus.pruned << " / " << corpus.decided << "), examples " << paper.meshes << " ("
+       << paper.pruned << " / " << paper.decided << "), bench " << bench.meshes << " (" << bench.pruned << " / "
+       << bench.decided << ")");
   CHECK(corpus.meshes >= 7);  // the course's files are mostly parametric
   CHECK(corpus.decided == corpus.meshes);
   CHECK(paper.meshes >= 1);   // Figure 6: blends bound too loosely to decide anything (it runs dense)
@@ -206,7 +209,8 @@ namespace {
 // notice the contradiction and mesh densely.
 class LyingField : public mesh::Field {
  public:
-  bool eval(const float* x, const float* y, const float* z, size_t n, float* out, backends::RuntimeError&) const override {
+  bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
+            backends::RuntimeError&) const override {
     for (size_t i = 0; i < n; ++i) out[i] = 0.5f - (x[i] * x[i] + y[i] * y[i] + z[i] * z[i]);
     return true;
   }
@@ -290,8 +294,9 @@ TEST_CASE("prune: the functions of the benchmarks, examples and corpus that inte
       if (!vrml::parse_scene(std::make_unique<frontend::SourceFile>(e.path().string(), text), vdiag, scene)) continue;
       for (const auto& ss : vrml::scene_scripts(scene)) {
         if (ss.script.field == "operation") continue;
-        count_script(std::make_unique<frontend::SourceFile>(e.path().string(), ss.script.text, ss.script.line, ss.script.col),
-                     e.path().filename().string() + ":" + std::to_string(ss.script.line) + " " + ss.script.field, corpus);
+        count_script(
+            std::make_unique<frontend::SourceFile>(e.path().string(), ss.script.text, ss.script.line, ss.script.col),
+            e.path().filename().string() + ":" + std::to_string(ss.script.line) + " " + ss.script.field, corpus);
       }
     }
   auto list = [](const Boundable& b) {
@@ -300,8 +305,9 @@ TEST_CASE("prune: the functions of the benchmarks, examples and corpus that inte
     return s;
   };
   WARN("bounded by intervals: bench " << bench.bounded << " of " << bench.total << list(bench) << "\nexamples "
-       << examples.bounded << " of " << examples.total << list(examples) << "\ncorpus and paper scripts " << corpus.bounded
-       << " of " << corpus.total << list(corpus));
+                                      << examples.bounded << " of " << examples.total << list(examples)
+                                      << "\ncorpus and paper scripts " << corpus.bounded << " of " << corpus.total
+                                      << list(corpus));
   CHECK(bench.total >= 6);
   CHECK(bench.bounded * 2 >= bench.total);
   CHECK(corpus.bounded * 10 >= corpus.total * 9);

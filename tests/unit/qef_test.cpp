@@ -18,7 +18,7 @@ void add_plane(Qef& q, const double at[3], const double n[3], std::mt19937& rng,
   for (int k = 0; k < points; ++k) {
     double p[3] = {at[0] + u(rng), at[1] + u(rng), at[2] + u(rng)};
     double d = ((p[0] - at[0]) * n[0] + (p[1] - at[1]) * n[1] + (p[2] - at[2]) * n[2]) /
-               (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int a = 0; a < 3; ++a) p[a] -= d * n[a];  // onto the plane
     q.add(p, n);
   }

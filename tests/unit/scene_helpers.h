@@ -19,7 +19,7 @@ inline std::unique_ptr<LoadedScene> load_scene(const std::string& path, const st
                                                const scene::ModelOptions& opts = {}) {
   auto l = std::make_unique<LoadedScene>();
   l->ok = vrml::parse_scene(std::make_unique<frontend::SourceFile>(path, text), l->diag, l->scene) &&
-          scene::build_scene_model(l->scene, opts, l->diag, l->model);
+      scene::build_scene_model(l->scene, opts, l->diag, l->model);
   return l;
 }
 

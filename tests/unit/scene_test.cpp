@@ -54,7 +54,8 @@ TEST_CASE("scene: an analytical operation morphs between its children with t") {
     o.fraction = f;
     auto l = load(R"W(FTransform { type "analytical" operation "f*(1-t)+g*t" children [
         FShape { geometry FGeometry { definition "0.3^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [32] } }
-        FShape { geometry FGeometry { definition "0.7^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [32] } } ] })W", o);
+        FShape { geometry FGeometry { definition "0.7^2-x^2-y^2-z^2" bboxSize 2 2 2 resolution [32] } } ] })W",
+                  o);
     REQUIRE(l->ok);
     mesh::Mesh m;
     backends::RuntimeError err;
@@ -135,7 +136,8 @@ TEST_CASE("scene: an analytical operation over parametric children works on each
     mesh::Mesh m = group_mesh(body, f);
     INFO("fraction " << f);
     double want = 0.3 * (1 - f) + 0.7 * f, worst = 0;
-    for (const auto& p : m.positions) worst = std::max(worst, std::fabs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - want));
+    for (const auto& p : m.positions)
+      worst = std::max(worst, std::fabs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - want));
     CHECK(worst < 1e-5);
     auto topo = mesh::topology(m);
     CHECK(topo.watertight);  // seams and poles welded as for one shape
@@ -168,7 +170,8 @@ TEST_CASE("scene: an FTransform's affine fields move, turn and scale its result,
   // A ball of radius 0.3 moved by translation "t, 0, 0": at fraction 1 its centre is x = 1 and the
   // box the polygonizer samples moved with it (the ball is whole).
   mesh::Mesh moved = group_mesh(R"W(FTransform { translation "t, 0, 0" children [
-      FShape { geometry FGeometry { definition "0.3^2-x^2-y^2-z^2" bboxSize 1 1 1 resolution [24] } } ] })W", 1.0);
+      FShape { geometry FGeometry { definition "0.3^2-x^2-y^2-z^2" bboxSize 1 1 1 resolution [24] } } ] })W",
+                                1.0);
   CHECK(centroid(moved)[0] == Approx(1.0).margin(1e-3));
   CHECK(mean_radius(moved, 1.0) == Approx(0.3).epsilon(0.01));
   CHECK(mesh::topology(moved).watertight);
@@ -176,8 +179,8 @@ TEST_CASE("scene: an FTransform's affine fields move, turn and scale its result,
   // scale "2 1 1" makes an ellipsoid with semi-axes 0.6, 0.3, 0.3; numbers work as well as strings.
   // (Marching tetrahedra, whose vertices have normals.)
   mesh::Mesh scaled = group_mesh(R"W(FTransform { scale "2 1 1" children [
-      FShape { geometry FGeometry { definition "0.3^2-x^2-y^2-z^2" bboxSize 1 1 1 resolution [32] } } ] })W", 0,
-                                 mesh::Mesher::MarchingTetrahedra);
+      FShape { geometry FGeometry { definition "0.3^2-x^2-y^2-z^2" bboxSize 1 1 1 resolution [32] } } ] })W",
+                                 0, mesh::Mesher::MarchingTetrahedra);
   REQUIRE(scaled.normals.size() == scaled.positions.size());
   double worst = 0;
   for (const auto& p : scaled.positions) {
@@ -295,7 +298,8 @@ TEST_CASE("scene: a looping shape at several clock values follows its TimeSensor
     scene::ModelOptions o;
     o.now = now;
     auto l = load(R"W(FShape { loop TRUE cycleInterval 2
-      geometry FGeometry { definition "(0.3+0.4*t)^2-x*x-y*y-z*z" bboxSize 2 2 2 resolution [32] } })W", o);
+      geometry FGeometry { definition "(0.3+0.4*t)^2-x*x-y*y-z*z" bboxSize 2 2 2 resolution [32] } })W",
+                  o);
     REQUIRE(l->ok);
     mesh::Mesh m;
     backends::RuntimeError err;
@@ -330,10 +334,12 @@ FShape { geometry FGeometry { definition "1 - x*x - y*y - z*z + 0 * t" }
 // batch); the cancel comes after the geometry, so the shape fails with the cancel's message
 // instead of finishing.
 TEST_CASE("scene: a cancel stops per-vertex colours and displacements within a batch") {
-  const std::string slow = "function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 10000; i++) s += sin(x * i); "
-                           "return 0.5 + 1e-9 * s; }";
-  const std::string sphere = "geometry FGeometry { resolution [256 256] parameters [0 1 0 1] definition "
-                             "\"x=0.5*cos(2*pi*u)*sin(pi*v); y=0.5*sin(2*pi*u)*sin(pi*v); z=0.5*cos(pi*v);\" } }\n";
+  const std::string slow =
+      "function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 10000; i++) s += sin(x * i); "
+      "return 0.5 + 1e-9 * s; }";
+  const std::string sphere =
+      "geometry FGeometry { resolution [256 256] parameters [0 1 0 1] definition "
+      "\"x=0.5*cos(2*pi*u)*sin(pi*v); y=0.5*sin(2*pi*u)*sin(pi*v); z=0.5*cos(pi*v);\" } }\n";
   auto l = load("FShape { appearance FAppearance { material FMaterial { diffuseColor \"" + slow + "\" } }\n" + sphere +
                 "FShape { appearance FAppearance { texture3D FTexture3D { definition \"" + slow +
                 "\" type \"displacement\" } }\n" + sphere);

@@ -55,8 +55,10 @@ TEST_CASE("sema: the case-slip rule warns and runs") {
 }
 
 TEST_CASE("sema: recursion is detected through cycles") {
-  auto b = test::build("function a(n){ return n <= 0 ? 0 : b(n-1); } function b(n){ return a(n); } "
-                       "function c(n){ return a(n) + 1; }", "c");
+  auto b = test::build(
+      "function a(n){ return n <= 0 ? 0 : b(n-1); } function b(n){ return a(n); } "
+      "function c(n){ return a(n) + 1; }",
+      "c");
   REQUIRE(b->ok);
   CHECK(b->script.sema.functions[0].recursive);
   CHECK(b->script.sema.functions[1].recursive);

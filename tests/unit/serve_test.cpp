@@ -148,7 +148,7 @@ auto done = [](const Json& s) { return s["ok"] == true && s["partial"].is_null()
 
 std::string ball(const std::string& radius, const std::string& extra = "") {
   return "#VRML V2.0 utf8\nFShape { geometry FGeometry { definition \"" + radius +
-         "^2 - x^2 - y^2 - z^2\" bboxSize 2 2 2 resolution [16] } }\n" + extra;
+      "^2 - x^2 - y^2 - z^2\" bboxSize 2 2 2 resolution [16] } }\n" + extra;
 }
 
 }  // namespace
@@ -202,8 +202,9 @@ TEST_CASE("preview: saves reach the event stream; a broken save keeps the last g
 TEST_CASE("preview: the watcher follows the files of EXTERNPROTOs") {
   Folder f;
   auto lib = [&](const std::string& radius) {
-    f.write("lib.wrl", "#VRML V2.0 utf8\nPROTO Ball [ ] { FShape { geometry FGeometry { definition \"" + radius +
-                           "^2 - x^2 - y^2 - z^2\" bboxSize 2 2 2 resolution [16] } } }\n");
+    f.write("lib.wrl",
+            "#VRML V2.0 utf8\nPROTO Ball [ ] { FShape { geometry FGeometry { definition \"" + radius +
+                "^2 - x^2 - y^2 - z^2\" bboxSize 2 2 2 resolution [16] } } }\n");
   };
   lib("0.5");
   std::string scene = f.write("scene.wrl", "#VRML V2.0 utf8\nEXTERNPROTO Ball [ ] \"lib.wrl#Ball\"\nBall { }\n");
@@ -227,7 +228,7 @@ TEST_CASE("preview: a save polygonizes only the shapes it changed") {
   Folder f;
   auto two = [](const std::string& second, const std::string& extra = "") {
     return ball("0.5") + "Transform { translation 2 0 0 children FShape { geometry FGeometry { definition \"" + second +
-           "\" bboxSize 2 2 2 resolution [16] } } }\n" + extra;
+        "\" bboxSize 2 2 2 resolution [16] } } }\n" + extra;
   };
   std::string scene = f.write("scene.wrl", two("0.4^2 - x^2 - y^2 - z^2"));
   auto p = started(options(scene));
@@ -259,11 +260,12 @@ TEST_CASE("preview: a save polygonizes only the shapes it changed") {
 
 TEST_CASE("preview: an animation's frames stream as they are made, coarse to fine") {
   Folder f;
-  std::string scene = f.write("grow.wrl",
-                              "#VRML V2.0 utf8\nFShape { geometry FGeometry { definition \"(0.3 + 0.5 * t)^2 - x^2 - y^2 - "
-                              "z^2\" bboxSize 2 2 2 resolution [24] } }\n"
-                              "FShape { geometry FGeometry { definition \"0.2^2 - (x - 1.5)^2 - y^2 - z^2\" bboxSize 4 2 2 "
-                              "resolution [12] } }\n");
+  std::string scene =
+      f.write("grow.wrl",
+              "#VRML V2.0 utf8\nFShape { geometry FGeometry { definition \"(0.3 + 0.5 * t)^2 - x^2 - y^2 - "
+              "z^2\" bboxSize 2 2 2 resolution [24] } }\n"
+              "FShape { geometry FGeometry { definition \"0.2^2 - (x - 1.5)^2 - y^2 - z^2\" bboxSize 4 2 2 "
+              "resolution [12] } }\n");
   auto p = started(options(scene, 8));
   Events ev(p->port());
   Json last = ev.wait(done, 60);
@@ -303,10 +305,11 @@ TEST_CASE("preview: an animation's frames stream as they are made, coarse to fin
 
 TEST_CASE("preview: a run hands over the scene after 1, 2, 4 ... frames of an animation") {
   Folder f;
-  fvrml_run::Options o = options(f.write("grow.wrl",
-                                         "#VRML V2.0 utf8\nFShape { geometry FGeometry { definition \"(0.3 + 0.5 * t)^2 - "
-                                         "x^2 - y^2 - z^2\" bboxSize 2 2 2 resolution [16] } }\n"),
-                                 8);
+  fvrml_run::Options o =
+      options(f.write("grow.wrl",
+                      "#VRML V2.0 utf8\nFShape { geometry FGeometry { definition \"(0.3 + 0.5 * t)^2 - "
+                      "x^2 - y^2 - z^2\" bboxSize 2 2 2 resolution [16] } }\n"),
+              8);
   o.threads = 1;  // exactly 1, 2 and 4 frames (with more threads, more may be made meanwhile)
   o.output = (f.dir / "grow.glb").string();
   o.format = "glb";

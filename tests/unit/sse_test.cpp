@@ -21,7 +21,6 @@ using test::same;
 
 namespace {
 
-
 // Runs `body` (an FRep over x, y, z) on both backends over every pair of special values (and the
 // third input cycling), in one batch, and compares every output.
 void agree(const std::string& body, const std::string& prelude = "") {
@@ -34,7 +33,8 @@ void agree(const std::string& body, const std::string& prelude = "") {
   std::vector<float> cols[4], o1, o2;
   auto& [x, y, z, t] = cols;
   for (float a : kSpecial)
-    for (float b : kSpecial) x.push_back(a), y.push_back(b), z.push_back(kSpecial[(x.size() * 7) % kSpecial.size()]), t.push_back(0);
+    for (float b : kSpecial)
+      x.push_back(a), y.push_back(b), z.push_back(kSpecial[(x.size() * 7) % kSpecial.size()]), t.push_back(0);
   size_t n = x.size();
   backends::RuntimeError err;
   REQUIRE(test::eval_columns(*vm->kernel, cols, o1, err));
@@ -177,7 +177,8 @@ TEST_CASE("sse: sin and cos of one value share their reduction, bit for bit with
   std::string error, listing;
   REQUIRE(!sse::generate(*vm->module, {}, error, &listing).empty());
   size_t conversions = 0;
-  for (size_t at = listing.find("cvtps2pd"); at != std::string::npos; at = listing.find("cvtps2pd", at + 1)) ++conversions;
+  for (size_t at = listing.find("cvtps2pd"); at != std::string::npos; at = listing.find("cvtps2pd", at + 1))
+    ++conversions;
   CHECK(conversions == 3 * 2);  // two per reduction: four lanes in two pairs of doubles
   // The one-point path (four lanes of one point) gives the batch's bits.
   auto sse = test::build(text, "", true, {}, "sse");
@@ -195,7 +196,8 @@ TEST_CASE("sse: sin and cos of one value share their reduction, bit for bit with
 // argument reduction of sin/cos for one pair of lanes): every point, special values included,
 // gives the VM's bits, through the general code for points outside the bounded code's range.
 TEST_CASE("sse: the one-point code agrees with the VM, and reduces sin/cos for one pair of lanes") {
-  std::string text = "function FRep(x, y, z, t) { return sin(x) * cos(x) + sin(y * 3) + cos(z) + (t > 0 ? tan(t) : 1); }";
+  std::string text =
+      "function FRep(x, y, z, t) { return sin(x) * cos(x) + sin(y * 3) + cos(z) + (t > 0 ? tan(t) : 1); }";
   auto vm = test::build(text);
   REQUIRE(vm->ok);
   std::string error, batch_asm, point_asm;
@@ -258,8 +260,9 @@ TEST_CASE("sse: straight-line kernels run eight lanes and agree with the VM") {
   agree(spills);
   // Runtime calls (four doubles per ymm register in the inline sin/cos, eight lanes to the batch
   // functions) run wide too, out-of-range lanes through the out-of-line path.
-  for (const char* body : {"return sin(x) * cos(x) + cos(y) * sin(y) + sin(z * 2) - cos(z * 2);", "return pow(x, y) + exp(z);",
-                           "return x % y + atan2(y, z);", "return sin(x) + tan(y) * cos(z * 1e10);"}) {
+  for (const char* body :
+       {"return sin(x) * cos(x) + cos(y) * sin(y) + sin(z * 2) - cos(z * 2);", "return pow(x, y) + exp(z);",
+        "return x % y + atan2(y, z);", "return sin(x) + tan(y) * cos(z * 1e10);"}) {
     CHECK(lanes_of(body) == (avx ? 8u : 4u));
     agree(body);
   }

@@ -90,7 +90,8 @@ TEST_CASE("vm: a chunk whose loop runs long runs again point by point, with the 
   REQUIRE(b->ok);
   size_t n = 600;  // two chunks, the second partial
   std::vector<float> xs(n), ys(n), zero(n, 0), out(n);
-  for (size_t i = 0; i < n; ++i) xs[i] = static_cast<float>((i * 7919) % 100001), ys[i] = 0.5f + static_cast<float>(i % 3);
+  for (size_t i = 0; i < n; ++i)
+    xs[i] = static_cast<float>((i * 7919) % 100001), ys[i] = 0.5f + static_cast<float>(i % 3);
   const float* in[4] = {xs.data(), ys.data(), zero.data(), zero.data()};
   float* outs[1] = {out.data()};
   backends::RuntimeError err;
@@ -101,8 +102,8 @@ TEST_CASE("vm: a chunk whose loop runs long runs again point by point, with the 
   // A runaway lane among them stops the batch with the budget's error.
   backends::Budgets small;
   small.max_loop_iterations = 200000;
-  auto capped = test::build("function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < x; i++) s = s + y; return s; }", "",
-                            true, small);
+  auto capped = test::build("function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < x; i++) s = s + y; return s; }",
+                            "", true, small);
   xs[300] = 1e9f;
   CHECK_FALSE(capped->kernel->eval_batch(in, outs, n, err));
   CHECK(err.message == "loop iteration budget exceeded: more than 200000 iterations in one evaluation");
@@ -129,8 +130,9 @@ TEST_CASE("vm: paired sin and cos give the bits of sin and cos alone") {
   INFO(listing);
   CHECK(listing.find("(and its cos into r") != std::string::npos);
   CHECK(listing.find("(computed with its pair, from r") != std::string::npos);
-  const float special[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, 3.14159265f, -1.5707964f, 100.0f, 1e5f, 8388608.0f, 1e30f,
-                           -1e30f, INFINITY, -INFINITY, NAN, 1e-40f, 7.25f, -2.5f, 6.2831855f, 1e-7f, 16777216.0f};
+  const float special[] = {0.0f,   -0.0f,  1.0f,       -1.0f, 0.5f,       3.14159265f, -1.5707964f,
+                           100.0f, 1e5f,   8388608.0f, 1e30f, -1e30f,     INFINITY,    -INFINITY,
+                           NAN,    1e-40f, 7.25f,      -2.5f, 6.2831855f, 1e-7f,       16777216.0f};
   const size_t n = std::size(special) * 4;
   std::vector<float> xs(n), ys(n), zs(n), ts(n, 0), a(n), b(n);
   for (size_t i = 0; i < n; ++i) {
@@ -175,10 +177,11 @@ std::string fill(std::string form, const std::string& a, const std::string& b) {
 // reference evaluator's ops one after the other, in a batch and one point at a time; and most
 // programs' listings show `marker` (fused as the caller expects).
 void check_fused(const std::vector<OpText>& first, bool squared, const char* marker) {
-  const OpText second[] = {{ir::Op::Add, "(A + B)"},   {ir::Op::Sub, "(A - B)"}, {ir::Op::Mul, "(A * B)"},
-                           {ir::Op::Div, "(A / B)"},   {ir::Op::Max, "max(A, B)"}, {ir::Op::Abs, "abs(A)"},
-                           {ir::Op::Neg, "(-A)"},      {ir::Op::Sqrt, "sqrt(A)"}};
-  const float special[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, 3e38f, -3e38f, 1e-40f, INFINITY, -INFINITY, NAN, 7.25f};
+  const OpText second[] = {{ir::Op::Add, "(A + B)"}, {ir::Op::Sub, "(A - B)"},   {ir::Op::Mul, "(A * B)"},
+                           {ir::Op::Div, "(A / B)"}, {ir::Op::Max, "max(A, B)"}, {ir::Op::Abs, "abs(A)"},
+                           {ir::Op::Neg, "(-A)"},    {ir::Op::Sqrt, "sqrt(A)"}};
+  const float special[] = {0.0f,   -0.0f,  1.0f,     -1.0f,     0.5f, -2.5f, 3e38f,
+                           -3e38f, 1e-40f, INFINITY, -INFINITY, NAN,  7.25f};
   const size_t k = std::size(special), n = k * k;  // 169 points: a padded tail too
   std::vector<float> xs(n), ys(n), zs(n), ts(n, 0), out(n);
   for (size_t i = 0; i < n; ++i) xs[i] = special[i % k], ys[i] = special[i / k], zs[i] = special[(i * 5 + 2) % k];
@@ -194,7 +197,8 @@ void check_fused(const std::vector<OpText>& first, bool squared, const char* mar
             const char* bv = ab == 0 ? "y" : ab == 1 ? "0.75" : "x";
             const char* t = squared ? "(d * d)" : "d";
             std::string body = t_first ? fill(o2.form, t, c) : fill(o2.form, c, t);
-            std::string text = "function FRep(x, y, z, t) { var d = " + fill(o1.form, av, bv) + "; return " + body + "; }";
+            std::string text =
+                "function FRep(x, y, z, t) { var d = " + fill(o1.form, av, bv) + "; return " + body + "; }";
             auto b = test::build(text);
             REQUIRE(b->ok);
             vm::VmProgram p;
@@ -230,8 +234,13 @@ void check_fused(const std::vector<OpText>& first, bool squared, const char* mar
 
 // Each pair of fusable ops, in both operand positions, with registers and immediates (bytecode.h).
 TEST_CASE("vm: fused pairs of lane ops give the bits of the two ops") {
-  check_fused({{ir::Op::Add, "(A + B)"}, {ir::Op::Sub, "(A - B)"}, {ir::Op::Mul, "(A * B)"}, {ir::Op::Max, "max(A, B)"},
-               {ir::Op::Abs, "abs(A)"}, {ir::Op::Neg, "(-A)"}, {ir::Op::Sqrt, "sqrt(A)"}},
+  check_fused({{ir::Op::Add, "(A + B)"},
+               {ir::Op::Sub, "(A - B)"},
+               {ir::Op::Mul, "(A * B)"},
+               {ir::Op::Max, "max(A, B)"},
+               {ir::Op::Abs, "abs(A)"},
+               {ir::Op::Neg, "(-A)"},
+               {ir::Op::Sqrt, "sqrt(A)"}},
               false, " -> ");
 }
 
@@ -253,7 +262,8 @@ TEST_CASE("vm: straight-line code is reordered so that a value sits next to the 
   std::string listing = vm::disassemble(p);
   INFO(listing);
   size_t squares = 0;
-  for (size_t at = listing.find("-> square ->"); at != std::string::npos; at = listing.find("-> square ->", at + 1)) ++squares;
+  for (size_t at = listing.find("-> square ->"); at != std::string::npos; at = listing.find("-> square ->", at + 1))
+    ++squares;
   CHECK(squares == 2);  // dy^2 into the first sum, dz^2 into the second; dx^2 is the sum's other operand
   CHECK(listing.find("= sqrt r1 -> fsub _ #0.3") != std::string::npos);
   const float xs[] = {0.0f, -0.0f, 1.0f, 0.25f, 3e38f, NAN, -2.0f, 1e-40f, 0.5f};
@@ -295,7 +305,8 @@ TEST_CASE("vm: random straight-line programs give the IR's values after reorderi
   std::mt19937 rng(20261205);
   auto pick = [&](size_t n) { return static_cast<size_t>(rng() % n); };
   const char* consts[] = {"0.5", "-0.25", "2", "0", "-0", "3e38", "1e-40", "0.3"};
-  const float special[] = {0.0f, -0.0f, 1.0f, -1.0f, 0.5f, -2.5f, 3e38f, -3e38f, 1e-40f, INFINITY, -INFINITY, NAN, 7.25f};
+  const float special[] = {0.0f,   -0.0f,  1.0f,     -1.0f,     0.5f, -2.5f, 3e38f,
+                           -3e38f, 1e-40f, INFINITY, -INFINITY, NAN,  7.25f};
   const size_t n = 97;
   std::vector<float> cols[4];
   for (size_t c = 0; c < 4; ++c)
@@ -349,7 +360,8 @@ TEST_CASE("vm: random straight-line programs give the IR's values after reorderi
       float want = reference_value(fn, point), one = test::eval1(*b, {point[0], point[1], point[2], point[3]});
       if (same_bits(out[i], want) && same_bits(one, want)) continue;
       ++bad;
-      FAIL_CHECK(text << listing << "at point " << i << ": batch " << out[i] << ", one point " << one << ", want " << want);
+      FAIL_CHECK(text << listing << "at point " << i << ": batch " << out[i] << ", one point " << one << ", want "
+                      << want);
     }
   }
   INFO(squared << " programs with squared pairs, " << fused << " with fused pairs, of 150");
@@ -443,12 +455,13 @@ TEST_CASE("vm: live intervals from walking up each use equal the dataflow fixed 
         case 0: out += v + " = " + w + (pick(2) ? " * 0.5 + " : " - ") + vars[pick(5)] + ";\n"; break;
         case 1: out += "if (" + cond + ") {\n" + statements(depth + 1, loops) + "}\n"; break;
         case 2:
-          out += "if (" + cond + ") {\n" + statements(depth + 1, loops) + "} else {\n" + statements(depth + 1, loops) + "}\n";
+          out += "if (" + cond + ") {\n" + statements(depth + 1, loops) + "} else {\n" + statements(depth + 1, loops) +
+              "}\n";
           break;
         case 3: {
           std::string i = "i" + std::to_string(depth) + "_" + std::to_string(s);
           out += "for (var " + i + " = 0; " + i + " < " + std::to_string(1 + pick(4)) + "; " + i + "++) {\n" +
-                 statements(depth + 1, loops + 1) + "}\n";
+              statements(depth + 1, loops + 1) + "}\n";
           break;
         }
         case 4: out += loops ? "if (" + cond + ") " + std::string(pick(2) ? "break" : "continue") + ";\n" : ""; break;
@@ -458,7 +471,8 @@ TEST_CASE("vm: live intervals from walking up each use equal the dataflow fixed 
     return out;
   };
   for (int n = 0; n < 150; ++n)
-    texts.push_back("function FRep(x, y, z, t) {\nvar a = z, b = t, c = 1;\n" + statements(0, 0) + "return a + b + c;\n}\n");
+    texts.push_back("function FRep(x, y, z, t) {\nvar a = z, b = t, c = 1;\n" + statements(0, 0) +
+                    "return a + b + c;\n}\n");
   size_t functions = 0, blocks = 0, mismatches = 0;
   // The golden cases include the deepest nesting the parser allows: too deep for the main thread's
   // stack under AddressSanitizer, as in the CLI and the golden runner.
@@ -475,7 +489,8 @@ TEST_CASE("vm: live intervals from walking up each use equal the dataflow fixed 
             if (lo.has_value[v] && (lo.interval[v].start != want[v].start || lo.interval[v].end != want[v].end)) {
               ++mismatches;
               INFO("v" << v << " of " << fn->name << ": [" << lo.interval[v].start << ", " << lo.interval[v].end
-                       << "] vs [" << want[v].start << ", " << want[v].end << "]\n" << text);
+                       << "] vs [" << want[v].start << ", " << want[v].end << "]\n"
+                       << text);
               CHECK(false);
             }
         }

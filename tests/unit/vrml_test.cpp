@@ -76,7 +76,8 @@ TEST_CASE("vrml: the FVRML nodes are built in, with the plug-in's defaults") {
 }
 
 TEST_CASE("vrml: a file's own declaration of an FVRML node fixes its field types") {
-  auto p = parse(R"(EXTERNPROTO FTransform [ exposedField SFVec3f translation exposedField MFNode children ] "x.wrl#FTransform"
+  auto p = parse(
+      R"(EXTERNPROTO FTransform [ exposedField SFVec3f translation exposedField MFNode children ] "x.wrl#FTransform"
     FTransform { translation 1 2 3 children [] })");
   INFO(p->text());
   REQUIRE(p->ok);
@@ -108,7 +109,8 @@ TEST_CASE("vrml: errors name the field and the expected type, all in one run") {
   CHECK(!p->ok);
   std::string t = p->text();
   INFO(t);
-  CHECK(t.find("t.wrl:2:29: error: expected 3 numbers (SFVec3f) for a field of 'Transform', found '}'") != std::string::npos);
+  CHECK(t.find("t.wrl:2:29: error: expected 3 numbers (SFVec3f) for a field of 'Transform', found '}'") !=
+        std::string::npos);
   CHECK(t.find("t.wrl:3:13: error: 'Transform' has no field 'bogus'") != std::string::npos);
   CHECK(t.find("t.wrl:4:1: error: unknown node type 'NoSuchNode'") != std::string::npos);
   CHECK(t.find("t.wrl:5:17: error: expected a number (SFFloat)") != std::string::npos);
@@ -118,11 +120,12 @@ TEST_CASE("vrml: errors name the field and the expected type, all in one run") {
 // The fuzzer's finding: a Script field declared twice (one name, two types) was kept twice, so the
 // writer wrote an IS the parser refuses on reading it back.
 TEST_CASE("vrml: a Script's fields are declared once each, and not over its own") {
-  auto p = parse("PROTO P [ field SFInt32 frames 0 field SFString center \"\" ] {\n"
-                 "  Script { field SFString frames IS center\n    field SFInt32 frames IS frames }\n}\n"
-                 "Script { eventIn SFFloat go field SFTime go 0 }\n"
-                 "Script { field MFString url [] }\n"
-                 "Script { field SFInt32 n 1 eventOut SFInt32 m }\n");
+  auto p = parse(
+      "PROTO P [ field SFInt32 frames 0 field SFString center \"\" ] {\n"
+      "  Script { field SFString frames IS center\n    field SFInt32 frames IS frames }\n}\n"
+      "Script { eventIn SFFloat go field SFTime go 0 }\n"
+      "Script { field MFString url [] }\n"
+      "Script { field SFInt32 n 1 eventOut SFInt32 m }\n");
   CHECK(!p->ok);
   std::string t = p->text();
   INFO(t);
@@ -190,7 +193,8 @@ DEF TS TimeSensor { cycleInterval 0.1 startTime 1e9 }
 ROUTE TS.cycleTime TO TS.set_startTime
 )"}};
   std::string corpus = FS_CORPUS_DIR;
-  if (!std::filesystem::exists(corpus)) test::skip(test::SkipKind::Missing, "the shared corpus folder is absent: " + corpus);
+  if (!std::filesystem::exists(corpus))
+    test::skip(test::SkipKind::Missing, "the shared corpus folder is absent: " + corpus);
   else
     for (const auto& e : std::filesystem::recursive_directory_iterator(corpus)) {
       if (e.path().extension() != ".wrl") continue;

@@ -143,9 +143,9 @@ size_t known_failures(std::unique_ptr<frontend::SourceFile> file, const std::vec
   auto found = ir::known_out_of_range(*c.module);
   for (const auto& k : found) {
     frontend::LineCol at{k.line, std::max(k.col, 1u)};
-    std::cerr << frontend::render(frontend::located(
-        frontend::Severity::Warning, c.script.file->path(), at, c.script.file->line_at(k.line),
-        backends::errors::array_index(k.array, k.index, k.length) + " whenever this runs"));
+    std::cerr << frontend::render(
+        frontend::located(frontend::Severity::Warning, c.script.file->path(), at, c.script.file->line_at(k.line),
+                          backends::errors::array_index(k.array, k.index, k.length) + " whenever this runs"));
   }
   return found.size();
 }
@@ -184,7 +184,9 @@ int cmd_check(const std::vector<std::string>& files) {
     if (!ok) rc = kExitInput;
     scripts += n, warnings += diag.all().size() - diag.error_count();
     print_diagnostics(diag);
-    if (ok) warnings += is_wrl ? known_failures_in_scene(path, text) : known_failures(std::make_unique<frontend::SourceFile>(path, text), {});
+    if (ok)
+      warnings += is_wrl ? known_failures_in_scene(path, text)
+                         : known_failures(std::make_unique<frontend::SourceFile>(path, text), {});
   }
   // On a terminal, a word that all went well (a pipe or a script gets silence, as compilers give).
   if (rc == kExitOk && isatty(STDOUT_FILENO)) {
@@ -228,7 +230,8 @@ int cmd_emit_ir(const std::string& file, const std::string& entry, bool opt, con
   if (gradient) {  // what the meshers evaluate for normals
     std::unique_ptr<ir::Module> g = ir::gradient_module(*c.module);
     if (!g) {
-      std::cerr << file << ": error: this kernel has no gradient: after optimisation it is not one block of "
+      std::cerr << file
+                << ": error: this kernel has no gradient: after optimisation it is not one block of "
                    "pure operations (a loop, a call, a global or an array is left), or it uses noise of x, y or z; "
                    "the meshers take differences of it instead\n";
       return kExitInput;
@@ -261,10 +264,11 @@ std::string backend_listing(const std::string& name, const ir::Module& m, const 
     double bound = 0;
     uint32_t lanes = 4;
     if (sse::generate(m, budgets, error, &text, nullptr, &bound, false, &lanes).empty()) return "";
-    text = "; " + std::to_string(lanes) + " points per iteration (" + (lanes == 8 ? "ymm" : "xmm") + " registers)\n" + text;
+    text = "; " + std::to_string(lanes) + " points per iteration (" + (lanes == 8 ? "ymm" : "xmm") + " registers)\n" +
+        text;
     if (bound > 0)  // the code that runs a batch whose inputs are all in range
       text = "; inputs finite with |x| <= " + std::to_string(static_cast<int>(bound)) +
-             " (other batches run the general code)\n" + text;
+          " (other batches run the general code)\n" + text;
     return text;
   }
   if (name == "llvm") {

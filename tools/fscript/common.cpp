@@ -45,7 +45,9 @@ int compile_file(const std::string& path, const std::string& entry, const Option
   switch (r.stage) {
     case driver::Stage::Done: return kExitOk;
     case driver::Stage::Source: return kExitInput;
-    case driver::Stage::Entry: std::cerr << out.script.file->path() << ": error: " << r.error << "\n"; return kExitInput;
+    case driver::Stage::Entry:
+      std::cerr << out.script.file->path() << ": error: " << r.error << "\n";
+      return kExitInput;
     case driver::Stage::Internal: std::cerr << "internal error: " << r.error << "\n"; return kExitInput;
     case driver::Stage::NoBackend: std::cerr << "error: " << r.error << "\n"; return kExitUsage;
     case driver::Stage::Backend: std::cerr << "error: " << r.error << "\n"; return kExitInput;
@@ -54,7 +56,9 @@ int compile_file(const std::string& path, const std::string& entry, const Option
 }
 
 bool is_scene_path(const std::string& p) {
-  auto ends = [&](const char* e) { return p.size() >= std::strlen(e) && p.compare(p.size() - std::strlen(e), std::string::npos, e) == 0; };
+  auto ends = [&](const char* e) {
+    return p.size() >= std::strlen(e) && p.compare(p.size() - std::strlen(e), std::string::npos, e) == 0;
+  };
   return ends(".wrl") || ends(".wrl.gz") || ends(".wrz") || ends(".WRL");
 }
 
@@ -82,7 +86,8 @@ void print_runtime_error(const frontend::SourceFile& file, const backends::Runti
     return;
   }
   frontend::LineCol at{err.line, std::max(err.col, 1u)};
-  std::cerr << frontend::render(frontend::located(frontend::Severity::Error, file.path(), at, file.line_at(err.line), err.message));
+  std::cerr << frontend::render(
+      frontend::located(frontend::Severity::Error, file.path(), at, file.line_at(err.line), err.message));
 }
 
 }  // namespace fscript::cli

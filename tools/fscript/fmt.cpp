@@ -47,7 +47,8 @@ std::string vrml_escaped(const std::string& s) {
 // The script's formatted text, its leading and trailing white space kept; a script on one line
 // stays on one line, without a ';' it did not have (a definition "1 - x*x" is an expression);
 // one that starts on a line of its own is indented as that line is.
-bool format_embedded(const std::string& path, const std::string& text, std::string& out, frontend::DiagnosticSink& diag) {
+bool format_embedded(const std::string& path, const std::string& text, std::string& out,
+                     frontend::DiagnosticSink& diag) {
   size_t b = text.find_first_not_of(" \t\r\n"), e = text.find_last_not_of(" \t\r\n");
   if (b == std::string::npos) return out = text, true;
   std::string body = text.substr(b, e - b + 1);
@@ -149,7 +150,8 @@ int cmd_fmt(const std::string& file, bool in_place, bool check_only) {
     return kExitInput;
   }
   char magic[2] = {};
-  if (scene && in_place && std::ifstream(file, std::ios::binary).read(magic, 2) && magic[0] == '\x1f' && magic[1] == '\x8b') {
+  if (scene && in_place && std::ifstream(file, std::ios::binary).read(magic, 2) && magic[0] == '\x1f' &&
+      magic[1] == '\x8b') {
     std::cerr << "error: " << file << " is gzipped: fmt prints it formatted, and -i would write it uncompressed\n";
     return kExitUsage;
   }

@@ -22,7 +22,8 @@ struct Args {
   std::vector<std::string> files, values;
   size_t points = 1'000'000;
   unsigned threads = 1, repeat = 1;
-  bool opt = false, gradient = false, one_point = false, grid = false, llvm = false, disk_cache = false, no_prune = false, stats = false;
+  bool opt = false, gradient = false, one_point = false, grid = false, llvm = false, disk_cache = false,
+       no_prune = false, stats = false;
   bool in_place = false, check_only = false;
   uint32_t max_depth = 1000;
   tools::RunLimits limits;
@@ -33,7 +34,9 @@ void add_budget_flags(CLI::App& app, Args& a) { tools::add_budget_flags(app, a.o
 CLI::App* add_compiling(CLI::App& app, const char* name, const char* help, Args& a) {
   CLI::App* c = app.add_subcommand(name, help);
   c->add_option("FILE", a.file, "the .fs script ('-' for standard input)")->required();
-  c->add_option("--backend,-b", a.opts.backend, "evaluation backend: auto (the VM at once, native code from a background compile when the job is big enough), vm, sse or llvm (default: auto)");
+  c->add_option("--backend,-b", a.opts.backend,
+                "evaluation backend: auto (the VM at once, native code from a background compile when the job is big "
+                "enough), vm, sse or llvm (default: auto)");
   c->add_flag("--llvm-disk-cache", a.disk_cache,
               "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
   c->add_option("--entry,-e", a.entry, "function to call (default: the script's entry point)");
@@ -61,8 +64,11 @@ int dispatch(CLI::App& app, Args& a) {
   if (app.got_subcommand("emit-asm")) return cmd_emit_asm(a.opts, a.file, a.entry);
   if (app.got_subcommand("fmt")) return cmd_fmt(a.file, a.in_place, a.check_only);
   if (app.got_subcommand("repl")) return run_repl(a.opts);
-  if (app.got_subcommand("bench")) return cmd_bench(a.opts, a.file, a.entry, a.points, a.threads,
-                                                     a.one_point ? BenchPath::OnePoint : a.grid ? BenchPath::Grid : BenchPath::Batch);
+  if (app.got_subcommand("bench"))
+    return cmd_bench(a.opts, a.file, a.entry, a.points, a.threads,
+                     a.one_point  ? BenchPath::OnePoint
+                         : a.grid ? BenchPath::Grid
+                                  : BenchPath::Batch);
   if (app.got_subcommand("render2d"))
     return cmd_render2d(a.opts, a.file, a.entry, a.size, a.bounds, a.out, a.threads, !a.no_prune, a.stats, a.repeat);
   // No subcommand: the REPL on a terminal; otherwise the program on standard input runs once.
@@ -78,7 +84,8 @@ int real_main(int argc, char** argv) {
   add_budget_flags(app, a);
   tools::add_limit_flags(app, a.limits);
 
-  CLI::App* run = add_compiling(app, "run", "call the entry (or --entry NAME) with numeric ARGs and print the result", a);
+  CLI::App* run =
+      add_compiling(app, "run", "call the entry (or --entry NAME) with numeric ARGs and print the result", a);
   run->add_option("ARG", a.values, "arguments (nan, inf, -inf accepted); missing ones are 0");
   run->allow_extras();  // "-inf" and "-1e3" are arguments, not options
 
@@ -92,10 +99,12 @@ int real_main(int argc, char** argv) {
   emit->add_option("FILE", a.file, "the .fs script")->required();
   emit->add_flag("--opt", a.opt, "after the optimisation pipeline");
   emit->add_flag("--llvm", a.llvm, "the kernel lowered to LLVM IR and optimised by LLVM (the llvm backend)");
-  emit->add_option("--passes", a.passes, "run these passes in order instead (inline,promote,fold,dce,gvn,simplify,ifconv)");
+  emit->add_option("--passes", a.passes,
+                   "run these passes in order instead (inline,promote,fold,dce,gvn,simplify,ifconv)");
   emit->add_option("--entry,-e", a.entry, "function to build the kernel for");
-  emit->add_flag("--gradient", a.gradient,
-                 "the optimised kernel of f and its partial derivatives in x, y, z (what the meshers evaluate for normals)");
+  emit->add_flag(
+      "--gradient", a.gradient,
+      "the optimised kernel of f and its partial derivatives in x, y, z (what the meshers evaluate for normals)");
 
   add_compiling(app, "emit-asm", "print the generated code of a backend", a);
 
@@ -105,10 +114,12 @@ int real_main(int argc, char** argv) {
   fmt->add_flag("--check", a.check_only, "print nothing; exit 1 (naming FILE) if it is not formatted");
 
   CLI::App* repl = app.add_subcommand("repl", "the interactive session (also what fscript alone starts on a terminal)");
-  repl->add_option("--backend,-b", a.opts.backend, "the backend it starts with: auto, vm, sse or llvm (default: auto; :backend changes it)");
+  repl->add_option("--backend,-b", a.opts.backend,
+                   "the backend it starts with: auto, vm, sse or llvm (default: auto; :backend changes it)");
   add_budget_flags(*repl, a);
-  app.footer("With no command: on a terminal, the REPL (fscript repl); otherwise the program on standard\n"
-             "input runs once (fscript < FILE). Exit status: 0 success, 1 an error in the input, 2 usage.");
+  app.footer(
+      "With no command: on a terminal, the REPL (fscript repl); otherwise the program on standard\n"
+      "input runs once (fscript < FILE). Exit status: 0 success, 1 an error in the input, 2 usage.");
 
   CLI::App* bench = add_compiling(app, "bench", "time the batch path over many points", a);
   bench->add_option("--points,-n", a.points, "number of points, at least 1 (default 1,000,000)")
@@ -118,7 +129,9 @@ int real_main(int argc, char** argv) {
       ->check(CLI::Range(1u, 1024u).description(""))
       ->type_name("N");
   bench->add_flag("--one-point", a.one_point, "call the kernel one point at a time instead of in batches");
-  bench->add_flag("--grid", a.grid, "evaluate the grid row by row (Kernel::eval_rows: what does not depend on x once per row)")
+  bench
+      ->add_flag("--grid", a.grid,
+                 "evaluate the grid row by row (Kernel::eval_rows: what does not depend on x once per row)")
       ->excludes("--one-point");
 
   CLI::App* r2d = add_compiling(app, "render2d", "picture of f(x, y, 0, 0) >= 0 as a PNG", a);

@@ -32,14 +32,17 @@ template <class Work>
 bool parallel_slices(size_t n, unsigned threads, Work work, backends::RuntimeError& err) {
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
-  return support::run_parts(static_cast<int>(threads), [&](int, backends::RuntimeError& e) {
-    while (!failed) {
-      size_t b = next.fetch_add(kBatch);
-      if (b >= n) return true;
-      if (!work(b, std::min(n, b + kBatch), e)) return !(failed = true);
-    }
-    return true;
-  }, err);
+  return support::run_parts(
+      static_cast<int>(threads),
+      [&](int, backends::RuntimeError& e) {
+        while (!failed) {
+          size_t b = next.fetch_add(kBatch);
+          if (b >= n) return true;
+          if (!work(b, std::min(n, b + kBatch), e)) return !(failed = true);
+        }
+        return true;
+      },
+      err);
 }
 
 size_t grid_side(size_t n) {
@@ -84,17 +87,20 @@ bool bench_rows(const backends::Kernel& k, const GridRows& g, std::vector<std::v
                 backends::RuntimeError& err) {
   size_t side = g.x.size();
   size_t per_slice = std::max<size_t>(1, kBatch / side);
-  return parallel_slices(g.rows, std::max(1u, threads), [&](size_t b, size_t e, backends::RuntimeError& er) {
-    for (size_t r = b; r < e; r += per_slice) {
-      size_t n = std::min(per_slice, e - r);
-      std::vector<const float*> rest(g.rest.size());
-      std::vector<float*> out(outs.size());
-      for (size_t i = 0; i < rest.size(); ++i) rest[i] = g.rest[i].data() + r;
-      for (size_t i = 0; i < out.size(); ++i) out[i] = outs[i].data() + r * side;
-      if (!k.eval_rows(g.x.data(), side, rest.data(), n, out.data(), er)) return false;
-    }
-    return true;
-  }, err);
+  return parallel_slices(
+      g.rows, std::max(1u, threads),
+      [&](size_t b, size_t e, backends::RuntimeError& er) {
+        for (size_t r = b; r < e; r += per_slice) {
+          size_t n = std::min(per_slice, e - r);
+          std::vector<const float*> rest(g.rest.size());
+          std::vector<float*> out(outs.size());
+          for (size_t i = 0; i < rest.size(); ++i) rest[i] = g.rest[i].data() + r;
+          for (size_t i = 0; i < out.size(); ++i) out[i] = outs[i].data() + r * side;
+          if (!k.eval_rows(g.x.data(), side, rest.data(), n, out.data(), er)) return false;
+        }
+        return true;
+      },
+      err);
 }
 
 int cmd_bench(const Options& o, const std::string& file, const std::string& entry, size_t points, unsigned threads,
@@ -152,35 +158,38 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
   }
   auto t0 = Clock::now();
   bool ok = rows ? bench_rows(*c.kernel, g, outs, threads, err)
-                                                 : parallel_slices(points, std::max(1u, threads), [&](size_t b, size_t e, backends::RuntimeError& er) {
-    if (one_point) {
-      std::vector<float> in(n_in), out(n_out);
-      for (size_t i = b; i < e; ++i) {
-        for (size_t k = 0; k < n_in; ++k) in[k] = cols[k][i];
-        if (!c.kernel->eval(in.data(), out.data(), er)) return false;
-      }
-      return true;
-    }
-    std::vector<const float*> in(n_in);
-    std::vector<float*> out(n_out);
-    for (size_t k = 0; k < n_in; ++k) in[k] = cols[k].data() + b;
-    for (size_t k = 0; k < n_out; ++k) out[k] = outs[k].data() + b;
-    return c.kernel->eval_batch(in.data(), out.data(), e - b, er);
-  }, err);
+                 : parallel_slices(
+                       points, std::max(1u, threads),
+                       [&](size_t b, size_t e, backends::RuntimeError& er) {
+                         if (one_point) {
+                           std::vector<float> in(n_in), out(n_out);
+                           for (size_t i = b; i < e; ++i) {
+                             for (size_t k = 0; k < n_in; ++k) in[k] = cols[k][i];
+                             if (!c.kernel->eval(in.data(), out.data(), er)) return false;
+                           }
+                           return true;
+                         }
+                         std::vector<const float*> in(n_in);
+                         std::vector<float*> out(n_out);
+                         for (size_t k = 0; k < n_in; ++k) in[k] = cols[k].data() + b;
+                         for (size_t k = 0; k < n_out; ++k) out[k] = outs[k].data() + b;
+                         return c.kernel->eval_batch(in.data(), out.data(), e - b, er);
+                       },
+                       err);
   double secs = std::chrono::duration<double>(Clock::now() - t0).count();
   if (!ok) {
     print_runtime_error(*c.script.file, err);
     return kExitInput;
   }
-  std::printf("%.6g evals/s\n%.4g ns/eval\n", static_cast<double>(points) / secs, secs * 1e9 / static_cast<double>(points));
+  std::printf("%.6g evals/s\n%.4g ns/eval\n", static_cast<double>(points) / secs,
+              secs * 1e9 / static_cast<double>(points));
   if (path == BenchPath::Grid) {
     backends::RowStats r = backends::row_stats();
     if (r.rows)
       std::printf("row split: %llu operations once per row, %llu per point, %llu values per row\n",
                   static_cast<unsigned long long>(r.hoisted), static_cast<unsigned long long>(r.per_point),
                   static_cast<unsigned long long>(r.row_values));
-    else
-      std::printf("row split: none (no work to hoist out of the rows, or the kernel is not straight-line)\n");
+    else std::printf("row split: none (no work to hoist out of the rows, or the kernel is not straight-line)\n");
   }
   if (name == "auto") {
     backends::TierStats t = backends::tier_stats();
@@ -237,13 +246,15 @@ void print_quadtree_stats(const render::QuadtreeStats& st, size_t pixels) {
     const auto& l = st.levels[k];
     std::printf("level %ux%u: %zu empty, %zu full, %zu ambiguous", l.size, l.size, l.empty, l.full, l.ambiguous);
     if (k + 1 == st.levels.size()) std::printf(" (evaluated point by point)\n");
-    else std::printf(", mean simplified tape %.1f operations\n",
-                     l.ambiguous ? static_cast<double>(l.tape_ops) / static_cast<double>(l.ambiguous) : 0.0);
+    else
+      std::printf(", mean simplified tape %.1f operations\n",
+                  l.ambiguous ? static_cast<double>(l.tape_ops) / static_cast<double>(l.ambiguous) : 0.0);
   }
-  std::printf("points evaluated: %zu of %zu (%.2f%% of the dense path); simplified kernels compiled: %zu; batches run "
-              "straight from their tape: %zu\n",
-              st.points, pixels, 100.0 * static_cast<double>(st.points) / static_cast<double>(std::max<size_t>(pixels, 1)),
-              st.kernels, st.direct);
+  std::printf(
+      "points evaluated: %zu of %zu (%.2f%% of the dense path); simplified kernels compiled: %zu; batches run "
+      "straight from their tape: %zu\n",
+      st.points, pixels, 100.0 * static_cast<double>(st.points) / static_cast<double>(std::max<size_t>(pixels, 1)),
+      st.kernels, st.direct);
 }
 
 int cmd_render2d(const Options& o, const std::string& file, const std::string& entry, const std::string& size,

@@ -51,7 +51,7 @@ void unwrap_message(frontend::Diagnostic& d, const std::vector<std::string>& lin
   if (d.message.rfind(kWrapper, 0) != 0 || depth_at(lines, d.pos.line, d.pos.col) != 0) return;
   size_t found = d.message.find(", found ");
   d.message = "expected an operator or the end of the expression" +
-              (found == std::string::npos ? std::string() : d.message.substr(found));
+      (found == std::string::npos ? std::string() : d.message.substr(found));
 }
 
 // Diagnostics of a synthesized program, shown against what the user typed: positions inside the
@@ -147,7 +147,8 @@ bool input_complete(const std::string& text) {
       continue;
     }
     if (c == '"' || c == '\'') quote = c;
-    else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') i = text.find('\n', i) == std::string::npos ? text.size() : text.find('\n', i);
+    else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/')
+      i = text.find('\n', i) == std::string::npos ? text.size() : text.find('\n', i);
     else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
       size_t end = text.find("*/", i + 2);
       if (end == std::string::npos) return false;
@@ -180,7 +181,7 @@ std::string run_interruptible(const std::function<std::string()>& work) {
     _exit(0);
   }
   close(fds[1]);
-  struct sigaction sa {}, old {};
+  struct sigaction sa{}, old{};
   sa.sa_handler = on_sigint;  // no SA_RESTART: read() returns on Ctrl-C
   sigemptyset(&sa.sa_mask);
   g_interrupted = 0;
@@ -269,7 +270,8 @@ bool Session::define(const std::string& input, std::string& out) {
   for (const auto& d : kept) prefix += d.second + "\n";
   frontend::DiagnosticSink diag;
   frontend::Script script;
-  bool ok = frontend::load_script(std::make_unique<frontend::SourceFile>("<input>", prefix + input + "\n"), diag, script);
+  bool ok =
+      frontend::load_script(std::make_unique<frontend::SourceFile>("<input>", prefix + input + "\n"), diag, script);
   out += render_mapped(diag, count_lines(prefix) + 1, input);
   if (!ok) return false;
   kept.push_back({name, input});
@@ -279,7 +281,8 @@ bool Session::define(const std::string& input, std::string& out) {
 
 void Session::evaluate(const std::string& raw, std::string& out) {
   std::string expr = raw;
-  while (!expr.empty() && (expr.back() == ';' || std::isspace(static_cast<unsigned char>(expr.back())))) expr.pop_back();
+  while (!expr.empty() && (expr.back() == ';' || std::isspace(static_cast<unsigned char>(expr.back()))))
+    expr.pop_back();
   Compiled c;
   std::string errors;
   if (!compile("__repl__", {}, "return (\n" + expr + "\n);", expr, c, errors)) {
@@ -411,7 +414,7 @@ int run_repl(const Options& o) {
             << std::flush;
   // Ctrl-C at the prompt drops the line being typed and any continuation, as node and Python do;
   // an evaluation in progress takes Ctrl-C itself (run_interruptible).
-  struct sigaction at_prompt {};
+  struct sigaction at_prompt{};
   at_prompt.sa_handler = on_prompt_sigint;  // no SA_RESTART: select() returns on Ctrl-C
   sigemptyset(&at_prompt.sa_mask);
   sigaction(SIGINT, &at_prompt, nullptr);
@@ -431,8 +434,7 @@ int run_repl(const Options& o) {
     if (ready > 0 && FD_ISSET(STDIN_FILENO, &in) && !g_prompt_interrupted) rl_callback_read_char();
     if (g_prompt_interrupted) {
       char drain[64];
-      while (g_wake[0] >= 0 && read(g_wake[0], drain, sizeof drain) > 0) {
-      }
+      while (g_wake[0] >= 0 && read(g_wake[0], drain, sizeof drain) > 0) {}
       g_prompt_interrupted = 0;
       rl_replace_line("", 0);
       g_line.have = false;  // the line Ctrl-C ended

@@ -96,7 +96,8 @@ std::string chart(const std::vector<float>& ys, float a, float b) {
   std::ostringstream out;
   for (int r = 0; r < rows; ++r) {
     std::string label = r == 0 ? format_number(hi) : r == rows - 1 ? format_number(lo) : "";
-    out << std::string(12 - std::min<size_t>(12, label.size()), ' ') << label << " |" << grid[static_cast<size_t>(r)] << "\n";
+    out << std::string(12 - std::min<size_t>(12, label.size()), ' ') << label << " |" << grid[static_cast<size_t>(r)]
+        << "\n";
   }
   out << std::string(13, ' ') << "x from " << format_number(a) << " to " << format_number(b) << "\n";
   return out.str();
@@ -141,8 +142,8 @@ std::string picture(const std::vector<float>& v, int w, int h, float a, float b)
 }  // namespace
 
 std::vector<std::string> Session::completions(const std::string& prefix) const {
-  static const char* kKeywords[] = {"function", "var", "let", "const", "return", "if", "else", "for", "while",
-                                    "break", "continue", "true", "false", "pi"};
+  static const char* kKeywords[] = {"function", "var",   "let",   "const",    "return", "if",    "else",
+                                    "for",      "while", "break", "continue", "true",   "false", "pi"};
   std::vector<std::string> all;
   if (!prefix.empty() && prefix[0] == ':') {
     for (const CommandInfo& c : kCommands) all.push_back(c.name);
@@ -190,8 +191,8 @@ static bool compile_named(const Session& s, const std::string& name, const Optio
   Options with = o;
   with.want_kernel = want_kernel;
   frontend::DiagnosticSink diag;
-  driver::Outcome r = driver::compile(std::make_unique<frontend::SourceFile>("<session>", s.program()), entry, with,
-                                      diag, c);
+  driver::Outcome r =
+      driver::compile(std::make_unique<frontend::SourceFile>("<session>", s.program()), entry, with, diag, c);
   return report_compile(r, frontend::render_all(diag), out);
 }
 
@@ -205,8 +206,7 @@ static std::string used_ir(const ir::Module& m) {
         bool memory = ir::has_flag(i->op, ir::Memory) && i->aux >= 0;
         if (memory && (i->op == ir::Op::GLoad || i->op == ir::Op::GStore) && size_t(i->aux) < global.size())
           global[static_cast<size_t>(i->aux)] = 1;
-        else if (memory && i->array_global && size_t(i->aux) < array.size())
-          array[static_cast<size_t>(i->aux)] = 1;
+        else if (memory && i->array_global && size_t(i->aux) < array.size()) array[static_cast<size_t>(i->aux)] = 1;
       }
   std::string out;
   for (size_t g = 0; g < global.size(); ++g)
@@ -251,8 +251,9 @@ void Session::cmd_time(const std::string& arg, std::string& out) {
   }
   if (!compile("__repl__", {}, "return (\n" + arg + "\n);", arg, c, out)) return;
   if (folded_to_constant(*c.module))
-    out += "note: the expression was folded to a constant when compiled: this times returning that constant, "
-           "not computing it\n";
+    out +=
+        "note: the expression was folded to a constant when compiled: this times returning that constant, "
+        "not computing it\n";
   const backends::Kernel& k = *c.kernel;
   std::string name = opts_.backend;
   out += run_interruptible([&k, name] {
@@ -426,18 +427,19 @@ void Session::cmd_load(const std::string& path, std::string& out) {
     // The node's own DEF name (with the field when it has several scripts), else its owner's
     // name and the script's role: shape1_geometry, shape1_diffuseColor, ball_texture.
     std::string name = !s.node->def_name.empty()
-                           ? (per_node[s.node] > 1 ? s.node->def_name + "_" + s.script.field : s.node->def_name)
-                           : owner.count(s.node) ? owner[s.node] + "_" + role_of(*s.node, s.script.field)
-                                                 : lowercase_type(*s.node) + "_" + s.script.field;
+        ? (per_node[s.node] > 1 ? s.node->def_name + "_" + s.script.field : s.node->def_name)
+        : owner.count(s.node) ? owner[s.node] + "_" + role_of(*s.node, s.script.field)
+                              : lowercase_type(*s.node) + "_" + s.script.field;
     scene_[name] = {s.script.text, path, s.script.line, s.script.col, lines};
     names += (count++ % 6 == 0 ? "\n  " : " ") + name;
   }
   out += frontend::render_all(diag);
-  std::string left_out = broken == 0 ? "" : "; " + std::to_string(broken) + (broken == 1 ? " script" : " scripts") +
-                                                " with errors (above) left out";
+  std::string left_out = broken == 0
+      ? ""
+      : "; " + std::to_string(broken) + (broken == 1 ? " script" : " scripts") + " with errors (above) left out";
   out += names.empty() ? (broken ? "no script of " + path + " loaded" + left_out : "no FScript in " + path) + "\n"
                        : "loaded " + std::to_string(count) + (count == 1 ? " script" : " scripts") + " from " + path +
-                             left_out + ", each callable with its script's inputs (x, y, z, t or u, v, w, t):" + names + "\n";
+          left_out + ", each callable with its script's inputs (x, y, z, t or u, v, w, t):" + names + "\n";
 }
 
 // NAME(args) where NAME came from a loaded scene: the script compiled on its own (its entry

@@ -12,21 +12,18 @@ namespace {
 
 nlohmann::json describe(const fscript::mesh::Mesh& m) {
   auto t = fscript::mesh::topology(m);
-  return {{"vertices", m.positions.size()},
-          {"triangles", m.triangles.size()},
-          {"watertight", t.watertight},
-          {"manifold", t.manifold},
-          {"oriented", t.oriented},
-          {"euler", t.euler},
-          {"components", t.components},
-          {"inverted_components", t.inverted_components},
+  return {{"vertices", m.positions.size()}, {"triangles", m.triangles.size()},
+          {"watertight", t.watertight},     {"manifold", t.manifold},
+          {"oriented", t.oriented},         {"euler", t.euler},
+          {"components", t.components},     {"inverted_components", t.inverted_components},
           {"normals", !m.normals.empty()}};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"fvrml-meshdiff: the topology of a mesh, and Hausdorff and Chamfer distances to a second (PLY, OBJ, STL)"};
+  CLI::App app{
+      "fvrml-meshdiff: the topology of a mesh, and Hausdorff and Chamfer distances to a second (PLY, OBJ, STL)"};
   app.set_version_flag("--version", fscript::support::version_line("fvrml-meshdiff"));
   std::string a_path, b_path;
   app.add_option("A", a_path, "the first mesh (distances relative to its bounding-box diagonal)")->required();
@@ -53,12 +50,9 @@ int main(int argc, char** argv) {
   auto d = fscript::mesh::mesh_distances(a, b);
   double diag = fscript::mesh::bbox_diagonal(a);
   auto rel = [&](double v) { return diag > 0 ? v / diag : 0.0; };
-  nlohmann::json j = {{"hausdorff", d.hausdorff},
-                      {"hausdorff_relative", rel(d.hausdorff)},
-                      {"chamfer", d.chamfer},
-                      {"chamfer_relative", rel(d.chamfer)},
-                      {"bbox_diagonal_a", diag},
-                      {"a", describe(a)},
+  nlohmann::json j = {{"hausdorff", d.hausdorff}, {"hausdorff_relative", rel(d.hausdorff)},
+                      {"chamfer", d.chamfer},     {"chamfer_relative", rel(d.chamfer)},
+                      {"bbox_diagonal_a", diag},  {"a", describe(a)},
                       {"b", describe(b)}};
   std::cout << j.dump(2) << "\n";
   return 0;

@@ -71,7 +71,9 @@ Meshed mesh_scene(const Options& o, const vrml::Scene& scene, const SceneModel& 
     fscript::backends::RuntimeError err;
     bool mine = own_shape(s, skip);
     std::string key = mine && o.memo ? shape_key(o, scene, model, i, world) : "";
-    if (mine && !memo_mesh(o, key, m, [&] { return fscript::scene::mesh_shape(s, m, err, world, threads, o.prune, o.mesher); })) {
+    if (mine && !memo_mesh(o, key, m, [&] {
+          return fscript::scene::mesh_shape(s, m, err, world, threads, o.prune, o.mesher);
+        })) {
       report(o, scene, s.fshape, err);
       out.failed = true;
     }
@@ -141,8 +143,10 @@ std::string numbered(const std::string& path, int frame, int frames) {
 
 bool write_frame(const Options& o, const std::string& path, const mesh::Mesh& all) {
   std::string error;
-  mesh::MeshFormat f = o.format == "ply" ? mesh::MeshFormat::Ply : o.format == "obj" ? mesh::MeshFormat::Obj
-                     : o.format == "stl" ? mesh::MeshFormat::Stl : mesh::MeshFormat::Glb;
+  mesh::MeshFormat f = o.format == "ply" ? mesh::MeshFormat::Ply
+      : o.format == "obj"                ? mesh::MeshFormat::Obj
+      : o.format == "stl"                ? mesh::MeshFormat::Stl
+                                         : mesh::MeshFormat::Glb;
   if (!mesh::write_mesh(all, f, path, error)) {
     std::cerr << "error: " << error << "\n";
     return false;

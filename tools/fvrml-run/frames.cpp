@@ -72,7 +72,8 @@ bool write_text(const Options& o, const std::string& text) {
 
 // The glTF animation of a track's cached frames: all of them, or (partial) those made so far, each
 // shown until the next one made.
-mesh::GltfAnimation gltf_animation(const vrml::Scene& scene, const Track& t, const mesh::FrameCache& cache, bool partial) {
+mesh::GltfAnimation gltf_animation(const vrml::Scene& scene, const Track& t, const mesh::FrameCache& cache,
+                                   bool partial) {
   mesh::GltfAnimation a;
   a.name = t.node->def_name.empty() ? "line " + std::to_string(node_line(scene, *t.node)) : t.node->def_name;
   a.cycle_interval = fscript::scene::time_fields(*t.node).cycle_interval;
@@ -184,7 +185,8 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
       }
       all = o.format == "png" ? picture(meshed, l.scene) : merged(meshed);
     }
-    per_frame[f] = {{"fraction", static_cast<double>(f) / o.frames}, {"vertices", all.positions.size()},
+    per_frame[f] = {{"fraction", static_cast<double>(f) / o.frames},
+                    {"vertices", all.positions.size()},
                     {"triangles", all.triangles.size()}};
     if (o.shard_part) {
       std::lock_guard<std::mutex> hold(part_lock);
@@ -195,7 +197,8 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
     auto px = fscript::render::render(all, render_options(o, l.scene, tw, th));
     int cx = f % cols, cy = f / cols;
     for (uint32_t y = 0; y < th; ++y)
-      std::copy_n(px.begin() + size_t(y) * tw * 3, tw * 3, sheet.begin() + ((size_t(cy) * th + y) * tw * cols + size_t(cx) * tw) * 3);
+      std::copy_n(px.begin() + size_t(y) * tw * 3, tw * 3,
+                  sheet.begin() + ((size_t(cy) * th + y) * tw * cols + size_t(cx) * tw) * 3);
     return true;
   });
   if (!ok) return 1;
@@ -227,7 +230,8 @@ std::vector<Track> tracks(const Options& o, const SceneModel& model) {
   }
   for (size_t g = 0; g < model.groups.size(); ++g) {
     const auto& grp = model.groups[g];
-    if (grp.parent < 0) add({grp.node, true, static_cast<int>(g), 0}, fscript::scene::field_number(*grp.node, "frames"));
+    if (grp.parent < 0)
+      add({grp.node, true, static_cast<int>(g), 0}, fscript::scene::field_number(*grp.node, "frames"));
   }
   return out;
 }
@@ -245,7 +249,8 @@ bool within_sample_limits(const Options& o, Loaded& l, const SceneModel& model, 
   std::vector<uint64_t> per(model.shapes.size(), static_cast<uint64_t>(std::max(frames, 1)));
   for (const auto& t : frames > 0 ? std::vector<Track>{} : tracks(o, model))
     for (size_t i = 0; i < model.shapes.size(); ++i)
-      if (t.group ? fscript::scene::inside_group(model, model.shapes[i].group, t.index) : static_cast<int>(i) == t.index)
+      if (t.group ? fscript::scene::inside_group(model, model.shapes[i].group, t.index)
+                  : static_cast<int>(i) == t.index)
         per[i] = static_cast<uint64_t>(t.frames);
   // Work: every point of every frame. Memory: one frame of every shape at once, and the finished
   // parametric frames an animation keeps (implicit ones depend on the surface: the limit stops them).
@@ -268,11 +273,12 @@ bool within_sample_limits(const Options& o, Loaded& l, const SceneModel& model, 
   uint64_t f = per[at_shape];
   char text[400];
   if (over_work)
-    std::snprintf(text, sizeof text,
-                  "the run asks for %.3g sample points (this shape: %.3g, times %llu frame%s), over the limit of %.3g for "
-                  "one run; lower the resolutions, the frames or --resolution-scale",
-                  samples, most / static_cast<double>(f), static_cast<unsigned long long>(f), f == 1 ? "" : "s",
-                  fscript::scene::kMaxShapeSamples);
+    std::snprintf(
+        text, sizeof text,
+        "the run asks for %.3g sample points (this shape: %.3g, times %llu frame%s), over the limit of %.3g for "
+        "one run; lower the resolutions, the frames or --resolution-scale",
+        samples, most / static_cast<double>(f), static_cast<unsigned long long>(f), f == 1 ? "" : "s",
+        fscript::scene::kMaxShapeSamples);
   else
     std::snprintf(text, sizeof text,
                   "the run needs about %s of memory (this shape: %s, %llu frame%s), over the %s of --max-memory; lower "
@@ -312,7 +318,9 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
     const auto& ms = models[t.frames];
     int parallel = std::min(o.threads, t.frames), per = std::max(1, o.threads / parallel);
     caches.push_back(std::make_unique<mesh::FrameCache>(
-        t.frames, [&o, &ms, t, per, world, prune = o.prune, mesher = o.mesher](size_t i, mesh::Mesh& out, fscript::backends::RuntimeError& err) {
+        t.frames,
+        [&o, &ms, t, per, world, prune = o.prune, mesher = o.mesher](size_t i, mesh::Mesh& out,
+                                                                     fscript::backends::RuntimeError& err) {
           if (cancelled(o)) return err.message = "cancelled", false;
           return t.group ? fscript::scene::mesh_group(ms[i], t.index, out, err, world, per, prune, mesher)
                          : fscript::scene::mesh_shape(ms[i].shapes[t.index], out, err, world, per, prune, mesher);
@@ -363,8 +371,10 @@ int animated(const Options& o, Loaded& l, const SceneModel& model, nlohmann::jso
       if (!keys[i].empty()) o.memo->store_frame(keys[i], *cache.compact(i));
     double fraction = t.group ? model.groups[t.index].fraction : model.shapes[t.index].fraction;
     int initial = std::clamp(static_cast<int>(std::floor(fraction * t.frames)), 0, t.frames - 1);
-    report_json.push_back({{"line", node_line(l.scene, *t.node)}, {"frames", t.frames},
-                           {"triangles", cache.triangles()}, {"cache_bytes", cache.bytes()},
+    report_json.push_back({{"line", node_line(l.scene, *t.node)},
+                           {"frames", t.frames},
+                           {"triangles", cache.triangles()},
+                           {"cache_bytes", cache.bytes()},
                            {"bytes_per_triangle", cache.triangles() ? double(cache.bytes()) / cache.triangles() : 0.0},
                            {"constant", cache.all_same()}});
     if (cache.all_same()) {  // nothing moves: one frame, shown as a static shape

@@ -78,14 +78,21 @@ nlohmann::json prune_json() {
   nlohmann::json levels = nlohmann::json::array();
   for (const auto& l : p.levels)
     levels.push_back({{"size", l.size}, {"empty", l.empty}, {"full", l.full}, {"ambiguous", l.ambiguous}});
-  return {{"pruned", p.pruned}, {"levels", levels}, {"points", p.points}, {"evaluated", p.evaluated},
-          {"evaluated_fraction", p.points ? double(p.evaluated) / double(p.points) : 1.0}, {"fallbacks", p.fallbacks}};
+  return {{"pruned", p.pruned},
+          {"levels", levels},
+          {"points", p.points},
+          {"evaluated", p.evaluated},
+          {"evaluated_fraction", p.points ? double(p.evaluated) / double(p.points) : 1.0},
+          {"fallbacks", p.fallbacks}};
 }
 
 // Dual contouring's figures over every implicit shape it meshed (engine/mesh/dc_cell_merge.h).
 nlohmann::json dual_contouring_json() {
   mesh::DualContourStats d = mesh::dual_contour_totals();
-  return {{"shapes", d.jobs}, {"vertices", d.cells}, {"merged_cells", d.merged}, {"triangles", d.triangles},
+  return {{"shapes", d.jobs},
+          {"vertices", d.cells},
+          {"merged_cells", d.merged},
+          {"triangles", d.triangles},
           {"max_qef_error_cells", d.max_error},
           {"normals", {{"gradient", d.gradient_normals}, {"differences", d.difference_normals}}}};
 }
@@ -93,10 +100,17 @@ nlohmann::json dual_contouring_json() {
 // What the auto backend did: native compiles, the switch, the points on each tier.
 nlohmann::json tiers_json() {
   fscript::backends::TierStats t = fscript::backends::tier_stats();
-  return {{"native", t.native}, {"kernels", t.kernels}, {"compiles", t.compiles}, {"cached", t.cached}, {"switched", t.switched},
-          {"failed", t.failed}, {"first_switch_ms", t.first_switch_ms}, {"vm_points", t.vm_points},
+  return {{"native", t.native},
+          {"kernels", t.kernels},
+          {"compiles", t.compiles},
+          {"cached", t.cached},
+          {"switched", t.switched},
+          {"failed", t.failed},
+          {"first_switch_ms", t.first_switch_ms},
+          {"vm_points", t.vm_points},
           {"native_points", t.native_points},
-          {"native_share", t.vm_points + t.native_points ? double(t.native_points) / double(t.vm_points + t.native_points) : 0.0}};
+          {"native_share",
+           t.vm_points + t.native_points ? double(t.native_points) / double(t.vm_points + t.native_points) : 0.0}};
 }
 
 // 590776 -> "590,776".
@@ -137,9 +151,14 @@ std::string written_summary(const Options& o, const nlohmann::json& st, double m
   std::snprintf(secs, sizeof secs, ", %.2f s", ms / 1000.0);
   std::string out = "wrote " + files + ": " + what + secs;
   if (st.value("one_instant", false)) {
-    std::string format = o.format == "png" ? "a picture" : o.format == "stl" ? "STL" : o.format == "obj" ? "OBJ" : "PLY";
-    out += "\nnote: the scene changes in time and " + format + " holds one instant: this is the scene at time 0; --frames N writes N " + (o.format == "png" ? "frames on a contact sheet" : "files") +
-           " over its cycle, --time T or --fraction F another instant, and -o NAME.glb or NAME.wrl an animation";
+    std::string format = o.format == "png" ? "a picture"
+        : o.format == "stl"                ? "STL"
+        : o.format == "obj"                ? "OBJ"
+                                           : "PLY";
+    out += "\nnote: the scene changes in time and " + format +
+        " holds one instant: this is the scene at time 0; --frames N writes N " +
+        (o.format == "png" ? "frames on a contact sheet" : "files") +
+        " over its cycle, --time T or --fraction F another instant, and -o NAME.glb or NAME.wrl an animation";
   }
   return out;
 }
@@ -164,7 +183,9 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   o.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   app.add_option("SCENE", o.path, "the .wrl scene (plain or gzip), or an .fs script: one FShape with its definition")
       ->required();
-  app.add_option("--backend", o.model.compile.backend, "evaluation backend: auto (the VM at once, native code from a background compile when the job is big enough), vm, sse or llvm (default: auto)");
+  app.add_option("--backend", o.model.compile.backend,
+                 "evaluation backend: auto (the VM at once, native code from a background compile when the job is big "
+                 "enough), vm, sse or llvm (default: auto)");
   bool disk_cache = false;
   app.add_flag("--llvm-disk-cache", disk_cache,
                "keep the llvm backend's machine code in ~/.cache/fscript/llvm for the next run");
@@ -202,11 +223,12 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
                  "triangles where the surface is flat) or mt (marching tetrahedra: a dense mesh with smooth normals)")
       ->check(CLI::IsMember({"mt", "dc"}))
       ->type_name("MESHER");
-  CLI::Option* tolerance = app.add_option("--tolerance", o.mesher.tolerance,
-                 "dual contouring merges cells while their vertex stays within T cells (root-mean-square) of the "
-                 "surface's tangent planes; 0 keeps every cell (default 0.02)")
-      ->check(CLI::Range(0.0, 10.0).description(""))
-      ->type_name("T");
+  CLI::Option* tolerance =
+      app.add_option("--tolerance", o.mesher.tolerance,
+                     "dual contouring merges cells while their vertex stays within T cells (root-mean-square) of the "
+                     "surface's tangent planes; 0 keeps every cell (default 0.02)")
+          ->check(CLI::Range(0.0, 10.0).description(""))
+          ->type_name("T");
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
   std::string shard_text;
   app.add_option("--shard", shard_text,
@@ -218,7 +240,8 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   app.add_flag("--serve", serve.on,
                "a live preview in the browser: serves a page that shows the scene and updates on every save, "
                "until Ctrl-C");
-  app.add_option("--port", serve.port, "--serve: the port (default 8800; 0 picks a free one)")->check(CLI::Range(0, 65535));
+  app.add_option("--port", serve.port, "--serve: the port (default 8800; 0 picks a free one)")
+      ->check(CLI::Range(0, 65535));
   app.add_option("--host", serve.host, "--serve: the address to listen on (default 127.0.0.1: this machine only)");
   app.add_flag("--open", serve.open, "--serve: open the page in the desktop's browser (xdg-open)");
   app.add_option("--format", o.format, "wrl|glb|ply|obj|stl|png (default: from the output's extension; wrl)");
@@ -247,7 +270,8 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   app.add_option("--zoom", o.zoom, "come closer (F > 1) or step back (F < 1) from the automatic framing (png)")
       ->check(CLI::Range(0.01, 100.0).description(""))
       ->type_name("F");
-  app.add_option("--threads", o.threads, "worker threads, 1 to 256 (default: all cores); the output is the same for any count")
+  app.add_option("--threads", o.threads,
+                 "worker threads, 1 to 256 (default: all cores); the output is the same for any count")
       ->check(CLI::Range(1, 256).description(""))
       ->type_name("N");
   if (std::string error; !fscript::tools::check_command_line(app, argc, argv, false, error))
@@ -281,7 +305,8 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   }
   // On a terminal, no -o would mean thousands of coordinates on the screen: a picture instead, in
   // the current folder, named after the scene (a pipe still gets VRML97 on standard output).
-  if (!serve.on && o.output.empty() && o.format.empty() && !o.stats && o.check.empty() && o.frames == 0 && isatty(STDOUT_FILENO)) {
+  if (!serve.on && o.output.empty() && o.format.empty() && !o.stats && o.check.empty() && o.frames == 0 &&
+      isatty(STDOUT_FILENO)) {
     std::string name = std::filesystem::path(o.path).filename().string();
     for (const char* ext : {".wrl.gz", ".wrz", ".wrl", ".WRL", ".fs"})
       if (name.size() > std::strlen(ext) && name.compare(name.size() - std::strlen(ext), std::string::npos, ext) == 0) {
@@ -298,7 +323,8 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   if (o.format.empty()) o.format = "wrl";
   static const std::set<std::string> kFormats = {"wrl", "glb", "ply", "obj", "stl", "png"};
   if (!kFormats.count(o.format)) {
-    std::cerr << "error: unsupported output format '" << o.format << "': fvrml-run writes wrl, glb, ply, obj, stl and png\n";
+    std::cerr << "error: unsupported output format '" << o.format
+              << "': fvrml-run writes wrl, glb, ply, obj, stl and png\n";
     return 2;
   }
   bool animation = o.format == "wrl" || o.format == "glb";
@@ -321,7 +347,8 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
     o.shard_part = &part;
     o.memo = &shard_memo;  // for the frames' keys
   }
-  if (merge) o.merging = merge->first, o.memo = merge->memo, o.whole_frames = merge->whole_frames, o.mesher.slabs = merge->slabs;
+  if (merge)
+    o.merging = merge->first, o.memo = merge->memo, o.whole_frames = merge->whole_frames, o.mesher.slabs = merge->slabs;
   // Under --serve the clock is per run (cancelled, the server goes on), not a watchdog on the process.
   o.instant = app.count("--time") > 0 || app.count("--fraction") > 0;
   if (!fscript::tools::apply_limits("fvrml-run", limits, !serve.on)) return 1;
@@ -356,7 +383,8 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
     else std::cerr << made << (made == 1 ? " frame\n" : " frames\n");
     return 0;
   }
-  if (!o.stats && rc == 0 && !o.output.empty() && o.output != "-") std::cerr << written_summary(o, st, ms_since(t0)) << "\n";
+  if (!o.stats && rc == 0 && !o.output.empty() && o.output != "-")
+    std::cerr << written_summary(o, st, ms_since(t0)) << "\n";
   return rc;
 }
 
@@ -367,7 +395,8 @@ int merge_main(int argc, char** argv) {
   std::vector<std::string> paths;
   std::string output;
   app.add_option("PART", paths, "every part of the job (fvrml-run --shard K/M -o PART)")->required();
-  app.add_option("-o,--output", output, "the output, of the shards' --format (.wrl, .glb, .ply, .obj, .stl or .png)")->required();
+  app.add_option("-o,--output", output, "the output, of the shards' --format (.wrl, .glb, .ply, .obj, .stl or .png)")
+      ->required();
   try {
     app.parse(argc - 1, argv + 1);
   } catch (const CLI::ParseError& e) {
@@ -375,7 +404,8 @@ int merge_main(int argc, char** argv) {
   }
   for (const std::string& p : paths)
     if (fscript::support::same_file(p, output))
-      return std::cerr << "error: -o " << output << " is a part this merge reads (" << p << "); name another output\n", 1;
+      return std::cerr << "error: -o " << output << " is a part this merge reads (" << p << "); name another output\n",
+             1;
   std::vector<Part> parts(paths.size());
   std::string error;
   for (size_t i = 0; i < paths.size(); ++i)
@@ -387,17 +417,23 @@ int merge_main(int argc, char** argv) {
   for (size_t i = 0; i < parts.size(); ++i) {
     for (const PartFrame& f : parts[i].frames) {
       if (!keys.insert(f.key).second)
-        return std::cerr << paths[i] << ": error: a frame that another part holds too (parts of one job never overlap)\n", 1;
+        return std::cerr << paths[i]
+                         << ": error: a frame that another part holds too (parts of one job never overlap)\n",
+               1;
       memo.store_frame(f.key, f.compact);
     }
     for (auto& [index, m] : parts[i].whole_frames)
       if (!whole.emplace(index, std::move(m)).second)
-        return std::cerr << paths[i] << ": error: a frame that another part holds too (parts of one job never overlap)\n", 1;
+        return std::cerr << paths[i]
+                         << ": error: a frame that another part holds too (parts of one job never overlap)\n",
+               1;
   }
   // The shards' --format is the output's: an -o of another type would get the wrong bytes.
   const std::vector<std::string>& a = parts[0].args;
   for (size_t i = 0; i < a.size(); ++i) {
-    std::string format = a[i] == "--format" && i + 1 < a.size() ? a[i + 1] : a[i].rfind("--format=", 0) == 0 ? a[i].substr(9) : "";
+    std::string format = a[i] == "--format" && i + 1 < a.size() ? a[i + 1]
+        : a[i].rfind("--format=", 0) == 0                       ? a[i].substr(9)
+                                                                : "";
     if (!format.empty() && output.substr(output.find_last_of('.') + 1) != format)
       return std::cerr << "error: the shards were made for " << format << " output: -o NAME." << format << "\n", 2;
   }
@@ -424,7 +460,8 @@ int main(int argc, char** argv) {
   fscript::support::set_default_thread_stack();  // workers' stacks not sized by ulimit -s
   int rc = 0;
   fscript::support::run_with_big_stack([&] {
-    rc = argc > 1 && std::strcmp(argv[1], "merge") == 0 ? fvrml_run::merge_main(argc, argv) : fvrml_run::run(argc, argv);
+    rc =
+        argc > 1 && std::strcmp(argv[1], "merge") == 0 ? fvrml_run::merge_main(argc, argv) : fvrml_run::run(argc, argv);
   });
   return rc;
 }

@@ -38,7 +38,7 @@ std::string shape_numbers(const fscript::scene::Shape& s, bool world) {
 
 std::string options_text(const Options& o, bool world) {
   std::string out = "backend " + o.model.compile.backend + (o.prune ? " prune" : " no-prune") +
-                    (o.mesher.kind == mesh::Mesher::DualContouring ? " dc " : " mt ") + (world ? "world " : "local ");
+      (o.mesher.kind == mesh::Mesher::DualContouring ? " dc " : " mt ") + (world ? "world " : "local ");
   add(out, o.mesher.tolerance);
   return out + "\n";
 }

@@ -19,7 +19,6 @@
 namespace fvrml_run {
 namespace {
 
-
 nlohmann::json field_json(const fscript::scene::CompiledField& f) {
   return {{"field", f.field}, {"timeSpan", {f.span0, f.span1}}, {"t", f.t}};
 }
@@ -50,8 +49,9 @@ nlohmann::json stats(const vrml::Scene& scene, const SceneModel& m, const Meshed
     const auto& g = m.groups[i];
     nlohmann::json affine = nlohmann::json::object();
     for (const auto& [field, parts] : g.affine) affine[field] = parts.size();
-    nlohmann::json j = {{"operation", g.operation}, {"type", g.type}, {"fraction", g.fraction}, {"shapes", g.shapes},
-                        {"ftransforms", g.groups}, {"parent", g.parent}, {"affine", affine}};
+    nlohmann::json j = {{"operation", g.operation}, {"type", g.type},          {"fraction", g.fraction},
+                        {"shapes", g.shapes},       {"ftransforms", g.groups}, {"parent", g.parent},
+                        {"affine", affine}};
     if (meshed && meshed->group_counts.count(i))
       j["vertices"] = meshed->group_counts.at(i).first, j["triangles"] = meshed->group_counts.at(i).second;
     groups.push_back(j);
@@ -93,11 +93,15 @@ bool check_against(const std::string& ref, const mesh::Mesh& all) {
   auto d = mesh::mesh_distances(all, reference);
   double diag = mesh::bbox_diagonal(all);
   auto t = mesh::topology(all);
-  nlohmann::json j = {{"hausdorff", d.hausdorff}, {"chamfer", d.chamfer},
+  nlohmann::json j = {{"hausdorff", d.hausdorff},
+                      {"chamfer", d.chamfer},
                       {"hausdorff_relative", diag > 0 ? d.hausdorff / diag : 0.0},
                       {"chamfer_relative", diag > 0 ? d.chamfer / diag : 0.0},
-                      {"vertices", all.positions.size()}, {"triangles", all.triangles.size()},
-                      {"watertight", t.watertight}, {"manifold", t.manifold}, {"euler", t.euler}};
+                      {"vertices", all.positions.size()},
+                      {"triangles", all.triangles.size()},
+                      {"watertight", t.watertight},
+                      {"manifold", t.manifold},
+                      {"euler", t.euler}};
   std::cout << j.dump() << "\n";
   return true;
 }
@@ -120,12 +124,14 @@ bool outputs_clear_of_inputs(const Options& o, const std::vector<std::string>& i
   for (const std::string& out : outputs(o)) {
     for (size_t i = 0; i < inputs.size(); ++i)
       if (fscript::support::same_file(out, inputs[i])) {
-        std::cerr << "error: the output " << out << " is " << (i == 0 ? "the scene this run reads" : "a file this scene reads (" + inputs[i] + ")")
+        std::cerr << "error: the output " << out << " is "
+                  << (i == 0 ? "the scene this run reads" : "a file this scene reads (" + inputs[i] + ")")
                   << ": writing it would replace that file; name another output, or add --force\n";
         return false;
       }
     if (!o.check.empty() && fscript::support::same_file(out, o.check)) {
-      std::cerr << "error: the output " << out << " is the reference mesh of --check: writing it would replace that file; "
+      std::cerr << "error: the output " << out
+                << " is the reference mesh of --check: writing it would replace that file; "
                 << "name another output, or add --force\n";
       return false;
     }
@@ -138,8 +144,12 @@ nlohmann::json missing_json(const std::vector<vrml::MissingInline>& missing) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& m : missing) {
     fscript::frontend::LineCol at = m.file->position(m.span.begin);
-    out.push_back({{"url", m.url}, {"file", m.file->path()}, {"line", at.line}, {"column", at.col},
-                   {"looked_at", m.looked_at}, {"reason", m.reason}});
+    out.push_back({{"url", m.url},
+                   {"file", m.file->path()},
+                   {"line", at.line},
+                   {"column", at.col},
+                   {"looked_at", m.looked_at},
+                   {"reason", m.reason}});
   }
   return out;
 }
@@ -149,13 +159,14 @@ nlohmann::json missing_json(const std::vector<vrml::MissingInline>& missing) {
 nlohmann::json view_json(const fscript::render::RenderOptions& ro) {
   nlohmann::json v = {{"headlight", ro.headlight}, {"background", ro.background}, {"lights", nlohmann::json::array()}};
   if (ro.camera)
-    v["camera"] = {{"position", ro.camera->position}, {"orientation", ro.camera->orientation},
+    v["camera"] = {{"position", ro.camera->position},
+                   {"orientation", ro.camera->orientation},
                    {"fieldOfView", ro.camera->field_of_view}};
   for (const auto& l : ro.lights)
-    v["lights"].push_back({{"direction", l.direction}, {"colour", l.colour}, {"intensity", l.intensity}, {"ambient", l.ambient}});
+    v["lights"].push_back(
+        {{"direction", l.direction}, {"colour", l.colour}, {"intensity", l.intensity}, {"ambient", l.ambient}});
   return v;
 }
-
 
 }  // namespace
 
@@ -164,7 +175,7 @@ int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* fi
   std::string text, error;
   bool script = is_script_path(o.path);
   if (!(script ? fscript::support::read_file(o.path, text, error, fscript::support::kMaxInputBytes)
-              : vrml::read_scene_text(o.path, text, error))) {
+               : vrml::read_scene_text(o.path, text, error))) {
     // A whole-file error (unreadable, too large, a gzip bomb) is placed at the file's start.
     std::cerr << o.path << ":1:1: error: " << error << "\n";
     return 1;
@@ -174,7 +185,8 @@ int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* fi
   bool ok = script ? script_scene(o.path, text, l)
                    : vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(o.path, text), l.diag, l.scene);
   l.files = {o.path};
-  if (ok && !script) ok = vrml::load_inlines(l.scene, l.diag, &l.files, o.strict);  // local Inline files, read and parsed
+  if (ok && !script)
+    ok = vrml::load_inlines(l.scene, l.diag, &l.files, o.strict);  // local Inline files, read and parsed
   if (files) files->insert(files->end(), l.files.begin() + 1, l.files.end());
   st = {{"parse_ms", ms_since(t0)}};
   if (!l.scene.missing_inlines.empty()) st["missing_inlines"] = missing_json(l.scene.missing_inlines);
@@ -241,10 +253,12 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
     if (o.format == "wrl") {
       std::string text = fscript::scene::export_vrml(l.scene, meshed.by_node, {}, o.output);
       if (o.output.empty() || o.output == "-") std::cout << text;
-      else if (!fscript::support::write_file_atomic(o.output, text, error)) return std::cerr << "error: " << error << "\n", 1;
+      else if (!fscript::support::write_file_atomic(o.output, text, error))
+        return std::cerr << "error: " << error << "\n", 1;
     } else if (o.format == "png") {
       fscript::render::RenderOptions ro = render_options(o, l.scene, o.width, o.height);
-      if (!fscript::render::write_png(o.output, ro.width, ro.height, 3, fscript::render::render(picture(meshed, l.scene), ro), error))
+      if (!fscript::render::write_png(o.output, ro.width, ro.height, 3,
+                                      fscript::render::render(picture(meshed, l.scene), ro), error))
         return std::cerr << "error: " << error << "\n", 1;
     } else if (!write_frame(o, o.output, o.format == "glb" ? picture(meshed, l.scene) : merged(meshed))) {
       return 1;

@@ -74,8 +74,8 @@ struct State {
 };
 
 nlohmann::json state_json(const State& s) {
-  return {{"version", s.version}, {"ok", s.ok}, {"diagnostics", s.diagnostics}, {"stats", s.stats},
-          {"scale", s.scale}, {"partial", s.partial}};
+  return {{"version", s.version}, {"ok", s.ok},       {"diagnostics", s.diagnostics},
+          {"stats", s.stats},     {"scale", s.scale}, {"partial", s.partial}};
 }
 
 // The files a run read, with their modification times: a change of any is a reason to run again.
@@ -156,7 +156,8 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   // broken scene is good again.
   if (diagnostics != st.printed) {
     if (!diagnostics.empty()) std::fprintf(stderr, "%s", diagnostics.c_str());
-    else if (st.printed.find("error:") != std::string::npos) std::fprintf(stderr, "fvrml-run: %s: no errors now\n", o.path.c_str());
+    else if (st.printed.find("error:") != std::string::npos)
+      std::fprintf(stderr, "fvrml-run: %s: no errors now\n", o.path.c_str());
     st.printed = diagnostics;
   }
   {
@@ -242,7 +243,9 @@ void watch(const Options& o, int poll_ms, const std::string& dir, State& st, std
 }
 
 void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
-  svr.Get("/", [](const httplib::Request&, httplib::Response& res) { res.set_content(kIndexHtml, "text/html; charset=utf-8"); });
+  svr.Get("/", [](const httplib::Request&, httplib::Response& res) {
+    res.set_content(kIndexHtml, "text/html; charset=utf-8");
+  });
   svr.Get(R"(/favicon\.ico)", [](const httplib::Request&, httplib::Response& res) { res.status = 204; });
   svr.Get(R"(/preview\.js)", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(kPreviewJs, "text/javascript; charset=utf-8");
@@ -327,7 +330,8 @@ void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
             if (st.running)
               st.changed.wait_for(hold, std::chrono::milliseconds(250), [&] { return gone() || st.version != *sent; });
             else  // idle: until a state, a run starting, the page closing, or the keep-alive
-              st.changed.wait_for(hold, std::chrono::seconds(15), [&] { return gone() || st.version != *sent || st.running; });
+              st.changed.wait_for(hold, std::chrono::seconds(15),
+                                  [&] { return gone() || st.version != *sent || st.running; });
             if (gone()) return false;
             if (st.version != *sent) {
               *sent = st.version;
@@ -404,7 +408,8 @@ int Preview::port() const { return impl_->port; }
 
 std::string Preview::url() const {
   const std::string& host = impl_->s.host;
-  return "http://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(impl_->port) + "/";
+  return "http://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" +
+      std::to_string(impl_->port) + "/";
 }
 
 bool Preview::start(std::string& error, std::function<void()> ended) {
@@ -478,7 +483,7 @@ int serve(const Options& o, const ServeOptions& s) {
     std::cerr << "error: --serve: " << std::strerror(errno) << "\n";
     return 1;
   }
-  struct sigaction on_stop {};
+  struct sigaction on_stop{};
   on_stop.sa_handler = [](int) { [[maybe_unused]] ssize_t k = write(stop_pipe[1], "s", 1); };
   sigemptyset(&on_stop.sa_mask);
   sigaction(SIGINT, &on_stop, nullptr);
@@ -497,8 +502,7 @@ int serve(const Options& o, const ServeOptions& s) {
   std::cout << "fvrml-run: serving " << o.path << " at " << preview.url() << " (Ctrl-C stops)" << std::endl;
   if (s.open) open_page(preview.url());
   char byte;
-  while (read(stop_pipe[0], &byte, 1) < 0 && errno == EINTR) {
-  }
+  while (read(stop_pipe[0], &byte, 1) < 0 && errno == EINTR) {}
   bool listened = preview.stop();
   signal(SIGINT, SIG_DFL), signal(SIGTERM, SIG_DFL);
   std::cout << "fvrml-run: stopped" << std::endl;

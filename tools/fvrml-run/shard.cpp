@@ -100,7 +100,7 @@ mesh::Mesh get_whole(Reader& r) {
 bool shard_numbers(long k, long m, Shard& out, std::string& error) {
   if (m < 1 || m > kMaxShards || k < 0 || k >= m) {
     error = "--shard wants K/M with 0 <= K < M <= " + std::to_string(kMaxShards) + ", got " + std::to_string(k) + "/" +
-            std::to_string(m);
+        std::to_string(m);
     return false;
   }
   out = {static_cast<int>(k), static_cast<int>(m)};
@@ -122,8 +122,9 @@ bool parse_shard(const std::string& text, Shard& out, std::string& error) {
     const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
     const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
     if (!whole_number(id, k) || !whole_number(count, m)) {
-      error = "--shard auto reads SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT, which are not set (run it in an "
-              "sbatch --array job, or give --shard K/M)";
+      error =
+          "--shard auto reads SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT, which are not set (run it in an "
+          "sbatch --array job, or give --shard K/M)";
       return false;
     }
     // FVRML_SHARDS=M: the job's shard count, for a rerun of some of its tasks (sbatch --array=2
@@ -153,9 +154,14 @@ uint64_t scene_files_hash(const std::vector<std::string>& files) {
 }
 
 bool write_part(const std::string& path, const Part& p, std::string& error) {
-  nlohmann::json header = {{"cwd", p.cwd},          {"args", p.args},          {"scene_hash", p.scene_hash},
-                           {"shard", p.shard.index}, {"of", p.shard.count}, {"frames", p.frames.size()},
-                           {"whole_frames", p.whole_frames.size()}, {"slabs", p.slabs.size()}};
+  nlohmann::json header = {{"cwd", p.cwd},
+                           {"args", p.args},
+                           {"scene_hash", p.scene_hash},
+                           {"shard", p.shard.index},
+                           {"of", p.shard.count},
+                           {"frames", p.frames.size()},
+                           {"whole_frames", p.whole_frames.size()},
+                           {"slabs", p.slabs.size()}};
   Writer w;
   w.out = kMagic;
   w.put_string(header.dump());
@@ -234,7 +240,8 @@ std::vector<std::string> args_for_part(int argc, char** argv) {
       ++i;  // and its value
       continue;
     }
-    if (a.rfind("--shard=", 0) == 0 || a.rfind("--output=", 0) == 0 || (a.size() > 2 && a.rfind("-o", 0) == 0)) continue;
+    if (a.rfind("--shard=", 0) == 0 || a.rfind("--output=", 0) == 0 || (a.size() > 2 && a.rfind("-o", 0) == 0))
+      continue;
     out.push_back(a);
   }
   return out;
@@ -253,7 +260,7 @@ bool check_parts(const std::vector<std::string>& paths, const std::vector<Part>&
              false;
     if (!seen.emplace(p.shard.index, paths[i]).second)
       return error = paths[i] + " and " + seen[p.shard.index] + " are both shard " + std::to_string(p.shard.index) +
-                     " of " + std::to_string(p.shard.count),
+                 " of " + std::to_string(p.shard.count),
              false;
   }
   std::vector<int> missing;
@@ -263,8 +270,8 @@ bool check_parts(const std::vector<std::string>& paths, const std::vector<Part>&
   std::string list, of = std::to_string(first.shard.count);
   for (int k : missing) list += (list.empty() ? "" : ", ") + std::to_string(k);
   error = (missing.size() == 1 ? "shard " : "shards ") + list + " of " + of + " missing (run " +
-          (missing.size() == 1 ? "it with --shard " + std::to_string(missing[0]) + "/" + of : "each with --shard K/" + of) +
-          ")";
+      (missing.size() == 1 ? "it with --shard " + std::to_string(missing[0]) + "/" + of : "each with --shard K/" + of) +
+      ")";
   return false;
 }
 

@@ -8,6 +8,8 @@
 #   ./dev.sh build   build only
 #   ./dev.sh setup   install every Debian and npm package the build and the tests use, build nothing
 #   ./dev.sh install PREFIX   build, then put the tools in PREFIX/bin (cmake --install; e.g. ~/.local)
+#   ./dev.sh format [--check]   rewrite the C++ sources as clang-format-19 writes them (.clang-format),
+#                    or only list the ones that differ (ctest `format` runs the check)
 #   ./dev.sh mutation [--only ID,...]   mutation testing (tests/mutation/run.sh; docs/testing.md)
 #   ./dev.sh fuzz [TARGET|all] [SECONDS]   coverage-guided fuzzing with clang-19's libFuzzer
 #                    (tests/fuzz; docs/reliability.md); ./dev.sh test runs every target briefly
@@ -24,8 +26,9 @@ PACKAGES=(cmake ninja-build ccache g++ python3 catch2 nlohmann-json3-dev libcli1
 # For the tests only: a real VRML97 browser (view3dscene, run under a virtual X server), Neovim as
 # a real LSP client, objdump (binutils) for the x86 encoder, node for the glTF validator and the
 # LSP client libraries (npm below), Chromium for the preview page (with npm's playwright-core),
-# Slurm and munge for a one-node cluster that runs the sharding example.
-TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim nodejs chromium slurm-wlm munge)
+# Slurm and munge for a one-node cluster that runs the sharding example; clang-format-19 for the
+# sources' format check.
+TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim nodejs chromium slurm-wlm munge clang-format-19)
 # The fuzz build (build-fuzz) and the replay of the fuzz corpora in the normal build.
 FUZZ_PACKAGES=(clang-19 libfuzzer-19-dev)
 FUZZ_TARGETS=(fscript_frontend ir_reader vrml_reader lsp_server backend_diff straight_diff interval_sound)
@@ -59,6 +62,10 @@ build() {
 }
 
 cmd="${1:-demo}"
+if [ "$cmd" = format ]; then  # no build: only the formatter
+  install_missing clang-format-19
+  exec tests/support/format.sh "${@:2}"
+fi
 install_missing "${PACKAGES[@]}"
 case "$cmd" in
   test | fuzz | campaign | oracle) install_missing "${FUZZ_PACKAGES[@]}" || echo "note: could not install ${FUZZ_PACKAGES[*]}; fuzzing will be skipped" ;;
@@ -170,5 +177,5 @@ case "$cmd" in
     echo "installed fscript, fvrml-run, fvrml-meshdiff and fscript-lsp in $2/bin"
     case ":$PATH:" in *":$2/bin:"*) ;; *) echo "note: $2/bin is not on PATH; add it for editors to find fscript-lsp" ;; esac
     ;;
-  *) echo "usage: ./dev.sh demo|test [--fast]|build|setup|install PREFIX|mutation|fuzz [TARGET|all] [SECONDS]|campaign TARGET [SECONDS] [WORKERS]|oracle [SECONDS]" >&2; exit 2 ;;
+  *) echo "usage: ./dev.sh demo|test [--fast]|build|setup|format [--check]|install PREFIX|mutation|fuzz [TARGET|all] [SECONDS]|campaign TARGET [SECONDS] [WORKERS]|oracle [SECONDS]" >&2; exit 2 ;;
 esac

@@ -46,6 +46,18 @@ def load(path):
     return mutants
 
 
+def all_found(tree, mutants):
+    """Every mutant's text is in its file exactly once (else it would land nowhere or somewhere unintended)."""
+    ok = True
+    for m in mutants:
+        path = os.path.join(tree, m["file"])
+        text = open(path, encoding="utf-8").read() if os.path.exists(path) else ""
+        if text.count(m["find"]) != 1:
+            print(f"BAD MUTANT {m['id']}: its text occurs {text.count(m['find'])} times in {m['file']}")
+            ok = False
+    return ok
+
+
 def sh(cmd, cwd, log, timeout=None):
     with open(log, "a") as f:
         f.write(f"$ {' '.join(cmd)}\n")
@@ -62,8 +74,11 @@ def main():
     ap.add_argument("--work", default="/tmp/fvrml-mutation")
     ap.add_argument("--only", default="")
     ap.add_argument("--report", default="")
+    ap.add_argument("--check", action="store_true", help="only check that every mutant's text is there once")
     args = ap.parse_args()
     mutants = load(os.path.join(SRC, "tests", "mutation", "mutants.txt"))
+    if args.check:  # a ctest: a refactor or a reformat that moves a mutant's text fails here, not months later
+        sys.exit(0 if all_found(SRC, mutants) else 1)
     if args.only:
         keep = set(args.only.split(","))
         mutants = [m for m in mutants if m["id"] in keep]
@@ -85,13 +100,7 @@ def main():
     cfg = ["cmake", "-S", tree, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release", f"-DFS_SHARED_DIR={shared}"]
     if sh(cfg, tree, log) or sh(["ninja", "-C", build], tree, log):
         sys.exit(f"the unmutated tree does not build; see {log}")
-    env_ok = True
-    for m in mutants:  # every mutant's text must be there exactly once
-        text = open(os.path.join(tree, m["file"]), encoding="utf-8").read()
-        if text.count(m["find"]) != 1:
-            print(f"BAD MUTANT {m['id']}: its text occurs {text.count(m['find'])} times in {m['file']}")
-            env_ok = False
-    if not env_ok:
+    if not all_found(tree, mutants):
         sys.exit(1)
     # Every test a mutant names must pass on the unmutated tree, or a "kill" would mean nothing.
     every = "|".join(sorted({t for m in mutants for t in m["tests"].split("|")}))

@@ -79,6 +79,12 @@ VmProgram tape_program(const ir::IntervalTape& t) {
 }
 
 void eval_tape_points(const ir::IntervalTape& t, const float* const* inputs, size_t num_inputs, size_t n, float* out) {
+  float* outs[1] = {out};
+  eval_tape_points(t, inputs, num_inputs, n, outs, 1);
+}
+
+void eval_tape_points(const ir::IntervalTape& t, const float* const* inputs, size_t num_inputs, size_t n,
+                      float* const* out, size_t count) {
   struct Free {
     void operator()(float* p) const { std::free(p); }
   };
@@ -101,7 +107,7 @@ void eval_tape_points(const ir::IntervalTape& t, const float* const* inputs, siz
     case math::Isa::Avx2: isa_avx2::run_tape_points(t.steps().data(), t.steps().size(), v); break;
     case math::Isa::Avx512: isa_avx512::run_tape_points(t.steps().data(), t.steps().size(), v); break;
   }
-  std::memcpy(out, v + size_t(t.outputs()[0]) * kPointLanes, n * sizeof(float));
+  for (size_t k = 0; k < count; ++k) std::memcpy(out[k], v + size_t(t.outputs()[k]) * kPointLanes, n * sizeof(float));
 }
 
 std::unique_ptr<backends::Kernel> compile_tape(const ir::IntervalTape& t, const backends::Budgets& b) {

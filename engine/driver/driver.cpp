@@ -49,13 +49,20 @@ Outcome compile_kernel(const ir::Module& m, const std::string& name, const backe
   return o;
 }
 
+std::unique_ptr<ir::Module> gradient_ir(const ir::Module& m) { return ir::gradient_module(m); }
+
+std::unique_ptr<backends::Kernel> compile_gradient(const ir::Module& g, const std::string& name,
+                                                   const backends::Budgets& budgets) {
+  std::unique_ptr<backends::Kernel> k;
+  if (name == "llvm" && g.instruction_count() > kMaxLlvmGradientOps) return k;
+  if (!compile_kernel(g, name, budgets, k).ok()) k.reset();
+  return k;
+}
+
 std::unique_ptr<backends::Kernel> gradient_kernel(const ir::Module& m, const std::string& name,
                                                   const backends::Budgets& budgets) {
-  std::unique_ptr<ir::Module> g = ir::gradient_module(m);
-  std::unique_ptr<backends::Kernel> k;
-  if (!g || (name == "llvm" && g->instruction_count() > kMaxLlvmGradientOps)) return k;
-  if (!compile_kernel(*g, name, budgets, k).ok()) k.reset();
-  return k;
+  std::unique_ptr<ir::Module> g = gradient_ir(m);
+  return g ? compile_gradient(*g, name, budgets) : nullptr;
 }
 
 Outcome compile(std::unique_ptr<frontend::SourceFile> file, const EntryChoice& entry, const CompileOptions& opts,

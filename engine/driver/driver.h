@@ -81,5 +81,10 @@ Outcome compile_kernel(const ir::Module& m, const std::string& name, const backe
 constexpr size_t kMaxLlvmGradientOps = 2000;
 std::unique_ptr<backends::Kernel> gradient_kernel(const ir::Module& m, const std::string& name,
                                                   const backends::Budgets& budgets);
+// The two halves of gradient_kernel: the gradient module (ir::gradient_module; nullptr: none), and
+// its kernel on backend `name` (nullptr: too big for llvm, or it did not compile).
+std::unique_ptr<ir::Module> gradient_ir(const ir::Module& m);
+std::unique_ptr<backends::Kernel> compile_gradient(const ir::Module& g, const std::string& name,
+                                                   const backends::Budgets& budgets);
 
 }  // namespace fscript::driver

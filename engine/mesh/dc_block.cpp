@@ -381,17 +381,22 @@ bool sample_block(const Field& f, const BrickMap* bricks, const Lattice& g, Bloc
         }
       }
     }
-  if (!pts.run(f, err)) return false;
+  // The field simplified for the block's region as the brick map descended (its box holds the
+  // block's samples: they start one step below the region).
+  static_assert(BrickMap::kLocal == kBlock, "a block is a region of the brick map's local fields");
+  if (bricks) b.local = bricks->local_at(b.b[0], b.b[1], b.b[2]);
+  if (!pts.run(b.field(f), err)) return false;
   const float* out = pts.out.data();
   for (const Run& r : runs) std::copy(out, out + r.n, b.f.begin() + static_cast<std::ptrdiff_t>(r.at)), out += r.n;
   find_crossings(b);
-  bool ok = exact_ends(f, g, b, err);
+  bool ok = exact_ends(b.field(f), g, b, err);
   const size_t stride[3] = {1, kBlockSamples, static_cast<size_t>(kBlockSamples) * kBlockSamples};
   b.ends.resize(b.xs.size());
   for (size_t e = 0; e < b.xs.size(); ++e) {
     size_t q = Block::sample(b.xs[e].l[0], b.xs[e].l[1], b.xs[e].l[2]);
     b.ends[e] = {b.f[q], b.f[q + stride[b.xs[e].axis]]};
   }
+  if (b.xs.empty()) b.local.reset();  // nothing more to evaluate here
   return ok;  // the signs stay in rows
 }
 
@@ -536,7 +541,8 @@ bool normals(const Field& f, const Lattice& g, Block& b, Edges& E, std::vector<P
 
 }  // namespace
 
-bool hermite(const Field& f, const Lattice& g, Block& b, std::vector<Plane>& planes, backends::RuntimeError& err) {
+bool hermite(const Field& whole, const Lattice& g, Block& b, std::vector<Plane>& planes, backends::RuntimeError& err) {
+  const Field& f = b.field(whole);
   thread_local Edges E;
   std::vector<size_t>& real = E.real;
   std::vector<double>&lo_t = E.lo_t, &hi_t = E.hi_t, &lo_f = E.lo_f, &hi_f = E.hi_f, &t = E.t, &v = E.v;

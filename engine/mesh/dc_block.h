@@ -4,6 +4,7 @@
 // and blocks run on any thread (dual_contour.cpp joins them in a fixed order: the same bytes).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "backends/backend.h"
@@ -117,6 +118,10 @@ struct Block {
   size_t evaluated = 0;
   uint32_t gradient_normals = 0, difference_normals = 0;  // of its crossings' normals (the box's aside)
   bool sound = true;  // no evaluated sample contradicted its brick's bound
+  // The field's tape simplified for the block (BrickMap::local_at), while it is sampled and worked:
+  // every point either evaluates lies in its box. Null: the field itself.
+  std::shared_ptr<const Field> local;
+  const Field& field(const Field& f) const { return local ? *local : f; }
 
   static size_t sample(int i, int j, int k) {
     return (static_cast<size_t>(k) * kBlockSamples + static_cast<size_t>(j)) * kBlockSamples + static_cast<size_t>(i);

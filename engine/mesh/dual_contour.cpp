@@ -139,6 +139,7 @@ bool work_blocks(const ImplicitJob& job, const Lattice& g, BlockGrid& grid, int 
         for (auto& t : b.fans)
           for (uint32_t& v : t) v = b.vertex[v];
         b.keep_rim();
+        b.local.reset();
         if (job.progress) job.progress->advance(1);
         return true;
       },

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "backends/backend.h"
@@ -59,6 +60,9 @@ class Field {
   virtual bool has_gradient() const { return false; }
   virtual bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                              backends::RuntimeError& err) const;
+  // A field with this one's bits at every point of the box, cheaper there (the tape simplified for
+  // the region: local_field.h); nullptr where there is none, and the polygonizer asks this one.
+  virtual std::shared_ptr<const Field> local(const Box3&) const { return nullptr; }
 };
 
 // Whether the run is cancelled (support/cancel.h), said in `err`: the kernels' fields ask before

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <mutex>
 
 #include "runtime/support/parallel.h"
@@ -52,7 +53,10 @@ BrickMap::BrickMap(const Field& f, const std::array<std::vector<float>, 3>& axis
   for (int a = 0; a < 3; ++a) {
     n_[a] = static_cast<int>(axis[a].size());
     nb_[a] = (n_[a] + kBrick - 1) / kBrick;
+    nl_[a] = (n_[a] + kLocal - 1) / kLocal;
+    step_[a] = n_[a] > 1 ? std::abs(double(axis[a][1]) - double(axis[a][0])) : 0.0;
   }
+  local_.assign(static_cast<size_t>(nl_[0]) * nl_[1] * nl_[2], nullptr);
   cls_.assign(static_cast<size_t>(nb_[0]) * nb_[1] * nb_[2], BrickClass::Open);
   std::vector<Region> tops;
   const int s = kSizes[0];
@@ -68,7 +72,7 @@ BrickMap::BrickMap(const Field& f, const std::array<std::vector<float>, 3>& axis
   support::run_parts(parts, [&](int p) {
     for (size_t t; (t = next.fetch_add(1)) < tops.size();) {
       Walk w{part_stats[static_cast<size_t>(p)], {}, {}};  // each top region learns on its own: any schedule
-      classify(f, axis, tops[t], 0, w);
+      classify(f, nullptr, axis, tops[t], 0, w);
     }
     return true;
   });
@@ -84,8 +88,9 @@ BrickMap::BrickMap(const Field& f, const std::array<std::vector<float>, 3>& axis
         }
 }
 
-void BrickMap::classify(const Field& f, const std::array<std::vector<float>, 3>& axis, const Region& r, size_t level,
-                        Walk& w) {
+void BrickMap::classify(const Field& root, const std::shared_ptr<const Field>& here,
+                        const std::array<std::vector<float>, 3>& axis, const Region& r, size_t level, Walk& w) {
+  const Field& f = here ? *here : root;
   Box3 box;
   for (int a = 0; a < 3; ++a) {
     float p = axis[a][static_cast<size_t>(r.lo[a])], q = axis[a][static_cast<size_t>(r.hi[a] - 1)];
@@ -94,10 +99,28 @@ void BrickMap::classify(const Field& f, const std::array<std::vector<float>, 3>&
   math::Interval v = f.bound(box);
   OctreeLevel& l = w.stats.levels[level];
   ++w.seen[level];
-  if (!v.nan && v.lo > 0) return ++l.full, ++w.decided[level], mark(r, BrickClass::Inside);
-  if (v.empty() || v.hi <= 0) return ++l.empty, ++w.decided[level], mark(r, BrickClass::Outside);  // 0, NaN: outside
+  const bool keeps = kSizes[level] >= kLocal;
+  if (!v.nan && v.lo > 0) {
+    if (keeps) keep_local(r, here);  // a sample here may still be evaluated (next to an open brick)
+    return ++l.full, ++w.decided[level], mark(r, BrickClass::Inside);
+  }
+  if (v.empty() || v.hi <= 0) {  // 0, NaN: outside
+    if (keeps) keep_local(r, here);
+    return ++l.empty, ++w.decided[level], mark(r, BrickClass::Outside);
+  }
   ++l.ambiguous;
-  if (level + 1 == kLevels) return;  // an open brick
+  if (!keeps) return;  // an open brick
+  // The region's field, simplified for its box and 1.5 steps around it: what its children are
+  // bounded with, and what a block of dual contouring (its samples reach one step below the region)
+  // evaluates with.
+  Box3 wide = box;
+  for (int a = 0; a < 3; ++a)
+    wide.lo[a] = static_cast<float>(box.lo[a] - 1.5 * step_[a]),
+    wide.hi[a] = static_cast<float>(box.hi[a] + 1.5 * step_[a]);
+  std::shared_ptr<const Field> narrowed = f.local(wide);
+  const std::shared_ptr<const Field>& mine = narrowed ? narrowed : here;
+  keep_local(r, mine);
+  if (level + 1 == kLevels) return;
   // A level whose bounds rarely decide is not worth more of them: a blend of spheres, say, is bounded
   // loosely everywhere, and one bound costs about as much as sampling a brick of 8^3 points.
   if (w.seen[level + 1] >= kTrials && w.decided[level + 1] * kRate < w.seen[level + 1]) return;
@@ -105,8 +128,16 @@ void BrickMap::classify(const Field& f, const std::array<std::vector<float>, 3>&
   for (int k = r.lo[2]; k < r.hi[2]; k += s)
     for (int j = r.lo[1]; j < r.hi[1]; j += s)
       for (int i = r.lo[0]; i < r.hi[0]; i += s)
-        classify(f, axis, {{i, j, k}, {std::min(i + s, r.hi[0]), std::min(j + s, r.hi[1]), std::min(k + s, r.hi[2])}},
-                 level + 1, w);
+        classify(root, mine, axis,
+                 {{i, j, k}, {std::min(i + s, r.hi[0]), std::min(j + s, r.hi[1]), std::min(k + s, r.hi[2])}}, level + 1,
+                 w);
+}
+
+void BrickMap::keep_local(const Region& r, const std::shared_ptr<const Field>& f) {
+  for (int k = r.lo[2] / kLocal; k * kLocal < r.hi[2]; ++k)
+    for (int j = r.lo[1] / kLocal; j * kLocal < r.hi[1]; ++j)
+      for (int i = r.lo[0] / kLocal; i * kLocal < r.hi[0]; ++i)
+        local_[(static_cast<size_t>(k) * nl_[1] + static_cast<size_t>(j)) * nl_[0] + static_cast<size_t>(i)] = f;
 }
 
 void BrickMap::mark(const Region& r, BrickClass c) {

@@ -4,9 +4,11 @@
 // whose bound is all inside or all outside is not sampled (a level whose bounds decide nothing is
 // given up); the polygonizer evaluates only the
 // decided points that a surface cube touches, so the mesh is the one the dense grid gives.
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "engine/mesh/field.h"
@@ -36,6 +38,8 @@ void add_prune_totals(const PruneStats& s);
 class BrickMap {
  public:
   static constexpr int kBrick = 8;
+  // The side of the regions that keep their field (local_at): a dual-contouring block's.
+  static constexpr int kLocal = 16;
 
   // axis[a][i]: the coordinate of grid point i along axis a, exactly as the samples are evaluated.
   // Classifies every brick; with `threads` workers, the same result for any count.
@@ -47,6 +51,13 @@ class BrickMap {
   // Whether every brick of the layer of bricks bk is open (the plane is sampled whole).
   bool layer_open(int bk) const { return layer_open_[static_cast<size_t>(bk)] != 0; }
   const PruneStats& stats() const { return stats_; }
+  // The field simplified for the region of kLocal^3 points (i, j, k) (Field::local, as the octree
+  // descended), good at every point within 1.5 grid steps of it; null: the whole field's. An index
+  // past the last region names the last (a block there holds only the grid's last samples).
+  const std::shared_ptr<const Field>& local_at(int i, int j, int k) const {
+    auto at = [this](int v, int a) { return static_cast<size_t>(std::min(v, nl_[a] - 1)); };
+    return local_[(at(k, 2) * static_cast<size_t>(nl_[1]) + at(j, 1)) * static_cast<size_t>(nl_[0]) + at(i, 0)];
+  }
 
  private:
   struct Region {
@@ -56,10 +67,14 @@ class BrickMap {
     PruneStats& stats;
     size_t seen[8], decided[8];  // regions bounded and decided, per level
   };
-  void classify(const Field& f, const std::array<std::vector<float>, 3>& axis, const Region& r, size_t level, Walk& w);
+  void classify(const Field& root, const std::shared_ptr<const Field>& here,
+                const std::array<std::vector<float>, 3>& axis, const Region& r, size_t level, Walk& w);
   void mark(const Region& r, BrickClass c);
+  void keep_local(const Region& r, const std::shared_ptr<const Field>& f);
 
-  int n_[3], nb_[3];
+  int n_[3], nb_[3], nl_[3];
+  double step_[3];
+  std::vector<std::shared_ptr<const Field>> local_;
   std::vector<BrickClass> cls_;
   std::vector<uint8_t> layer_open_;
   PruneStats stats_;

@@ -24,9 +24,24 @@ const char* kind_name(ShapeKind k) {
   return "implicit";
 }
 
+void LazyGradient::build() const {
+  std::call_once(once_, [this] {
+    std::unique_ptr<ir::Module> g = driver::gradient_ir(*module_);
+    if (!g) return;
+    kernel_ = driver::compile_gradient(*g, backend_, budgets_);
+    const ir::Function& k = g->kernel_function();
+    if (kernel_ && ir::interval_evaluable(k)) tape_ = std::make_unique<ir::IntervalTape>(k);
+  });
+}
+
 const backends::Kernel* LazyGradient::get() const {
-  std::call_once(once_, [this] { kernel_ = driver::gradient_kernel(*module_, backend_, budgets_); });
+  build();
   return kernel_.get();
+}
+
+const ir::IntervalTape* LazyGradient::tape() const {
+  build();
+  return tape_.get();
 }
 
 Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }

@@ -46,13 +46,18 @@ class LazyGradient {
       : module_(std::move(m)), backend_(std::move(backend)), budgets_(b) {}
   // nullptr when the FRep has no gradient here (not straight-line, or noise) or it did not compile.
   const backends::Kernel* get() const;
+  // The gradient module as a flat tape, what regions simplify (engine/mesh/local_field.h); nullptr
+  // where get() is.
+  const ir::IntervalTape* tape() const;
 
  private:
+  void build() const;
   std::shared_ptr<const ir::Module> module_;
   std::string backend_;
   backends::Budgets budgets_;
   mutable std::once_flag once_;
   mutable std::unique_ptr<backends::Kernel> kernel_;
+  mutable std::unique_ptr<ir::IntervalTape> tape_;
 };
 
 // One compiled FScript field of a node.

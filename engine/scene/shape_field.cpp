@@ -8,6 +8,8 @@
 #include <cmath>
 #include <memory>
 
+#include "engine/driver/driver.h"
+#include "engine/mesh/local_field.h"
 #include "runtime/math/math.h"
 
 namespace fscript::scene {
@@ -52,6 +54,19 @@ bool ShapeField::eval_gradient(const float* x, const float* y, const float* z, s
   mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(s_.geometry.t), nullptr,
                              s_.geometry.gradient->get());
   return geometry.eval_gradient(x, y, z, n, out, err);
+}
+
+ShapeField::~ShapeField() = default;
+
+std::shared_ptr<const mesh::Field> ShapeField::local(const mesh::Box3& b) const {
+  if (s_.texture || !s_.geometry.intervals) return nullptr;
+  std::call_once(local_once_, [this] {
+    mesh::GradientTape gradient;
+    if (has_gradient()) gradient = [this] { return s_.geometry.gradient->tape(); };
+    local_ = std::make_unique<mesh::LocalTapes>(*s_.geometry.intervals, static_cast<float>(s_.geometry.t),
+                                                std::move(gradient));
+  });
+  return local_->at(b);
 }
 
 bool ShapeField::can_bound() const { return s_.geometry.intervals && (!s_.texture || s_.texture->intervals); }

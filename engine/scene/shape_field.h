@@ -4,9 +4,11 @@
 // children (its analytical operation on each coordinate); both moved by the FTransform's affine
 // fields (translation, rotation, scale, scaleOrientation, center) at its t.
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "engine/mesh/field.h"
+#include "engine/mesh/local_field.h"
 #include "engine/mesh/parametric.h"
 #include "engine/scene/scene_model.h"
 
@@ -30,9 +32,14 @@ class ShapeField : public mesh::Field {
   bool has_gradient() const override;  // the FRep's, when it has one and no 3D texture displaces it
   bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                      backends::RuntimeError& err) const override;
+  // The FRep's tape simplified for the box (not under a 3D texture, which takes points whole).
+  std::shared_ptr<const mesh::Field> local(const mesh::Box3& b) const override;
+  ~ShapeField() override;
 
  private:
   const Shape& s_;
+  mutable std::once_flag local_once_;
+  mutable std::unique_ptr<mesh::LocalTapes> local_;  // made at the first local()
 };
 
 class GroupField : public mesh::Field {

@@ -8,7 +8,8 @@ set -u
 jcheck "--stats fields of a single run" err "
 set(j) == {'compile_ms', 'dual_contouring', 'evaluation_ms', 'ftransforms', 'huge_heap_mib', 'parse_ms', 'polygonize_ms', 'prune', 'row_split', 'shapes', 'tiers', 'write_ms'} and
 set(j['dual_contouring']) == {'max_qef_error_cells', 'merged_cells', 'normals', 'shapes', 'triangles', 'vertices'} and
-set(j['prune']) == {'evaluated', 'evaluated_fraction', 'fallbacks', 'levels', 'points', 'pruned'} and
+set(j['prune']) == {'evaluated', 'evaluated_fraction', 'fallbacks', 'levels', 'local_tapes', 'points', 'pruned'} and
+set(j['prune']['local_tapes']) == {'regions', 'simplified', 'mean_ops', 'full_ops', 'gradient_tapes'} and
 j['prune']['pruned'] and j['prune']['points'] == 512 and j['prune']['fallbacks'] == 0 and
 [l['size'] for l in j['prune']['levels']] == [64, 32, 16, 8] and
 all(j[k] >= 0 for k in ('compile_ms', 'evaluation_ms', 'parse_ms', 'polygonize_ms', 'write_ms')) and

@@ -17,6 +17,7 @@
 #include "backends/row_split_kernel.h"
 #include "backends/tiered/tiered.h"
 #include "engine/mesh/dual_contour.h"
+#include "engine/mesh/local_field.h"
 #include "engine/mesh/sample_pruning.h"
 #include "runtime/support/big_stack.h"
 #include "runtime/support/files.h"
@@ -72,6 +73,17 @@ bool parse_view(const std::string& s, double& az, double& el) {
   return true;
 }
 
+// The tapes simplified per region of the mesh (engine/mesh/local_field.h).
+nlohmann::json local_tapes_json() {
+  const mesh::LocalTapeStats& l = mesh::local_tape_totals();
+  uint64_t simplified = l.simplified.load();
+  return {{"regions", l.regions.load()},
+          {"simplified", simplified},
+          {"mean_ops", simplified ? double(l.tape_ops.load()) / double(simplified) : 0.0},
+          {"full_ops", simplified ? l.full_ops.load() / simplified : 0},
+          {"gradient_tapes", l.gradients.load()}};
+}
+
 // The octree's figures over every implicit shape meshed (engine/mesh/sample_pruning.h).
 nlohmann::json prune_json() {
   const mesh::PruneStats& p = mesh::prune_totals();
@@ -83,7 +95,8 @@ nlohmann::json prune_json() {
           {"points", p.points},
           {"evaluated", p.evaluated},
           {"evaluated_fraction", p.points ? double(p.evaluated) / double(p.points) : 1.0},
-          {"fallbacks", p.fallbacks}};
+          {"fallbacks", p.fallbacks},
+          {"local_tapes", local_tapes_json()}};
 }
 
 // Dual contouring's figures over every implicit shape it meshed (engine/mesh/dc_cell_merge.h).

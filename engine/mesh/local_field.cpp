@@ -1,0 +1,121 @@
+// Local fields (local_field.h): a region's simplified tapes run with no compile. A region inside a
+// region simplifies its parent's tapes, so the deeper the octree, the shorter and cheaper the step.
+#include "engine/mesh/local_field.h"
+
+#include <algorithm>
+#include <mutex>
+
+#include "backends/vm/vm_points.h"
+
+namespace fscript::mesh {
+
+LocalTapeStats& local_tape_totals() {
+  static LocalTapeStats s;
+  return s;
+}
+
+// The kernel's field inside one region, on the region's tape; its gradient's tape is simplified
+// from the parent region's at the first gradient asked (a region shared by threads: once).
+class TapeField : public Field {
+ public:
+  TapeField(std::shared_ptr<const ir::IntervalTape> tape, const Box3& box, std::shared_ptr<const TapeField> parent,
+            const LocalTapes& owner)
+      : tape_(std::move(tape)), box_(box), parent_(std::move(parent)), owner_(owner) {}
+
+  bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
+            backends::RuntimeError& err) const override {
+    if (stop_if_cancelled(err)) return false;
+    float* outs[1] = {out};
+    run(*tape_, x, y, z, n, outs, 1);
+    return true;
+  }
+  math::Interval bound(const Box3& b) const override {
+    return kernel_bound(*tape_, b, {math::Interval::point(owner_.t_)});
+  }
+  bool can_bound() const override { return true; }
+  bool has_gradient() const override { return static_cast<bool>(owner_.gradient_); }
+  bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
+                     backends::RuntimeError& err) const override {
+    if (stop_if_cancelled(err)) return false;
+    const ir::IntervalTape* g = gradient_tape();
+    if (!g) {
+      err.message = "internal error: a region's field has no gradient tape";
+      return false;
+    }
+    run(*g, x, y, z, n, out, 4);
+    return true;
+  }
+  std::shared_ptr<const Field> local(const Box3& b) const override {
+    std::shared_ptr<const ir::IntervalTape> t = owner_.narrow(*tape_, b, true);
+    if (!t) return nullptr;
+    auto f = std::make_shared<TapeField>(std::move(t), b, std::static_pointer_cast<const TapeField>(self.lock()), owner_);
+    f->self = f;
+    return f;
+  }
+  // Set by LocalTapes::at and local(): how this field names itself to its children.
+  std::weak_ptr<const Field> self;
+
+ private:
+  // The gradient's tape for this region: the parent's (or the whole gradient) simplified for the box.
+  const ir::IntervalTape* gradient_tape() const {
+    std::call_once(gradient_once_, [this] {
+      const ir::IntervalTape* from = parent_ ? parent_->gradient_tape() : owner_.gradient_();
+      if (!from) return;
+      local_tape_totals().gradients.fetch_add(1, std::memory_order_relaxed);
+      gradient_ = owner_.narrow(*from, box_, false);
+      gradient_from_ = gradient_ ? gradient_.get() : from;
+    });
+    return gradient_from_;
+  }
+
+  // Outputs [0, count) of `t` at n points, kPointLanes at a time.
+  void run(const ir::IntervalTape& t, const float* x, const float* y, const float* z, size_t n, float* const* out,
+           size_t count) const {
+    float ts[vm::kPointLanes];
+    std::fill_n(ts, vm::kPointLanes, owner_.t_);
+    float* o[4];
+    for (size_t i = 0; i < n; i += vm::kPointLanes) {
+      const float* in[4] = {x + i, y + i, z + i, ts};
+      for (size_t k = 0; k < count; ++k) o[k] = out[k] + i;
+      vm::eval_tape_points(t, in, 4, std::min(vm::kPointLanes, n - i), o, count);
+    }
+  }
+
+  std::shared_ptr<const ir::IntervalTape> tape_;
+  Box3 box_;
+  std::shared_ptr<const TapeField> parent_;
+  const LocalTapes& owner_;
+  mutable std::once_flag gradient_once_;
+  mutable std::shared_ptr<const ir::IntervalTape> gradient_;  // null: the parent's serves
+  mutable const ir::IntervalTape* gradient_from_ = nullptr;
+};
+
+std::shared_ptr<const Field> LocalTapes::at(const Box3& box) const {
+  std::shared_ptr<const ir::IntervalTape> t = narrow(full_, box, true);
+  if (!t) return nullptr;
+  auto f = std::make_shared<TapeField>(std::move(t), box, nullptr, *this);
+  f->self = f;
+  return f;
+}
+
+std::shared_ptr<const ir::IntervalTape> LocalTapes::narrow(const ir::IntervalTape& from, const Box3& box,
+                                                          bool counted) const {
+  LocalTapeStats& st = local_tape_totals();
+  if (counted) st.regions.fetch_add(1, std::memory_order_relaxed);
+  thread_local std::vector<math::Interval> in;
+  thread_local ir::IntervalEval ev;
+  in.clear();
+  for (int a = 0; a < 3; ++a) in.push_back({box.lo[a], box.hi[a], false});
+  in.push_back(math::Interval::point(t_));
+  from.eval(in, ev);
+  auto tape = std::make_shared<const ir::IntervalTape>(from.simplified(ev));
+  if (tape->length() * 10 > from.length() * 9) return nullptr;
+  if (counted) {
+    st.simplified.fetch_add(1, std::memory_order_relaxed);
+    st.tape_ops.fetch_add(tape->length(), std::memory_order_relaxed);
+    st.full_ops.fetch_add(full_.length(), std::memory_order_relaxed);
+  }
+  return tape;
+}
+
+}  // namespace fscript::mesh

@@ -64,6 +64,7 @@ class TapeField : public Field {
       local_tape_totals().gradients.fetch_add(1, std::memory_order_relaxed);
       gradient_ = owner_.narrow(*from, box_, false);
       gradient_from_ = gradient_ ? gradient_.get() : from;
+      if (gradient_) parent_.reset();  // its tapes are not needed here any more (a mesh keeps thousands)
     });
     return gradient_from_;
   }
@@ -83,7 +84,7 @@ class TapeField : public Field {
 
   std::shared_ptr<const ir::IntervalTape> tape_;
   Box3 box_;
-  std::shared_ptr<const TapeField> parent_;
+  mutable std::shared_ptr<const TapeField> parent_;  // until the gradient's tape is made
   const LocalTapes& owner_;
   mutable std::once_flag gradient_once_;
   mutable std::shared_ptr<const ir::IntervalTape> gradient_;  // null: the parent's serves

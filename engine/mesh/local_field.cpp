@@ -48,7 +48,8 @@ class TapeField : public Field {
   std::shared_ptr<const Field> local(const Box3& b) const override {
     std::shared_ptr<const ir::IntervalTape> t = owner_.narrow(*tape_, b, true);
     if (!t) return nullptr;
-    auto f = std::make_shared<TapeField>(std::move(t), b, std::static_pointer_cast<const TapeField>(self.lock()), owner_);
+    auto f =
+        std::make_shared<TapeField>(std::move(t), b, std::static_pointer_cast<const TapeField>(self.lock()), owner_);
     f->self = f;
     return f;
   }
@@ -100,7 +101,7 @@ std::shared_ptr<const Field> LocalTapes::at(const Box3& box) const {
 }
 
 std::shared_ptr<const ir::IntervalTape> LocalTapes::narrow(const ir::IntervalTape& from, const Box3& box,
-                                                          bool counted) const {
+                                                           bool counted) const {
   LocalTapeStats& st = local_tape_totals();
   if (counted) st.regions.fetch_add(1, std::memory_order_relaxed);
   thread_local std::vector<math::Interval> in;

@@ -41,8 +41,7 @@ Compiled compile(const std::string& src, const std::string& backend = "vm") {
 struct LocalKernelField : mesh::KernelField {
   LocalKernelField(const Compiled& c, float t, bool local)
       : KernelField(*c.b->kernel, t, c.tape.get(), c.gradient.get()),
-        tapes(*c.tape, t, [&c] { return c.gradient_tape.get(); }),
-        offers(local) {}
+        tapes(*c.tape, t, [&c] { return c.gradient_tape.get(); }), offers(local) {}
   std::shared_ptr<const mesh::Field> local(const mesh::Box3& b) const override {
     return offers ? tapes.at(b) : nullptr;
   }
@@ -60,9 +59,10 @@ std::string shape(std::mt19937& rng, int depth) {
         return num(r(rng) * r(rng) * 2) + " - (x-" + num(c(rng)) + ")*(x-" + num(c(rng)) + ") - (y-" + num(c(rng)) +
             ")^2 - (z-" + num(c(rng)) + ")^2";
       case 1:
-        return "min(min(" + num(r(rng)) + " - abs(x-" + num(c(rng)) + "), " + num(r(rng)) + " - abs(y-" +
-            num(c(rng)) + ")), " + num(r(rng)) + " - abs(z-" + num(c(rng)) + "))";
-      default: return num(r(rng) / 2) + " - abs(" + num(c(rng)) + "*x + " + num(c(rng)) + "*y + z - " + num(c(rng)) + ")";
+        return "min(min(" + num(r(rng)) + " - abs(x-" + num(c(rng)) + "), " + num(r(rng)) + " - abs(y-" + num(c(rng)) +
+            ")), " + num(r(rng)) + " - abs(z-" + num(c(rng)) + "))";
+      default:
+        return num(r(rng) / 2) + " - abs(" + num(c(rng)) + "*x + " + num(c(rng)) + "*y + z - " + num(c(rng)) + ")";
     }
   }
   std::string a = shape(rng, depth - 1), b = shape(rng, static_cast<int>(rng() % static_cast<unsigned>(depth)));

@@ -112,7 +112,7 @@ def main():
         dst = os.path.join(tree, rel)
         os.makedirs(os.path.dirname(dst), exist_ok=True)
         if not os.path.exists(dst) or open(os.path.join(SRC, rel), "rb").read() != open(dst, "rb").read():
-            shutil.copy2(os.path.join(SRC, rel), dst)
+            shutil.copy(os.path.join(SRC, rel), dst)  # a fresh mtime: copy2 kept the source's, older than the last build's objects, and ninja kept them stale
     shared = os.environ.get("FVRML_SHARED", os.path.join(os.path.dirname(SRC), "shared"))
     cfg = ["cmake", "-S", tree, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release", f"-DFS_SHARED_DIR={shared}"]
     if sh(cfg, tree, log) or sh(["ninja", "-C", build], tree, log):

@@ -59,6 +59,13 @@ for op, fn, arity, how in math_rows:
     if how in ("Batch", "Trig") and batch_rows.get(fn) != int(arity):
         failures.append(f"runtime/math/batch_functions.def: no FS_BATCH_FN({fn}, {arity}) for ir/math_ops.def's {op}")
 
+# The accuracy each Batch or Trig row promises (docs/language.md) is measured in
+# tests/unit/math_test.cpp: it calls math::FN or names it in a UNARY_CASE.
+math_test = read("tests/unit/math_test.cpp")
+for op, fn, arity, how in math_rows:
+    if how in ("Batch", "Trig") and not re.search(r"(\bmath::" + fn + r"\(|UNARY_CASE\(" + fn + r",)", math_test):
+        failures.append(f"tests/unit/math_test.cpp: no accuracy test of {fn} (ir/math_ops.def's {op})")
+
 # The recipe names every file that names hypot (std::hypot and Math.hypot in C++ or JavaScript
 # are not the built-in; these pages only talk about it).
 talk = {"docs/architecture.md", "docs/testing.md", "tests/support/builtins_check.py"}

@@ -77,6 +77,7 @@ Layers layers_for(const SlabSplit* split, const BlockGrid& grid) {
 bool sample_blocks(const ImplicitJob& job, const Lattice& g, const SlabSplit* split, Layers& layers,
                    std::unique_ptr<BlockGrid>& grid, backends::RuntimeError& err) {
   std::unique_ptr<BrickMap> bricks = job_bricks(job);
+  if (bricks) job.field->expect_points(bricks->points_on_whole());
   PruneStats st = bricks ? bricks->stats() : PruneStats{};
   st.points = static_cast<size_t>(g.n[0]) * g.n[1] * g.n[2];
   bool chosen = false;

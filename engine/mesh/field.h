@@ -63,6 +63,9 @@ class Field {
   // A field with this one's bits at every point of the box, cheaper there (the tape simplified for
   // the region: local_field.h); nullptr where there is none, and the polygonizer asks this one.
   virtual std::shared_ptr<const Field> local(const Box3&) const { return nullptr; }
+  // The mesher knows how many points the whole function will be asked for once the octree has
+  // handed out its regions' tapes (backends::Kernel::expect_points: auto then compiles or not).
+  virtual void expect_points(uint64_t) const {}
 };
 
 // Whether the run is cancelled (support/cancel.h), said in `err`: the kernels' fields ask before

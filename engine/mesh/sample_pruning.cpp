@@ -133,6 +133,17 @@ void BrickMap::classify(const Field& root, const std::shared_ptr<const Field>& h
                  w);
 }
 
+uint64_t BrickMap::points_on_whole() const {
+  uint64_t n = 0;
+  for (int bk = 0; bk < nb_[2]; ++bk)
+    for (int bj = 0; bj < nb_[1]; ++bj)
+      for (int bi = 0; bi < nb_[0]; ++bi)
+        if (at(bi, bj, bk) == BrickClass::Open &&
+            !local_at(bi * kBrick / kLocal, bj * kBrick / kLocal, bk * kBrick / kLocal))
+          n += kBrick * kBrick * kBrick;
+  return n;
+}
+
 void BrickMap::keep_local(const Region& r, const std::shared_ptr<const Field>& f) {
   for (int k = r.lo[2] / kLocal; k * kLocal < r.hi[2]; ++k)
     for (int j = r.lo[1] / kLocal; j * kLocal < r.hi[1]; ++j)

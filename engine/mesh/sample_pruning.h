@@ -51,6 +51,8 @@ class BrickMap {
   // Whether every brick of the layer of bricks bk is open (the plane is sampled whole).
   bool layer_open(int bk) const { return layer_open_[static_cast<size_t>(bk)] != 0; }
   const PruneStats& stats() const { return stats_; }
+  // The points of open bricks in regions with no field of their own: what the whole field samples.
+  uint64_t points_on_whole() const;
   // The field simplified for the region of kLocal^3 points (i, j, k) (Field::local, as the octree
   // descended), good at every point within 1.5 grid steps of it; null: the whole field's. An index
   // past the last region names the last (a block there holds only the grid's last samples).

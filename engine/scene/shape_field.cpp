@@ -69,6 +69,10 @@ std::shared_ptr<const mesh::Field> ShapeField::local(const mesh::Box3& b) const 
   return local_->at(b);
 }
 
+void ShapeField::expect_points(uint64_t points) const {
+  if (s_.geometry.kernel) s_.geometry.kernel->expect_points(points);
+}
+
 bool ShapeField::can_bound() const { return s_.geometry.intervals && (!s_.texture || s_.texture->intervals); }
 
 namespace {

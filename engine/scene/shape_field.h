@@ -34,6 +34,7 @@ class ShapeField : public mesh::Field {
                      backends::RuntimeError& err) const override;
   // The FRep's tape simplified for the box (not under a 3D texture, which takes points whole).
   std::shared_ptr<const mesh::Field> local(const mesh::Box3& b) const override;
+  void expect_points(uint64_t points) const override;
   ~ShapeField() override;
 
  private:

@@ -154,14 +154,18 @@ void transform_mesh(const Mat4& t, mesh::Mesh& m) {
 // Tells the shape's kernels how many points are ahead (the auto backend compiles natively at once
 // when that pays): a dense grid's (of the shape's own dimensions), or a quarter of it where
 // interval pruning skips most cells; the gradient kernel (the meshers' normals), a crossing per
-// cell of three faces of the grid (a plane across it; the gyroid has four times that).
-void expect_work(const Shape& s, bool prune) {
+// cell of three faces of the grid (a plane across it; the gyroid has four times that). Dual
+// contouring of a pruned shape that has local tapes says the geometry's share itself, once its
+// octree knows which regions run on tapes of their own (most points of a model of many parts).
+void expect_work(const Shape& s, bool prune, bool dual_contoured) {
   uint64_t points = 1, face = 1;
   int dims = s.kind == ShapeKind::Curve ? 1 : s.kind == ShapeKind::Surface ? 2 : 3;
   for (int k = 0; k < dims; ++k) points *= static_cast<uint64_t>(std::max(s.resolution[static_cast<size_t>(k)], 1) + 1);
   for (int k = 0; k < 2; ++k) face *= static_cast<uint64_t>(std::max(s.resolution[static_cast<size_t>(k)], 1) + 1);
   if (s.kind == ShapeKind::Implicit && prune) points /= 4;
-  for (const CompiledField* f : {&s.geometry, s.texture ? &*s.texture : nullptr, s.colour ? &*s.colour : nullptr})
+  const bool tapes = s.kind == ShapeKind::Implicit && prune && dual_contoured && !s.texture && s.geometry.intervals;
+  for (const CompiledField* f :
+       {tapes ? nullptr : &s.geometry, s.texture ? &*s.texture : nullptr, s.colour ? &*s.colour : nullptr})
     if (f && f->kernel) f->kernel->expect_points(points);
   if (s.kind == ShapeKind::Implicit && s.geometry.gradient && !s.texture)
     if (const backends::Kernel* g = s.geometry.gradient->get()) g->expect_points(3 * face);
@@ -180,7 +184,7 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bo
     return false;
   }
   if (making_slabs(mesher) && s.kind != ShapeKind::Implicit) return out = mesh::Mesh{}, true;
-  if (!joining_slabs(mesher)) expect_work(s, prune);
+  if (!joining_slabs(mesher)) expect_work(s, prune, mesher.kind == mesh::Mesher::DualContouring);
   bool ok;
   support::ProgressJob progress;  // one job of the run's progress line
   if (s.kind == ShapeKind::Implicit) {
@@ -265,7 +269,8 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::Runti
   out = mesh::Mesh{};
   support::ProgressJob progress;
   for (const Shape& s : m.shapes)
-    if (inside_group(m, s.group, group) && !joining_slabs(mesher)) expect_work(s, prune);
+    if (inside_group(m, s.group, group) && !joining_slabs(mesher))
+      expect_work(s, prune, false);  // a group's field: no local tapes
   if (parametric_group(m, group)) {
     if (making_slabs(mesher)) return true;
     if (!mesh_parametric_group(m, group, out, err, threads, prune)) return false;

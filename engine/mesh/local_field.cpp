@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <mutex>
 
+#include "backends/vm/vm_backend.h"
 #include "backends/vm/vm_points.h"
 
 namespace fscript::mesh {
@@ -25,6 +26,14 @@ class TapeField : public Field {
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
             backends::RuntimeError& err) const override {
     if (stop_if_cancelled(err)) return false;
+    if (n > kDirect) {  // a block's samples: the tape compiled, its registers reused (in cache)
+      std::call_once(compile_once_, [this] { compiled_ = vm::compile_tape(*tape_, backends::Budgets{}); });
+      thread_local std::vector<float> ts;
+      ts.assign(n, owner_.t_);
+      const float* in[4] = {x, y, z, ts.data()};
+      float* outs[1] = {out};
+      return compiled_->eval_batch(in, outs, n, err);
+    }
     float* outs[1] = {out};
     run(*tape_, x, y, z, n, outs, 1);
     return true;
@@ -87,6 +96,10 @@ class TapeField : public Field {
   Box3 box_;
   mutable std::shared_ptr<const TapeField> parent_;  // until the gradient's tape is made
   const LocalTapes& owner_;
+  // Batches up to this many points run straight from the tape; larger ones on its compiled code.
+  static constexpr size_t kDirect = 1024;
+  mutable std::once_flag compile_once_;
+  mutable std::unique_ptr<backends::Kernel> compiled_;
   mutable std::once_flag gradient_once_;
   mutable std::shared_ptr<const ir::IntervalTape> gradient_;  // null: the parent's serves
   mutable const ir::IntervalTape* gradient_from_ = nullptr;

@@ -52,6 +52,10 @@ class Field {
   // Holds eval's result, rounding included, at every point of the box (NaN flagged). A field that
   // cannot bound itself says "anything", and the polygonizer then samples the region point by point.
   virtual math::Interval bound(const Box3&) const { return math::Interval::everything(); }
+  // bound() of n boxes (a region's children): a field on a tape bounds them in one batched pass.
+  virtual void bounds(const Box3* boxes, size_t n, math::Interval* out) const {
+    for (size_t i = 0; i < n; ++i) out[i] = bound(boxes[i]);
+  }
   // Whether bound() can ever say more than "anything" (else the polygonizer does not ask).
   virtual bool can_bound() const { return false; }
   // f and its gradient at points: out[0][i] = f, out[1..3][i] = df/dx, df/dy, df/dz (infinite or

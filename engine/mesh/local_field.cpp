@@ -42,6 +42,20 @@ class TapeField : public Field {
     return kernel_bound(*tape_, b, {math::Interval::point(owner_.t_)});
   }
   bool can_bound() const override { return true; }
+  void bounds(const Box3* boxes, size_t n, math::Interval* out) const override {
+    thread_local std::vector<ir::IntervalLanes> in(4);
+    thread_local ir::IntervalBatchEval ev;
+    for (size_t first = 0; first < n; first += ir::kIntervalLanes) {
+      const size_t m = std::min(ir::kIntervalLanes, n - first);
+      for (size_t k = 0; k < ir::kIntervalLanes; ++k) {
+        const Box3& b = boxes[first + std::min(k, m - 1)];  // lanes past the last repeat it
+        for (int a = 0; a < 3; ++a) in[static_cast<size_t>(a)].set(k, {b.lo[a], b.hi[a], false});
+        in[3].set(k, math::Interval::point(owner_.t_));
+      }
+      tape_->eval_batch(in, ev);
+      for (size_t k = 0; k < m; ++k) out[first + k] = ev.output(0, k);
+    }
+  }
   bool has_gradient() const override { return static_cast<bool>(owner_.gradient_); }
   bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                      backends::RuntimeError& err) const override {

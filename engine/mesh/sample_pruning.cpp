@@ -72,7 +72,7 @@ BrickMap::BrickMap(const Field& f, const std::array<std::vector<float>, 3>& axis
   support::run_parts(parts, [&](int p) {
     for (size_t t; (t = next.fetch_add(1)) < tops.size();) {
       Walk w{part_stats[static_cast<size_t>(p)], {}, {}};  // each top region learns on its own: any schedule
-      classify(f, nullptr, axis, tops[t], 0, w);
+      classify(f, nullptr, axis, tops[t], 0, w, nullptr);
     }
     return true;
   });
@@ -88,15 +88,21 @@ BrickMap::BrickMap(const Field& f, const std::array<std::vector<float>, 3>& axis
         }
 }
 
-void BrickMap::classify(const Field& root, const std::shared_ptr<const Field>& here,
-                        const std::array<std::vector<float>, 3>& axis, const Region& r, size_t level, Walk& w) {
-  const Field& f = here ? *here : root;
+Box3 BrickMap::box_of(const std::array<std::vector<float>, 3>& axis, const Region& r) const {
   Box3 box;
   for (int a = 0; a < 3; ++a) {
     float p = axis[a][static_cast<size_t>(r.lo[a])], q = axis[a][static_cast<size_t>(r.hi[a] - 1)];
     box.lo[a] = std::min(p, q), box.hi[a] = std::max(p, q);
   }
-  math::Interval v = f.bound(box);
+  return box;
+}
+
+void BrickMap::classify(const Field& root, const std::shared_ptr<const Field>& here,
+                        const std::array<std::vector<float>, 3>& axis, const Region& r, size_t level, Walk& w,
+                        const math::Interval* known) {
+  const Field& f = here ? *here : root;
+  const Box3 box = box_of(axis, r);
+  math::Interval v = known ? *known : f.bound(box);
   OctreeLevel& l = w.stats.levels[level];
   ++w.seen[level];
   const bool keeps = kSizes[level] >= kLocal;
@@ -124,13 +130,20 @@ void BrickMap::classify(const Field& root, const std::shared_ptr<const Field>& h
   // A level whose bounds rarely decide is not worth more of them: a blend of spheres, say, is bounded
   // loosely everywhere, and one bound costs about as much as sampling a brick of 8^3 points.
   if (w.seen[level + 1] >= kTrials && w.decided[level + 1] * kRate < w.seen[level + 1]) return;
+  // The children (at most eight) bounded together on this region's field, then classified.
   const int s = kSizes[level + 1];
+  Region children[8];
+  Box3 boxes[8];
+  math::Interval bounds[8];
+  size_t n = 0;
   for (int k = r.lo[2]; k < r.hi[2]; k += s)
     for (int j = r.lo[1]; j < r.hi[1]; j += s)
-      for (int i = r.lo[0]; i < r.hi[0]; i += s)
-        classify(root, mine, axis,
-                 {{i, j, k}, {std::min(i + s, r.hi[0]), std::min(j + s, r.hi[1]), std::min(k + s, r.hi[2])}}, level + 1,
-                 w);
+      for (int i = r.lo[0]; i < r.hi[0]; i += s, ++n) {
+        children[n] = {{i, j, k}, {std::min(i + s, r.hi[0]), std::min(j + s, r.hi[1]), std::min(k + s, r.hi[2])}};
+        boxes[n] = box_of(axis, children[n]);
+      }
+  (mine ? *mine : root).bounds(boxes, n, bounds);
+  for (size_t c = 0; c < n; ++c) classify(root, mine, axis, children[c], level + 1, w, &bounds[c]);
 }
 
 uint64_t BrickMap::points_on_whole() const {

@@ -69,8 +69,11 @@ class BrickMap {
     PruneStats& stats;
     size_t seen[8], decided[8];  // regions bounded and decided, per level
   };
+  // `known`: the region's bound, when its parent bounded it with its siblings.
   void classify(const Field& root, const std::shared_ptr<const Field>& here,
-                const std::array<std::vector<float>, 3>& axis, const Region& r, size_t level, Walk& w);
+                const std::array<std::vector<float>, 3>& axis, const Region& r, size_t level, Walk& w,
+                const math::Interval* known);
+  Box3 box_of(const std::array<std::vector<float>, 3>& axis, const Region& r) const;
   void mark(const Region& r, BrickClass c);
   void keep_local(const Region& r, const std::shared_ptr<const Field>& f);
 

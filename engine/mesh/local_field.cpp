@@ -17,7 +17,7 @@ LocalTapeStats& local_tape_totals() {
 
 // The kernel's field inside one region, on the region's tape; its gradient's tape is simplified
 // from the parent region's at the first gradient asked (a region shared by threads: once).
-class TapeField : public Field {
+class TapeField : public Field, public std::enable_shared_from_this<TapeField> {
  public:
   TapeField(std::shared_ptr<const ir::IntervalTape> tape, const Box3& box, std::shared_ptr<const TapeField> parent,
             const LocalTapes& owner)
@@ -71,13 +71,8 @@ class TapeField : public Field {
   std::shared_ptr<const Field> local(const Box3& b) const override {
     std::shared_ptr<const ir::IntervalTape> t = owner_.narrow(*tape_, b, true);
     if (!t) return nullptr;
-    auto f =
-        std::make_shared<TapeField>(std::move(t), b, std::static_pointer_cast<const TapeField>(self.lock()), owner_);
-    f->self = f;
-    return f;
+    return std::make_shared<TapeField>(std::move(t), b, shared_from_this(), owner_);
   }
-  // Set by LocalTapes::at and local(): how this field names itself to its children.
-  std::weak_ptr<const Field> self;
 
  private:
   // The gradient's tape for this region: the parent's (or the whole gradient) simplified for the box.
@@ -122,9 +117,7 @@ class TapeField : public Field {
 std::shared_ptr<const Field> LocalTapes::at(const Box3& box) const {
   std::shared_ptr<const ir::IntervalTape> t = narrow(full_, box, true);
   if (!t) return nullptr;
-  auto f = std::make_shared<TapeField>(std::move(t), box, nullptr, *this);
-  f->self = f;
-  return f;
+  return std::make_shared<TapeField>(std::move(t), box, nullptr, *this);
 }
 
 std::shared_ptr<const ir::IntervalTape> LocalTapes::narrow(const ir::IntervalTape& from, const Box3& box,

@@ -49,16 +49,4 @@ class LocalTapes {
   GradientTape gradient_;
 };
 
-// A box around the grid points [lo, hi] (indices per axis, coordinates coord(a, i)) wide enough for
-// every point a polygonizer evaluates between them: half a step more on each side.
-template <typename Coord>
-Box3 box_around(const int lo[3], const int hi[3], const double step[3], Coord coord) {
-  Box3 b;
-  for (int a = 0; a < 3; ++a) {
-    b.lo[a] = static_cast<float>(coord(a, lo[a]) - 0.5 * step[a]);
-    b.hi[a] = static_cast<float>(coord(a, hi[a]) + 0.5 * step[a]);
-  }
-  return b;
-}
-
 }  // namespace fscript::mesh

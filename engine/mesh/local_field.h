@@ -49,4 +49,17 @@ class LocalTapes {
   GradientTape gradient_;
 };
 
+// An FRep kernel's field that hands out its regions' tapes, as a scene shape's field does for its
+// FRep (fscript render3d; the tests).
+class LocalKernelField : public KernelField {
+ public:
+  LocalKernelField(const backends::Kernel& k, float t, const ir::IntervalTape& tape, const backends::Kernel* gradient,
+                   GradientTape gradient_tape)
+      : KernelField(k, t, &tape, gradient), tapes_(tape, t, std::move(gradient_tape)) {}
+  std::shared_ptr<const Field> local(const Box3& b) const override { return tapes_.at(b); }
+
+ private:
+  LocalTapes tapes_;
+};
+
 }  // namespace fscript::mesh

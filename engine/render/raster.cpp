@@ -9,7 +9,6 @@
 namespace fscript::render {
 namespace {
 
-using V3 = std::array<double, 3>;
 V3 sub(V3 a, V3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
@@ -92,6 +91,8 @@ class Raster {
   Raster(const mesh::Mesh& m, const RenderOptions& o)
       : m_(m), o_(o), w_(o.width * o.supersample), h_(o.height * o.supersample), v_(make_view(m, o, w_, h_)) {
     depth_.assign(size_t(w_) * h_, std::numeric_limits<float>::infinity());
+    light_.lights = o.lights, light_.headlight = o.headlight, light_.material = m.material;
+    light_.right = v_.right, light_.up = v_.up, light_.back = v_.back;
     rgb_.assign(size_t(w_) * h_, o.background);
   }
 
@@ -116,43 +117,6 @@ class Raster {
   std::array<float, 3> colour(uint32_t i) const {
     if (m_.colours.size() == m_.positions.size()) return m_.colours[i];
     return m_.material ? m_.material->diffuse : o_.default_colour;
-  }
-
-  // Two-sided (back faces lit as front). With scene lights: the VRML97 model (emissive, ambient,
-  // diffuse, specular with exponent 128 * shininess) for each light and the headlight; without:
-  // a headlight and a key light, with white highlights unless the material says otherwise.
-  std::array<float, 3> shade(std::array<float, 3> base, V3 n, V3 view_dir) const {
-    n = norm(n);
-    if (dot(n, view_dir) < 0) n = {-n[0], -n[1], -n[2]};
-    mesh::Material mat = m_.material.value_or(mesh::Material{});
-    std::array<float, 3> out;
-    if (o_.lights.empty()) {
-      V3 key = norm({v_.back[0] + v_.up[0] + 0.5 * v_.right[0], v_.back[1] + v_.up[1] + 0.5 * v_.right[1],
-                     v_.back[2] + v_.up[2] + 0.5 * v_.right[2]});
-      double diff = (o_.headlight ? 0.55 * std::max(0.0, dot(n, view_dir)) : 0.0) + 0.35 * std::max(0.0, dot(n, key));
-      V3 hv = norm({key[0] + view_dir[0], key[1] + view_dir[1], key[2] + view_dir[2]});
-      double exponent = m_.material ? std::max(1.0, 128.0 * mat.shininess) : 40.0;
-      double spec = std::pow(std::max(0.0, dot(n, hv)), exponent);
-      for (int k = 0; k < 3; ++k) {
-        double s = m_.material ? 0.6 * mat.specular[k] : 0.25;
-        out[k] = static_cast<float>(std::min(1.0, mat.emissive[k] + base[k] * (0.2 + diff) + s * spec));
-      }
-      return out;
-    }
-    std::array<double, 3> sum{mat.emissive[0], mat.emissive[1], mat.emissive[2]};
-    auto add = [&](V3 to_light, const std::array<float, 3>& colour, double intensity, double ambient) {
-      double d = std::max(0.0, dot(n, to_light));
-      V3 h = norm({to_light[0] + view_dir[0], to_light[1] + view_dir[1], to_light[2] + view_dir[2]});
-      double s = d > 0 ? std::pow(std::max(0.0, dot(n, h)), std::max(1.0, 128.0 * mat.shininess)) : 0.0;
-      for (int k = 0; k < 3; ++k)
-        sum[k] +=
-            colour[k] * (ambient * mat.ambient_intensity * base[k] + intensity * (base[k] * d + mat.specular[k] * s));
-    };
-    if (o_.headlight) add(view_dir, {1, 1, 1}, 1.0, 0.0);
-    for (const auto& l : o_.lights)
-      add(norm({-l.direction[0], -l.direction[1], -l.direction[2]}), l.colour, l.intensity, l.ambient);
-    for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(std::clamp(sum[k], 0.0, 1.0));
-    return out;
   }
 
   void triangle(size_t ti) {
@@ -193,7 +157,7 @@ class Raster {
         V3 p;
         for (int k = 0; k < 3; ++k)
           p[k] = q0 * m_.positions[t[0]][k] + q1 * m_.positions[t[1]][k] + q2 * m_.positions[t[2]][k];
-        rgb_[idx] = shade(base, n, norm(sub(v_.eye, p)));
+        rgb_[idx] = light_.shade(base, n, norm(sub(v_.eye, p)));
       }
   }
 
@@ -242,6 +206,7 @@ class Raster {
   const RenderOptions& o_;
   uint32_t w_, h_;
   View v_;
+  Shading light_;
   std::vector<V3> proj_;
   std::vector<float> depth_;
   std::vector<std::array<float, 3>> rgb_;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/mesh/mesh.h"
+#include "engine/render/shading.h"
 
 namespace fscript::render {
 
@@ -17,11 +18,6 @@ struct Camera {
   std::array<double, 3> position{0, 0, 10};
   std::array<double, 4> orientation{0, 0, 1, 0};  // VRML SFRotation
   double field_of_view = 0.785398;
-};
-
-struct Light {  // a VRML97 DirectionalLight in world coordinates
-  std::array<float, 3> direction{0, 0, -1}, colour{1, 1, 1};
-  float intensity = 1, ambient = 0;
 };
 
 struct RenderOptions {

@@ -1,5 +1,6 @@
 #pragma once
 // The fscript subcommands; each returns the process exit status (CLI contract: 0, 1 or 2).
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,5 +23,13 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
 int cmd_render2d(const Options& o, const std::string& file, const std::string& entry, const std::string& size,
                  const std::string& bounds, const std::string& out_path, unsigned threads, bool prune, bool stats,
                  unsigned repeat);
+// render3d's choices (main.cpp documents each flag).
+struct Render3dArgs {
+  std::string file, entry, size, bounds = "-1,1,-1,1,-1,1", view, image = "shaded", out;
+  uint32_t steps = 0;  // 0: the picture's larger side
+  unsigned threads = 1, repeat = 1;
+  bool prune = true, stats = false;
+};
+int cmd_render3d(const Options& o, const Render3dArgs& a);
 
 }  // namespace fscript::cli

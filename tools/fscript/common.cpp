@@ -2,10 +2,12 @@
 #include "tools/fscript/common.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <cstdio>
 #include <iostream>
 #include <iterator>
+#include <sstream>
 
 #include "runtime/support/files.h"
 
@@ -88,6 +90,36 @@ void print_runtime_error(const frontend::SourceFile& file, const backends::Runti
   frontend::LineCol at{err.line, std::max(err.col, 1u)};
   std::cerr << frontend::render(
       frontend::located(frontend::Severity::Error, file.path(), at, file.line_at(err.line), err.message));
+}
+
+bool parse_size(const std::string& s, uint32_t& w, uint32_t& h) {
+  size_t x = s.find_first_of("xX");
+  char* end;
+  unsigned long a = std::strtoul(s.c_str(), &end, 10);
+  if (end == s.c_str()) return false;
+  unsigned long b = a;
+  if (x != std::string::npos) {
+    const char* p = s.c_str() + x + 1;
+    b = std::strtoul(p, &end, 10);
+    if (end == p) return false;
+  } else if (*end) {
+    return false;
+  }
+  if (*end || a < 1 || b < 1 || a > 32768 || b > 32768) return false;
+  w = static_cast<uint32_t>(a);
+  h = static_cast<uint32_t>(b);
+  return true;
+}
+
+bool parse_numbers(const std::string& s, size_t n, float* out) {
+  std::stringstream ss(s);
+  std::string cell;
+  size_t k = 0;
+  while (std::getline(ss, cell, ',')) {
+    if (k >= n || !parse_number(cell, out[k]) || !std::isfinite(out[k])) return false;
+    ++k;
+  }
+  return k == n;
 }
 
 }  // namespace fscript::cli

@@ -1,6 +1,7 @@
 #pragma once
 // Shared pieces of the fscript commands: loading and compiling a script to a Kernel with
 // diagnostics printed, number formatting and parsing per the CLI contract.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -43,6 +44,11 @@ bool is_scene_path(const std::string& p);
 bool refuse_scene(const std::string& path);
 // Accepts decimal, hex float, nan, inf, -inf, -0. Returns false on anything else.
 bool parse_number(const std::string& text, float& out);
+
+// --size: W or WxH, each 1 to 32,768.
+bool parse_size(const std::string& s, uint32_t& w, uint32_t& h);
+// Exactly n finite numbers separated by commas (--bounds, --view).
+bool parse_numbers(const std::string& s, size_t n, float* out);
 
 // Prints a runtime error as a compiler would: "FILE:LINE:COL: error: message", the line, a caret.
 void print_runtime_error(const frontend::SourceFile& file, const backends::RuntimeError& err);

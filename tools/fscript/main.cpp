@@ -27,6 +27,7 @@ struct Args {
   bool in_place = false, check_only = false;
   uint32_t max_depth = 1000;
   tools::RunLimits limits;
+  Render3dArgs r3d;
 };
 
 void add_budget_flags(CLI::App& app, Args& a) { tools::add_budget_flags(app, a.opts.budgets, a.max_depth); }
@@ -69,6 +70,12 @@ int dispatch(CLI::App& app, Args& a) {
                      a.one_point  ? BenchPath::OnePoint
                          : a.grid ? BenchPath::Grid
                                   : BenchPath::Batch);
+  if (app.got_subcommand("render3d")) {
+    a.r3d.file = a.file, a.r3d.entry = a.entry, a.r3d.size = a.size, a.r3d.out = a.out;
+    a.r3d.threads = a.threads, a.r3d.repeat = a.repeat, a.r3d.prune = !a.no_prune, a.r3d.stats = a.stats;
+    if (!a.bounds.empty()) a.r3d.bounds = a.bounds;
+    return cmd_render3d(a.opts, a.r3d);
+  }
   if (app.got_subcommand("render2d"))
     return cmd_render2d(a.opts, a.file, a.entry, a.size, a.bounds, a.out, a.threads, !a.no_prune, a.stats, a.repeat);
   // No subcommand: the REPL on a terminal; otherwise the program on standard input runs once.
@@ -146,6 +153,28 @@ int real_main(int argc, char** argv) {
       ->check(CLI::Range(1u, 1000u).description(""))
       ->type_name("N");
   r2d->add_flag("--stats", a.stats, "print how the quadtree went: regions per level, tape lengths, points evaluated");
+
+  CLI::App* r3d =
+      add_compiling(app, "render3d", "picture of the shape f(x, y, z, 0) >= 0 as a PNG, without meshing", a);
+  r3d->add_option("--size,-s", a.size, "W or WxH pixels")->required();
+  r3d->add_option("--bounds", a.bounds, "the box X0,X1,Y0,Y1,Z0,Z1 (default -1,1,-1,1,-1,1)");
+  r3d->add_option("--view", a.r3d.view,
+                  "AZIMUTH,ELEVATION in degrees: where the orthographic camera looks from (default 0,0: down -z, "
+                  "x to the right, y up)");
+  r3d->add_option("--steps", a.r3d.steps, "depth steps across the box, 2 to 65,536 (default: the larger side)")
+      ->check(CLI::Range(2u, 65536u).description(""))
+      ->type_name("N");
+  r3d->add_option("--image", a.r3d.image, "shaded (default), depth (near is white) or normal (rgb = (n + 1) / 2)");
+  r3d->add_option("-o,--output", a.out, "output PNG");
+  r3d->add_option("--threads,-j", a.threads, "threads, 1 to 1,024 (default 1)")
+      ->check(CLI::Range(1u, 1024u).description(""))
+      ->type_name("N");
+  r3d->add_flag("--no-prune", a.no_prune,
+                "probe every step of every ray (no interval pruning; the same picture, slower)");
+  r3d->add_option("--repeat", a.repeat, "render N times and print the best time (benchmarks; default 1)")
+      ->check(CLI::Range(1u, 1000u).description(""))
+      ->type_name("N");
+  r3d->add_flag("--stats", a.stats, "print how the descent went: regions per level, points evaluated");
 
   if (std::string error; !tools::check_command_line(app, argc, argv, true, error)) {
     std::cerr << "error: " << error << "\nRun with --help for more information.\n";

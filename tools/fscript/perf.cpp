@@ -201,40 +201,6 @@ int cmd_bench(const Options& o, const std::string& file, const std::string& entr
   return kExitOk;
 }
 
-namespace {
-
-bool parse_size(const std::string& s, uint32_t& w, uint32_t& h) {
-  size_t x = s.find_first_of("xX");
-  char* end;
-  unsigned long a = std::strtoul(s.c_str(), &end, 10);
-  if (end == s.c_str()) return false;
-  unsigned long b = a;
-  if (x != std::string::npos) {
-    const char* p = s.c_str() + x + 1;
-    b = std::strtoul(p, &end, 10);
-    if (end == p) return false;
-  } else if (*end) {
-    return false;
-  }
-  if (*end || a < 1 || b < 1 || a > 32768 || b > 32768) return false;
-  w = static_cast<uint32_t>(a);
-  h = static_cast<uint32_t>(b);
-  return true;
-}
-
-bool parse_bounds(const std::string& s, float (&v)[4]) {
-  std::stringstream ss(s);
-  std::string cell;
-  int k = 0;
-  while (std::getline(ss, cell, ',')) {
-    if (k >= 4 || !parse_number(cell, v[k]) || !std::isfinite(v[k])) return false;
-    ++k;
-  }
-  return k == 4;
-}
-
-}  // namespace
-
 // --stats of render2d: per level, how the regions went and how long their tapes were.
 void print_quadtree_stats(const render::QuadtreeStats& st, size_t pixels) {
   if (!st.pruned) {
@@ -266,7 +232,7 @@ int cmd_render2d(const Options& o, const std::string& file, const std::string& e
     std::cerr << "error: --size wants W or WxH with 1 <= W, H <= 32768, got '" << size << "'\n";
     return kExitUsage;
   }
-  if (!parse_bounds(bounds, bd)) {
+  if (!parse_numbers(bounds, 4, bd)) {
     std::cerr << "error: --bounds wants four finite numbers X0,X1,Y0,Y1, got '" << bounds << "'\n";
     return kExitUsage;
   }

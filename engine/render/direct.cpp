@@ -1,0 +1,513 @@
+// The direct renderer: top-level tiles shared out to the threads; in each, regions of tiles x
+// depth ranges bounded front to back in batches, the open ones split on a tape simplified for
+// them, the last level's open regions probed step by step; hits refined along their rays.
+#include "engine/render/direct.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "runtime/support/parallel.h"
+
+namespace fscript::render {
+
+double RayGrid::depth(uint32_t k) const {
+  return steps > 1 ? near + (far - near) * static_cast<double>(k) / static_cast<double>(steps - 1) : near;
+}
+
+void RayGrid::point(uint32_t col, uint32_t row, double d, double p[3]) const {
+  const double c = col, r = row;
+  for (int a = 0; a < 3; ++a)
+    p[a] = origin[a] + c * origin_col[a] + r * origin_row[a] + d * (dir[a] + c * dir_col[a] + r * dir_row[a]);
+}
+
+void RayGrid::point(uint32_t col, uint32_t row, double d, float p[3]) const {
+  double q[3];
+  point(col, row, d, q);
+  for (int a = 0; a < 3; ++a) p[a] = static_cast<float>(q[a]);
+}
+
+bool RayGrid::in_box(const float p[3]) const {
+  for (int a = 0; a < 3; ++a)
+    if (!(p[a] >= box.lo[a] && p[a] <= box.hi[a])) return false;
+  return true;
+}
+
+void RayGrid::clamp_to_box(float p[3]) const {
+  for (int a = 0; a < 3; ++a) p[a] = std::clamp(p[a], box.lo[a], box.hi[a]);
+}
+
+bool RayGrid::entry(uint32_t col, uint32_t row, double& d, int& face) const {
+  const double c = col, r = row;
+  double enter = -std::numeric_limits<double>::infinity(), leave = std::numeric_limits<double>::infinity();
+  face = 0;
+  for (int a = 0; a < 3; ++a) {
+    double o = origin[a] + c * origin_col[a] + r * origin_row[a], v = dir[a] + c * dir_col[a] + r * dir_row[a];
+    if (v == 0) {
+      if (o < box.lo[a] || o > box.hi[a]) return false;
+      continue;
+    }
+    double t0 = (box.lo[a] - o) / v, t1 = (box.hi[a] - o) / v;
+    bool high = t1 < t0;  // going down the axis: in through the high face
+    if (high) std::swap(t0, t1);
+    if (t0 > enter) enter = t0, face = a * 2 + (high ? 1 : 0);
+    leave = std::min(leave, t1);
+  }
+  d = enter;
+  return enter <= leave;
+}
+
+namespace {
+
+using V3 = std::array<double, 3>;
+V3 cross(V3 a, V3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 unit(V3 a) {
+  double l = std::sqrt(dot(a, a));
+  return l > 0 ? V3{a[0] / l, a[1] / l, a[2] / l} : a;
+}
+
+}  // namespace
+
+RayGrid orthographic(const std::array<double, 6>& box, uint32_t w, uint32_t h, uint32_t steps, double az, double el) {
+  const double deg = 3.14159265358979323846 / 180;
+  az *= deg, el = std::clamp(el, -90.0, 90.0) * deg;
+  V3 back = {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
+  // Straight up or down, "up" in the picture is -z (as if the camera had tipped over from the front).
+  V3 right = std::fabs(std::cos(el)) < 1e-12 ? V3{std::cos(az), 0, -std::sin(az)} : unit(cross({0, 1, 0}, back));
+  V3 up = cross(back, right);
+  if (std::fabs(az) < 1e-12 && std::fabs(el) < 1e-12) back = {0, 0, 1}, right = {1, 0, 0}, up = {0, 1, 0};
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};  // along right, up, back
+  for (int k = 0; k < 8; ++k) {
+    V3 q = {box[k & 1], box[2 + ((k >> 1) & 1)], box[4 + ((k >> 2) & 1)]};
+    double c[3] = {dot(q, right), dot(q, up), dot(q, back)};
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+  }
+  double s = std::max((hi[0] - lo[0]) / w, (hi[1] - lo[1]) / h);  // one sample's side
+  if (!(s > 0)) s = 1.0 / std::max(w, h);
+  double mid_r = (lo[0] + hi[0]) / 2, mid_u = (lo[1] + hi[1]) / 2;
+  RayGrid g;
+  g.w = w, g.h = h, g.steps = std::max(2u, steps);
+  for (int a = 0; a < 3; ++a) {
+    g.origin[a] = right[a] * (mid_r + (0.5 - w / 2.0) * s) + up[a] * (mid_u - (0.5 - h / 2.0) * s) + back[a] * hi[2];
+    g.origin_col[a] = right[a] * s, g.origin_row[a] = -up[a] * s;
+    g.dir[a] = -back[a];
+  }
+  g.near = 0, g.far = hi[2] - lo[2];
+  for (int a = 0; a < 3; ++a) g.box.lo[a] = static_cast<float>(box[2 * a]), g.box.hi[a] = static_cast<float>(box[2 * a + 1]);
+  return g;
+}
+
+namespace {
+
+// Levels of the descent: a region's side in samples and its depth in steps. The top level's tiles
+// are shared out to the threads; the last level's open regions are probed step by step, on the tape
+// of the level above.
+constexpr uint32_t kTile[] = {64, 16, 4};
+constexpr uint32_t kChunk[] = {64, 16, 4};
+constexpr int kLevels = 3;
+constexpr int kRefineSteps = 12;  // at most, refining a hit along its ray
+
+struct Rect {
+  uint32_t c0, r0, c1, r1;  // columns [c0, c1), rows [r0, r1)
+};
+
+std::vector<Rect> split(Rect r, uint32_t s) {
+  std::vector<Rect> out;
+  for (uint32_t row = r.r0; row < r.r1; row += s)
+    for (uint32_t col = r.c0; col < r.c1; col += s)
+      out.push_back({col, row, std::min(col + s, r.c1), std::min(row + s, r.r1)});
+  return out;
+}
+
+// A hit found at one level, refined on that level's field.
+struct Found {
+  uint32_t col, row;
+  int32_t step;
+};
+
+// Points gathered for one batch evaluation.
+struct Batch {
+  std::vector<float> x, y, z, f;
+  void clear() { x.clear(), y.clear(), z.clear(); }
+  void add(const float p[3]) { x.push_back(p[0]), y.push_back(p[1]), z.push_back(p[2]); }
+  size_t size() const { return x.size(); }
+  bool eval(const mesh::Field& field, backends::RuntimeError& err) {
+    f.resize(x.size());
+    mesh::EvalTimer timer;
+    return x.empty() || field.eval(x.data(), y.data(), z.data(), x.size(), f.data(), err);
+  }
+};
+
+bool inside(float v) { return v >= 0.0f; }  // NaN is outside
+
+class Tracer {
+ public:
+  Tracer(const mesh::Field& root, const RayGrid& g, Hits& out) : root_(root), g_(g), out_(out) {
+    for (int l = 0; l < kLevels; ++l) stats_.levels.push_back({kTile[l], kChunk[l], 0, 0, 0});
+  }
+
+  // A top-level tile, pruned: its depth ranges bounded on the whole function.
+  bool top(Rect r) { return children(root_, r, 0, g_.steps, 0); }
+
+  // A tile without intervals: every step of every ray in order, a few steps at a time.
+  bool dense(Rect r) {
+    std::vector<Found> found;
+    constexpr uint32_t kRun = 16;
+    for (uint32_t k0 = 0; k0 < g_.steps && unhit(r); k0 += kRun) {
+      uint32_t k1 = std::min(g_.steps, k0 + kRun);
+      batch_.clear(), owner_.clear();
+      for (uint32_t row = r.r0; row < r.r1; ++row)
+        for (uint32_t col = r.c0; col < r.c1; ++col)
+          if (step_at(col, row) < 0) probe(col, row, k0, k1);
+      if (!finish_probe(root_, found)) return false;
+    }
+    return refine(root_, found);
+  }
+
+  DirectStats stats_;
+  backends::RuntimeError err_;
+
+ private:
+  int32_t& step_at(uint32_t col, uint32_t row) { return out_.step[size_t(row) * g_.w + col]; }
+
+  bool unhit(Rect r) {
+    for (uint32_t row = r.r0; row < r.r1; ++row)
+      for (uint32_t col = r.c0; col < r.c1; ++col)
+        if (step_at(col, row) < 0) return true;
+    return false;
+  }
+
+  // The box around every point of the region at steps [k0 - 1, k1) (the step before: a hit at k0
+  // is refined from there), widened to hold their float roundings and cut to the shape's box;
+  // false when that leaves nothing. `within`: the region lies wholly in the shape's box.
+  bool region_box(Rect r, uint32_t k0, uint32_t k1, mesh::Box3& b, bool& within) const {
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    const uint32_t cols[2] = {r.c0, r.c1 - 1}, rows[2] = {r.r0, r.r1 - 1};
+    const double ds[2] = {g_.depth(k0 ? k0 - 1 : 0), g_.depth(k1 - 1)};
+    for (uint32_t c : cols)
+      for (uint32_t w : rows)
+        for (double d : ds) {
+          double p[3];
+          g_.point(c, w, d, p);
+          for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+        }
+    within = true;
+    for (int a = 0; a < 3; ++a) {
+      double m = 1e-9 * (std::fabs(lo[a]) + std::fabs(hi[a]) + (hi[a] - lo[a]));
+      float l = std::nextafter(static_cast<float>(lo[a] - m), -HUGE_VALF);
+      float h = std::nextafter(static_cast<float>(hi[a] + m), HUGE_VALF);
+      within = within && l >= g_.box.lo[a] && h <= g_.box.hi[a];
+      b.lo[a] = std::max(l, g_.box.lo[a]), b.hi[a] = std::min(h, g_.box.hi[a]);
+      if (b.lo[a] > b.hi[a]) return false;
+    }
+    return true;
+  }
+
+  // The regions of `level` under (r, [k0, k1)), front to back, on `field` (which holds the
+  // whole function's bits over the parent's box). Hits decided here are refined here.
+  bool children(const mesh::Field& field, Rect r, uint32_t k0, uint32_t k1, int level) {
+    std::vector<Rect> tiles = split(r, kTile[level]);
+    std::vector<Found> found;
+    std::vector<mesh::Box3> boxes;
+    std::vector<size_t> live;
+    std::vector<char> within;
+    std::vector<math::Interval> iv;
+    DirectLevel& st = stats_.levels[static_cast<size_t>(level)];
+    const bool leaf = level + 1 == kLevels;
+    for (uint32_t c0 = k0; c0 < k1; c0 += kChunk[level]) {
+      const uint32_t c1 = std::min(k1, c0 + kChunk[level]);
+      boxes.clear(), live.clear(), within.clear();
+      for (size_t i = 0; i < tiles.size(); ++i) {
+        if (!unhit(tiles[i])) continue;
+        mesh::Box3 b;
+        bool in;
+        if (!region_box(tiles[i], c0, c1, b, in)) {
+          ++st.empty;
+          continue;
+        }
+        boxes.push_back(b), live.push_back(i), within.push_back(in);
+      }
+      if (live.empty()) {
+        if (!unhit(r)) break;
+        continue;
+      }
+      iv.resize(boxes.size());
+      field.bounds(boxes.data(), boxes.size(), iv.data());
+      if (leaf) batch_.clear(), owner_.clear();
+      for (size_t j = 0; j < live.size(); ++j) {
+        const Rect& t = tiles[live[j]];
+        const math::Interval& v = iv[j];
+        if (v.empty() || v.hi < 0) {
+          ++st.empty;
+        } else if (!v.nan && v.lo >= 0 && within[j]) {
+          ++st.full;
+          for (uint32_t row = t.r0; row < t.r1; ++row)
+            for (uint32_t col = t.c0; col < t.c1; ++col)
+              if (step_at(col, row) < 0) step_at(col, row) = static_cast<int32_t>(c0), found.push_back({col, row, int32_t(c0)});
+        } else {
+          ++st.ambiguous;
+          if (leaf) {
+            for (uint32_t row = t.r0; row < t.r1; ++row)
+              for (uint32_t col = t.c0; col < t.c1; ++col)
+                if (step_at(col, row) < 0) probe(col, row, c0, c1);
+          } else if (!region(field, t, c0, c1, level, boxes[j])) {
+            return false;
+          }
+        }
+      }
+      if (leaf && !finish_probe(field, found)) return false;
+    }
+    return refine(field, found);
+  }
+
+  // An open region of `level`: its children on the tape simplified for its box.
+  bool region(const mesh::Field& field, Rect t, uint32_t k0, uint32_t k1, int level, const mesh::Box3& box) {
+    std::shared_ptr<const mesh::Field> local = field.local(box);
+    return children(local ? *local : field, t, k0, k1, level + 1);
+  }
+
+  // The in-box points of the ray of (col, row) at steps [k0, k1), to the batch.
+  void probe(uint32_t col, uint32_t row, uint32_t k0, uint32_t k1) {
+    for (uint32_t k = k0; k < k1; ++k) {
+      float p[3];
+      g_.point(col, row, g_.depth(k), p);
+      if (!g_.in_box(p)) continue;
+      batch_.add(p);
+      owner_.push_back({col, row, static_cast<int32_t>(k)});
+    }
+  }
+
+  // The batch evaluated: each ray's first step inside (the points of a ray are in step order).
+  bool finish_probe(const mesh::Field& field, std::vector<Found>& found) {
+    if (!batch_.eval(field, err_)) return false;
+    stats_.points += batch_.size();
+    for (size_t i = 0; i < owner_.size(); ++i) {
+      const Found& o = owner_[i];
+      int32_t& s = step_at(o.col, o.row);
+      if (s < 0 && inside(batch_.f[i])) s = o.step, found.push_back(o);
+    }
+    return true;
+  }
+
+  // Each hit between its step and the one before, closed in by regula falsi (Illinois), on `field`:
+  // the depth, the point and the normal. A ray that comes into the box inside the shape meets the
+  // box's face there.
+  bool refine(const mesh::Field& field, const std::vector<Found>& found);
+
+  // Minus the gradient, unit, where the field has one and it is finite; else central differences
+  // on the whole function; else facing the ray.
+  bool normals(const mesh::Field& field, const std::vector<size_t>& which, const std::vector<Found>& found);
+
+  const mesh::Field& root_;
+  const RayGrid& g_;
+  Hits& out_;
+  Batch batch_;
+  std::vector<Found> owner_;  // per batch point: its ray and step
+};
+
+struct Bracket {
+  double lo, hi;      // depths: lo outside, hi inside
+  double wlo, whi;    // the values regula falsi weighs them by (Illinois halves the one kept twice)
+  int kept = 0;       // -1: lo kept last, +1: hi
+  bool done = false;
+  int face = -1;      // the box face it met, or -1
+};
+
+bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
+  if (found.empty()) return true;
+  const size_t n = found.size();
+  std::vector<Bracket> br(n);
+  Batch& b = batch_;
+  b.clear();
+  float p[3];
+  for (size_t i = 0; i < n; ++i) {
+    const Found& h = found[i];
+    Bracket& k = br[i];
+    k.hi = g_.depth(static_cast<uint32_t>(h.step));
+    k.lo = h.step > 0 ? g_.depth(static_cast<uint32_t>(h.step - 1)) : k.hi;
+    double enter;
+    int face;
+    g_.point(h.col, h.row, k.lo, p);
+    if (h.step == 0 || !g_.in_box(p)) {  // came into the box since the step before
+      if (g_.entry(h.col, h.row, enter, face) && enter > k.lo && enter <= k.hi) k.lo = enter, k.face = face;
+      else if (h.step == 0) k.lo = k.hi, k.face = g_.entry(h.col, h.row, enter, face) ? face : 4;
+    }
+    g_.point(h.col, h.row, k.lo, p);
+    g_.clamp_to_box(p);
+    b.add(p);
+    g_.point(h.col, h.row, k.hi, p);
+    g_.clamp_to_box(p);
+    b.add(p);
+  }
+  if (!b.eval(field, err_)) return false;
+  stats_.refines += b.size();
+  for (size_t i = 0; i < n; ++i) {
+    Bracket& k = br[i];
+    float flo = b.f[2 * i], fhi = b.f[2 * i + 1];
+    if (k.face >= 0 && inside(flo)) k.hi = k.lo, k.done = true;  // the box's face closes the solid here
+    else k.face = -1;
+    k.wlo = flo, k.whi = fhi;
+  }
+  const double tol = std::max(std::fabs(g_.near), std::fabs(g_.far)) * 0x1p-22;
+  std::vector<size_t> active;
+  std::vector<double> mid;
+  for (int it = 0; it < kRefineSteps; ++it) {
+    active.clear(), mid.clear(), b.clear();
+    for (size_t i = 0; i < n; ++i) {
+      Bracket& k = br[i];
+      if (k.done || k.hi - k.lo <= tol) continue;
+      double m = 0.5 * (k.lo + k.hi);
+      if (std::isfinite(k.wlo) && std::isfinite(k.whi) && k.wlo < 0 && k.whi >= 0) {
+        double f = k.lo + (k.hi - k.lo) * (k.wlo / (k.wlo - k.whi));
+        if (f > k.lo && f < k.hi) m = f;
+      }
+      if (!(m > k.lo && m < k.hi)) continue;  // no double between: as close as it gets
+      g_.point(found[i].col, found[i].row, m, p);
+      g_.clamp_to_box(p);
+      b.add(p), active.push_back(i), mid.push_back(m);
+    }
+    if (active.empty()) break;
+    if (!b.eval(field, err_)) return false;
+    stats_.refines += b.size();
+    for (size_t j = 0; j < active.size(); ++j) {
+      Bracket& k = br[active[j]];
+      if (inside(b.f[j])) {
+        k.hi = mid[j], k.whi = b.f[j];
+        if (k.kept == 1) k.wlo *= 0.5;
+        k.kept = 1;
+      } else {
+        k.lo = mid[j], k.wlo = b.f[j];
+        if (k.kept == -1) k.whi *= 0.5;
+        k.kept = -1;
+      }
+    }
+  }
+  std::vector<size_t> smooth;
+  for (size_t i = 0; i < n; ++i) {
+    const Found& h = found[i];
+    size_t at = size_t(h.row) * g_.w + h.col;
+    g_.point(h.col, h.row, br[i].hi, p);
+    g_.clamp_to_box(p);
+    out_.depth[at] = static_cast<float>(br[i].hi);
+    out_.point[at] = {p[0], p[1], p[2]};
+    if (br[i].face >= 0) {
+      std::array<float, 3> nrm{0, 0, 0};
+      nrm[static_cast<size_t>(br[i].face / 2)] = br[i].face % 2 ? 1.0f : -1.0f;
+      out_.normal[at] = nrm;
+    } else {
+      smooth.push_back(i);
+    }
+  }
+  stats_.hits += n;
+  return normals(field, smooth, found);
+}
+
+bool Tracer::normals(const mesh::Field& field, const std::vector<size_t>& which, const std::vector<Found>& found) {
+  if (which.empty()) return true;
+  const size_t n = which.size();
+  auto at = [&](size_t j) { return size_t(found[which[j]].row) * g_.w + found[which[j]].col; };
+  auto set = [&](size_t j, double gx, double gy, double gz) {
+    double l = std::sqrt(gx * gx + gy * gy + gz * gz);
+    if (!(l > 0) || !std::isfinite(l)) return false;
+    out_.normal[at(j)] = {static_cast<float>(-gx / l), static_cast<float>(-gy / l), static_cast<float>(-gz / l)};
+    return true;
+  };
+  std::vector<size_t> rest;
+  if (field.has_gradient()) {
+    std::vector<float> x(n), y(n), z(n), g(4 * n);
+    for (size_t j = 0; j < n; ++j) {
+      const auto& q = out_.point[at(j)];
+      x[j] = q[0], y[j] = q[1], z[j] = q[2];
+    }
+    float* const outs[4] = {g.data(), g.data() + n, g.data() + 2 * n, g.data() + 3 * n};
+    {
+      mesh::EvalTimer timer;
+      if (!field.eval_gradient(x.data(), y.data(), z.data(), n, outs, err_)) return false;
+    }
+    for (size_t j = 0; j < n; ++j)
+      if (set(j, g[n + j], g[2 * n + j], g[3 * n + j])) ++stats_.gradients;
+      else rest.push_back(j);
+  } else {
+    for (size_t j = 0; j < n; ++j) rest.push_back(j);
+  }
+  if (rest.empty()) return true;
+  // Differences a tenth of a step apart, on the whole function (the points may leave the region).
+  double len = 0;
+  for (int a = 0; a < 3; ++a) len += g_.dir[a] * g_.dir[a];
+  double h = 0.1 * std::sqrt(len) * (g_.far - g_.near) / std::max(1u, g_.steps - 1);
+  Batch d;
+  for (size_t j : rest) {
+    const auto& q = out_.point[at(j)];
+    for (int a = 0; a < 3; ++a)
+      for (int s = -1; s <= 1; s += 2) {
+        float p[3] = {q[0], q[1], q[2]};
+        p[a] = static_cast<float>(p[a] + s * h);
+        d.add(p);
+      }
+  }
+  if (!d.eval(root_, err_)) return false;
+  stats_.refines += d.size();
+  for (size_t r = 0; r < rest.size(); ++r) {
+    const float* f = &d.f[6 * r];
+    if (set(rest[r], f[1] - f[0], f[3] - f[2], f[5] - f[4])) continue;
+    const Found& hh = found[which[rest[r]]];
+    double v[3];
+    for (int a = 0; a < 3; ++a) v[a] = g_.dir[a] + hh.col * g_.dir_col[a] + hh.row * g_.dir_row[a];
+    set(rest[r], v[0], v[1], v[2]);  // facing the ray
+  }
+  return true;
+}
+
+void merge(DirectStats& into, const DirectStats& part) {
+  for (size_t l = 0; l < into.levels.size(); ++l) {
+    into.levels[l].empty += part.levels[l].empty;
+    into.levels[l].full += part.levels[l].full;
+    into.levels[l].ambiguous += part.levels[l].ambiguous;
+  }
+  into.points += part.points, into.refines += part.refines, into.gradients += part.gradients;
+  into.hits += part.hits;
+}
+
+}  // namespace
+
+bool trace(const mesh::Field& f, const RayGrid& g, const DirectOptions& o, Hits& out, DirectStats& stats,
+           backends::RuntimeError& err) {
+  const size_t n = size_t(g.w) * g.h;
+  out.depth.assign(n, std::numeric_limits<float>::infinity());
+  out.point.assign(n, {0, 0, 0});
+  out.normal.assign(n, {0, 0, 0});
+  out.step.assign(n, -1);
+  stats = {};
+  for (int l = 0; l < kLevels; ++l) stats.levels.push_back({kTile[l], kChunk[l], 0, 0, 0});
+  const bool prune = o.prune && f.can_bound();
+  if (!prune) f.expect_points(uint64_t(n) * g.steps / 4);
+  std::vector<Rect> tiles = split({0, 0, g.w, g.h}, prune ? kTile[0] : 16);
+  int parts = static_cast<int>(std::max(1u, std::min<unsigned>(o.threads, static_cast<unsigned>(tiles.size()))));
+  std::vector<std::unique_ptr<Tracer>> tracers;
+  for (int p = 0; p < parts; ++p) tracers.push_back(std::make_unique<Tracer>(f, g, out));
+  if (o.progress) o.progress->set_units(tiles.size());
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  // Each tile writes only its own samples, so the hits do not depend on the schedule.
+  bool ok = support::run_parts(parts, [&](int p) {
+    Tracer& t = *tracers[static_cast<size_t>(p)];
+    for (size_t i; !failed && (i = next.fetch_add(1)) < tiles.size();) {
+      if (!(prune ? t.top(tiles[i]) : t.dense(tiles[i]))) return failed = true, false;
+      if (o.progress) o.progress->advance(1);
+    }
+    return true;
+  });
+  stats.pruned = prune;
+  for (const auto& t : tracers) merge(stats, t->stats_);
+  for (const auto& t : tracers)
+    if (!t->err_.message.empty()) {
+      err = t->err_;
+      break;
+    }
+  return ok && !failed;
+}
+
+}  // namespace fscript::render

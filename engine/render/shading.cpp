@@ -1,0 +1,51 @@
+// Shading: without scene lights a headlight and a key light with a fixed mix; with them the VRML97
+// model (emissive, ambient, diffuse, specular with exponent 128 * shininess) per light.
+#include "engine/render/shading.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fscript::render {
+namespace {
+
+double dot(V3 a, V3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 norm(V3 a) {
+  double l = std::sqrt(dot(a, a));
+  return l > 0 ? V3{a[0] / l, a[1] / l, a[2] / l} : a;
+}
+
+}  // namespace
+
+std::array<float, 3> Shading::shade(std::array<float, 3> base, V3 n, V3 view_dir) const {
+  n = norm(n);
+  if (dot(n, view_dir) < 0) n = {-n[0], -n[1], -n[2]};
+  mesh::Material mat = material.value_or(mesh::Material{});
+  std::array<float, 3> out;
+  if (lights.empty()) {
+    V3 key = norm({back[0] + up[0] + 0.5 * right[0], back[1] + up[1] + 0.5 * right[1], back[2] + up[2] + 0.5 * right[2]});
+    double diff = (headlight ? 0.55 * std::max(0.0, dot(n, view_dir)) : 0.0) + 0.35 * std::max(0.0, dot(n, key));
+    V3 hv = norm({key[0] + view_dir[0], key[1] + view_dir[1], key[2] + view_dir[2]});
+    double exponent = material ? std::max(1.0, 128.0 * mat.shininess) : 40.0;
+    double spec = std::pow(std::max(0.0, dot(n, hv)), exponent);
+    for (int k = 0; k < 3; ++k) {
+      double s = material ? 0.6 * mat.specular[k] : 0.25;
+      out[k] = static_cast<float>(std::min(1.0, mat.emissive[k] + base[k] * (0.2 + diff) + s * spec));
+    }
+    return out;
+  }
+  std::array<double, 3> sum{mat.emissive[0], mat.emissive[1], mat.emissive[2]};
+  auto add = [&](V3 to_light, const std::array<float, 3>& colour, double intensity, double ambient) {
+    double d = std::max(0.0, dot(n, to_light));
+    V3 h = norm({to_light[0] + view_dir[0], to_light[1] + view_dir[1], to_light[2] + view_dir[2]});
+    double s = d > 0 ? std::pow(std::max(0.0, dot(n, h)), std::max(1.0, 128.0 * mat.shininess)) : 0.0;
+    for (int k = 0; k < 3; ++k)
+      sum[k] += colour[k] * (ambient * mat.ambient_intensity * base[k] + intensity * (base[k] * d + mat.specular[k] * s));
+  };
+  if (headlight) add(view_dir, {1, 1, 1}, 1.0, 0.0);
+  for (const auto& l : lights)
+    add(norm({-l.direction[0], -l.direction[1], -l.direction[2]}), l.colour, l.intensity, l.ambient);
+  for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(std::clamp(sum[k], 0.0, 1.0));
+  return out;
+}
+
+}  // namespace fscript::render

@@ -21,6 +21,35 @@ math::Interval kernel_bound(const ir::IntervalTape& tape, const Box3& b, const s
   return ev.outputs.empty() ? math::Interval::everything() : ev.outputs[0];
 }
 
+void tape_bounds(const ir::IntervalTape& tape, float t, const Box3* boxes, size_t n, math::Interval* out,
+                 const std::function<void(size_t, ir::IntervalBatchEval&, size_t)>& each) {
+  thread_local std::vector<ir::IntervalLanes> in(4);
+  thread_local ir::IntervalBatchEval ev;
+  for (size_t first = 0; first < n; first += ir::kIntervalLanes) {
+    const size_t m = std::min(ir::kIntervalLanes, n - first);
+    for (size_t k = 0; k < ir::kIntervalLanes; ++k) {
+      const Box3& b = boxes[first + std::min(k, m - 1)];  // lanes past the last repeat it
+      for (int a = 0; a < 3; ++a) in[static_cast<size_t>(a)].set(k, {b.lo[a], b.hi[a], false});
+      in[3].set(k, math::Interval::point(t));
+    }
+    tape.eval_batch(in, ev);
+    for (size_t k = 0; k < m; ++k) out[first + k] = ev.output(0, k);
+    if (each)
+      for (size_t k = 0; k < m; ++k) each(first + k, ev, k);
+  }
+}
+
+void Field::bounds_and_locals(const Box3* boxes, size_t n, math::Interval* out, const WantsLocal& wants,
+                              std::shared_ptr<const Field>* locals) const {
+  bounds(boxes, n, out);
+  for (size_t i = 0; i < n; ++i) locals[i] = wants(i, out[i]) ? local(boxes[i]) : nullptr;
+}
+
+void KernelField::bounds(const Box3* boxes, size_t n, math::Interval* out) const {
+  if (!intervals_) return Field::bounds(boxes, n, out);
+  tape_bounds(*intervals_, t_, boxes, n, out);
+}
+
 math::Interval KernelField::bound(const Box3& b) const {
   if (!intervals_) return math::Interval::everything();
   return kernel_bound(*intervals_, b, {math::Interval::point(t_)});

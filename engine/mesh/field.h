@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct Box3 {
   float lo[3], hi[3];
 };
 
+// Per box of a batch (its index and bound): whether the caller wants the box's local field.
+using WantsLocal = std::function<bool(size_t, const math::Interval&)>;
+
 class Field {
  public:
   virtual ~Field() = default;
@@ -67,6 +71,10 @@ class Field {
   // A field with this one's bits at every point of the box, cheaper there (the tape simplified for
   // the region: local_field.h); nullptr where there is none, and the polygonizer asks this one.
   virtual std::shared_ptr<const Field> local(const Box3&) const { return nullptr; }
+  // bounds() of n boxes, and for each box `wants` asks for, what local() gives for it: a field on
+  // a tape takes both from one interval pass (local() alone bounds its box again).
+  virtual void bounds_and_locals(const Box3* boxes, size_t n, math::Interval* out, const WantsLocal& wants,
+                                 std::shared_ptr<const Field>* locals) const;
   // The mesher knows how many points the whole function will be asked for once the octree has
   // handed out its regions' tapes (backends::Kernel::expect_points: auto then compiles or not).
   virtual void expect_points(uint64_t) const {}
@@ -89,6 +97,11 @@ constexpr size_t kEvalBatch = 8192;
 bool eval_in_batches(const backends::Kernel& k, const float* const* in, float* const* out, size_t n,
                      backends::RuntimeError& err);
 
+// `tape` (a kernel of x, y, z, t) over n boxes at time t in batches of ir::kIntervalLanes: out[i]
+// its first output over boxes[i]; `each` (when given) sees every box's batch evaluation and lane.
+void tape_bounds(const ir::IntervalTape& tape, float t, const Box3* boxes, size_t n, math::Interval* out,
+                 const std::function<void(size_t, ir::IntervalBatchEval&, size_t)>& each = {});
+
 // The result of `tape` (a kernel of x, y, z, t and perhaps more inputs, given in `extra`) over a box.
 math::Interval kernel_bound(const ir::IntervalTape& tape, const Box3& b, const std::vector<math::Interval>& extra);
 
@@ -105,6 +118,7 @@ class KernelField : public Field {
   bool eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
                  backends::RuntimeError& err) const override;
   math::Interval bound(const Box3& b) const override;
+  void bounds(const Box3* boxes, size_t n, math::Interval* out) const override;
   bool can_bound() const override { return intervals_ != nullptr; }
   bool has_gradient() const override { return gradient_ != nullptr; }
   bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],

@@ -43,18 +43,11 @@ class TapeField : public Field, public std::enable_shared_from_this<TapeField> {
   }
   bool can_bound() const override { return true; }
   void bounds(const Box3* boxes, size_t n, math::Interval* out) const override {
-    thread_local std::vector<ir::IntervalLanes> in(4);
-    thread_local ir::IntervalBatchEval ev;
-    for (size_t first = 0; first < n; first += ir::kIntervalLanes) {
-      const size_t m = std::min(ir::kIntervalLanes, n - first);
-      for (size_t k = 0; k < ir::kIntervalLanes; ++k) {
-        const Box3& b = boxes[first + std::min(k, m - 1)];  // lanes past the last repeat it
-        for (int a = 0; a < 3; ++a) in[static_cast<size_t>(a)].set(k, {b.lo[a], b.hi[a], false});
-        in[3].set(k, math::Interval::point(owner_.t_));
-      }
-      tape_->eval_batch(in, ev);
-      for (size_t k = 0; k < m; ++k) out[first + k] = ev.output(0, k);
-    }
+    tape_bounds(*tape_, owner_.t_, boxes, n, out);
+  }
+  void bounds_and_locals(const Box3* boxes, size_t n, math::Interval* out, const WantsLocal& wants,
+                         std::shared_ptr<const Field>* locals) const override {
+    owner_.batch(*tape_, shared_from_this(), boxes, n, out, wants, locals);
   }
   bool has_gradient() const override { return static_cast<bool>(owner_.gradient_); }
   bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
@@ -130,14 +123,32 @@ std::shared_ptr<const ir::IntervalTape> LocalTapes::narrow(const ir::IntervalTap
   for (int a = 0; a < 3; ++a) in.push_back({box.lo[a], box.hi[a], false});
   in.push_back(math::Interval::point(t_));
   from.eval(in, ev);
-  auto tape = std::make_shared<const ir::IntervalTape>(from.simplified(ev));
-  if (tape->length() * 10 > from.length() * 9) return nullptr;
+  return keep(from.simplified(ev), from, counted);
+}
+
+std::shared_ptr<const ir::IntervalTape> LocalTapes::keep(ir::IntervalTape&& t, const ir::IntervalTape& from,
+                                                         bool counted) const {
+  LocalTapeStats& st = local_tape_totals();
+  if (t.length() * 10 > from.length() * 9) return nullptr;
+  auto tape = std::make_shared<const ir::IntervalTape>(std::move(t));
   if (counted) {
     st.simplified.fetch_add(1, std::memory_order_relaxed);
     st.tape_ops.fetch_add(tape->length(), std::memory_order_relaxed);
     st.full_ops.fetch_add(full_.length(), std::memory_order_relaxed);
   }
   return tape;
+}
+
+void LocalTapes::batch(const ir::IntervalTape& from, const std::shared_ptr<const TapeField>& parent, const Box3* boxes,
+                       size_t n, math::Interval* out, const WantsLocal& wants,
+                       std::shared_ptr<const Field>* locals) const {
+  tape_bounds(from, t_, boxes, n, out, [&](size_t i, ir::IntervalBatchEval& ev, size_t lane) {
+    locals[i] = nullptr;
+    if (!wants(i, out[i])) return;
+    local_tape_totals().regions.fetch_add(1, std::memory_order_relaxed);
+    if (std::shared_ptr<const ir::IntervalTape> t = keep(from.simplified(ev, lane), from, true))
+      locals[i] = std::make_shared<TapeField>(std::move(t), boxes[i], parent, *this);
+  });
 }
 
 }  // namespace fscript::mesh

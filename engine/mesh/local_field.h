@@ -28,6 +28,8 @@ LocalTapeStats& local_tape_totals();
 // the layer that owns the passes; nullptr where the field has none.
 using GradientTape = std::function<const ir::IntervalTape*()>;
 
+class TapeField;
+
 class LocalTapes {
  public:
   // `full`: the kernel's tape over (x, y, z, t), alive as long as this; `t`: the time the field is
@@ -38,12 +40,22 @@ class LocalTapes {
   // A field equal, bit for bit, to the kernel's at every point of `box`; nullptr where the box
   // decides too little for a shorter tape to pay (under a tenth shorter).
   std::shared_ptr<const Field> at(const Box3& box) const;
+  // Field::bounds_and_locals of the whole kernel's field.
+  void bounds_and_locals(const Box3* boxes, size_t n, math::Interval* out, const WantsLocal& wants,
+                         std::shared_ptr<const Field>* locals) const {
+    batch(full_, nullptr, boxes, n, out, wants, locals);
+  }
 
  private:
   friend class TapeField;
   // `from` simplified over `box`, or nullptr where that saves under a tenth; `counted`: a value
   // tape, in the stats.
   std::shared_ptr<const ir::IntervalTape> narrow(const ir::IntervalTape& from, const Box3& box, bool counted) const;
+  // The simplified tape kept (or nullptr where it saves under a tenth of `from`), counted in the stats.
+  std::shared_ptr<const ir::IntervalTape> keep(ir::IntervalTape&& t, const ir::IntervalTape& from, bool counted) const;
+  // bounds_and_locals over `from`: the whole tape (parent nullptr) or a region's.
+  void batch(const ir::IntervalTape& from, const std::shared_ptr<const TapeField>& parent, const Box3* boxes, size_t n,
+             math::Interval* out, const WantsLocal& wants, std::shared_ptr<const Field>* locals) const;
   const ir::IntervalTape& full_;
   float t_;
   GradientTape gradient_;
@@ -57,6 +69,10 @@ class LocalKernelField : public KernelField {
                    GradientTape gradient_tape)
       : KernelField(k, t, &tape, gradient), tapes_(tape, t, std::move(gradient_tape)) {}
   std::shared_ptr<const Field> local(const Box3& b) const override { return tapes_.at(b); }
+  void bounds_and_locals(const Box3* boxes, size_t n, math::Interval* out, const WantsLocal& wants,
+                         std::shared_ptr<const Field>* locals) const override {
+    tapes_.bounds_and_locals(boxes, n, out, wants, locals);
+  }
 
  private:
   LocalTapes tapes_;

@@ -17,10 +17,18 @@ double RayGrid::depth(uint32_t k) const {
   return steps > 1 ? near + (far - near) * static_cast<double>(k) / static_cast<double>(steps - 1) : near;
 }
 
-void RayGrid::point(uint32_t col, uint32_t row, double d, double p[3]) const {
+void RayGrid::ray(uint32_t col, uint32_t row, double o[3], double v[3]) const {
   const double c = col, r = row;
-  for (int a = 0; a < 3; ++a)
-    p[a] = origin[a] + c * origin_col[a] + r * origin_row[a] + d * (dir[a] + c * dir_col[a] + r * dir_row[a]);
+  for (int a = 0; a < 3; ++a) {
+    o[a] = origin[a] + c * origin_col[a] + r * origin_row[a];
+    v[a] = dir[a] + c * dir_col[a] + r * dir_row[a];
+  }
+}
+
+void RayGrid::point(uint32_t col, uint32_t row, double d, double p[3]) const {
+  double o[3], v[3];
+  ray(col, row, o, v);
+  at(o, v, d, p);
 }
 
 void RayGrid::point(uint32_t col, uint32_t row, double d, float p[3]) const {
@@ -40,16 +48,16 @@ void RayGrid::clamp_to_box(float p[3]) const {
 }
 
 bool RayGrid::entry(uint32_t col, uint32_t row, double& d, int& face) const {
-  const double c = col, r = row;
+  double o[3], v[3];
+  ray(col, row, o, v);
   double enter = -std::numeric_limits<double>::infinity(), leave = std::numeric_limits<double>::infinity();
   face = 0;
   for (int a = 0; a < 3; ++a) {
-    double o = origin[a] + c * origin_col[a] + r * origin_row[a], v = dir[a] + c * dir_col[a] + r * dir_row[a];
-    if (v == 0) {
-      if (o < box.lo[a] || o > box.hi[a]) return false;
+    if (v[a] == 0) {
+      if (o[a] < box.lo[a] || o[a] > box.hi[a]) return false;
       continue;
     }
-    double t0 = (box.lo[a] - o) / v, t1 = (box.hi[a] - o) / v;
+    double t0 = (box.lo[a] - o[a]) / v[a], t1 = (box.hi[a] - o[a]) / v[a];
     bool high = t1 < t0;  // going down the axis: in through the high face
     if (high) std::swap(t0, t1);
     if (t0 > enter) enter = t0, face = a * 2 + (high ? 1 : 0);
@@ -96,7 +104,8 @@ RayGrid orthographic(const std::array<double, 6>& box, uint32_t w, uint32_t h, u
     g.dir[a] = -back[a];
   }
   g.near = 0, g.far = hi[2] - lo[2];
-  for (int a = 0; a < 3; ++a) g.box.lo[a] = static_cast<float>(box[2 * a]), g.box.hi[a] = static_cast<float>(box[2 * a + 1]);
+  for (int a = 0; a < 3; ++a)
+    g.box.lo[a] = static_cast<float>(box[2 * a]), g.box.hi[a] = static_cast<float>(box[2 * a + 1]);
   return g;
 }
 
@@ -105,9 +114,9 @@ namespace {
 // Levels of the descent: a region's side in samples and its depth in steps. The top level's tiles
 // are shared out to the threads; the last level's open regions are probed step by step, on the tape
 // of the level above.
-constexpr uint32_t kTile[] = {64, 16, 4};
-constexpr uint32_t kChunk[] = {64, 16, 4};
-constexpr int kLevels = 3;
+constexpr uint32_t kTile[] = {256, 64, 16, 4};
+constexpr uint32_t kChunk[] = {256, 64, 16, 4};
+constexpr int kLevels = 4;
 constexpr int kRefineSteps = 12;  // at most, refining a hit along its ray
 
 struct Rect {
@@ -126,6 +135,10 @@ std::vector<Rect> split(Rect r, uint32_t s) {
 struct Found {
   uint32_t col, row;
   int32_t step;
+  // f at the step and at the one before where a probe has them (the same bits as evaluating them
+  // again: the same point on the same function), NaN where not.
+  float at = NAN, before = NAN;
+  bool has_at = false, has_before = false;
 };
 
 // Points gathered for one batch evaluation.
@@ -147,10 +160,26 @@ class Tracer {
  public:
   Tracer(const mesh::Field& root, const RayGrid& g, Hits& out) : root_(root), g_(g), out_(out) {
     for (int l = 0; l < kLevels; ++l) stats_.levels.push_back({kTile[l], kChunk[l], 0, 0, 0});
+    for (uint32_t k = 0; k < g.steps; ++k) depths_.push_back(g.depth(k));
+    // The normals' differences: a tenth of the longest step apart, and never under a few ulps of
+    // the box's coordinates.
+    double longest = 0, o[3], v[3], scale = 0;
+    for (uint32_t c : {0u, g.w - 1})
+      for (uint32_t r : {0u, g.h - 1}) {
+        g.ray(c, r, o, v);
+        longest = std::max(longest, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+      }
+    for (int a = 0; a < 3; ++a)
+      scale = std::max({scale, std::fabs(double(g.box.lo[a])), std::fabs(double(g.box.hi[a]))});
+    h_ = static_cast<float>(std::max(0.1 * longest * (g.far - g.near) / std::max(1u, g.steps - 1), 1e-6 * scale));
+    if (!(h_ > 0)) h_ = 1e-6f;
   }
 
   // A top-level tile, pruned: its depth ranges bounded on the whole function.
-  bool top(Rect r) { return children(root_, r, 0, g_.steps, 0); }
+  bool top(Rect r) {
+    size_t hits = 0;
+    return children(root_, r, 0, g_.steps, 0, hits);
+  }
 
   // A tile without intervals: every step of every ray in order, a few steps at a time.
   bool dense(Rect r) {
@@ -158,7 +187,7 @@ class Tracer {
     constexpr uint32_t kRun = 16;
     for (uint32_t k0 = 0; k0 < g_.steps && unhit(r); k0 += kRun) {
       uint32_t k1 = std::min(g_.steps, k0 + kRun);
-      batch_.clear(), owner_.clear();
+      batch_.clear(), owner_.clear(), owner_tile_.clear();
       for (uint32_t row = r.r0; row < r.r1; ++row)
         for (uint32_t col = r.c0; col < r.c1; ++col)
           if (step_at(col, row) < 0) probe(col, row, k0, k1);
@@ -182,7 +211,8 @@ class Tracer {
 
   // The box around every point of the region at steps [k0 - 1, k1) (the step before: a hit at k0
   // is refined from there), widened to hold their float roundings and cut to the shape's box;
-  // false when that leaves nothing. `within`: the region lies wholly in the shape's box.
+  // false when that leaves nothing. `within`: the region lies wholly in the shape's box. Then
+  // widened by the normals' differences, which may step outside both.
   bool region_box(Rect r, uint32_t k0, uint32_t k1, mesh::Box3& b, bool& within) const {
     double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
     const uint32_t cols[2] = {r.c0, r.c1 - 1}, rows[2] = {r.r0, r.r1 - 1};
@@ -203,91 +233,115 @@ class Tracer {
       b.lo[a] = std::max(l, g_.box.lo[a]), b.hi[a] = std::min(h, g_.box.hi[a]);
       if (b.lo[a] > b.hi[a]) return false;
     }
+    // The normals' differences step out of the region by up to h_ (plus their rounding).
+    for (int a = 0; a < 3; ++a) b.lo[a] -= 2 * h_, b.hi[a] += 2 * h_;
     return true;
   }
 
   // The regions of `level` under (r, [k0, k1)), front to back, on `field` (which holds the
-  // whole function's bits over the parent's box). Hits decided here are refined here.
-  bool children(const mesh::Field& field, Rect r, uint32_t k0, uint32_t k1, int level) {
-    std::vector<Rect> tiles = split(r, kTile[level]);
+  // whole function's bits over the parent's box); `hits` counts the rays they meet. Hits decided
+  // here are refined here.
+  bool children(const mesh::Field& field, Rect r, uint32_t k0, uint32_t k1, int level, size_t& hits) {
+    Scratch& s = scratch_[level];
+    s.tiles = split(r, kTile[level]);
+    s.open.clear();
+    size_t open = 0;
+    for (const Rect& t : s.tiles) s.open.push_back(unhit(t)), open += static_cast<size_t>(s.open.back());
     std::vector<Found> found;
-    std::vector<mesh::Box3> boxes;
-    std::vector<size_t> live;
-    std::vector<char> within;
-    std::vector<math::Interval> iv;
     DirectLevel& st = stats_.levels[static_cast<size_t>(level)];
     const bool leaf = level + 1 == kLevels;
-    for (uint32_t c0 = k0; c0 < k1; c0 += kChunk[level]) {
+    for (uint32_t c0 = k0; c0 < k1 && open > 0; c0 += kChunk[level]) {
       const uint32_t c1 = std::min(k1, c0 + kChunk[level]);
-      boxes.clear(), live.clear(), within.clear();
-      for (size_t i = 0; i < tiles.size(); ++i) {
-        if (!unhit(tiles[i])) continue;
+      s.boxes.clear(), s.live.clear(), s.within.clear();
+      for (size_t i = 0; i < s.tiles.size(); ++i) {
+        if (!s.open[i]) continue;
         mesh::Box3 b;
         bool in;
-        if (!region_box(tiles[i], c0, c1, b, in)) {
+        if (!region_box(s.tiles[i], c0, c1, b, in)) {
           ++st.empty;
           continue;
         }
-        boxes.push_back(b), live.push_back(i), within.push_back(in);
+        s.boxes.push_back(b), s.live.push_back(i), s.within.push_back(in);
       }
-      if (live.empty()) {
-        if (!unhit(r)) break;
-        continue;
-      }
-      iv.resize(boxes.size());
-      field.bounds(boxes.data(), boxes.size(), iv.data());
-      if (leaf) batch_.clear(), owner_.clear();
-      for (size_t j = 0; j < live.size(); ++j) {
-        const Rect& t = tiles[live[j]];
-        const math::Interval& v = iv[j];
-        if (v.empty() || v.hi < 0) {
+      if (s.live.empty()) continue;
+      const size_t n = s.live.size();
+      s.iv.resize(n), s.locals.resize(n);
+      auto full = [&](size_t j, const math::Interval& v) { return !v.nan && v.lo >= 0 && s.within[j]; };
+      auto empty = [](const math::Interval& v) { return v.empty() || v.hi < 0; };
+      field.bounds_and_locals(
+          s.boxes.data(), n, s.iv.data(),
+          [&](size_t j, const math::Interval& v) { return !leaf && !empty(v) && !full(j, v); }, s.locals.data());
+      if (leaf) batch_.clear(), owner_.clear(), owner_tile_.clear();
+      for (size_t j = 0; j < n; ++j) {
+        const size_t i = s.live[j];
+        const Rect t = s.tiles[i];
+        const math::Interval v = s.iv[j];
+        if (empty(v)) {
           ++st.empty;
-        } else if (!v.nan && v.lo >= 0 && within[j]) {
+        } else if (full(j, v)) {
           ++st.full;
           for (uint32_t row = t.r0; row < t.r1; ++row)
             for (uint32_t col = t.c0; col < t.c1; ++col)
-              if (step_at(col, row) < 0) step_at(col, row) = static_cast<int32_t>(c0), found.push_back({col, row, int32_t(c0)});
+              if (step_at(col, row) < 0) step_at(col, row) = int32_t(c0), found.push_back({col, row, int32_t(c0)});
+          s.open[i] = 0, --open;
         } else {
           ++st.ambiguous;
           if (leaf) {
             for (uint32_t row = t.r0; row < t.r1; ++row)
               for (uint32_t col = t.c0; col < t.c1; ++col)
-                if (step_at(col, row) < 0) probe(col, row, c0, c1);
-          } else if (!region(field, t, c0, c1, level, boxes[j])) {
-            return false;
+                if (step_at(col, row) < 0) probe(col, row, c0, c1, static_cast<uint32_t>(i));
+          } else {
+            std::shared_ptr<const mesh::Field> local = std::move(s.locals[j]);
+            size_t met = 0;
+            if (!children(local ? *local : field, t, c0, c1, level + 1, met)) return false;
+            hits += met;
+            if (met && !unhit(t)) s.open[i] = 0, --open;
           }
         }
       }
-      if (leaf && !finish_probe(field, found)) return false;
+      if (leaf) {
+        size_t before = found.size();
+        if (!finish_probe(field, found)) return false;
+        for (size_t f = before; f < found.size(); ++f) {
+          uint32_t i = found_tile_[f - before];
+          if (s.open[i] && !unhit(s.tiles[i])) s.open[i] = 0, --open;
+        }
+      }
     }
+    hits += found.size();
     return refine(field, found);
   }
 
-  // An open region of `level`: its children on the tape simplified for its box.
-  bool region(const mesh::Field& field, Rect t, uint32_t k0, uint32_t k1, int level, const mesh::Box3& box) {
-    std::shared_ptr<const mesh::Field> local = field.local(box);
-    return children(local ? *local : field, t, k0, k1, level + 1);
-  }
-
   // The in-box points of the ray of (col, row) at steps [k0, k1), to the batch.
-  void probe(uint32_t col, uint32_t row, uint32_t k0, uint32_t k1) {
+  void probe(uint32_t col, uint32_t row, uint32_t k0, uint32_t k1, uint32_t tile = 0) {
+    double o[3], v[3], q[3];
+    g_.ray(col, row, o, v);
     for (uint32_t k = k0; k < k1; ++k) {
-      float p[3];
-      g_.point(col, row, g_.depth(k), p);
+      RayGrid::at(o, v, depths_[k], q);
+      float p[3] = {static_cast<float>(q[0]), static_cast<float>(q[1]), static_cast<float>(q[2])};
       if (!g_.in_box(p)) continue;
       batch_.add(p);
       owner_.push_back({col, row, static_cast<int32_t>(k)});
+      owner_tile_.push_back(tile);
     }
   }
 
-  // The batch evaluated: each ray's first step inside (the points of a ray are in step order).
+  // The batch evaluated: each ray's first step inside (the points of a ray are in step order);
+  // found_tile_ the probe's tile of each hit.
   bool finish_probe(const mesh::Field& field, std::vector<Found>& found) {
     if (!batch_.eval(field, err_)) return false;
     stats_.points += batch_.size();
+    found_tile_.clear();
     for (size_t i = 0; i < owner_.size(); ++i) {
       const Found& o = owner_[i];
       int32_t& s = step_at(o.col, o.row);
-      if (s < 0 && inside(batch_.f[i])) s = o.step, found.push_back(o);
+      if (s >= 0 || !inside(batch_.f[i])) continue;
+      s = o.step;
+      Found h = o;
+      h.at = batch_.f[i], h.has_at = true;
+      if (i > 0 && owner_[i - 1].col == o.col && owner_[i - 1].row == o.row && owner_[i - 1].step == o.step - 1)
+        h.before = batch_.f[i - 1], h.has_before = true;
+      found.push_back(h), found_tile_.push_back(owner_tile_[i]);
     }
     return true;
   }
@@ -297,15 +351,30 @@ class Tracer {
   // box's face there.
   bool refine(const mesh::Field& field, const std::vector<Found>& found);
 
-  // Minus the gradient, unit, where the field has one and it is finite; else central differences
-  // on the whole function; else facing the ray.
+  // Minus the gradient by central differences h_ either side, on `field` (whose box holds them),
+  // unit; facing the ray where the function has no slope there. The analytic gradient's tape
+  // would have to be simplified per region as well, which costs more than the six points.
   bool normals(const mesh::Field& field, const std::vector<size_t>& which, const std::vector<Found>& found);
 
   const mesh::Field& root_;
   const RayGrid& g_;
   Hits& out_;
+  // Per level, what children() keeps between its layers (a call uses its own level's only).
+  struct Scratch {
+    std::vector<Rect> tiles;
+    std::vector<char> open, within;  // per tile: rays still to meet; per live box: inside the shape's box
+    std::vector<mesh::Box3> boxes;
+    std::vector<size_t> live;  // the tiles bounded in this layer
+    std::vector<math::Interval> iv;
+    std::vector<std::shared_ptr<const mesh::Field>> locals;
+  };
+  Scratch scratch_[kLevels];
+  std::vector<double> depths_;  // depth(k), once
+  float h_ = 0;                 // the normals' differences, half the span
   Batch batch_;
-  std::vector<Found> owner_;  // per batch point: its ray and step
+  std::vector<Found> owner_;          // per batch point: its ray and step
+  std::vector<uint32_t> owner_tile_;  // and the probe's tile
+  std::vector<uint32_t> found_tile_;  // per hit of the last probe: its tile
 };
 
 struct Bracket {
@@ -323,6 +392,7 @@ bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
   Batch& b = batch_;
   b.clear();
   float p[3];
+  std::vector<size_t> want;  // per batch point: which end (2 i: lo, 2 i + 1: hi) it gives
   for (size_t i = 0; i < n; ++i) {
     const Found& h = found[i];
     Bracket& k = br[i];
@@ -335,18 +405,26 @@ bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
       if (g_.entry(h.col, h.row, enter, face) && enter > k.lo && enter <= k.hi) k.lo = enter, k.face = face;
       else if (h.step == 0) k.lo = k.hi, k.face = g_.entry(h.col, h.row, enter, face) ? face : 4;
     }
-    g_.point(h.col, h.row, k.lo, p);
-    g_.clamp_to_box(p);
-    b.add(p);
-    g_.point(h.col, h.row, k.hi, p);
-    g_.clamp_to_box(p);
-    b.add(p);
+    // The ends' values: from the probe where it has them, else evaluated now.
+    if (!h.has_before || k.lo != g_.depth(static_cast<uint32_t>(h.step - 1))) {
+      g_.point(h.col, h.row, k.lo, p);
+      g_.clamp_to_box(p);
+      b.add(p), want.push_back(2 * i);
+    }
+    if (!h.has_at) {
+      g_.point(h.col, h.row, k.hi, p);
+      g_.clamp_to_box(p);
+      b.add(p), want.push_back(2 * i + 1);
+    }
   }
   if (!b.eval(field, err_)) return false;
   stats_.refines += b.size();
+  std::vector<float> ends(2 * n);
+  for (size_t i = 0; i < n; ++i) ends[2 * i] = found[i].before, ends[2 * i + 1] = found[i].at;
+  for (size_t j = 0; j < want.size(); ++j) ends[want[j]] = b.f[j];
   for (size_t i = 0; i < n; ++i) {
     Bracket& k = br[i];
-    float flo = b.f[2 * i], fhi = b.f[2 * i + 1];
+    float flo = ends[2 * i], fhi = ends[2 * i + 1];
     if (k.face >= 0 && inside(flo)) k.hi = k.lo, k.done = true;  // the box's face closes the solid here
     else k.face = -1;
     k.wlo = flo, k.whi = fhi;
@@ -407,7 +485,6 @@ bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
 
 bool Tracer::normals(const mesh::Field& field, const std::vector<size_t>& which, const std::vector<Found>& found) {
   if (which.empty()) return true;
-  const size_t n = which.size();
   auto at = [&](size_t j) { return size_t(found[which[j]].row) * g_.w + found[which[j]].col; };
   auto set = [&](size_t j, double gx, double gy, double gz) {
     double l = std::sqrt(gx * gx + gy * gy + gz * gz);
@@ -415,48 +492,29 @@ bool Tracer::normals(const mesh::Field& field, const std::vector<size_t>& which,
     out_.normal[at(j)] = {static_cast<float>(-gx / l), static_cast<float>(-gy / l), static_cast<float>(-gz / l)};
     return true;
   };
-  std::vector<size_t> rest;
-  if (field.has_gradient()) {
-    std::vector<float> x(n), y(n), z(n), g(4 * n);
-    for (size_t j = 0; j < n; ++j) {
-      const auto& q = out_.point[at(j)];
-      x[j] = q[0], y[j] = q[1], z[j] = q[2];
-    }
-    float* const outs[4] = {g.data(), g.data() + n, g.data() + 2 * n, g.data() + 3 * n};
-    {
-      mesh::EvalTimer timer;
-      if (!field.eval_gradient(x.data(), y.data(), z.data(), n, outs, err_)) return false;
-    }
-    for (size_t j = 0; j < n; ++j)
-      if (set(j, g[n + j], g[2 * n + j], g[3 * n + j])) ++stats_.gradients;
-      else rest.push_back(j);
-  } else {
-    for (size_t j = 0; j < n; ++j) rest.push_back(j);
-  }
-  if (rest.empty()) return true;
-  // Differences a tenth of a step apart, on the whole function (the points may leave the region).
-  double len = 0;
-  for (int a = 0; a < 3; ++a) len += g_.dir[a] * g_.dir[a];
-  double h = 0.1 * std::sqrt(len) * (g_.far - g_.near) / std::max(1u, g_.steps - 1);
-  Batch d;
-  for (size_t j : rest) {
+  Batch& d = batch_;
+  d.clear();
+  for (size_t j = 0; j < which.size(); ++j) {
     const auto& q = out_.point[at(j)];
     for (int a = 0; a < 3; ++a)
-      for (int s = -1; s <= 1; s += 2) {
+      for (float s : {-h_, h_}) {
         float p[3] = {q[0], q[1], q[2]};
-        p[a] = static_cast<float>(p[a] + s * h);
+        p[a] += s;
         d.add(p);
       }
   }
-  if (!d.eval(root_, err_)) return false;
+  if (!d.eval(field, err_)) return false;
   stats_.refines += d.size();
-  for (size_t r = 0; r < rest.size(); ++r) {
-    const float* f = &d.f[6 * r];
-    if (set(rest[r], f[1] - f[0], f[3] - f[2], f[5] - f[4])) continue;
-    const Found& hh = found[which[rest[r]]];
-    double v[3];
-    for (int a = 0; a < 3; ++a) v[a] = g_.dir[a] + hh.col * g_.dir_col[a] + hh.row * g_.dir_row[a];
-    set(rest[r], v[0], v[1], v[2]);  // facing the ray
+  for (size_t j = 0; j < which.size(); ++j) {
+    const float* f = &d.f[6 * j];
+    if (set(j, f[1] - f[0], f[3] - f[2], f[5] - f[4])) {
+      ++stats_.gradients;
+      continue;
+    }
+    const Found& hh = found[which[j]];
+    double o[3], v[3];
+    g_.ray(hh.col, hh.row, o, v);
+    set(j, v[0], v[1], v[2]);  // no slope there: facing the ray
   }
   return true;
 }

@@ -2,7 +2,8 @@
 // Pictures of implicit shapes without meshing: for each sample of the picture, the first point
 // along its ray where f >= 0 inside the shape's box, found by interval descent over screen tiles x
 // depth ranges in front-to-back order on tapes simplified per region (the quadtree's machinery in
-// 3D); then refined along the ray to float precision and given the gradient's normal.
+// 3D); then refined along the ray to float precision and given the gradient's normal (central
+// differences on the region's tape).
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -26,6 +27,10 @@ struct RayGrid {
   mesh::Box3 box{};  // the shape's box: points outside it are outside (a solid it cuts is closed by it)
 
   double depth(uint32_t k) const;
+  void ray(uint32_t col, uint32_t row, double o[3], double v[3]) const;  // origin and direction of (col, row)
+  static void at(const double o[3], const double v[3], double d, double p[3]) {
+    for (int a = 0; a < 3; ++a) p[a] = o[a] + d * v[a];
+  }
   void point(uint32_t col, uint32_t row, double d, double p[3]) const;
   void point(uint32_t col, uint32_t row, double d, float p[3]) const;  // rounded to float
   bool in_box(const float p[3]) const;
@@ -58,7 +63,7 @@ struct DirectStats {
   std::vector<DirectLevel> levels;
   size_t points = 0;     // step points evaluated
   size_t refines = 0;    // points evaluated refining hits along their rays
-  size_t gradients = 0;  // normals from the gradient (the rest by differences or from the box's faces)
+  size_t gradients = 0;  // normals from the function's slope (the rest from the box's faces, or facing the ray)
   size_t hits = 0;
 };
 

@@ -22,7 +22,8 @@ std::array<float, 3> Shading::shade(std::array<float, 3> base, V3 n, V3 view_dir
   mesh::Material mat = material.value_or(mesh::Material{});
   std::array<float, 3> out;
   if (lights.empty()) {
-    V3 key = norm({back[0] + up[0] + 0.5 * right[0], back[1] + up[1] + 0.5 * right[1], back[2] + up[2] + 0.5 * right[2]});
+    V3 key =
+        norm({back[0] + up[0] + 0.5 * right[0], back[1] + up[1] + 0.5 * right[1], back[2] + up[2] + 0.5 * right[2]});
     double diff = (headlight ? 0.55 * std::max(0.0, dot(n, view_dir)) : 0.0) + 0.35 * std::max(0.0, dot(n, key));
     V3 hv = norm({key[0] + view_dir[0], key[1] + view_dir[1], key[2] + view_dir[2]});
     double exponent = material ? std::max(1.0, 128.0 * mat.shininess) : 40.0;
@@ -39,7 +40,8 @@ std::array<float, 3> Shading::shade(std::array<float, 3> base, V3 n, V3 view_dir
     V3 h = norm({to_light[0] + view_dir[0], to_light[1] + view_dir[1], to_light[2] + view_dir[2]});
     double s = d > 0 ? std::pow(std::max(0.0, dot(n, h)), std::max(1.0, 128.0 * mat.shininess)) : 0.0;
     for (int k = 0; k < 3; ++k)
-      sum[k] += colour[k] * (ambient * mat.ambient_intensity * base[k] + intensity * (base[k] * d + mat.specular[k] * s));
+      sum[k] +=
+          colour[k] * (ambient * mat.ambient_intensity * base[k] + intensity * (base[k] * d + mat.specular[k] * s));
   };
   if (headlight) add(view_dir, {1, 1, 1}, 1.0, 0.0);
   for (const auto& l : lights)

@@ -58,7 +58,7 @@ bool ShapeField::eval_gradient(const float* x, const float* y, const float* z, s
 
 ShapeField::~ShapeField() = default;
 
-std::shared_ptr<const mesh::Field> ShapeField::local(const mesh::Box3& b) const {
+const mesh::LocalTapes* ShapeField::tapes() const {
   if (s_.texture || !s_.geometry.intervals) return nullptr;
   std::call_once(local_once_, [this] {
     mesh::GradientTape gradient;
@@ -66,7 +66,23 @@ std::shared_ptr<const mesh::Field> ShapeField::local(const mesh::Box3& b) const 
     local_ = std::make_unique<mesh::LocalTapes>(*s_.geometry.intervals, static_cast<float>(s_.geometry.t),
                                                 std::move(gradient));
   });
-  return local_->at(b);
+  return local_.get();
+}
+
+std::shared_ptr<const mesh::Field> ShapeField::local(const mesh::Box3& b) const {
+  const mesh::LocalTapes* t = tapes();
+  return t ? t->at(b) : nullptr;
+}
+
+void ShapeField::bounds(const mesh::Box3* boxes, size_t n, math::Interval* out) const {
+  if (s_.texture || !s_.geometry.intervals) return Field::bounds(boxes, n, out);
+  mesh::tape_bounds(*s_.geometry.intervals, static_cast<float>(s_.geometry.t), boxes, n, out);
+}
+
+void ShapeField::bounds_and_locals(const mesh::Box3* boxes, size_t n, math::Interval* out,
+                                   const mesh::WantsLocal& wants, std::shared_ptr<const mesh::Field>* locals) const {
+  if (const mesh::LocalTapes* t = tapes()) return t->bounds_and_locals(boxes, n, out, wants, locals);
+  Field::bounds_and_locals(boxes, n, out, wants, locals);
 }
 
 void ShapeField::expect_points(uint64_t points) const {

@@ -28,16 +28,20 @@ class ShapeField : public mesh::Field {
   bool eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
                  backends::RuntimeError& err) const override;
   math::Interval bound(const mesh::Box3& b) const override;
+  void bounds(const mesh::Box3* boxes, size_t n, math::Interval* out) const override;
   bool can_bound() const override;
   bool has_gradient() const override;  // the FRep's, when it has one and no 3D texture displaces it
   bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                      backends::RuntimeError& err) const override;
   // The FRep's tape simplified for the box (not under a 3D texture, which takes points whole).
   std::shared_ptr<const mesh::Field> local(const mesh::Box3& b) const override;
+  void bounds_and_locals(const mesh::Box3* boxes, size_t n, math::Interval* out, const mesh::WantsLocal& wants,
+                         std::shared_ptr<const mesh::Field>* locals) const override;
   void expect_points(uint64_t points) const override;
   ~ShapeField() override;
 
  private:
+  const mesh::LocalTapes* tapes() const;  // nullptr: a 3D texture, or no intervals
   const Shape& s_;
   mutable std::once_flag local_once_;
   mutable std::unique_ptr<mesh::LocalTapes> local_;  // made at the first local()

@@ -22,30 +22,20 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The script's field: its kernel, bounded and simplified per region where intervals can bound it,
-// with its gradient where it has one.
+// The script's field: its kernel, bounded and simplified per region where intervals can bound it.
 struct ScriptField {
-  std::unique_ptr<ir::IntervalTape> tape, gradient_tape;
-  std::unique_ptr<backends::Kernel> gradient;
+  std::unique_ptr<ir::IntervalTape> tape;
   std::unique_ptr<mesh::Field> field;
 };
 
-void make_field(const Compiled& c, const Options& o, ScriptField& s) {
+void make_field(const Compiled& c, ScriptField& s) {
   const ir::Function& fn = c.module->kernel_function();
-  if (std::unique_ptr<ir::Module> g = driver::gradient_ir(*c.module)) {
-    s.gradient = driver::compile_gradient(*g, o.backend, o.budgets);
-    if (s.gradient && ir::interval_evaluable(g->kernel_function()))
-      s.gradient_tape = std::make_unique<ir::IntervalTape>(g->kernel_function());
-  }
   if (!ir::interval_evaluable(fn)) {
-    s.field = std::make_unique<mesh::KernelField>(*c.kernel, 0.0f, nullptr, s.gradient.get());
+    s.field = std::make_unique<mesh::KernelField>(*c.kernel, 0.0f);
     return;
   }
   s.tape = std::make_unique<ir::IntervalTape>(fn);
-  // A region's gradient comes from the gradient's tape: without one, the field offers none.
-  const backends::Kernel* gradient = s.gradient_tape ? s.gradient.get() : nullptr;
-  s.field = std::make_unique<mesh::LocalKernelField>(*c.kernel, 0.0f, *s.tape, gradient,
-                                                     [&s] { return s.gradient_tape.get(); });
+  s.field = std::make_unique<mesh::LocalKernelField>(*c.kernel, 0.0f, *s.tape, nullptr, mesh::GradientTape{});
 }
 
 std::vector<uint8_t> image(const render::Hits& h, const render::RayGrid& g, const std::string& kind) {
@@ -85,8 +75,7 @@ void print_stats(const render::DirectStats& st, const render::RayGrid& g) {
                   l.full, l.ambiguous);
   std::printf("step points evaluated: %zu (%.3f%% of every step of every ray), %.2f per ray\n", st.points,
               100.0 * static_cast<double>(st.points) / dense, static_cast<double>(st.points) / rays);
-  std::printf("hits: %zu; refining them: %zu points; normals from the gradient: %zu\n", st.hits, st.refines,
-              st.gradients);
+  std::printf("hits: %zu; refining them: %zu points; normals from the slope: %zu\n", st.hits, st.refines, st.gradients);
 }
 
 }  // namespace
@@ -119,12 +108,11 @@ int cmd_render3d(const Options& o, const Render3dArgs& a) {
   if (int rc = compile_file(a.file, a.entry, o, c); rc != kExitOk) return rc;
   size_t n_in = c.kernel->num_inputs();
   if (n_in < 3 || n_in > 4) {
-    std::cerr << "error: render3d needs an entry of x, y, z (and t, taken as 0): this one has " << n_in
-              << " inputs\n";
+    std::cerr << "error: render3d needs an entry of x, y, z (and t, taken as 0): this one has " << n_in << " inputs\n";
     return kExitInput;
   }
   ScriptField sf;
-  make_field(c, o, sf);
+  make_field(c, sf);
   std::array<double, 6> box{bd[0], bd[1], bd[2], bd[3], bd[4], bd[5]};
   render::RayGrid g = render::orthographic(box, w, h, a.steps ? a.steps : std::max(w, h), view[0], view[1]);
   render::DirectOptions ro;

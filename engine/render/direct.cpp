@@ -144,14 +144,25 @@ struct Found {
 // Points gathered for one batch evaluation.
 struct Batch {
   std::vector<float> x, y, z, f;
-  void clear() { x.clear(), y.clear(), z.clear(); }
-  void add(const float p[3]) { x.push_back(p[0]), y.push_back(p[1]), z.push_back(p[2]); }
-  size_t size() const { return x.size(); }
-  bool eval(const mesh::Field& field, backends::RuntimeError& err) {
-    f.resize(x.size());
-    mesh::EvalTimer timer;
-    return x.empty() || field.eval(x.data(), y.data(), z.data(), x.size(), f.data(), err);
+  size_t n = 0;
+  void clear() { n = 0; }
+  void add(const float p[3]) {
+    if (n == x.size()) x.resize(2 * n + 256), y.resize(x.size()), z.resize(x.size());
+    x[n] = p[0], y[n] = p[1], z[n] = p[2], ++n;
   }
+  size_t size() const { return n; }
+  bool eval(const mesh::Field& field, backends::RuntimeError& err) {
+    if (f.size() < n) f.resize(x.size());
+    mesh::EvalTimer timer;
+    return n == 0 || field.eval(x.data(), y.data(), z.data(), n, f.data(), err);
+  }
+};
+
+// A probed point's ray, step and tile.
+struct Probe {
+  uint32_t col, row;
+  int32_t step;
+  uint32_t tile;
 };
 
 bool inside(float v) { return v >= 0.0f; }  // NaN is outside
@@ -187,7 +198,7 @@ class Tracer {
     constexpr uint32_t kRun = 16;
     for (uint32_t k0 = 0; k0 < g_.steps && unhit(r); k0 += kRun) {
       uint32_t k1 = std::min(g_.steps, k0 + kRun);
-      batch_.clear(), owner_.clear(), owner_tile_.clear();
+      batch_.clear(), owner_.clear();
       for (uint32_t row = r.r0; row < r.r1; ++row)
         for (uint32_t col = r.c0; col < r.c1; ++col)
           if (step_at(col, row) < 0) probe(col, row, k0, k1);
@@ -271,7 +282,7 @@ class Tracer {
       field.bounds_and_locals(
           s.boxes.data(), n, s.iv.data(),
           [&](size_t j, const math::Interval& v) { return !leaf && !empty(v) && !full(j, v); }, s.locals.data());
-      if (leaf) batch_.clear(), owner_.clear(), owner_tile_.clear();
+      if (leaf) batch_.clear(), owner_.clear();
       for (size_t j = 0; j < n; ++j) {
         const size_t i = s.live[j];
         const Rect t = s.tiles[i];
@@ -321,8 +332,7 @@ class Tracer {
       float p[3] = {static_cast<float>(q[0]), static_cast<float>(q[1]), static_cast<float>(q[2])};
       if (!g_.in_box(p)) continue;
       batch_.add(p);
-      owner_.push_back({col, row, static_cast<int32_t>(k)});
-      owner_tile_.push_back(tile);
+      owner_.push_back({col, row, static_cast<int32_t>(k), tile});
     }
   }
 
@@ -333,15 +343,15 @@ class Tracer {
     stats_.points += batch_.size();
     found_tile_.clear();
     for (size_t i = 0; i < owner_.size(); ++i) {
-      const Found& o = owner_[i];
+      const Probe& o = owner_[i];
       int32_t& s = step_at(o.col, o.row);
       if (s >= 0 || !inside(batch_.f[i])) continue;
       s = o.step;
-      Found h = o;
+      Found h{o.col, o.row, o.step};
       h.at = batch_.f[i], h.has_at = true;
       if (i > 0 && owner_[i - 1].col == o.col && owner_[i - 1].row == o.row && owner_[i - 1].step == o.step - 1)
         h.before = batch_.f[i - 1], h.has_before = true;
-      found.push_back(h), found_tile_.push_back(owner_tile_[i]);
+      found.push_back(h), found_tile_.push_back(o.tile);
     }
     return true;
   }
@@ -372,8 +382,7 @@ class Tracer {
   std::vector<double> depths_;  // depth(k), once
   float h_ = 0;                 // the normals' differences, half the span
   Batch batch_;
-  std::vector<Found> owner_;          // per batch point: its ray and step
-  std::vector<uint32_t> owner_tile_;  // and the probe's tile
+  std::vector<Probe> owner_;          // per batch point of a probe
   std::vector<uint32_t> found_tile_;  // per hit of the last probe: its tile
 };
 

@@ -11,6 +11,7 @@
 #include "engine/mesh/marching_tetrahedra.h"
 #include "ir/interval_eval.h"
 #include "tests/unit/helpers.h"
+#include "tests/unit/random_csg.h"
 
 using namespace fscript;
 
@@ -49,30 +50,6 @@ struct LocalKernelField : mesh::KernelField {
   bool offers;
 };
 
-// A random union, intersection and difference of balls, boxes and slabs (min, max, abs).
-std::string shape(std::mt19937& rng, int depth) {
-  std::uniform_real_distribution<double> c(-0.8, 0.8), r(0.1, 0.5);
-  auto num = [](double v) { return "(" + std::to_string(v) + ")"; };
-  if (depth == 0) {
-    switch (rng() % 3) {
-      case 0:
-        return num(r(rng) * r(rng) * 2) + " - (x-" + num(c(rng)) + ")*(x-" + num(c(rng)) + ") - (y-" + num(c(rng)) +
-            ")^2 - (z-" + num(c(rng)) + ")^2";
-      case 1:
-        return "min(min(" + num(r(rng)) + " - abs(x-" + num(c(rng)) + "), " + num(r(rng)) + " - abs(y-" + num(c(rng)) +
-            ")), " + num(r(rng)) + " - abs(z-" + num(c(rng)) + "))";
-      default:
-        return num(r(rng) / 2) + " - abs(" + num(c(rng)) + "*x + " + num(c(rng)) + "*y + z - " + num(c(rng)) + ")";
-    }
-  }
-  std::string a = shape(rng, depth - 1), b = shape(rng, static_cast<int>(rng() % static_cast<unsigned>(depth)));
-  switch (rng() % 3) {
-    case 0: return "max(" + a + ", " + b + ")";
-    case 1: return "min(" + a + ", " + b + ")";
-    default: return "min(" + a + ", -(" + b + "))";
-  }
-}
-
 bool same_bits(const float* a, const float* b, size_t n) { return std::memcmp(a, b, n * sizeof(float)) == 0; }
 
 }  // namespace
@@ -82,7 +59,7 @@ TEST_CASE("local tapes: values and gradients inside a region are the whole kerne
   std::uniform_real_distribution<float> u(0, 1);
   size_t simplified = 0;
   for (int program = 0; program < 40; ++program) {
-    Compiled c = compile("function FRep(x,y,z,t){ return " + shape(rng, 4) + " + 0.01*t; }");
+    Compiled c = compile("function FRep(x,y,z,t){ return " + test::random_csg(rng, 4) + " + 0.01*t; }");
     LocalKernelField whole(c, 0.5f, false);
     mesh::LocalTapes tapes(*c.tape, 0.5f, [&c] { return c.gradient_tape.get(); });
     for (int region = 0; region < 12; ++region) {
@@ -133,7 +110,7 @@ TEST_CASE("local tapes: dual contouring through them writes the whole function's
   int narrowed = 0;
   for (int program = 0; program < 60; ++program) {
     const std::string be = program % 3 == 0 ? "sse" : "vm";
-    Compiled c = compile("function FRep(x,y,z,t){ return " + shape(rng, 5) + "; }", be);
+    Compiled c = compile("function FRep(x,y,z,t){ return " + test::random_csg(rng, 5) + "; }", be);
     LocalKernelField whole(c, 0, false), local(c, 0, true);
     mesh::ImplicitJob j;
     j.box = {-1, 1, -1.05, 1, -1, 0.97};

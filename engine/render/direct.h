@@ -6,6 +6,7 @@
 // differences on the region's tape).
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "backends/backend.h"
@@ -45,6 +46,10 @@ struct RayGrid {
 // +x over [x0, x1], rows down from y1 to y0, and the rays go down z, the box filling the picture.
 RayGrid orthographic(const std::array<double, 6>& box, uint32_t w, uint32_t h, uint32_t steps, double az, double el);
 
+// n x n rays along `dir` across `box` (both in the field's coordinates), probed in n steps: how a
+// picture's automatic camera finds a shape's outline before it knows where it stands.
+RayGrid parallel(const std::array<double, 6>& box, const std::array<double, 3>& dir, uint32_t n);
+
 // What a picture's rays met, per sample (row-major from the top row).
 struct Hits {
   std::vector<float> depth;                    // the ray's d at its first surface point; +inf: none
@@ -71,7 +76,20 @@ struct DirectOptions {
   unsigned threads = 1;
   bool prune = true;
   support::ProgressJob* progress = nullptr;  // told as top-level tiles are done
+  const std::vector<char>* wanted = nullptr;  // when given, only the samples marked here are traced
 };
+
+// Where in `box` a shape is, by interval subdivision down to cells of 1/64 of the box a side: the
+// cells the intervals prove inside, and the open ones with a corner or the centre inside (the
+// framing of a picture, so a thin part may fall outside by up to a cell). `open`: the share of the
+// box's cells the intervals leave open, which says how well they bound the function (a blend's
+// bounds are loose everywhere, and a direct picture would probe every step of most rays).
+struct Occupancy {
+  std::optional<std::array<double, 6>> extent;  // none: nothing shows
+  std::vector<std::array<float, 3>> outline;    // the kept cells' corners: what a camera frames
+  double open = 0;
+};
+bool occupied(const mesh::Field& f, const std::array<double, 6>& box, Occupancy& out, backends::RuntimeError& err);
 
 // The same hits, bit for bit, pruned or dense, for any thread count: the intervals only skip steps
 // no point of which is inside, and a region's tape gives the whole function's bits inside it.

@@ -39,43 +39,19 @@ namespace {
 
 bool colour_vertices(const Shape& s, mesh::Mesh& m, backends::RuntimeError& err) {
   if (!s.colour || m.positions.empty()) return true;
-  size_t n = m.positions.size();
-  std::vector<std::vector<float>> in(7, std::vector<float>(n));
-  bool params = m.params.size() == n;
-  for (size_t i = 0; i < n; ++i)
-    for (int a = 0; a < 3; ++a) {
-      in[a][i] = m.positions[i][a];
-      in[3 + a][i] = params ? m.params[i][a] : m.positions[i][a];
-    }
-  std::fill(in[6].begin(), in[6].end(), static_cast<float>(s.colour->t));
-  std::vector<std::vector<float>> out(4, std::vector<float>(n));
-  const float* ins[7];
-  for (int k = 0; k < 7; ++k) ins[k] = in[k].data();
-  float* outs[4] = {out[0].data(), out[1].data(), out[2].data(), out[3].data()};
-  bool ok;
-  {
-    mesh::EvalTimer timer;
-    ok = mesh::eval_in_batches(*s.colour->kernel, ins, outs, n, err);
-  }
-  if (!ok) return false;
-  m.colours.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    if (s.colour->rgb) {
-      for (int k = 0; k < 3; ++k) {
-        float c = out[1 + k][i];
-        m.colours[i][k] = std::isfinite(c) ? std::clamp(c, 0.0f, 1.0f) : 0.0f;
-      }
-    } else {
-      m.colours[i] = pattern_colour(s.material_node, out[0][i]);
-    }
-  }
-  return true;
+  return colour_points(s, m.positions, m.params.size() == m.positions.size() ? &m.params : nullptr, m.colours, err);
 }
 
 // FMaterial's other strings, evaluated once per frame at the centre of the shape's domain (the
 // VRML97 Material holds one value per shape): scalars take the script's value, colours its r, g, b
 // (or the value as a grey level). No FMaterial: no material (the viewer's default).
 bool evaluate_material(const Shape& s, mesh::Mesh& m, backends::RuntimeError& err) {
+  return shape_material(s, m.material, err);
+}
+
+}  // namespace
+
+bool shape_material(const Shape& s, std::optional<mesh::Material>& out, backends::RuntimeError& err) {
   if (!s.material_node) return true;
   mesh::Material mat;
   for (const auto& f : s.material) {
@@ -94,9 +70,47 @@ bool evaluate_material(const Shape& s, mesh::Mesh& m, backends::RuntimeError& er
     else if (f.field == "emissiveColor") mat.emissive = colour;
     else if (f.field == "specularColor") mat.specular = colour;
   }
-  m.material = mat;
+  out = mat;
   return true;
 }
+
+bool colour_points(const Shape& s, const std::vector<mesh::Vec3>& points, const std::vector<mesh::Vec3>* params,
+                   std::vector<mesh::Vec3>& out, backends::RuntimeError& err) {
+  out.clear();
+  if (!s.colour || points.empty()) return true;
+  size_t n = points.size();
+  std::vector<std::vector<float>> in(7, std::vector<float>(n));
+  for (size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) {
+      in[a][i] = points[i][a];
+      in[3 + a][i] = params ? (*params)[i][a] : points[i][a];
+    }
+  std::fill(in[6].begin(), in[6].end(), static_cast<float>(s.colour->t));
+  std::vector<std::vector<float>> res(4, std::vector<float>(n));
+  const float* ins[7];
+  for (int k = 0; k < 7; ++k) ins[k] = in[k].data();
+  float* outs[4] = {res[0].data(), res[1].data(), res[2].data(), res[3].data()};
+  bool ok;
+  {
+    mesh::EvalTimer timer;
+    ok = mesh::eval_in_batches(*s.colour->kernel, ins, outs, n, err);
+  }
+  if (!ok) return false;
+  out.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    if (s.colour->rgb) {
+      for (int k = 0; k < 3; ++k) {
+        float c = res[1 + k][i];
+        out[i][k] = std::isfinite(c) ? std::clamp(c, 0.0f, 1.0f) : 0.0f;
+      }
+    } else {
+      out[i] = pattern_colour(s.material_node, res[0][i]);
+    }
+  }
+  return true;
+}
+
+namespace {
 
 // A 3D texture on a parametric shape: each point moves by d(x, y, z, u, v, w, t) along its unit
 // normal; the normals are then taken from the moved faces.

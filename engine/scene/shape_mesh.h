@@ -21,6 +21,13 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::Runti
 // Positions by the matrix, normals by its inverse transpose; a mirroring matrix flips the winding.
 void transform_mesh(const Mat4& t, mesh::Mesh& m);
 
+// The colours FMaterial.diffuseColor gives at points of the shape (its own coordinates; u, v, w
+// from `params`, or the point where there are none); `out` empty where it has no colour function.
+bool colour_points(const Shape& s, const std::vector<mesh::Vec3>& points, const std::vector<mesh::Vec3>* params,
+                   std::vector<mesh::Vec3>& out, backends::RuntimeError& err);
+// FMaterial's other strings at the shape's frame as the VRML97 Material (none without an FMaterial).
+bool shape_material(const Shape& s, std::optional<mesh::Material>& out, backends::RuntimeError& err);
+
 // The pattern map: piecewise linear over keys, clamped at the ends; no pattern: a grey level.
 mesh::Vec3 pattern_colour(const vrml::Node* material, float value);
 

@@ -54,7 +54,7 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 
 bool same(const render::Hits& a, const render::Hits& b) {
   return same_bits(a.depth, b.depth) && same_bits(a.point, b.point) && same_bits(a.normal, b.normal) &&
-         a.step == b.step;
+      a.step == b.step;
 }
 
 size_t hits(const render::Hits& h) {
@@ -147,8 +147,7 @@ TEST_CASE("direct pictures: a box, a torus, and a solid cut by its box closed by
       }
   }
   SECTION("a torus: every hit on the surface, the normal its gradient's") {
-    Script s = script(
-        "function FRep(x,y,z,t){ var q = sqrt(x*x + z*z) - 0.6; return 0.04 - q*q - y*y; }");
+    Script s = script("function FRep(x,y,z,t){ var q = sqrt(x*x + z*z) - 0.6; return 0.04 - q*q - y*y; }");
     render::RayGrid tilted = render::orthographic({-1, 1, -1, 1, -1, 1}, 90, 90, 90, 20, 35);
     render::Hits h = trace(*s.field, tilted, true);
     size_t n = 0;

@@ -21,7 +21,8 @@ inline std::string random_csg(std::mt19937& rng, int depth) {
         return num(r(rng) / 2) + " - abs(" + num(c(rng)) + "*x + " + num(c(rng)) + "*y + z - " + num(c(rng)) + ")";
     }
   }
-  std::string a = random_csg(rng, depth - 1), b = random_csg(rng, static_cast<int>(rng() % static_cast<unsigned>(depth)));
+  std::string a = random_csg(rng, depth - 1),
+              b = random_csg(rng, static_cast<int>(rng() % static_cast<unsigned>(depth)));
   switch (rng() % 3) {
     case 0: return "max(" + a + ", " + b + ")";
     case 1: return "min(" + a + ", " + b + ")";

@@ -192,6 +192,7 @@ fscript::render::RenderOptions render_options(const Options& o, const vrml::Scen
   fscript::render::RenderOptions ro;
   ro.width = width, ro.height = height;
   ro.azimuth = o.azimuth, ro.elevation = o.elevation, ro.zoom = o.zoom, ro.view_given = o.view_given;
+  ro.threads = static_cast<unsigned>(std::max(1, o.threads)), ro.prune = o.prune;
   for (const auto& n : scene.roots) {
     if (n && n->type == "Viewpoint" && !ro.camera) {  // VRML97 binds the first one
       fscript::render::Camera c;

@@ -169,6 +169,9 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
   bool ok = parallel_for(o.frames, parallel, [&](int f) {
     if (o.shard_part && f % o.shard_part->shard.count != o.shard_part->shard.index) return true;
     mesh::Mesh all;
+    DirectParts direct;  // a contact sheet's implicit shapes, drawn without meshing
+    fscript::backends::RuntimeError err;
+    size_t bad = 0;
     if (o.whole_frames) {  // fvrml-run merge: the frame as its shard made it
       auto it = o.whole_frames->find(static_cast<uint32_t>(f));
       if (it == o.whole_frames->end()) {
@@ -178,7 +181,9 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
       }
       all = it->second;
     } else {
-      Meshed meshed = mesh_scene(o, l.scene, models[f], true, per);
+      bool sheet_part = o.format == "png" && !o.shard_part;  // a shard's frames travel as meshes
+      if (sheet_part && !direct_parts(o, l.scene, models[f], direct)) return false;
+      Meshed meshed = mesh_scene(o, l.scene, models[f], true, per, direct.meshed_no_more);
       if (meshed.failed) {
         failed = true;
         if (!o.keep_going) return false;
@@ -194,7 +199,12 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
       return true;
     }
     if (o.format != "png") return write_frame(o, numbered(o.output, f, o.frames), all);
-    auto px = fscript::render::render(all, render_options(o, l.scene, tw, th));
+    fscript::render::RenderOptions ro = render_options(o, l.scene, tw, th);
+    ro.threads = static_cast<unsigned>(per);
+    std::vector<uint8_t> px;
+    if (direct.shapes.empty()) px = fscript::render::render(all, ro);
+    else if (!fscript::render::render(all, direct.shapes, ro, px, err, bad))
+      return report(o, l.scene, direct.nodes[bad], err), false;
     int cx = f % cols, cy = f / cols;
     for (uint32_t y = 0; y < th; ++y)
       std::copy_n(px.begin() + size_t(y) * tw * 3, tw * 3,

@@ -242,6 +242,12 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
                      "surface's tangent planes; 0 keeps every cell (default 0.02)")
           ->check(CLI::Range(0.0, 10.0).description(""))
           ->type_name("T");
+  std::string render = "direct";
+  app.add_option("--render", render,
+                 "how pictures draw implicit shapes: direct (the default: each pixel's ray meets the surface, no mesh) "
+                 "or mesh (the mesh the other formats write, rasterised) (png)")
+      ->check(CLI::IsMember({"direct", "mesh"}))
+      ->type_name("HOW");
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
   std::string shard_text;
   app.add_option("--shard", shard_text,
@@ -306,6 +312,7 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   o.view_given = !view.empty();
   o.prune = !no_prune;
   o.mesher.kind = mesher == "dc" ? mesh::Mesher::DualContouring : mesh::Mesher::MarchingTetrahedra;
+  o.direct_pictures = render == "direct";
   if (tolerance->count() && o.mesher.kind != mesh::Mesher::DualContouring)
     std::cerr << "warning: --tolerance has no effect with --mesher mt (marching tetrahedra merges no cells)\n";
   if (std::string message; disk_cache && !fscript::backends::enable_llvm_disk_cache(message)) {

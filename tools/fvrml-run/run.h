@@ -5,6 +5,7 @@
 #include <chrono>
 #include <functional>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -45,6 +46,7 @@ struct Options {
   bool force = false;   // an output may replace a file the run reads
   bool instant = false;  // --time or --fraction: one instant asked for, not an animation
   mesh::MesherOptions mesher;  // --mesher, --tolerance
+  bool direct_pictures = true;  // --render direct (default) or mesh: how pictures draw implicit shapes
   uint32_t width = 800, height = 600;
   double azimuth = 30, elevation = 20, zoom = 1;  // the picture's automatic camera (raster.h)
   bool view_given = false;
@@ -139,6 +141,22 @@ bool write_frame(const Options& o, const std::string& path, const mesh::Mesh& al
 // The camera of the scene's first top-level Viewpoint, its DirectionalLights, its headlight.
 fscript::render::RenderOptions render_options(const Options& o, const vrml::Scene& scene, uint32_t width,
                                               uint32_t height);
+
+// The shapes a picture draws without meshing (--render direct): every implicit shape outside an
+// FTransform and every top-level FTransform of implicit shapes whose field intervals can bound,
+// except those in `skip`; the rest is meshed. `meshed_no_more` gets their nodes.
+struct DirectParts {
+  std::vector<std::unique_ptr<mesh::Field>> fields;
+  std::vector<fscript::render::DirectShape> shapes;
+  std::vector<const vrml::Node*> nodes;  // per shape: where its runtime errors are reported
+  std::set<const vrml::Node*> meshed_no_more;
+};
+bool direct_parts(const Options& o, const vrml::Scene& scene, const SceneModel& model, DirectParts& out,
+                  const std::set<const vrml::Node*>& skip = {});
+// A frame's picture: the meshes of `meshed` with the scene's standard geometry, and the direct
+// shapes, in one depth buffer. Prints a runtime error at its shape and returns false.
+bool draw(const Options& o, const vrml::Scene& scene, Meshed& meshed, const DirectParts& direct,
+          const fscript::render::RenderOptions& ro, std::vector<uint8_t>& px);
 
 // --frames N with a mesh format or PNG: numbered files, or a contact sheet.
 int frames(const Options& o, Loaded& l, nlohmann::json& st);

@@ -243,8 +243,10 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
     return rc;
   }
   if (write) {
-    fscript::support::progress_expect(mesh_jobs(model), "meshes");
-    meshed = mesh_scene(o, l.scene, model, o.format != "wrl", o.threads);
+    DirectParts direct;  // a picture's implicit shapes, drawn without meshing
+    if (o.format == "png" && !direct_parts(o, l.scene, model, direct)) return 1;
+    fscript::support::progress_expect(mesh_jobs(model, direct.meshed_no_more), "meshes");
+    meshed = mesh_scene(o, l.scene, model, o.format != "wrl", o.threads, direct.meshed_no_more);
     if (meshed.failed && !o.keep_going) return 1;
     st["polygonize_ms"] = ms_since(t2);
     st["evaluation_ms"] = evaluation_ms_since(e0);
@@ -257,8 +259,9 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
         return std::cerr << "error: " << error << "\n", 1;
     } else if (o.format == "png") {
       fscript::render::RenderOptions ro = render_options(o, l.scene, o.width, o.height);
-      if (!fscript::render::write_png(o.output, ro.width, ro.height, 3,
-                                      fscript::render::render(picture(meshed, l.scene), ro), error))
+      std::vector<uint8_t> px;
+      if (!draw(o, l.scene, meshed, direct, ro, px)) return 1;
+      if (!fscript::render::write_png(o.output, ro.width, ro.height, 3, px, error))
         return std::cerr << "error: " << error << "\n", 1;
     } else if (!write_frame(o, o.output, o.format == "glb" ? picture(meshed, l.scene) : merged(meshed))) {
       return 1;

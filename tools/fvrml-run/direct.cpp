@@ -38,7 +38,6 @@ bool add(const Options& o, const vrml::Scene& scene, const vrml::Node* node, std
   fscript::render::Occupancy where;
   fscript::backends::RuntimeError err;
   if (!fscript::render::occupied(*field, box, where, err)) return report(o, scene, node, err), false;
-  if (getenv("FS_DEBUG_OPEN")) std::cerr << "open " << where.open << "\n";
   if (where.open > kMostOpen) return true;  // the intervals say too little: meshed
   out.meshed_no_more.insert(node);
   if (!where.extent) return true;  // nothing of it can show

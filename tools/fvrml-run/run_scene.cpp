@@ -261,6 +261,9 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
       fscript::render::RenderOptions ro = render_options(o, l.scene, o.width, o.height);
       std::vector<uint8_t> px;
       if (!draw(o, l.scene, meshed, direct, ro, px)) return 1;
+      nlohmann::json lines = nlohmann::json::array();  // the shapes drawn without meshing, by line
+      for (const vrml::Node* n : direct.nodes) lines.push_back(node_line(l.scene, *n));
+      st["direct_shapes"] = lines;
       if (!fscript::render::write_png(o.output, ro.width, ro.height, 3, px, error))
         return std::cerr << "error: " << error << "\n", 1;
     } else if (!write_frame(o, o.output, o.format == "glb" ? picture(meshed, l.scene) : merged(meshed))) {

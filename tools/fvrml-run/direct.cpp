@@ -33,8 +33,7 @@ std::array<double, 6> world_box(const Mat4& m, const std::array<double, 6>& box)
 // Adds a shape drawn by `field` over `box`, coloured and lit as `look` (the shape, or an
 // FTransform's first shape), moved to the world by `to_world`; false on a runtime error (printed).
 bool add(const Options& o, const vrml::Scene& scene, const vrml::Node* node, std::unique_ptr<mesh::Field> field,
-         const std::array<double, 6>& box, const fscript::scene::Shape* look, const Mat4& to_world,
-         DirectParts& out) {
+         const std::array<double, 6>& box, const fscript::scene::Shape* look, const Mat4& to_world, DirectParts& out) {
   fscript::render::Occupancy where;
   fscript::backends::RuntimeError err;
   if (!fscript::render::occupied(*field, box, where, err)) return report(o, scene, node, err), false;
@@ -50,7 +49,8 @@ bool add(const Options& o, const vrml::Scene& scene, const vrml::Node* node, std
   for (const auto& p : where.outline) {
     mesh::Vec3 q;
     for (int r = 0; r < 3; ++r)
-      q[r] = static_cast<float>(to_world[r] * p[0] + to_world[4 + r] * p[1] + to_world[8 + r] * p[2] + to_world[12 + r]);
+      q[r] =
+          static_cast<float>(to_world[r] * p[0] + to_world[4 + r] * p[1] + to_world[8 + r] * p[2] + to_world[12 + r]);
     d.outline.push_back(q);
   }
   if (look) {

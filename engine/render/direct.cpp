@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -133,6 +134,8 @@ namespace {
 constexpr uint32_t kTile[] = {256, 64, 16, 4};
 constexpr uint32_t kChunk[] = {256, 64, 16, 4};
 constexpr int kLevels = 4;
+// Regions of the levels below this get no tape of their own: they run their parent's.
+constexpr int kOwnTapes = 3;
 constexpr int kRefineSteps = 12;  // at most, refining a hit along its ray
 
 struct Rect {
@@ -162,8 +165,11 @@ struct Batch {
   std::vector<float> x, y, z, f;
   size_t n = 0;
   void clear() { n = 0; }
+  void reserve(size_t more) {
+    if (n + more > x.size()) x.resize(2 * (n + more) + 256), y.resize(x.size()), z.resize(x.size());
+  }
   void add(const float p[3]) {
-    if (n == x.size()) x.resize(2 * n + 256), y.resize(x.size()), z.resize(x.size());
+    reserve(1);
     x[n] = p[0], y[n] = p[1], z[n] = p[2], ++n;
   }
   size_t size() const { return n; }
@@ -240,22 +246,29 @@ class Tracer {
   // is refined from there), widened to hold their float roundings and cut to the shape's box;
   // false when that leaves nothing. `within`: the region lies wholly in the shape's box. Then
   // widened by the normals' differences, which may step outside both.
-  bool region_box(Rect r, uint32_t k0, uint32_t k1, mesh::Box3& b, bool& within) const {
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  // The rays of a tile's four corner samples (origin and direction each): every ray of the tile
+  // lies between them.
+  using Corners = std::array<double, 24>;
+  Corners corners(Rect r) const {
+    Corners c;
     const uint32_t cols[2] = {r.c0, r.c1 - 1}, rows[2] = {r.r0, r.r1 - 1};
-    const double ds[2] = {g_.depth(k0 ? k0 - 1 : 0), g_.depth(k1 - 1)};
-    for (uint32_t c : cols)
-      for (uint32_t w : rows)
-        for (double d : ds) {
-          double p[3];
-          g_.point(c, w, d, p);
-          for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-        }
+    for (int k = 0; k < 4; ++k) g_.ray(cols[k & 1], rows[k >> 1], &c[6 * k], &c[6 * k + 3]);
+    return c;
+  }
+
+  bool region_box(const Corners& c, uint32_t k0, uint32_t k1, mesh::Box3& b, bool& within) const {
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    const double ds[2] = {depths_[k0 ? k0 - 1 : 0], depths_[k1 - 1]};
+    for (int k = 0; k < 4; ++k)
+      for (double d : ds) {
+        double p[3];
+        RayGrid::at(&c[6 * k], &c[6 * k + 3], d, p);
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+      }
     within = true;
     for (int a = 0; a < 3; ++a) {
       double m = 1e-9 * (std::fabs(lo[a]) + std::fabs(hi[a]) + (hi[a] - lo[a]));
-      float l = std::nextafter(static_cast<float>(lo[a] - m), -HUGE_VALF);
-      float h = std::nextafter(static_cast<float>(hi[a] + m), HUGE_VALF);
+      float l = below(static_cast<float>(lo[a] - m)), h = above(static_cast<float>(hi[a] + m));
       within = within && l >= g_.box.lo[a] && h <= g_.box.hi[a];
       b.lo[a] = std::max(l, g_.box.lo[a]), b.hi[a] = std::min(h, g_.box.hi[a]);
       if (b.lo[a] > b.hi[a]) return false;
@@ -265,12 +278,22 @@ class Tracer {
     return true;
   }
 
+  // The next float down and up (finite inputs; what nextafter gives, without its call).
+  static float below(float f) {
+    if (f == 0) return -std::numeric_limits<float>::denorm_min();
+    uint32_t u = std::bit_cast<uint32_t>(f);
+    return std::bit_cast<float>(f > 0 ? u - 1 : u + 1);
+  }
+  static float above(float f) { return -below(-f); }
+
   // The regions of `level` under (r, [k0, k1)), front to back, on `field` (which holds the
   // whole function's bits over the parent's box); `hits` counts the rays they meet. Hits decided
   // here are refined here.
   bool children(const mesh::Field& field, Rect r, uint32_t k0, uint32_t k1, int level, size_t& hits) {
     Scratch& s = scratch_[level];
     s.tiles = split(r, kTile[level]);
+    s.corners.clear();
+    for (const Rect& t : s.tiles) s.corners.push_back(corners(t));
     s.open.clear();
     size_t open = 0;
     for (const Rect& t : s.tiles) s.open.push_back(unhit(t)), open += static_cast<size_t>(s.open.back());
@@ -284,7 +307,7 @@ class Tracer {
         if (!s.open[i]) continue;
         mesh::Box3 b;
         bool in;
-        if (!region_box(s.tiles[i], c0, c1, b, in)) {
+        if (!region_box(s.corners[i], c0, c1, b, in)) {
           ++st.empty;
           continue;
         }
@@ -297,7 +320,8 @@ class Tracer {
       auto empty = [](const math::Interval& v) { return v.empty() || v.hi < 0; };
       field.bounds_and_locals(
           s.boxes.data(), n, s.iv.data(),
-          [&](size_t j, const math::Interval& v) { return !leaf && !empty(v) && !full(j, v); }, s.locals.data());
+          [&](size_t j, const math::Interval& v) { return level < kOwnTapes && !empty(v) && !full(j, v); },
+          s.locals.data());
       if (leaf) batch_.clear(), owner_.clear();
       for (size_t j = 0; j < n; ++j) {
         const size_t i = s.live[j];
@@ -341,11 +365,13 @@ class Tracer {
 
   // The in-box points of the ray of (col, row) at steps [k0, k1), to the batch.
   void probe(uint32_t col, uint32_t row, uint32_t k0, uint32_t k1, uint32_t tile = 0) {
-    double o[3], v[3], q[3];
+    double o[3], v[3];
     g_.ray(col, row, o, v);
+    batch_.reserve(k1 - k0);
     for (uint32_t k = k0; k < k1; ++k) {
-      RayGrid::at(o, v, depths_[k], q);
-      float p[3] = {static_cast<float>(q[0]), static_cast<float>(q[1]), static_cast<float>(q[2])};
+      const double d = depths_[k];
+      float p[3];
+      for (int a = 0; a < 3; ++a) p[a] = static_cast<float>(o[a] + d * v[a]);  // RayGrid::at, rounded
       if (!g_.in_box(p)) continue;
       batch_.add(p);
       owner_.push_back({col, row, static_cast<int32_t>(k), tile});
@@ -388,6 +414,7 @@ class Tracer {
   // Per level, what children() keeps between its layers (a call uses its own level's only).
   struct Scratch {
     std::vector<Rect> tiles;
+    std::vector<Corners> corners;  // per tile
     std::vector<char> open, within;  // per tile: rays still to meet; per live box: inside the shape's box
     std::vector<mesh::Box3> boxes;
     std::vector<size_t> live;  // the tiles bounded in this layer

@@ -209,9 +209,48 @@ class Tracer {
   }
 
   // A top-level tile, pruned: its depth ranges bounded on the whole function.
-  bool top(Rect r) {
+  // The top level's regions over one tile (its depth ranges, front to back), bounded up front on
+  // the whole function, their tapes simplified where open.
+  struct Top {
+    std::vector<math::Interval> bound;
+    std::vector<char> within, missed;
+    std::vector<std::shared_ptr<const mesh::Field>> local;
+  };
+  void bound_top(Rect r, Top& t) {
+    const uint32_t n = (g_.steps + kChunk[0] - 1) / kChunk[0];
+    const Corners c = corners(r);
+    std::vector<mesh::Box3> boxes(n);
+    t.bound.assign(n, math::Interval::nan_only()), t.within.assign(n, 0), t.missed.assign(n, 0), t.local.resize(n);
+    for (uint32_t k = 0; k < n; ++k) {
+      bool in = false;
+      t.missed[k] = !region_box(c, k * kChunk[0], std::min(g_.steps, (k + 1) * kChunk[0]), boxes[k], in);
+      t.within[k] = in;
+    }
+    root_.bounds_and_locals(
+        boxes.data(), n, t.bound.data(),
+        [&](size_t k, const math::Interval& v) { return !t.missed[k] && !empty(v) && !full(v, t.within[k]); },
+        t.local.data());
+    DirectLevel& st = stats_.levels[0];
+    for (uint32_t k = 0; k < n; ++k)
+      t.missed[k] || empty(t.bound[k]) ? ++st.empty : full(t.bound[k], t.within[k]) ? ++st.full : ++st.ambiguous;
+  }
+
+  // A unit of work: a tile of the second level under a top tile, its depth ranges front to back.
+  bool unit(Rect u, const Top& t) {
+    std::vector<Found> found;
     size_t hits = 0;
-    return children(root_, r, 0, g_.steps, 0, hits);
+    for (uint32_t k = 0; k < t.bound.size() && unhit(u); ++k) {
+      const uint32_t c0 = k * kChunk[0], c1 = std::min(g_.steps, c0 + kChunk[0]);
+      if (t.missed[k] || empty(t.bound[k])) continue;
+      if (full(t.bound[k], t.within[k])) {
+        for (uint32_t row = u.r0; row < u.r1; ++row)
+          for (uint32_t col = u.c0; col < u.c1; ++col)
+            if (step_at(col, row) < 0) step_at(col, row) = int32_t(c0), found.push_back({col, row, int32_t(c0)});
+      } else if (!children(t.local[k] ? *t.local[k] : root_, u, c0, c1, 1, hits)) {
+        return false;
+      }
+    }
+    return refine(root_, found);
   }
 
   // A tile without intervals: every step of every ray in order, a few steps at a time.
@@ -234,6 +273,10 @@ class Tracer {
 
  private:
   int32_t& step_at(uint32_t col, uint32_t row) { return out_.step[size_t(row) * g_.w + col]; }
+
+  // A region's bound: nothing inside (NaN is outside), or all inside (and the region in the box).
+  static bool empty(const math::Interval& v) { return v.empty() || v.hi < 0; }
+  static bool full(const math::Interval& v, bool within) { return !v.nan && v.lo >= 0 && within; }
 
   bool unhit(Rect r) {
     for (uint32_t row = r.r0; row < r.r1; ++row)
@@ -316,11 +359,9 @@ class Tracer {
       if (s.live.empty()) continue;
       const size_t n = s.live.size();
       s.iv.resize(n), s.locals.resize(n);
-      auto full = [&](size_t j, const math::Interval& v) { return !v.nan && v.lo >= 0 && s.within[j]; };
-      auto empty = [](const math::Interval& v) { return v.empty() || v.hi < 0; };
       field.bounds_and_locals(
           s.boxes.data(), n, s.iv.data(),
-          [&](size_t j, const math::Interval& v) { return level < kOwnTapes && !empty(v) && !full(j, v); },
+          [&](size_t j, const math::Interval& v) { return level < kOwnTapes && !empty(v) && !full(v, s.within[j]); },
           s.locals.data());
       if (leaf) batch_.clear(), owner_.clear();
       for (size_t j = 0; j < n; ++j) {
@@ -329,7 +370,7 @@ class Tracer {
         const math::Interval v = s.iv[j];
         if (empty(v)) {
           ++st.empty;
-        } else if (full(j, v)) {
+        } else if (full(v, s.within[j])) {
           ++st.full;
           for (uint32_t row = t.r0; row < t.r1; ++row)
             for (uint32_t col = t.c0; col < t.c1; ++col)
@@ -688,21 +729,39 @@ bool trace(const mesh::Field& f, const RayGrid& g, const DirectOptions& o, Hits&
   const bool prune = o.prune && f.can_bound();
   if (!prune) f.expect_points(uint64_t(n) * g.steps / 4);
   std::vector<Rect> tiles = split({0, 0, g.w, g.h}, prune ? kTile[0] : 16);
-  int parts = static_cast<int>(std::max(1u, std::min<unsigned>(o.threads, static_cast<unsigned>(tiles.size()))));
+  int parts = static_cast<int>(std::max(1u, o.threads));
   std::vector<std::unique_ptr<Tracer>> tracers;
   for (int p = 0; p < parts; ++p) tracers.push_back(std::make_unique<Tracer>(f, g, out));
-  if (o.progress) o.progress->set_units(tiles.size());
-  std::atomic<size_t> next{0};
+  // Pruned, the top level's regions are bounded first, and the work is shared out in the next
+  // level's tiles (16 under each top tile: two threads stay busy to the end); each tile writes
+  // only its own samples, so the hits do not depend on the schedule.
+  std::vector<Tracer::Top> top(prune ? tiles.size() : 0);
+  struct Unit {
+    Rect r;
+    size_t top;
+  };
+  std::vector<Unit> units;
+  for (size_t i = 0; i < tiles.size(); ++i)
+    if (prune)
+      for (const Rect& u : split(tiles[i], kTile[1])) units.push_back({u, i});
+    else units.push_back({tiles[i], 0});
   std::atomic<bool> failed{false};
-  // Each tile writes only its own samples, so the hits do not depend on the schedule.
-  bool ok = support::run_parts(parts, [&](int p) {
-    Tracer& t = *tracers[static_cast<size_t>(p)];
-    for (size_t i; !failed && (i = next.fetch_add(1)) < tiles.size();) {
-      if (!(prune ? t.top(tiles[i]) : t.dense(tiles[i]))) return failed = true, false;
-      if (o.progress) o.progress->advance(1);
-    }
-    return true;
-  });
+  auto share = [&](size_t count, auto job) {
+    std::atomic<size_t> next{0};
+    return support::run_parts(parts, [&](int p) {
+      Tracer& t = *tracers[static_cast<size_t>(p)];
+      for (size_t i; !failed && (i = next.fetch_add(1)) < count;)
+        if (!job(t, i)) return failed = true, false;
+      return true;
+    });
+  };
+  bool ok = share(top.size(), [&](Tracer& t, size_t i) { return t.bound_top(tiles[i], top[i]), true; });
+  if (o.progress) o.progress->set_units(units.size());
+  ok = ok && share(units.size(), [&](Tracer& t, size_t i) {
+         bool done = prune ? t.unit(units[i].r, top[units[i].top]) : t.dense(units[i].r);
+         if (done && o.progress) o.progress->advance(1);
+         return done;
+       });
   stats.pruned = prune;
   for (const auto& t : tracers) merge(stats, t->stats_);
   for (const auto& t : tracers)

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <deque>
 #include <memory>
 
 #include "ir/interval_eval.h"
@@ -104,11 +105,8 @@ class Renderer {
   // Region r, open at `level` (ev, lane: its bounds on `tape`): its children at the next level on
   // a tape simplified for r; the last level's open children densely, in one batch on that tape.
   bool region(Tape& tape, Rect r, size_t level, ir::IntervalBatchEval& ev, size_t lane) {
-    Tape child = simplified(tape, ev, lane);
-    stats_.levels[level].tape_ops += child.ops;
-    // Bounding the last level's small tiles pays only when the bounds run as SIMD: a tape with
-    // transcendentals (bounded lane by lane) evaluates this region's pixels instead.
-    if (level + 1 == kLevels || (level + 2 == kLevels && !child.flat->simd_only())) return dense(child, {r});
+    Tape child = narrowed(tape, ev, lane, level);
+    if (last_level(level, child)) return dense(child, {r});
     std::vector<Rect> pending;
     bool last = level + 2 == kLevels;
     bool ok = bound(child, split(r, kSizes[level + 1]), level + 1, [&](Rect c, ir::IntervalBatchEval& cev, size_t k) {
@@ -116,6 +114,20 @@ class Renderer {
       return region(child, c, level + 1, cev, k);
     });
     return ok && (pending.empty() || dense(child, pending));
+  }
+
+  // The tape for an open region of `level` (ev, lane: its bounds on `tape`).
+  Tape narrowed(Tape& tape, ir::IntervalBatchEval& ev, size_t lane, size_t level) {
+    Tape child = simplified(tape, ev, lane);
+    stats_.levels[level].tape_ops += child.ops;
+    return child;
+  }
+
+  // Whether an open region of `level` on `tape` is evaluated whole. Bounding the last level's small
+  // tiles pays only when the bounds run as SIMD: a tape with transcendentals (bounded lane by lane)
+  // evaluates the region above's pixels instead.
+  static bool last_level(size_t level, const Tape& tape) {
+    return level + 1 == kLevels || (level + 2 == kLevels && !tape.flat->simd_only());
   }
 
   // Every pixel of the rects, in one batch on the tape's kernel.
@@ -250,29 +262,52 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   full.ops = stats.full_tape_ops;
   full.compiled = std::make_shared<Compiled>();
   full.compiled->kernel = &dense;  // the full tape is what `dense` was compiled from
-  // The top level is bounded up front, in batches; its open tiles go to whichever thread is free.
-  // Each writes only its own pixels, so the picture does not depend on the schedule.
+  // The top level is bounded up front, in batches, and so are the children of its open tiles, each
+  // on its tile's simplified tape; the open children go to whichever thread is free (16 under each
+  // top tile: two threads stay busy to the end). Each writes only its own pixels, so the picture
+  // does not depend on the schedule.
   struct Open {
     Rect r;
-    size_t batch, lane;  // its bounds: top[batch], lane
+    size_t tape, batch, lane;  // its bounds: evals[batch], lane, on tapes[tape]
   };
   std::vector<Open> open;
-  std::vector<ir::IntervalBatchEval> top;
+  std::vector<Tape> tapes;                  // the open top tiles' simplified tapes
+  std::deque<ir::IntervalBatchEval> evals;  // the bounds of their children (stable addresses)
   bool ok = true;
   if (prune) {
     Renderer& r0 = *renderers[0];
-    size_t kept_for = SIZE_MAX;  // the batch whose evaluation top.back() is
+    std::vector<std::pair<Rect, Tape>> tops;  // the open top tiles and their tapes
     for (size_t first = 0; first < tiles.size(); first += ir::kIntervalLanes) {
       std::vector<Rect> part(tiles.begin() + static_cast<long>(first),
                              tiles.begin() + static_cast<long>(std::min(tiles.size(), first + ir::kIntervalLanes)));
       ok = ok && r0.bound(full, part, 0, [&](Rect r, ir::IntervalBatchEval& ev, size_t k) {
-        if (kept_for != first) top.push_back(ev), kept_for = first;
-        open.push_back({r, top.size() - 1, k});
+        tops.push_back({r, r0.narrowed(full, ev, k, 0)});
         return true;
       });
     }
+    for (auto& [r, tape] : tops) {
+      if (r0.last_level(0, tape)) {  // no level below: the tile is evaluated whole, by a thread
+        tapes.push_back(tape), evals.emplace_back();
+        open.push_back({r, tapes.size() - 1, SIZE_MAX, 0});
+        continue;
+      }
+      tapes.push_back(tape);
+      std::vector<Rect> kids = split(r, kSizes[1]);
+      for (size_t first = 0; first < kids.size(); first += ir::kIntervalLanes) {
+        std::vector<Rect> part(kids.begin() + static_cast<long>(first),
+                               kids.begin() + static_cast<long>(std::min(kids.size(), first + ir::kIntervalLanes)));
+        bool kept = false;
+        ok = ok && r0.bound(tapes.back(), part, 1, [&](Rect c, ir::IntervalBatchEval& ev, size_t k) {
+          if (!kept) evals.push_back(ev), kept = true;
+          open.push_back({c, tapes.size() - 1, evals.size() - 1, k});
+          return true;
+        });
+      }
+    }
+    for (size_t i = 0; i < open.size(); ++i)  // before the threads share them
+      if (open[i].batch != SIZE_MAX && (i == 0 || open[i - 1].batch != open[i].batch))
+        tapes[open[i].tape].flat->lane_masks(evals[open[i].batch]);
   }
-  for (auto& ev : top) full.flat->lane_masks(ev);  // before the threads share them
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
   size_t count = prune ? open.size() : tiles.size();
@@ -280,8 +315,10 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   ok = ok && support::run_parts(parts, [&](int p) {
          Renderer& r = *renderers[static_cast<size_t>(p)];
          for (size_t t; !failed && (t = next.fetch_add(1)) < count;) {
-           bool done =
-               prune ? r.region(full, open[t].r, 0, top[open[t].batch], open[t].lane) : r.dense(full, {tiles[t]});
+           bool done;
+           if (!prune) done = r.dense(full, {tiles[t]});
+           else if (open[t].batch == SIZE_MAX) done = r.dense(tapes[open[t].tape], {open[t].r});
+           else done = r.region(tapes[open[t].tape], open[t].r, 1, evals[open[t].batch], open[t].lane);
            if (!done) return failed = true, false;
            if (o.progress) o.progress->advance(1);
          }

@@ -51,6 +51,19 @@ jcheck "a box in front of the direct ball hides its middle" out "j['count'] > 10
 jcheck "the direct ball in front of a box hides it" out "j['count'] == 0" -- python3 "$PNGP" "$T/behind.png" 255 0 0 120
 jcheck "the ball green where its FMaterial says" out "j['count'] > 1500" -- python3 "$PNGP" "$T/behind.png" 0 200 0 120
 
+# An FVRML parametric square (meshed) in front of the ball hides its middle the same way.
+cat > "$T/param.wrl" <<'WRL'
+#VRML V2.0 utf8
+Viewpoint { position 0 0 5 }
+FShape { appearance FAppearance { material FMaterial { diffuseColor "r = 0; g = 0; b = 1;" } }
+  geometry FGeometry { type "parametric" definition "x = u; y = v; z = 1.5;" parameters [-0.3 0.3 -0.3 0.3] resolution [4 4] } }
+FShape { appearance FAppearance { material FMaterial { diffuseColor "r = 0; g = 1; b = 0;" } }
+  geometry FGeometry { definition "1 - x^2 - y^2 - z^2" bboxSize 2.5 2.5 2.5 resolution [32] } }
+WRL
+"$R" "$T/param.wrl" -o "$T/param.png" --size 100 2> /dev/null || fail "picture of param.wrl"
+jcheck "a parametric square in front of the direct ball hides its middle" out "j['count'] > 100 and abs(j['x'] - 49.5) < 3" \
+  -- python3 "$PNGP" "$T/param.png" 0 0 255 120
+
 # A runtime error in a shape drawn directly: at its line, exit status 1, no picture.
 cat > "$T/oob.wrl" <<'WRL'
 #VRML V2.0 utf8

@@ -63,6 +63,8 @@ printf 'function FRep(x, y, z, t) { return min(0.8 - sqrt(x * x + y * y + z * z)
 same_picture csg3d "$T/csg3d.fs" --size 70x53 --view 25,30
 same_picture csg3d-normal "$T/csg3d.fs" --size 41 --image normal --bounds -1,1.2,-0.9,1,-1,1
 same_picture blobs "$SRC/examples/blobs.fs" --size 60 --bounds -2,2,-2,2,-2,2 --image depth
+same_picture csg "$SRC/examples/csg.fs" --size 64x48 --view 30,20
+same_picture gyroid-ball "$SRC/examples/gyroid-ball.fs" --size 48 --bounds -1.2,1.2,-1.2,1.2,-1.2,1.2
 # A kernel intervals cannot bound (a loop) is drawn densely.
 printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 3; i = i + 1) s = s + x; return 0.5 - s * s - y * y - z * z; }\n' > "$T/loop3d.fs"
 same_picture loop "$T/loop3d.fs" --size 24

@@ -49,7 +49,7 @@ render::Hits trace(const mesh::Field& f, const render::RayGrid& g, bool prune, u
 
 template <typename T>
 bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 bool same(const render::Hits& a, const render::Hits& b) {

@@ -123,12 +123,11 @@ uint32_t side_of(const IntervalTape::Step& s, Choice c) {
 }  // namespace
 
 template <typename Needed, typename Stands>
-IntervalTape IntervalTape::emit(const Choice* choices, size_t stride, Needed needed, Stands stands) const {
+void IntervalTape::emit(const Choice* choices, size_t stride, Needed needed, Stands stands, IntervalTape& out) const {
   thread_local std::vector<uint32_t> renumber;
   thread_local std::vector<Step> kept;  // the new tape, built here and copied once at its length
   renumber.resize(values_);
   if (kept.size() < steps_.size()) kept.resize(steps_.size());
-  IntervalTape out;
   out.params_ = params_;
   Step* next = kept.data();
   uint32_t n = 0;
@@ -149,8 +148,8 @@ IntervalTape IntervalTape::emit(const Choice* choices, size_t stride, Needed nee
   }
   out.steps_.assign(kept.data(), next);
   out.values_ = n;
+  out.outputs_.clear();
   for (uint32_t o : outputs_) out.outputs_.push_back(renumber[o]);
-  return out;
 }
 
 IntervalTape IntervalTape::simplified(const Choice* choices, size_t stride, size_t* collapsed) const {
@@ -176,7 +175,9 @@ IntervalTape IntervalTape::simplified(const Choice* choices, size_t stride, size
   }
   if (collapsed) *collapsed = decided;
   const uint8_t* l = live.data();
-  return emit(choices, stride, [l](uint32_t v) { return l[v] != 0; }, [l](uint32_t v) { return (l[v] & 2) != 0; });
+  IntervalTape out;
+  emit(choices, stride, [l](uint32_t v) { return l[v] != 0; }, [l](uint32_t v) { return (l[v] & 2) != 0; }, out);
+  return out;
 }
 
 // The backward pass of every lane at once, a bit per lane.
@@ -215,12 +216,18 @@ void IntervalTape::lane_masks(IntervalBatchEval& ev) const {
 }
 
 IntervalTape IntervalTape::simplified(IntervalBatchEval& ev, size_t lane) const {
+  IntervalTape out;
+  simplified(ev, lane, out);
+  return out;
+}
+
+void IntervalTape::simplified(IntervalBatchEval& ev, size_t lane, IntervalTape& out) const {
   if (!ev.masks) lane_masks(ev);
   uint16_t bit = static_cast<uint16_t>(1u << lane);
   const uint16_t *need = ev.needed.data(), *stand = ev.stands.data();
-  return emit(
+  emit(
       ev.choices.data() + lane, kIntervalLanes, [need, bit](uint32_t v) { return (need[v] & bit) != 0; },
-      [stand, bit](uint32_t v) { return (stand[v] & bit) != 0; });
+      [stand, bit](uint32_t v) { return (stand[v] & bit) != 0; }, out);
 }
 
 void IntervalTape::eval(const std::vector<Interval>& inputs, IntervalEval& out) const {

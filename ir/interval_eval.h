@@ -80,6 +80,7 @@ class IntervalTape {
   };
 
   explicit IntervalTape(const Function& fn);  // fn must be interval_evaluable
+  IntervalTape() = default;                    // an empty tape, to be written by simplified()
   void eval(const std::vector<math::Interval>& inputs, IntervalEval& out) const;
   // kIntervalLanes regions in one pass (`inputs[p]`: parameter p in each lane); every lane's
   // bounds are sound, and as tight as eval's up to the last ulp (ir/interval_batch.cpp).
@@ -93,6 +94,8 @@ class IntervalTape {
   // The same from lane `lane` of a batch evaluation (the first call does the backward pass of
   // every lane, the others reuse it).
   IntervalTape simplified(IntervalBatchEval& ev, size_t lane) const;
+  // The same written into `out`, whose storage is reused (a renderer keeps one tape per level).
+  void simplified(IntervalBatchEval& ev, size_t lane, IntervalTape& out) const;
   // That backward pass now (so threads may then simplify lanes of `ev` at once).
   void lane_masks(IntervalBatchEval& ev) const;
 
@@ -105,11 +108,10 @@ class IntervalTape {
   bool simd_only() const;
 
  private:
-  IntervalTape() = default;
   IntervalTape simplified(const Choice* choices, size_t stride, size_t* collapsed) const;
   // The forward pass: the needed steps in order, renumbered, a standing choice taking its side's number.
   template <typename Needed, typename Stands>
-  IntervalTape emit(const Choice* choices, size_t stride, Needed needed, Stands stands) const;
+  void emit(const Choice* choices, size_t stride, Needed needed, Stands stands, IntervalTape& out) const;
   std::vector<Step> steps_;
   std::vector<uint32_t> outputs_;
   uint32_t values_ = 0, params_ = 0;

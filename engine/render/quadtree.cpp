@@ -7,6 +7,7 @@
 #include <atomic>
 #include <deque>
 #include <memory>
+#include <mutex>
 
 #include "ir/interval_eval.h"
 #include "backends/vm/vm_backend.h"
@@ -39,9 +40,12 @@ struct Rect {
 };
 
 // A tape's kernel once a dense batch needs it; shared by every region that keeps the tape.
+// A top tile's tape is shared by the threads that take its children: the first to need the kernel
+// compiles it, once.
 struct Compiled {
   const backends::Kernel* kernel = nullptr;
   std::unique_ptr<backends::Kernel> owned;
+  std::once_flag once;
 };
 
 // A tape: flat, for intervals and simplification, and compiled when needed.
@@ -52,11 +56,16 @@ struct Tape {
 };
 
 // The regions of side `s` that cover r, row by row.
-std::vector<Rect> split(Rect r, uint32_t s) {
-  std::vector<Rect> out;
+void split(Rect r, uint32_t s, std::vector<Rect>& out) {
+  out.clear();
   for (uint32_t row = r.r0; row < r.r1; row += s)
     for (uint32_t col = r.c0; col < r.c1; col += s)
       out.push_back({col, row, std::min(col + s, r.c1), std::min(row + s, r.r1)});
+}
+
+std::vector<Rect> split(Rect r, uint32_t s) {
+  std::vector<Rect> out;
+  split(r, s, out);
   return out;
 }
 
@@ -75,7 +84,8 @@ class Renderer {
   bool bound(const Tape& tape, const std::vector<Rect>& rects, size_t level, Open open) {
     QuadtreeLevel& st = stats_.levels[level];
     ir::IntervalBatchEval& ev = scratch_[level];  // per level: a parent's evaluation outlives its children's
-    std::vector<ir::IntervalLanes> in(dense_.num_inputs());
+    std::vector<ir::IntervalLanes>& in = lanes_[level];  // reused: threads share one malloc arena
+    in.resize(dense_.num_inputs());
     for (auto& lanes : in)
       for (size_t k = 0; k < ir::kIntervalLanes; ++k) lanes.set(k, math::Interval{0, 0, false});
     for (size_t first = 0; first < rects.size(); first += ir::kIntervalLanes) {
@@ -106,19 +116,22 @@ class Renderer {
   // a tape simplified for r; the last level's open children densely, in one batch on that tape.
   bool region(Tape& tape, Rect r, size_t level, ir::IntervalBatchEval& ev, size_t lane) {
     Tape child = narrowed(tape, ev, lane, level);
-    if (last_level(level, child)) return dense(child, {r});
-    std::vector<Rect> pending;
+    if (last_level(level, child)) return dense(child, &r, 1);
+    std::vector<Rect>& pending = pending_[level];
+    pending.clear();
     bool last = level + 2 == kLevels;
-    bool ok = bound(child, split(r, kSizes[level + 1]), level + 1, [&](Rect c, ir::IntervalBatchEval& cev, size_t k) {
+    split(r, kSizes[level + 1], kids_[level]);
+    bool ok = bound(child, kids_[level], level + 1, [&](Rect c, ir::IntervalBatchEval& cev, size_t k) {
       if (last) return pending.push_back(c), true;
       return region(child, c, level + 1, cev, k);
     });
-    return ok && (pending.empty() || dense(child, pending));
+    return ok && (pending.empty() || dense(child, pending.data(), pending.size()));
   }
 
-  // The tape for an open region of `level` (ev, lane: its bounds on `tape`).
-  Tape narrowed(Tape& tape, ir::IntervalBatchEval& ev, size_t lane, size_t level) {
-    Tape child = simplified(tape, ev, lane);
+  // The tape for an open region of `level` (ev, lane: its bounds on `tape`); `own`: not from the
+  // level's reused storage (the top tiles' tapes, kept for the threads).
+  Tape narrowed(Tape& tape, ir::IntervalBatchEval& ev, size_t lane, size_t level, bool own = false) {
+    Tape child = simplified(tape, ev, lane, own ? SIZE_MAX : level);
     stats_.levels[level].tape_ops += child.ops;
     return child;
   }
@@ -131,22 +144,23 @@ class Renderer {
   }
 
   // Every pixel of the rects, in one batch on the tape's kernel.
-  bool dense(Tape& tape, const std::vector<Rect>& rects) {
-    if (rects.size() == 1 && tape.compiled && tape.compiled->kernel == &dense_) return dense_rows(rects[0]);
+  bool dense(Tape& tape, const Rect* rects, size_t count) {
+    if (count == 1 && tape.compiled && tape.compiled->kernel == &dense_) return dense_rows(rects[0]);
     size_t n = 0;
-    for (const Rect& r : rects) n += size_t(r.c1 - r.c0) * (r.r1 - r.r0);
+    for (size_t q = 0; q < count; ++q) n += size_t(rects[q].c1 - rects[q].c0) * (rects[q].r1 - rects[q].r0);
     cols_.resize(dense_.num_inputs());
     for (auto& c : cols_) c.assign(n, 0.0f);
     where_.resize(n);
     size_t i = 0;
-    for (const Rect& r : rects)
-      for (uint32_t row = r.r0; row < r.r1; ++row)
-        for (uint32_t col = r.c0; col < r.c1; ++col, ++i) {
+    for (const Rect* r = rects; r != rects + count; ++r)
+      for (uint32_t row = r->r0; row < r->r1; ++row)
+        for (uint32_t col = r->c0; col < r->c1; ++col, ++i) {
           cols_[0][i] = xs_[col];
           cols_[1][i] = ys_[row];
           where_[i] = size_t(row) * g_.w + col;
         }
-    std::vector<const float*> in;
+    std::vector<const float*>& in = in_ptrs_;
+    in.clear();
     for (auto& c : cols_) in.push_back(c.data());
     outs_.resize(dense_.num_outputs());
     for (auto& v : outs_) v.resize(std::max(n, vm::kPointLanes));
@@ -155,8 +169,9 @@ class Renderer {
       ++stats_.direct;
     } else {
       if (!tape.compiled) tape.compiled = std::make_shared<Compiled>();
-      if (!tape.compiled->kernel && !compile(tape)) return false;
-      std::vector<float*> out;
+      if (!compile(tape)) return false;
+      std::vector<float*>& out = out_ptrs_;
+      out.clear();
       for (auto& v : outs_) out.push_back(v.data());
       if (!tape.compiled->kernel->eval_batch(in.data(), out.data(), n, err_)) return false;
     }
@@ -194,8 +209,14 @@ class Renderer {
   }
 
   // The parent's tape specialised to the region, or the parent's itself when that saves little.
-  Tape simplified(Tape& parent, ir::IntervalBatchEval& ev, size_t lane) {
-    auto s = std::make_shared<const ir::IntervalTape>(parent.flat->simplified(ev, lane));
+  // `level`: written into that level's tape of this renderer, reused by the next region of the
+  // level (its storage kept: no allocation); none: a tape of its own (one that outlives the region).
+  Tape simplified(Tape& parent, ir::IntervalBatchEval& ev, size_t lane, size_t level = SIZE_MAX) {
+    std::shared_ptr<ir::IntervalTape> s;
+    if (level < kLevels && pool_[level].use_count() == 1) s = pool_[level];  // free: its last region has ended
+    else s = std::make_shared<ir::IntervalTape>();
+    if (level < kLevels && !pool_[level]) pool_[level] = s;
+    parent.flat->simplified(ev, lane, *s);
     if (s->length() * 10 > parent.ops * 9) {  // under 10% shorter: the parent, sharing its kernel too
       if (!parent.compiled) parent.compiled = std::make_shared<Compiled>();
       return parent;
@@ -211,13 +232,23 @@ class Renderer {
   // (docs/performance.md), and every backend gives the same bits.
   bool compile(Tape& tape) {
     Compiled& c = *tape.compiled;
-    c.owned = vm::compile_tape(*tape.flat, o_.budgets);
-    c.kernel = c.owned.get();
-    ++stats_.kernels;
+    std::call_once(c.once, [&] {
+      if (c.kernel) return;  // the whole function's: `dense` itself
+      c.owned = vm::compile_tape(*tape.flat, o_.budgets);
+      c.kernel = c.owned.get();
+      ++stats_.kernels;
+    });
     return true;
   }
 
   ir::IntervalBatchEval scratch_[kLevels];
+  // Buffers reused from region to region: the threads share one malloc arena (the huge heap), and
+  // allocating them afresh put two threads behind its lock.
+  std::vector<ir::IntervalLanes> lanes_[kLevels];
+  std::vector<Rect> kids_[kLevels], pending_[kLevels];
+  std::vector<const float*> in_ptrs_;
+  std::vector<float*> out_ptrs_;
+  std::shared_ptr<ir::IntervalTape> pool_[kLevels];  // per level: the tape its regions are simplified into
   std::vector<float> xs_, ys_;  // the grid's coordinates, once
   std::vector<std::vector<float>> cols_, outs_;  // dense batches' inputs and outputs, reused
   std::vector<size_t> where_;
@@ -262,67 +293,88 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   full.ops = stats.full_tape_ops;
   full.compiled = std::make_shared<Compiled>();
   full.compiled->kernel = &dense;  // the full tape is what `dense` was compiled from
-  // The top level is bounded up front, in batches, and so are the children of its open tiles, each
-  // on its tile's simplified tape; the open children go to whichever thread is free (16 under each
-  // top tile: two threads stay busy to the end). Each writes only its own pixels, so the picture
-  // does not depend on the schedule.
-  struct Open {
+  // The top level is bounded up front, in batches; the threads then share out its open tiles, each
+  // simplifying the tile's tape and bounding its children on it, and then those children that are
+  // open (16 under each top tile, so two threads stay busy to the end). Each writes only its own
+  // pixels, so the picture does not depend on the schedule.
+  struct Top {
     Rect r;
-    size_t tape, batch, lane;  // its bounds: evals[batch], lane, on tapes[tape]
+    size_t batch, lane;  // its bounds: top[batch], lane
+    Tape tape;           // simplified for it
+    std::deque<ir::IntervalBatchEval> evals;  // its children's bounds (stable addresses)
+    struct Kid {
+      Rect r;
+      size_t batch, lane;  // its bounds: evals[batch], lane; SIZE_MAX: the tile is evaluated whole
+    };
+    std::vector<Kid> open;
   };
-  std::vector<Open> open;
-  std::vector<Tape> tapes;                  // the open top tiles' simplified tapes
-  std::deque<ir::IntervalBatchEval> evals;  // the bounds of their children (stable addresses)
+  std::vector<Top> tops;
+  std::vector<ir::IntervalBatchEval> top;
   bool ok = true;
   if (prune) {
     Renderer& r0 = *renderers[0];
-    std::vector<std::pair<Rect, Tape>> tops;  // the open top tiles and their tapes
+    size_t kept_for = SIZE_MAX;  // the batch whose evaluation top.back() is
     for (size_t first = 0; first < tiles.size(); first += ir::kIntervalLanes) {
       std::vector<Rect> part(tiles.begin() + static_cast<long>(first),
                              tiles.begin() + static_cast<long>(std::min(tiles.size(), first + ir::kIntervalLanes)));
       ok = ok && r0.bound(full, part, 0, [&](Rect r, ir::IntervalBatchEval& ev, size_t k) {
-        tops.push_back({r, r0.narrowed(full, ev, k, 0)});
+        if (kept_for != first) top.push_back(ev), kept_for = first;
+        tops.push_back({r, top.size() - 1, k, {}, {}, {}});
         return true;
       });
     }
-    for (auto& [r, tape] : tops) {
-      if (r0.last_level(0, tape)) {  // no level below: the tile is evaluated whole, by a thread
-        tapes.push_back(tape), evals.emplace_back();
-        open.push_back({r, tapes.size() - 1, SIZE_MAX, 0});
-        continue;
-      }
-      tapes.push_back(tape);
-      std::vector<Rect> kids = split(r, kSizes[1]);
-      for (size_t first = 0; first < kids.size(); first += ir::kIntervalLanes) {
-        std::vector<Rect> part(kids.begin() + static_cast<long>(first),
-                               kids.begin() + static_cast<long>(std::min(kids.size(), first + ir::kIntervalLanes)));
-        bool kept = false;
-        ok = ok && r0.bound(tapes.back(), part, 1, [&](Rect c, ir::IntervalBatchEval& ev, size_t k) {
-          if (!kept) evals.push_back(ev), kept = true;
-          open.push_back({c, tapes.size() - 1, evals.size() - 1, k});
-          return true;
-        });
-      }
-    }
-    for (size_t i = 0; i < open.size(); ++i)  // before the threads share them
-      if (open[i].batch != SIZE_MAX && (i == 0 || open[i - 1].batch != open[i].batch))
-        tapes[open[i].tape].flat->lane_masks(evals[open[i].batch]);
+    for (auto& ev : top) full.flat->lane_masks(ev);  // before the threads share them
   }
-  std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
-  size_t count = prune ? open.size() : tiles.size();
-  if (o.progress) o.progress->set_units(count);
-  ok = ok && support::run_parts(parts, [&](int p) {
-         Renderer& r = *renderers[static_cast<size_t>(p)];
-         for (size_t t; !failed && (t = next.fetch_add(1)) < count;) {
-           bool done;
-           if (!prune) done = r.dense(full, {tiles[t]});
-           else if (open[t].batch == SIZE_MAX) done = r.dense(tapes[open[t].tape], {open[t].r});
-           else done = r.region(tapes[open[t].tape], open[t].r, 1, evals[open[t].batch], open[t].lane);
-           if (!done) return failed = true, false;
-           if (o.progress) o.progress->advance(1);
+  // Runs job(renderer, i) for i < count on every thread, handing out the next i as one ends.
+  auto share = [&](size_t count, auto job) {
+    std::atomic<size_t> next{0};
+    return support::run_parts(parts, [&](int p) {
+      Renderer& r = *renderers[static_cast<size_t>(p)];
+      for (size_t i; !failed && (i = next.fetch_add(1)) < count;)
+        if (!job(r, i)) return failed = true, false;
+      return true;
+    });
+  };
+  ok = ok && share(tops.size(), [&](Renderer& r, size_t i) {
+         Top& t = tops[i];
+         t.tape = r.narrowed(full, top[t.batch], t.lane, 0, true);
+         if (!t.tape.compiled) t.tape.compiled = std::make_shared<Compiled>();  // before threads share it
+         if (r.last_level(0, t.tape)) return t.open.push_back({t.r, SIZE_MAX, 0}), true;
+         std::vector<Rect> kids = split(t.r, kSizes[1]);
+         for (size_t first = 0; first < kids.size(); first += ir::kIntervalLanes) {
+           std::vector<Rect> part(kids.begin() + static_cast<long>(first),
+                                  kids.begin() + static_cast<long>(std::min(kids.size(), first + ir::kIntervalLanes)));
+           bool kept = false;
+           bool fine = r.bound(t.tape, part, 1, [&](Rect c, ir::IntervalBatchEval& ev, size_t k) {
+             if (!kept) t.evals.push_back(ev), kept = true;
+             t.open.push_back({c, t.evals.size() - 1, k});
+             return true;
+           });
+           if (!fine) return false;
+           if (kept) t.tape.flat->lane_masks(t.evals.back());
          }
          return true;
+       });
+  struct Unit {
+    size_t top, kid;
+  };
+  std::vector<Unit> units;
+  for (size_t i = 0; i < tops.size(); ++i)
+    for (size_t k = 0; k < tops[i].open.size(); ++k) units.push_back({i, k});
+  size_t count = prune ? units.size() : tiles.size();
+  if (o.progress) o.progress->set_units(count);
+  ok = ok && share(count, [&](Renderer& r, size_t i) {
+         bool done;
+         if (!prune) {
+           done = r.dense(full, &tiles[i], 1);
+         } else {
+           Top& t = tops[units[i].top];
+           const Top::Kid& k = t.open[units[i].kid];
+           done = k.batch == SIZE_MAX ? r.dense(t.tape, &k.r, 1) : r.region(t.tape, k.r, 1, t.evals[k.batch], k.lane);
+         }
+         if (done && o.progress) o.progress->advance(1);
+         return done;
        });
   stats.pruned = prune;
   for (uint32_t sz : kSizes) stats.levels.push_back({sz, 0, 0, 0, 0});

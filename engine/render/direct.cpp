@@ -142,11 +142,16 @@ struct Rect {
   uint32_t c0, r0, c1, r1;  // columns [c0, c1), rows [r0, r1)
 };
 
-std::vector<Rect> split(Rect r, uint32_t s) {
-  std::vector<Rect> out;
+void split(Rect r, uint32_t s, std::vector<Rect>& out) {
+  out.clear();
   for (uint32_t row = r.r0; row < r.r1; row += s)
     for (uint32_t col = r.c0; col < r.c1; col += s)
       out.push_back({col, row, std::min(col + s, r.c1), std::min(row + s, r.r1)});
+}
+
+std::vector<Rect> split(Rect r, uint32_t s) {
+  std::vector<Rect> out;
+  split(r, s, out);
   return out;
 }
 
@@ -188,6 +193,14 @@ struct Probe {
 };
 
 bool inside(float v) { return v >= 0.0f; }  // NaN is outside
+
+struct Bracket {
+  double lo, hi;      // depths: lo outside, hi inside
+  double wlo, whi;    // the values regula falsi weighs them by (Illinois halves the one kept twice)
+  int kept = 0;       // -1: lo kept last, +1: hi
+  bool done = false;
+  int face = -1;      // the box face it met, or -1
+};
 
 class Tracer {
  public:
@@ -334,13 +347,14 @@ class Tracer {
   // here are refined here.
   bool children(const mesh::Field& field, Rect r, uint32_t k0, uint32_t k1, int level, size_t& hits) {
     Scratch& s = scratch_[level];
-    s.tiles = split(r, kTile[level]);
+    split(r, kTile[level], s.tiles);
     s.corners.clear();
     for (const Rect& t : s.tiles) s.corners.push_back(corners(t));
     s.open.clear();
     size_t open = 0;
     for (const Rect& t : s.tiles) s.open.push_back(unhit(t)), open += static_cast<size_t>(s.open.back());
-    std::vector<Found> found;
+    std::vector<Found>& found = s.found;
+    found.clear();
     DirectLevel& st = stats_.levels[static_cast<size_t>(level)];
     const bool leaf = level + 1 == kLevels;
     for (uint32_t c0 = k0; c0 < k1 && open > 0; c0 += kChunk[level]) {
@@ -456,6 +470,7 @@ class Tracer {
   struct Scratch {
     std::vector<Rect> tiles;
     std::vector<Corners> corners;  // per tile
+    std::vector<Found> found;      // the hits decided at this level
     std::vector<char> open, within;  // per tile: rays still to meet; per live box: inside the shape's box
     std::vector<mesh::Box3> boxes;
     std::vector<size_t> live;  // the tiles bounded in this layer
@@ -467,25 +482,25 @@ class Tracer {
   float h_ = 0;                 // the normals' differences, half the span
   Batch batch_;
   std::vector<Probe> owner_;          // per batch point of a probe
+  // refine()'s buffers, reused: the threads share one malloc arena, and allocating them afresh
+  // for every region put them behind its lock.
+  std::vector<Bracket> brackets_;
+  std::vector<size_t> want_, active_, smooth_;
+  std::vector<float> ends_;
+  std::vector<double> mid_;
   std::vector<uint32_t> found_tile_;  // per hit of the last probe: its tile
-};
-
-struct Bracket {
-  double lo, hi;      // depths: lo outside, hi inside
-  double wlo, whi;    // the values regula falsi weighs them by (Illinois halves the one kept twice)
-  int kept = 0;       // -1: lo kept last, +1: hi
-  bool done = false;
-  int face = -1;      // the box face it met, or -1
 };
 
 bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
   if (found.empty()) return true;
   const size_t n = found.size();
-  std::vector<Bracket> br(n);
+  std::vector<Bracket>& br = brackets_;
+  br.assign(n, Bracket{});
   Batch& b = batch_;
   b.clear();
   float p[3];
-  std::vector<size_t> want;  // per batch point: which end (2 i: lo, 2 i + 1: hi) it gives
+  std::vector<size_t>& want = want_;  // per batch point: which end (2 i: lo, 2 i + 1: hi) it gives
+  want.clear();
   for (size_t i = 0; i < n; ++i) {
     const Found& h = found[i];
     Bracket& k = br[i];
@@ -512,7 +527,8 @@ bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
   }
   if (!b.eval(field, err_)) return false;
   stats_.refines += b.size();
-  std::vector<float> ends(2 * n);
+  std::vector<float>& ends = ends_;
+  ends.resize(2 * n);
   for (size_t i = 0; i < n; ++i) ends[2 * i] = found[i].before, ends[2 * i + 1] = found[i].at;
   for (size_t j = 0; j < want.size(); ++j) ends[want[j]] = b.f[j];
   for (size_t i = 0; i < n; ++i) {
@@ -523,8 +539,8 @@ bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
     k.wlo = flo, k.whi = fhi;
   }
   const double tol = std::max(std::fabs(g_.near), std::fabs(g_.far)) * 0x1p-22;
-  std::vector<size_t> active;
-  std::vector<double> mid;
+  std::vector<size_t>& active = active_;
+  std::vector<double>& mid = mid_;
   for (int it = 0; it < kRefineSteps; ++it) {
     active.clear(), mid.clear(), b.clear();
     for (size_t i = 0; i < n; ++i) {
@@ -556,7 +572,8 @@ bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
       }
     }
   }
-  std::vector<size_t> smooth;
+  std::vector<size_t>& smooth = smooth_;
+  smooth.clear();
   for (size_t i = 0; i < n; ++i) {
     const Found& h = found[i];
     size_t at = size_t(h.row) * g_.w + h.col;

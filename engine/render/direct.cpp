@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 
+#include "engine/render/tiles.h"
 #include "runtime/support/parallel.h"
 
 namespace fscript::render {
@@ -137,23 +138,6 @@ constexpr int kLevels = 4;
 // Regions of the levels below this get no tape of their own: they run their parent's.
 constexpr int kOwnTapes = 3;
 constexpr int kRefineSteps = 12;  // at most, refining a hit along its ray
-
-struct Rect {
-  uint32_t c0, r0, c1, r1;  // columns [c0, c1), rows [r0, r1)
-};
-
-void split(Rect r, uint32_t s, std::vector<Rect>& out) {
-  out.clear();
-  for (uint32_t row = r.r0; row < r.r1; row += s)
-    for (uint32_t col = r.c0; col < r.c1; col += s)
-      out.push_back({col, row, std::min(col + s, r.c1), std::min(row + s, r.r1)});
-}
-
-std::vector<Rect> split(Rect r, uint32_t s) {
-  std::vector<Rect> out;
-  split(r, s, out);
-  return out;
-}
 
 // A hit found at one level, refined on that level's field.
 struct Found {

@@ -13,6 +13,7 @@
 #include "backends/vm/vm_backend.h"
 #include "backends/vm/vm_points.h"
 #include "ir/tape.h"
+#include "engine/render/tiles.h"
 #include "runtime/support/parallel.h"
 
 namespace fscript::render {
@@ -35,10 +36,6 @@ namespace {
 constexpr uint32_t kSizes[] = {256, 64, 16, 4};
 constexpr size_t kLevels = sizeof(kSizes) / sizeof(kSizes[0]);
 
-struct Rect {
-  uint32_t c0, r0, c1, r1;  // columns [c0, c1), rows [r0, r1)
-};
-
 // A tape's kernel once a dense batch needs it; shared by every region that keeps the tape.
 // A top tile's tape is shared by the threads that take its children: the first to need the kernel
 // compiles it, once.
@@ -54,20 +51,6 @@ struct Tape {
   std::shared_ptr<Compiled> compiled;  // made when first needed, shared by the tapes that share it
   size_t ops = 0;
 };
-
-// The regions of side `s` that cover r, row by row.
-void split(Rect r, uint32_t s, std::vector<Rect>& out) {
-  out.clear();
-  for (uint32_t row = r.r0; row < r.r1; row += s)
-    for (uint32_t col = r.c0; col < r.c1; col += s)
-      out.push_back({col, row, std::min(col + s, r.c1), std::min(row + s, r.r1)});
-}
-
-std::vector<Rect> split(Rect r, uint32_t s) {
-  std::vector<Rect> out;
-  split(r, s, out);
-  return out;
-}
 
 class Renderer {
  public:

@@ -53,6 +53,23 @@ sys.exit(0 if eval("(" + sys.argv[2] + "\n)") else 1)
 PY
 }
 
+# same_picture CMD NAME FILE ARGS...: `$F CMD FILE ARGS` (render2d, render3d) writes the same PNG
+# bytes and the same first line pruned and dense (--no-prune), on every backend in $BACKENDS and
+# at one and three threads.
+same_picture() {
+  local cmd="$1" name="$2" file="$3"
+  shift 3
+  for be in $BACKENDS; do
+    "$F" "$cmd" "$file" "$@" --backend "$be" --no-prune -o "$T/dense.png" > "$T/dense.txt" 2>&1 || true
+    for th in 1 3; do
+      "$F" "$cmd" "$file" "$@" --backend "$be" --threads $th -o "$T/pruned.png" > "$T/pruned.txt" 2>&1 || true
+      n=$((n + 1))
+      cmp -s "$T/dense.png" "$T/pruned.png" && [ "$(head -1 "$T/dense.txt")" = "$(head -1 "$T/pruned.txt")" ] ||
+        fail "$cmd-prune $name ($be, --threads $th): the pruned picture differs from --no-prune"
+    done
+  done
+}
+
 finish() {
   echo "$((n - fails)) of $n $1 checks passed"
   [ "$fails" = 0 ]

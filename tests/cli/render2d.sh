@@ -34,26 +34,13 @@ check render2d-summary 0 "wrote $T/disc2.png: 101x101" -- "$F" render2d "$T/sphe
 check render2d-unwritable 1 'cannot write' -- "$F" render2d "$T/sphere.fs" --size 4 --bounds -1,1,-1,1 -o "$T/no/such/dir/x.png"
 
 # ---- render2d prunes by interval arithmetic: the same PNG bytes as --no-prune, any --threads ----
-# same_picture NAME FILE ARGS...: pruned and dense pictures byte for byte, on every backend.
-same_picture() {
-  local name="$1" file="$2"
-  shift 2
-  for be in $BACKENDS; do
-    "$F" render2d "$file" "$@" --backend "$be" --no-prune -o "$T/dense.png" > "$T/dense.txt" 2>&1 || true
-    for th in 1 3; do
-      "$F" render2d "$file" "$@" --backend "$be" --threads $th -o "$T/pruned.png" > "$T/pruned.txt" 2>&1 || true
-      n=$((n + 1))
-      cmp -s "$T/dense.png" "$T/pruned.png" && [ "$(head -1 "$T/dense.txt")" = "$(head -1 "$T/pruned.txt")" ] ||
-        fail "render2d-prune $name ($be, --threads $th): the pruned picture differs from --no-prune"
-    done
-  done
-}
+# same_picture (tests/cli/lib.sh): pruned and dense pictures byte for byte, on every backend.
 printf 'function FRep(x, y, z, t) { return min(0.9 - sqrt(x * x + y * y), max(abs(x) - 0.3, abs(y) - 0.2)); }\n' > "$T/csg2d.fs"
-same_picture csg2d "$T/csg2d.fs" --size 333x211 --bounds -1.2,1.1,-1,1.3
-same_picture blobs "$SRC/examples/blobs.fs" --size 200 --bounds -2,2,-2,2
-for f in "$SHARED"/bench/*.fs; do [ -f "$f" ] && same_picture "$(basename "$f")" "$f" --size 160x90 --bounds -1,1,-1,1; done
+same_picture render2d csg2d "$T/csg2d.fs" --size 333x211 --bounds -1.2,1.1,-1,1.3
+same_picture render2d blobs "$SRC/examples/blobs.fs" --size 200 --bounds -2,2,-2,2
+for f in "$SHARED"/bench/*.fs; do [ -f "$f" ] && same_picture render2d "$(basename "$f")" "$f" --size 160x90 --bounds -1,1,-1,1; done
 if [ -f "$SHARED/data/prospero.fs" ]; then
-  same_picture prospero "$SHARED/data/prospero.fs" --size 1024 --bounds -1,1,-1,1
+  same_picture render2d prospero "$SHARED/data/prospero.fs" --size 1024 --bounds -1,1,-1,1
   P=("$F" render2d "$SHARED/data/prospero.fs" -o "$T/prospero.png")
   check prospero-1024-pruned 0 '^132033 white pixels' -- "${P[@]}" --size 1024 --bounds -1,1,-1,1
   check render2d-stats 0 'points evaluated: [0-9]+ of 1048576' -- "${P[@]}" --size 1024 --bounds -1,1,-1,1 --stats
@@ -65,6 +52,6 @@ else
 fi
 # A kernel intervals cannot bound (a loop) renders densely, and says so.
 printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 3; i = i + 1) s = s + x; return 0.5 - s * s - y * y; }\n' > "$T/loop2d.fs"
-same_picture loop "$T/loop2d.fs" --size 64 --bounds -1,1,-1,1
+same_picture render2d loop "$T/loop2d.fs" --size 64 --bounds -1,1,-1,1
 
 finish render2d

@@ -47,30 +47,18 @@ printf 'function FRep(x, y, z, t) { return 0.5 - sqrt(x - 2) * x - y * y - z * z
 check render3d-nan 0 '^0 pixels on the shape' -- "$F" render3d "$T/nan3d.fs" --size 16 -o "$T/x.png"
 
 # ---- pruned and dense pictures byte for byte, on every backend and thread count ----
-same_picture() {
-  local name="$1" file="$2"
-  shift 2
-  for be in $BACKENDS; do
-    "$F" render3d "$file" "$@" --backend "$be" --no-prune -o "$T/dense.png" > "$T/dense.txt" 2>&1 || true
-    for th in 1 3; do
-      "$F" render3d "$file" "$@" --backend "$be" --threads $th -o "$T/pruned.png" > "$T/pruned.txt" 2>&1 || true
-      cmp -s "$T/dense.png" "$T/pruned.png" && [ "$(head -1 "$T/dense.txt")" = "$(head -1 "$T/pruned.txt")" ] ||
-        fail "render3d-prune $name ($be, --threads $th): the pruned picture differs from --no-prune"
-    done
-  done
-}
 printf 'function FRep(x, y, z, t) { return min(0.8 - sqrt(x * x + y * y + z * z), max(abs(x) - 0.3, abs(z) - 0.2) + 0.1 * y); }\n' > "$T/csg3d.fs"
-same_picture csg3d "$T/csg3d.fs" --size 70x53 --view 25,30
-same_picture csg3d-normal "$T/csg3d.fs" --size 41 --image normal --bounds -1,1.2,-0.9,1,-1,1
-same_picture blobs "$SRC/examples/blobs.fs" --size 60 --bounds -2,2,-2,2,-2,2 --image depth
-same_picture csg "$SRC/examples/csg.fs" --size 64x48 --view 30,20
-same_picture gyroid-ball "$SRC/examples/gyroid-ball.fs" --size 48 --bounds -1.2,1.2,-1.2,1.2,-1.2,1.2
+same_picture render3d csg3d "$T/csg3d.fs" --size 70x53 --view 25,30
+same_picture render3d csg3d-normal "$T/csg3d.fs" --size 41 --image normal --bounds -1,1.2,-0.9,1,-1,1
+same_picture render3d blobs "$SRC/examples/blobs.fs" --size 60 --bounds -2,2,-2,2,-2,2 --image depth
+same_picture render3d csg "$SRC/examples/csg.fs" --size 64x48 --view 30,20
+same_picture render3d gyroid-ball "$SRC/examples/gyroid-ball.fs" --size 48 --bounds -1.2,1.2,-1.2,1.2,-1.2,1.2
 # A kernel intervals cannot bound (a loop) is drawn densely.
 printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 3; i = i + 1) s = s + x; return 0.5 - s * s - y * y - z * z; }\n' > "$T/loop3d.fs"
-same_picture loop "$T/loop3d.fs" --size 24
+same_picture render3d loop "$T/loop3d.fs" --size 24
 check render3d-loop-dense 0 'pruning: off' -- "$F" render3d "$T/loop3d.fs" --size 16 --stats -o "$T/x.png"
 if [ -f "$SHARED/data/spheres400.fs" ]; then
-  same_picture spheres400 "$SHARED/data/spheres400.fs" --size 48 --steps 48
+  same_picture render3d spheres400 "$SHARED/data/spheres400.fs" --size 48 --steps 48
 else
   skip_missing "render3d on spheres400" "the shared folder's data/spheres400.fs"
 fi

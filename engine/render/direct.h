@@ -4,6 +4,7 @@
 // depth ranges in front-to-back order on tapes simplified per region (the quadtree's machinery in
 // 3D); then refined along the ray to float precision and given the gradient's normal (central
 // differences on the region's tape).
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -27,15 +28,38 @@ struct RayGrid {
   double near = 0, far = 1;
   mesh::Box3 box{};  // the shape's box: points outside it are outside (a solid it cuts is closed by it)
 
-  double depth(uint32_t k) const;
-  void ray(uint32_t col, uint32_t row, double o[3], double v[3]) const;  // origin and direction of (col, row)
+  double depth(uint32_t k) const {
+    return steps > 1 ? near + (far - near) * static_cast<double>(k) / static_cast<double>(steps - 1) : near;
+  }
+  // Origin and direction of (col, row).
+  void ray(uint32_t col, uint32_t row, double o[3], double v[3]) const {
+    const double c = col, r = row;
+    for (int a = 0; a < 3; ++a) {
+      o[a] = origin[a] + c * origin_col[a] + r * origin_row[a];
+      v[a] = dir[a] + c * dir_col[a] + r * dir_row[a];
+    }
+  }
   static void at(const double o[3], const double v[3], double d, double p[3]) {
     for (int a = 0; a < 3; ++a) p[a] = o[a] + d * v[a];
   }
-  void point(uint32_t col, uint32_t row, double d, double p[3]) const;
-  void point(uint32_t col, uint32_t row, double d, float p[3]) const;  // rounded to float
-  bool in_box(const float p[3]) const;
-  void clamp_to_box(float p[3]) const;
+  void point(uint32_t col, uint32_t row, double d, double p[3]) const {
+    double o[3], v[3];
+    ray(col, row, o, v);
+    at(o, v, d, p);
+  }
+  void point(uint32_t col, uint32_t row, double d, float p[3]) const {  // rounded to float
+    double q[3];
+    point(col, row, d, q);
+    for (int a = 0; a < 3; ++a) p[a] = static_cast<float>(q[a]);
+  }
+  bool in_box(const float p[3]) const {
+    for (int a = 0; a < 3; ++a)
+      if (!(p[a] >= box.lo[a] && p[a] <= box.hi[a])) return false;
+    return true;
+  }
+  void clamp_to_box(float p[3]) const {
+    for (int a = 0; a < 3; ++a) p[a] = std::clamp(p[a], box.lo[a], box.hi[a]);
+  }
   // Where the ray of (col, row) enters the box, and through which face (axis * 2 + 1 for the high
   // side); false when it misses.
   bool entry(uint32_t col, uint32_t row, double& d, int& face) const;

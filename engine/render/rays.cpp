@@ -9,40 +9,6 @@
 
 namespace fscript::render {
 
-double RayGrid::depth(uint32_t k) const {
-  return steps > 1 ? near + (far - near) * static_cast<double>(k) / static_cast<double>(steps - 1) : near;
-}
-
-void RayGrid::ray(uint32_t col, uint32_t row, double o[3], double v[3]) const {
-  const double c = col, r = row;
-  for (int a = 0; a < 3; ++a) {
-    o[a] = origin[a] + c * origin_col[a] + r * origin_row[a];
-    v[a] = dir[a] + c * dir_col[a] + r * dir_row[a];
-  }
-}
-
-void RayGrid::point(uint32_t col, uint32_t row, double d, double p[3]) const {
-  double o[3], v[3];
-  ray(col, row, o, v);
-  at(o, v, d, p);
-}
-
-void RayGrid::point(uint32_t col, uint32_t row, double d, float p[3]) const {
-  double q[3];
-  point(col, row, d, q);
-  for (int a = 0; a < 3; ++a) p[a] = static_cast<float>(q[a]);
-}
-
-bool RayGrid::in_box(const float p[3]) const {
-  for (int a = 0; a < 3; ++a)
-    if (!(p[a] >= box.lo[a] && p[a] <= box.hi[a])) return false;
-  return true;
-}
-
-void RayGrid::clamp_to_box(float p[3]) const {
-  for (int a = 0; a < 3; ++a) p[a] = std::clamp(p[a], box.lo[a], box.hi[a]);
-}
-
 bool RayGrid::entry(uint32_t col, uint32_t row, double& d, int& face) const {
   double o[3], v[3];
   ray(col, row, o, v);

@@ -228,8 +228,8 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   app.add_flag("--stats", o.stats, "print one JSON object describing the resolved scene on standard error");
   bool no_prune = false;
   app.add_flag("--no-prune", no_prune,
-               "sample every grid point of implicit shapes (the same meshes; by default interval bounds skip the "
-               "regions far from the surface)");
+               "sample every grid point of implicit shapes, and every step of a direct picture's rays (the same "
+               "meshes and pictures; by default interval bounds skip the regions far from the surface)");
   std::string mesher = "dc";
   app.add_option("--mesher", mesher,
                  "implicit shapes by dc (dual contouring, the default: sharp CSG edges and corners kept, large "

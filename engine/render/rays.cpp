@@ -76,7 +76,6 @@ RayGrid orthographic(const std::array<double, 6>& box, uint32_t w, uint32_t h, u
   // Straight up or down, "up" in the picture is -z (as if the camera had tipped over from the front).
   V3 right = std::fabs(std::cos(el)) < 1e-12 ? V3{std::cos(az), 0, -std::sin(az)} : unit(cross({0, 1, 0}, back));
   V3 up = cross(back, right);
-  if (std::fabs(az) < 1e-12 && std::fabs(el) < 1e-12) back = {0, 0, 1}, right = {1, 0, 0}, up = {0, 1, 0};
   return along(box, w, h, steps, back, right, up);
 }
 

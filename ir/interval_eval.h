@@ -1,7 +1,7 @@
 #pragma once
 // Interval evaluation of a kernel: bounds on every value and output of a straight-line kernel for
 // inputs in given intervals, with, for each min / max / select, which operand every point takes.
-// The rule of each op comes from the op tables (math_ops.def names runtime/math's iv::FN).
+// The rule of each op comes from the op table (math_ops.def names runtime/math's iv::FN).
 #include <cstdint>
 #include <vector>
 

@@ -7,37 +7,11 @@
 namespace fscript::ir {
 
 const OpInfo kOpInfo[] = {
-#define FS_OP(N, M, A, F) {M, A, F},
+#define FS_OP(N, M, A, F, FN, HOW) {M, A, (F) | how_flags(MathHow::HOW)},
 #include "ir/opcodes.def"
 };
-
-namespace {
-constexpr int kOpArity[] = {
-#define FS_OP(N, M, A, F) A,
-#include "ir/opcodes.def"
-};
-constexpr uint32_t kOpFlags[] = {
-#define FS_OP(N, M, A, F) (F),
-#include "ir/opcodes.def"
-};
-}  // namespace
 
 bool Inst::defines_value() const { return !has_flag(op, static_cast<OpFlag>(NoValue | Terminator)); }
-
-// The math table agrees with the op table: arities match, and the ops that call the runtime are
-// exactly the Batch and Trig rows.
-#define FS_MATH(N, FN, A, HOW)                                                                  \
-  static_assert(kOpArity[static_cast<int>(Op::N)] == A, #N ": arity differs from opcodes.def"); \
-  static_assert(((kOpFlags[static_cast<int>(Op::N)] & CallsRuntime) != 0) == (#HOW[0] != 'L'),  \
-                #N ": CallsRuntime in opcodes.def must match Batch/Trig in math_ops.def");
-#include "ir/math_ops.def"
-static_assert(0
-#define FS_OP(N, M, A, F) +(((F) & CallsRuntime) != 0)
-#include "ir/opcodes.def"
-#define FS_MATH(N, FN, A, HOW) -(#HOW[0] != 'L')
-#include "ir/math_ops.def"
-                  == 0,
-              "every CallsRuntime op needs a Batch or Trig row in math_ops.def");
 
 std::vector<Block*> Block::succs() const {
   Inst* t = terminator();

@@ -10,7 +10,7 @@
 namespace fscript::ir {
 
 enum class Op : uint8_t {
-#define FS_OP(N, M, A, F) N,
+#define FS_OP(N, M, A, F, FN, HOW) N,
 #include "ir/opcodes.def"
 };
 
@@ -24,6 +24,12 @@ enum OpFlag : uint32_t {
   NoValue = 1u << 6,
 };
 
+// How backends run an op's runtime/math function (ir/opcodes.def's last column).
+enum class MathHow : uint8_t { None, Lane, Batch, Trig };
+constexpr uint32_t how_flags(MathHow how) {
+  return how == MathHow::Batch || how == MathHow::Trig ? uint32_t{CallsRuntime} : 0u;
+}
+
 struct OpInfo {
   const char* mnemonic;
   int arity;  // -1: variadic
@@ -32,7 +38,7 @@ struct OpInfo {
 
 extern const OpInfo kOpInfo[];
 constexpr int kNumOps = 0
-#define FS_OP(N, M, A, F) +1
+#define FS_OP(N, M, A, F, FN, HOW) +1
 #include "ir/opcodes.def"
     ;
 inline const OpInfo& op_info(Op op) { return kOpInfo[static_cast<int>(op)]; }

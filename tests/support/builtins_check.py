@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A new built-in cannot be missed silently. Every list that must name each built-in (or each op)
 is checked against the tables: the fuzz dictionaries, the built-in list of docs/language.md, a
-golden case per built-in, an interval rule per row of ir/math_ops.def, a batch twin per Batch or
+golden case per built-in, an interval rule per op with a function in ir/opcodes.def, a batch twin per Batch or
 Trig row. And the recipe of docs/architecture.md ("Adding an operation") must name every file that
 names `hypot`, the last built-in added whole, so the recipe is the list a new built-in really
 needs. (The editor grammars are checked by editors/check_grammars.py, the switches by the build.)
@@ -21,12 +21,22 @@ def read(rel):
 
 
 builtins = re.findall(r'^FS_BUILTIN\("(\w+)",\s*(\d+),\s*(\w+)', read("frontend/fscript/builtins.def"), re.M)
-ops = re.findall(r'^FS_OP\((\w+),\s*"([\w.]+)"', read("ir/opcodes.def"), re.M)
-math_rows = re.findall(r'^FS_MATH\((\w+),\s*(\w+),\s*(\d+),\s*(\w+)\)', read("ir/math_ops.def"), re.M)
+# FS_OP(Name, "mnemonic", arity, flags, function, how): the math rows are those with a `how`.
+op_rows = re.findall(r'^FS_OP\((\w+),\s*"([\w.]+)",\s*(-?\d+),\s*[^,]+,\s*(\w+),\s*(\w+)\)',
+                     read("ir/opcodes.def"), re.M)
+ops = [(op, mnemonic) for op, mnemonic, _, _, _ in op_rows]
+op_arity = dict((op, int(arity)) for op, _, arity, _, _ in op_rows)
+math_rows = [(op, fn, arity, how) for op, _, arity, fn, how in op_rows if how != "None"]
 batch_rows = dict((n, int(a)) for n, a in re.findall(r'^FS_BATCH_FN\((\w+),\s*(\d+)\)',
                                                     read("runtime/math/batch_functions.def"), re.M))
 if not builtins or not ops or not math_rows:
     sys.exit("builtins_check: could not read the tables")
+
+# Each built-in names an op of its arity.
+for name, arity, op in builtins:
+    if op_arity.get(op) != int(arity):
+        failures.append(f"frontend/fscript/builtins.def: '{name}' takes {arity} arguments but ir/opcodes.def's {op} "
+                        f"takes {op_arity.get(op)}")
 
 # The fuzz dictionaries: every built-in's name, every op's mnemonic.
 fscript_dict, ir_dict = read("tests/fuzz/dict/fscript.dict"), read("tests/fuzz/dict/ir.dict")
@@ -55,16 +65,16 @@ for name, _, _ in builtins:
 interval_h = read("runtime/math/interval.h")
 for op, fn, arity, how in math_rows:
     if not re.search(r"\bInterval " + fn + r"\(", interval_h):
-        failures.append(f"runtime/math/interval.h: no interval rule 'Interval {fn}(...)' for ir/math_ops.def's {op}")
+        failures.append(f"runtime/math/interval.h: no interval rule 'Interval {fn}(...)' for ir/opcodes.def's {op}")
     if how in ("Batch", "Trig") and batch_rows.get(fn) != int(arity):
-        failures.append(f"runtime/math/batch_functions.def: no FS_BATCH_FN({fn}, {arity}) for ir/math_ops.def's {op}")
+        failures.append(f"runtime/math/batch_functions.def: no FS_BATCH_FN({fn}, {arity}) for ir/opcodes.def's {op}")
 
 # The accuracy each Batch or Trig row promises (docs/language.md) is measured in
 # tests/unit/math_test.cpp: it calls math::FN or names it in a UNARY_CASE.
 math_test = read("tests/unit/math_test.cpp")
 for op, fn, arity, how in math_rows:
     if how in ("Batch", "Trig") and not re.search(r"(\bmath::" + fn + r"\(|UNARY_CASE\(" + fn + r",)", math_test):
-        failures.append(f"tests/unit/math_test.cpp: no accuracy test of {fn} (ir/math_ops.def's {op})")
+        failures.append(f"tests/unit/math_test.cpp: no accuracy test of {fn} (ir/opcodes.def's {op})")
 
 # The recipe names every file that names hypot (std::hypot and Math.hypot in C++ or JavaScript
 # are not the built-in; these pages only talk about it).

@@ -2,6 +2,9 @@
 #include "ir/interval_eval.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "ir/eval.h"
 
 namespace fscript::ir {
 
@@ -104,7 +107,25 @@ IntervalTape::IntervalTape(const Function& fn) : values_(fn.next_value), params_
     for (size_t k = 0; k < s.arity; ++k) *slot[k] = in->args[k]->id;
     if (in->op == Op::Param) s.a = static_cast<uint32_t>(in->aux);
     steps_.push_back(s);
+    sources_.push_back({in->line, in->col});
   }
+}
+
+size_t first_nan_step(const IntervalTape& t, const float* params) {
+  std::vector<float> v(t.num_values(), 0.0f);
+  const auto& steps = t.steps();
+  for (size_t i = 0; i < steps.size(); ++i) {
+    const IntervalTape::Step& s = steps[i];
+    float a[3] = {v[s.a], v[s.b], v[s.c]}, out = 0;
+    bool operand_nan = false;
+    for (size_t k = 0; k < s.arity; ++k) operand_nan |= std::isnan(a[k]);
+    if (s.op == Op::Const) out = s.imm;
+    else if (s.op == Op::Param) out = params[s.a];
+    else if (!eval_pure(s.op, a, out)) return steps.size();
+    v[s.dst] = out;
+    if (std::isnan(out) && !operand_nan) return i;
+  }
+  return steps.size();
 }
 
 IntervalTape IntervalTape::simplified(const IntervalEval& ev, size_t* collapsed) const {

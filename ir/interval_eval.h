@@ -101,6 +101,12 @@ class IntervalTape {
 
   const std::vector<Step>& steps() const { return steps_; }
   const std::vector<uint32_t>& outputs() const { return outputs_; }
+  // Where each step's op is in the source (line and column; 0 where none): kept by the tape made
+  // from a function, not by simplified tapes (diagnostics point at the whole function's steps).
+  struct Where {
+    uint32_t line = 0, col = 0;
+  };
+  const std::vector<Where>& sources() const { return sources_; }
   uint32_t num_values() const { return values_; }  // value ids are below this
   uint32_t num_params() const { return params_; }
   size_t length() const { return steps_.size(); }  // value ops, parameters and constants included
@@ -114,7 +120,13 @@ class IntervalTape {
   void emit(const Choice* choices, size_t stride, Needed needed, Stands stands, IntervalTape& out) const;
   std::vector<Step> steps_;
   std::vector<uint32_t> outputs_;
+  std::vector<Where> sources_;  // by step; empty in simplified tapes
   uint32_t values_ = 0, params_ = 0;
 };
+
+// The tape's values at one point (`params`, one per parameter), step by step with the reference
+// semantics of constant folding (ir::eval_pure): the index of the first step whose value is NaN
+// while none of its operands is, or length() when no step makes one.
+size_t first_nan_step(const IntervalTape& t, const float* params);
 
 }  // namespace fscript::ir

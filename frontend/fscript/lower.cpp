@@ -136,7 +136,16 @@ class AstLowering {
     c->imm = v;
     return c;
   }
+  // Every value op keeps where it is written (runtime errors, and diagnostics that name the op
+  // that makes a NaN): a call at its name, a binary operator at the operator itself.
   LineCol loc_of(Span s) const { return sh_.file.position(s.begin); }
+  LineCol operator_at(const Expr* e) const {
+    const std::string& text = sh_.file.text();
+    uint32_t at = e->kids[0]->span.end, end = std::min<uint32_t>(e->kids[1]->span.begin, text.size());
+    while (at < end && (text[at] == ' ' || text[at] == '\t' || text[at] == '\n' || text[at] == '\r' || text[at] == ')'))
+      ++at;
+    return sh_.file.position(at < end ? at : e->span.begin);
+  }
   void gstore(int slot, Inst* v) {
     Inst* s = emit(Op::GStore, {v});
     s->aux = slot;
@@ -364,8 +373,8 @@ class AstLowering {
       case ExprKind::Name: return e->sym >= 0 ? read_var(e->sym, e->span) : konst(kNaN);
       case ExprKind::Unary: {
         Inst* v = expr(e->kids[0]);
-        if (e->op == Tok::Minus) return emit(Op::Neg, {v});
-        if (e->op == Tok::Bang) return emit(Op::Not, {v});
+        if (e->op == Tok::Minus) return emit(Op::Neg, {v}, loc_of(e->span));
+        if (e->op == Tok::Bang) return emit(Op::Not, {v}, loc_of(e->span));
         return v;  // unary plus
       }
       case ExprKind::Binary: return binary_chain(e);
@@ -403,7 +412,7 @@ class AstLowering {
     }
     Inst* acc = expr(e);
     for (auto it = spine.rbegin(); it != spine.rend(); ++it)
-      acc = emit(binary_op((*it)->op), {acc, expr((*it)->kids[1])});
+      acc = emit(binary_op((*it)->op), {acc, expr((*it)->kids[1])}, operator_at(*it));
     return acc;
   }
 
@@ -467,7 +476,7 @@ class AstLowering {
       v = expr(e->kids[1]);
     } else {
       Inst* old = read_var(id, target->span);
-      v = emit(binary_op(e->op), {old, expr(e->kids[1])});
+      v = emit(binary_op(e->op), {old, expr(e->kids[1])}, loc_of(e->span));
     }
     write_var(id, v);
     return v;
@@ -482,7 +491,7 @@ class AstLowering {
     } else {
       Inst* old = target->sym >= 0 ? emit(Op::ALoad, {idx}, line) : konst(kNaN);
       if (target->sym >= 0) array_op(old, target->sym);
-      v = emit(binary_op(e->op), {old, expr(e->kids[1])});
+      v = emit(binary_op(e->op), {old, expr(e->kids[1])}, loc_of(e->span));
     }
     if (target->sym >= 0) array_op(emit(Op::AStore, {idx, v}, line), target->sym);
     return v;
@@ -516,7 +525,7 @@ class AstLowering {
     if (e->sym <= -2) {
       int b = -2 - e->sym;
       if (static_cast<int>(args.size()) != kBuiltins[b].arity) return konst(kNaN);
-      return emit(builtin_op(b), args);
+      return emit(builtin_op(b), args, loc_of(e->span));
     }
     if (e->sym < 0) return konst(kNaN);
     int fi = sym(e->sym).slot;

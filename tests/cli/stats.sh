@@ -6,7 +6,7 @@ set -u
 
 # ---- Every --stats field ----
 jcheck "--stats fields of a single run" err "
-set(j) == {'compile_ms', 'dual_contouring', 'evaluation_ms', 'ftransforms', 'huge_heap_mib', 'parse_ms', 'polygonize_ms', 'prune', 'row_split', 'shapes', 'tiers', 'write_ms'} and
+set(j) == {'compile_ms', 'dual_contouring', 'evaluation_ms', 'ftransforms', 'huge_heap_mib', 'parse_ms', 'polygonize_ms', 'prune', 'row_split', 'shape_diagnostics', 'shape_diagnostics_ms', 'shapes', 'tiers', 'write_ms'} and
 set(j['dual_contouring']) == {'max_qef_error_cells', 'merged_cells', 'normals', 'shapes', 'triangles', 'vertices'} and
 set(j['prune']) == {'evaluated', 'evaluated_fraction', 'fallbacks', 'levels', 'local_tapes', 'points', 'pruned'} and
 set(j['prune']['local_tapes']) == {'regions', 'simplified', 'mean_ops', 'full_ops', 'gradient_tapes'} and
@@ -14,6 +14,7 @@ j['prune']['pruned'] and j['prune']['points'] == 512 and j['prune']['fallbacks']
 [l['size'] for l in j['prune']['levels']] == [64, 32, 16, 8] and
 all(j[k] >= 0 for k in ('compile_ms', 'evaluation_ms', 'parse_ms', 'polygonize_ms', 'write_ms')) and
 set(j['shapes'][0]) == {'active', 'domain', 'fraction', 'frames', 'geometry', 'kind', 'line', 'resolution', 'transform', 'triangles', 'vertices'} and
+j['shape_diagnostics'] == [] and j['shape_diagnostics_ms'] >= 0 and
 j['shapes'][0]['kind'] == 'implicit' and j['shapes'][0]['line'] == 2 and j['shapes'][0]['resolution'] == [8, 8, 8] and
 j['shapes'][0]['domain'] == [-1, 1, -1, 1, -1, 1] and j['shapes'][0]['triangles'] > 0 and
 j['shapes'][0]['vertices'] >= j['dual_contouring']['vertices'] and

@@ -17,9 +17,12 @@
 #include "frontend/fscript/formatter.h"
 #include "frontend/fscript/parser.h"
 #include "frontend/fscript/embedded.h"
+#include "frontend/vrml/inline.h"
 #include "frontend/vrml/scene_scripts.h"
+#include "frontend/vrml/script_scene.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
+#include "engine/scene/shape_diagnostics.h"
 #include "ir/analysis.h"
 #include "ir/passes/passes.h"
 #include "ir/passes/gradient.h"
@@ -166,6 +169,27 @@ size_t known_failures_in_scene(const std::string& path, const std::string& text)
   return n;
 }
 
+// The shape diagnostics (engine/scene/shape_diagnostics.h) of a scene's implicit shapes, or of a
+// script's shape as fvrml-run draws it (one FShape, every other field at its default); the count
+// of warnings. A script without an entry point (a library of functions) has no shape.
+size_t shape_findings(const std::string& path, const std::string& text, bool is_wrl) {
+  vrml::Scene scene;
+  frontend::DiagnosticSink ignored;
+  bool ok = is_wrl ? vrml::parse_scene(std::make_unique<frontend::SourceFile>(path, text), ignored, scene) &&
+          vrml::load_inlines(scene, ignored)
+                   : vrml::script_scene(path, text, scene, ignored);
+  scene::ModelOptions mo;
+  mo.compile.backend = "vm";  // checks want answers at once, not native code
+  scene::SceneModel model;
+  if (!ok || !scene::build_scene_model(scene, mo, ignored, model)) return 0;
+  size_t warnings = 0;
+  for (const auto& f : scene::diagnose_scene(scene, model)) {
+    std::cerr << frontend::render(f.diag);
+    warnings += f.diag.severity == frontend::Severity::Warning;
+  }
+  return warnings;
+}
+
 int cmd_check(const std::vector<std::string>& files) {
   int rc = kExitOk;
   size_t scripts = 0, warnings = 0;
@@ -185,8 +209,9 @@ int cmd_check(const std::vector<std::string>& files) {
     scripts += n, warnings += diag.all().size() - diag.error_count();
     print_diagnostics(diag);
     if (ok)
-      warnings += is_wrl ? known_failures_in_scene(path, text)
-                         : known_failures(std::make_unique<frontend::SourceFile>(path, text), {});
+      warnings += (is_wrl ? known_failures_in_scene(path, text)
+                          : known_failures(std::make_unique<frontend::SourceFile>(path, text), {})) +
+          shape_findings(path, text, is_wrl);
   }
   // On a terminal, a word that all went well (a pipe or a script gets silence, as compilers give).
   if (rc == kExitOk && isatty(STDOUT_FILENO)) {

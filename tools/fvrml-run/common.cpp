@@ -7,7 +7,9 @@
 
 #include "frontend/fscript/embedded.h"
 #include "engine/mesh/field.h"
+#include "engine/mesh/local_field.h"
 #include "engine/mesh/mesh_io.h"
+#include "engine/scene/shape_diagnostics.h"
 #include "engine/scene/shape_mesh.h"
 #include "engine/scene/standard_geometry.h"
 #include "runtime/support/progress.h"
@@ -131,6 +133,37 @@ bool build(Loaded& l, SceneModel& model, const fscript::scene::ModelOptions& mo,
   if (print || !ok) std::cerr << fscript::frontend::render_all(l.diag);
   l.diag.clear();
   return ok;
+}
+
+void report_shapes(const Options& o, const Loaded& l, const SceneModel& model, nlohmann::json& st) {
+  auto t0 = Clock::now();
+  // The statistics of meshing (evaluation time, local tapes) leave out the diagnostics' work.
+  mesh::LocalTapeStats& tapes = mesh::local_tape_totals();
+  const uint64_t eval_ns = mesh::evaluation_ns().load(), regions = tapes.regions.load(),
+                 simplified = tapes.simplified.load(), tape_ops = tapes.tape_ops.load(),
+                 full_ops = tapes.full_ops.load(), gradients = tapes.gradients.load();
+  auto found = fscript::scene::diagnose_scene(l.scene, model);
+  mesh::evaluation_ns() = eval_ns, tapes.regions = regions, tapes.simplified = simplified, tapes.tape_ops = tape_ops;
+  tapes.full_ops = full_ops, tapes.gradients = gradients;
+  if (!o.stats) {
+    for (const auto& f : found) std::cerr << fscript::frontend::render(f.diag);
+    return;
+  }
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& f : found) {
+    nlohmann::json j = {{"issue", fscript::scene::issue_name(f.issue)},
+                        {"severity", f.diag.severity == fscript::frontend::Severity::Note ? "note" : "warning"},
+                        {"path", f.diag.path},
+                        {"line", f.diag.pos.line},
+                        {"col", f.diag.pos.col},
+                        {"message", f.diag.message}};
+    if (f.has_box) j["bboxCenter"] = f.center, j["bboxSize"] = f.size;
+    if (f.resolution) j["resolution"] = f.resolution;
+    if (f.fraction > 0) j["fraction"] = f.fraction;
+    list.push_back(j);
+  }
+  st["shape_diagnostics"] = list;
+  st["shape_diagnostics_ms"] = ms_since(t0);
 }
 
 std::string numbered(const std::string& path, int frame, int frames) {

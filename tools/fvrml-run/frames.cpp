@@ -157,6 +157,7 @@ int frames(const Options& o, Loaded& l, nlohmann::json& st) {
   uint64_t e0 = mesh::evaluation_ns().load();
   std::vector<SceneModel> models;
   if (!frame_models(o, l, o.frames, models, true) || !within_sample_limits(o, l, models[0], o.frames)) return 1;
+  report_shapes(o, l, models[0], st);
   if (!stamp_scene(o, l)) return 1;
   std::mutex part_lock;
   int cols = static_cast<int>(std::ceil(std::sqrt(o.frames))), rows = (o.frames + cols - 1) / cols;

@@ -132,6 +132,10 @@ mesh::Mesh picture(Meshed& m, const vrml::Scene& scene);
 // Builds the model; diagnostics are printed the first time only (frames repeat the same ones).
 bool build(Loaded& l, SceneModel& model, const fscript::scene::ModelOptions& mo, bool print);
 
+// What the shape diagnostics say of the model's implicit shapes (engine/scene/shape_diagnostics.h):
+// printed, or with --stats in the statistics as "shape_diagnostics".
+void report_shapes(const Options& o, const Loaded& l, const SceneModel& model, nlohmann::json& st);
+
 // "out.ply", frame 3 of 12 -> "out-03.ply".
 std::string numbered(const std::string& path, int frame, int frames);
 

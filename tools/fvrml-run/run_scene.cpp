@@ -6,6 +6,7 @@
 #include "frontend/vrml/inline.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/vrml_parser.h"
+#include "frontend/vrml/script_scene.h"
 #include "engine/mesh/distance.h"
 #include "engine/mesh/mesh_read.h"
 #include "engine/render/png.h"
@@ -60,27 +61,6 @@ nlohmann::json stats(const vrml::Scene& scene, const SceneModel& m, const Meshed
 }
 
 bool is_script_path(const std::string& path) { return path.size() > 3 && path.compare(path.size() - 3, 3, ".fs") == 0; }
-
-// fvrml-run shape.fs: the script as the definition of one FShape with every other field at its
-// FVRML default. The scene's file is the script itself, the definition starting at its first
-// character, so diagnostics and runtime errors name the .fs file's own lines and columns.
-bool script_scene(const std::string& path, const std::string& text, Loaded& l) {
-  const std::string wrapper = "#VRML V2.0 utf8\nFShape { geometry FGeometry { definition \"0\" } }\n";
-  if (!vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(path, wrapper), l.diag, l.scene)) return false;
-  const vrml::Value* g = l.scene.roots.empty() ? nullptr : l.scene.roots[0]->get("geometry");
-  vrml::Node* geometry = g && !g->nodes.empty() ? g->nodes[0].get() : nullptr;
-  if (geometry)
-    for (vrml::FieldSlot& f : geometry->fields) {
-      if (f.name != "definition" || f.value.strs.empty() || f.value.str_spans.empty()) continue;
-      f.value.strs[0] = text;
-      f.value.str_spans[0] = {0, static_cast<uint32_t>(text.size())};
-      l.scene.file = std::make_unique<fscript::frontend::SourceFile>(path, text);
-      for (vrml::Node* n : {l.scene.roots[0].get(), geometry}) n->file = l.scene.file.get();  // not the wrapper's
-      return true;
-    }
-  std::cerr << path << ": error: internal: the FShape wrapper of a script has no definition\n";
-  return false;
-}
 
 // --check REF: distances between the frame's mesh and a reference mesh, as JSON on standard output.
 bool check_against(const std::string& ref, const mesh::Mesh& all) {
@@ -182,7 +162,7 @@ int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* fi
   }
   Loaded l;
   l.from_script = script;
-  bool ok = script ? script_scene(o.path, text, l)
+  bool ok = script ? vrml::script_scene(o.path, text, l.scene, l.diag)
                    : vrml::parse_scene(std::make_unique<fscript::frontend::SourceFile>(o.path, text), l.diag, l.scene);
   l.files = {o.path};
   if (ok && !script)
@@ -225,6 +205,7 @@ int single(const Options& o, Loaded& l, nlohmann::json& st) {
   SceneModel model;
   if (!build(l, model, o.model, true) || !within_sample_limits(o, l, model, 0)) return 1;
   st["compile_ms"] = ms_since(t1);
+  report_shapes(o, l, model, st);
   auto t2 = Clock::now();
   uint64_t e0 = mesh::evaluation_ns().load();
   bool write = !o.output.empty() || (!o.stats && o.check.empty());

@@ -14,8 +14,8 @@ function FRep(x, y, z, t) {
 //   b1:
 //     ret v6
 //   b2:
-//     v4 = const 18.2509575
-//     v5 = fadd v0, v4
-//     v6 = fadd v5, v1
+//     v4 = const 18.2509575 !4:20
+//     v5 = fadd v0, v4 !5:16
+//     v6 = fadd v5, v1 !5:24
 //     br b1
 //   }

@@ -17,17 +17,17 @@ function FRep(x, y, z, t) {
 //     v4 = phi [v13, b3], [v15, b4]
 //     ret v4
 //   b2:
-//     v6 = fmul v0, v1
-//     v7 = sin v0
-//     v8 = fadd v6, v7
+//     v6 = fmul v0, v1 !3:13
+//     v7 = sin v0 !3:19
+//     v8 = fadd v6, v7 !3:17
 //     v9 = const 0
-//     v10 = fgt v2, v9
+//     v10 = fgt v2, v9 !5:9
 //     cbr v10, b3, b4
 //   b3:
-//     v12 = fadd v8, v8
-//     v13 = fadd v12, v6
+//     v12 = fadd v8, v8 !5:25
+//     v13 = fadd v12, v6 !5:29
 //     br b1
 //   b4:
-//     v15 = fsub v8, v8
+//     v15 = fsub v8, v8 !6:12
 //     br b1
 //   }

@@ -9,16 +9,16 @@ function FRep(x, y, z, t) { return dist(x, y) + fact(3); }
 //   b0:
 //     v0 = param 0
 //     v1 = const 1
-//     v2 = fle v0, v1
+//     v2 = fle v0, v1 !4:26
 //     cbr v2, b1, b2
 //   b1:
 //     v4 = const 1
 //     ret v4
 //   b2:
 //     v6 = const 1
-//     v7 = fsub v0, v6
+//     v7 = fsub v0, v6 !4:60
 //     v8 = call @fact(v7) !4:53
-//     v9 = fmul v0, v8
+//     v9 = fmul v0, v8 !4:51
 //     ret v9
 //   }
 //   fn @kernel(4) -> 1 kernel {
@@ -28,10 +28,10 @@ function FRep(x, y, z, t) { return dist(x, y) + fact(3); }
 //     v2 = param 1
 //     v3 = param 2
 //     v4 = param 3
-//     v5 = fmul v1, v1
-//     v6 = fmul v2, v2
-//     v7 = fadd v5, v6
-//     v8 = sqrt v7
+//     v5 = fmul v1, v1 !2:27
+//     v6 = fmul v2, v2 !2:27
+//     v7 = fadd v5, v6 !3:41
+//     v8 = sqrt v7 !3:30
 //     v9 = const 3
 //     gstore @x, v1
 //     gstore @y, v2
@@ -44,6 +44,6 @@ function FRep(x, y, z, t) { return dist(x, y) + fact(3); }
 //     gstore @g, v0
 //     gstore @b, v0
 //     v20 = call @fact(v9) !5:49
-//     v21 = fadd v8, v20
+//     v21 = fadd v8, v20 !5:47
 //     ret v21
 //   }

@@ -15,11 +15,11 @@ function FRep(x, y, z, t) {
 //     v3 = phi [v1, b0], [v11, b2]
 //     v4 = phi [v1, b0], [v9, b2]
 //     v5 = const 4
-//     v6 = flt v3, v5
+//     v6 = flt v3, v5 !4:21
 //     cbr v6, b2, b3
 //   b2:
 //     tick !4:3
-//     v9 = fadd v4, v0
+//     v9 = fadd v4, v0 !4:37
 //     v10 = const 1
 //     v11 = fadd v3, v10
 //     br b1

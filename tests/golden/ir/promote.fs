@@ -10,15 +10,15 @@ function FRep(x, y, z, t) { add(x); add(y); return acc + rec(2); }
 //     v0 = gload @acc
 //     v1 = param 0
 //     v2 = const 0
-//     v3 = fle v1, v2
+//     v3 = fle v1, v2 !4:25
 //     cbr v3, b1, b2
 //   b1:
 //     ret v0
 //   b2:
 //     v6 = const 1
-//     v7 = fadd v0, v6
+//     v7 = fadd v0, v6 !4:53
 //     v8 = const 1
-//     v9 = fsub v1, v8
+//     v9 = fsub v1, v8 !4:71
 //     gstore @acc, v7
 //     v11 = call @rec(v9) !4:65
 //     ret v11
@@ -31,8 +31,8 @@ function FRep(x, y, z, t) { add(x); add(y); return acc + rec(2); }
 //     v3 = param 2
 //     v4 = param 3
 //     v5 = const 0
-//     v6 = fadd v5, v1
-//     v7 = fadd v6, v2
+//     v6 = fadd v5, v1 !3:29
+//     v7 = fadd v6, v2 !3:29
 //     v8 = const 2
 //     gstore @x, v1
 //     gstore @y, v2
@@ -46,6 +46,6 @@ function FRep(x, y, z, t) { add(x); add(y); return acc + rec(2); }
 //     gstore @b, v0
 //     gstore @acc, v7
 //     v20 = call @rec(v8) !5:58
-//     v21 = fadd v7, v20
+//     v21 = fadd v7, v20 !5:56
 //     ret v21
 //   }

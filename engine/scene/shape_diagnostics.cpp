@@ -1,0 +1,372 @@
+// Shape diagnostics (shape_diagnostics.h) from surveys (shape_survey.h): the shape's own grid
+// (or a coarser one past 128 samples a side), three times its box around it for its extent, and
+// sample blocks of its own grid checked for parts that pass between the samples.
+#include "engine/scene/shape_diagnostics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "engine/scene/shape_field.h"
+#include "engine/scene/shape_survey.h"
+#include "ir/interval_eval.h"
+
+namespace fscript::scene {
+namespace {
+
+constexpr int kSurveyCells = 128;  // a grid finer than this is surveyed at one of at most kCoarseCells a side
+constexpr int kCoarseCells = 48;
+constexpr int kAroundCells = 48;   // the survey of three times the box, for the shape's extent
+constexpr double kAround = 3;
+constexpr size_t kFinerBlocks = 64;   // blocks of 8^3 samples of the own grid checked for thin parts
+constexpr size_t kMissedChecked = 32;  // missed cells tried at finer resolutions
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", std::abs(v) < 1e-12 ? 0.0 : v);
+  return b;
+}
+
+std::string vec(const float* p) { return "(" + num(p[0]) + ", " + num(p[1]) + ", " + num(p[2]) + ")"; }
+
+SurveyGrid own_grid(const Shape& s) { return {s.domain, s.resolution}; }
+
+SurveyGrid coarse(const SurveyGrid& g) {
+  int most = std::max({g.n[0], g.n[1], g.n[2]});
+  if (most <= kSurveyCells) return g;
+  int k = (most + kCoarseCells - 1) / kCoarseCells;
+  SurveyGrid c = g;
+  for (int a = 0; a < 3; ++a) c.n[a] = std::max(1, (g.n[a] + k - 1) / k);
+  return c;
+}
+
+SurveyGrid around(const SurveyGrid& g) {
+  SurveyGrid r;
+  for (int a = 0; a < 3; ++a) {
+    double c = (g.box[2 * a] + g.box[2 * a + 1]) / 2, h = (g.box[2 * a + 1] - g.box[2 * a]) / 2 * kAround;
+    r.box[2 * a] = c - h, r.box[2 * a + 1] = c + h, r.n[a] = kAroundCells;
+  }
+  return r;
+}
+
+// A diagnostic at `field` of node n as written (else at the node, whose field is its default).
+frontend::Diagnostic at_field(const vrml::Scene& scene, const vrml::Node& n, const std::string& field,
+                              frontend::Severity sev, const std::string& message) {
+  const frontend::SourceFile& file = vrml::file_of(scene, n);
+  const vrml::FieldSlot* slot = n.slot(field);
+  // A script at its first character; other fields at their names.
+  uint32_t at = !slot                 ? n.span.begin
+      : slot->value.str_spans.empty() ? slot->span.begin
+                                      : slot->value.str_spans[0].begin;
+  frontend::LineCol pos = file.position(at);
+  return frontend::located(sev, file.path(), pos, file.line_at(pos.line), message);
+}
+
+// Rounded outward to a tenth of the order of the box's largest side.
+void suggest_box(const double e[6], double cell, ShapeFinding& f) {
+  double most = std::max({e[1] - e[0], e[3] - e[2], e[5] - e[4]}) + 2 * cell;
+  double unit = std::pow(10.0, std::floor(std::log10(most))) / 10;
+  for (int a = 0; a < 3; ++a) {
+    double lo = std::floor((e[2 * a] - cell) / unit) * unit, hi = std::ceil((e[2 * a + 1] + cell) / unit) * unit;
+    f.center[a] = (lo + hi) / 2, f.size[a] = hi - lo;
+  }
+  f.has_box = true;
+}
+
+std::string box_text(const ShapeFinding& f) {
+  return "bboxCenter " + num(f.center[0]) + " " + num(f.center[1]) + " " + num(f.center[2]) + " bboxSize " +
+      num(f.size[0]) + " " + num(f.size[1]) + " " + num(f.size[2]);
+}
+
+// What makes NaN out of numbers, by the op that first gives it.
+std::string nan_cause(ir::Op op) {
+  switch (op) {
+    case ir::Op::Sqrt: return "`sqrt` of a negative number";
+    case ir::Op::Log: return "`log` of a negative number";
+    case ir::Op::Log10: return "`log10` of a negative number";
+    case ir::Op::Asin: return "`asin` of a number outside [-1, 1]";
+    case ir::Op::Acos: return "`acos` of a number outside [-1, 1]";
+    case ir::Op::Div: return "0 / 0 (or infinity / infinity)";
+    case ir::Op::Mul: return "0 * infinity";
+    case ir::Op::Add:
+    case ir::Op::Sub: return "infinity - infinity";
+    case ir::Op::Pow: return "`pow` of a negative number to a fractional power";
+    case ir::Op::Mod: return "`%` by 0 (or of infinity)";
+    default: return std::string("`") + ir::mnemonic(op) + "`";
+  }
+}
+
+class Diagnoser {
+ public:
+  Diagnoser(const vrml::Scene& scene, const Shape& s) : scene_(scene), s_(s), field_(s), own_(own_grid(s)) {}
+
+  std::vector<ShapeFinding> run(bool top) {
+    SurveyGrid g = coarse(own_);
+    if (!survey(field_, g, {}, sv_, err_) || !sv_.complete) return {};
+    bool empty = sv_.inside == 0, full = sv_.inside == sv_.points;
+    if ((empty || full) && g.n != own_.n) {  // a coarse grid may step over what the own grid sees
+      Survey fine;
+      SurveyOptions o;
+      o.stop_at_inside = empty;
+      if (!survey(field_, own_, o, fine, err_) || !fine.complete) return {};
+      empty = fine.inside == 0, full = fine.inside == fine.points;
+    }
+    if (empty) this->empty();
+    if (full && top) this->full();
+    if (!empty && !full && top) cut();
+    if (sv_.nan > 0) not_a_number();
+    finer();
+    return std::move(out_);
+  }
+
+ private:
+  const vrml::Node& geo() const { return *s_.geometry_node; }
+  frontend::Diagnostic at(const std::string& field, frontend::Severity sev, const std::string& m) const {
+    return at_field(scene_, geo(), field, sev, m);
+  }
+  std::string samples() const {
+    return std::to_string(own_.n[0]) + " x " + std::to_string(own_.n[1]) + " x " + std::to_string(own_.n[2]);
+  }
+
+  // Three times the box, surveyed once: where the shape is around its box.
+  const Survey* around_box() {
+    if (!around_done_) {
+      around_done_ = true;
+      if (!survey(field_, around(own_), {}, around_, err_) || !around_.complete) around_ok_ = false;
+    }
+    return around_ok_ ? &around_ : nullptr;
+  }
+  // The shape ends within three times its box: no sample of that box's outer layer is inside.
+  bool bounded_around(ShapeFinding& f) {
+    const Survey* a = around_box();
+    if (!a || a->inside == 0) return false;
+    for (int q = 0; q < 6; ++q)
+      if (a->face_inside[q] > 0) return false;
+    suggest_box(a->extent, around(own_).step(0), f);
+    return true;
+  }
+
+  void empty() {
+    ShapeFinding f;
+    f.issue = ShapeIssue::Empty;
+    std::string m = sv_.open.empty() && sv_.nan == 0
+        ? "empty shape: f <= 0 everywhere in its box, so nothing is drawn"
+        : "empty shape: f > 0 at none of the " + samples() + " samples of its box, so nothing is drawn";
+    if (bounded_around(f)) m += "; the shape lies outside its box: " + box_text(f) + " holds it";
+    f.diag = at(s_.geometry.field, frontend::Severity::Warning, m);
+    out_.push_back(std::move(f));
+  }
+
+  void full() {
+    ShapeFinding f;
+    f.issue = ShapeIssue::Full;
+    std::string m = "full shape: f > 0 at every sample of its box, so it is drawn as a solid block the size of the box";
+    if (bounded_around(f)) m += "; the shape ends just outside the box: " + box_text(f) + " holds it";
+    else m += " (f > 0 goes on past three times the box: is the sign of f the right way round? FVRML draws f >= 0)";
+    f.diag = at(s_.geometry.field, frontend::Severity::Warning, m);
+    out_.push_back(std::move(f));
+  }
+
+  void cut() {
+    static const char* kFace[6] = {"-x", "+x", "-y", "+y", "-z", "+z"};
+    std::string faces;
+    int whole = 0;
+    for (int q = 0; q < 6; ++q) {
+      if (sv_.face_inside[q] == 0) continue;
+      double share = double(sv_.face_inside[q]) / double(std::max<uint64_t>(1, sv_.face_points[q]));
+      whole += sv_.face_inside[q] == sv_.face_points[q];
+      faces += std::string(faces.empty() ? "" : ", ") + kFace[q] + " (" + num(100 * share) + "%)";
+    }
+    if (faces.empty()) return;
+    ShapeFinding f;
+    f.issue = ShapeIssue::Cut;
+    if (whole == 6) {
+      f.diag = at(s_.geometry.field, frontend::Severity::Warning,
+                  "inside-out shape: f > 0 on all six faces of its box and <= 0 within, so the box is drawn with a "
+                  "hollow; FVRML draws where f >= 0: negate f to draw the solid");
+    } else if (bounded_around(f)) {
+      f.diag = at("bboxSize", frontend::Severity::Warning,
+                  "the box cuts the shape on its faces " + faces + "; the shape ends just outside: " + box_text(f) +
+                      " holds it whole");
+    } else {
+      f.diag = at("bboxSize", frontend::Severity::Note,
+                  "the box cuts the shape on its faces " + faces + " (the shape goes on past three times the box)");
+    }
+    out_.push_back(std::move(f));
+  }
+
+  void not_a_number() {
+    ShapeFinding f;
+    f.issue = ShapeIssue::NotANumber;
+    f.fraction = double(sv_.nan) / double(sv_.points);
+    std::string share = f.fraction >= 0.999 ? "all of the box"
+        : f.fraction >= 0.01                ? "about " + num(100 * f.fraction) + "% of the box"
+                             : std::to_string(sv_.nan) + " of the " + std::to_string(sv_.points) + " samples";
+    std::string m = "f is not a number in " + share + " (the mesh has a hole there)";
+    const float* p = sv_.nan_point;
+    float geometry[4] = {p[0], p[1], p[2], static_cast<float>(s_.geometry.t)};
+    if (origin(s_.geometry, geometry, m, f)) return out_.push_back(std::move(f));
+    if (s_.texture) {
+      float texture[7] = {p[0], p[1], p[2], p[0], p[1], p[2], static_cast<float>(s_.texture->t)};
+      if (origin(*s_.texture, texture, m, f)) return out_.push_back(std::move(f));
+    }
+    f.diag = at(s_.geometry.field, frontend::Severity::Warning, m + ", e.g. at " + vec(p));
+    out_.push_back(std::move(f));
+  }
+  // The first operation of `c` that makes NaN at `params`, as the diagnostic's place.
+  bool origin(const CompiledField& c, const float* params, const std::string& m, ShapeFinding& f) {
+    if (!c.intervals || c.intervals->sources().empty()) return false;
+    size_t step = ir::first_nan_step(*c.intervals, params);
+    if (step >= c.intervals->length() || c.intervals->sources()[step].line == 0) return false;
+    const auto& where = c.intervals->sources()[step];
+    const frontend::SourceFile& file = vrml::file_of(scene_, geo());
+    frontend::LineCol pos{where.line, where.col};
+    f.diag = frontend::located(
+        frontend::Severity::Warning, file.path(), pos, file.line_at(pos.line),
+        m + ": " + nan_cause(c.intervals->steps()[step].op) + " gives it here first, e.g. at " + vec(params));
+    return true;
+  }
+
+  void finer();
+  bool finer_block(const int lo[3], std::vector<std::array<int, 3>>& missed, uint64_t& checked);
+  int resolving_factor(const std::vector<std::array<int, 3>>& missed);
+
+  const vrml::Scene& scene_;
+  const Shape& s_;
+  ShapeField field_;
+  SurveyGrid own_;
+  Survey sv_, around_;
+  bool around_done_ = false, around_ok_ = true;
+  backends::RuntimeError err_;
+  std::vector<ShapeFinding> out_;
+};
+
+// Blocks of 8^3 samples of the own grid at (up to kFinerBlocks of) the open bricks: a cell whose
+// eight corners are on one side while its centre is on the other holds a part of the shape the
+// samples step over (a sheet thinner than a cell, a small ball between samples).
+void Diagnoser::finer() {
+  if (sv_.open.empty()) return;
+  SurveyGrid g = coarse(own_);
+  std::vector<std::array<int, 3>> missed;
+  uint64_t checked = 0;
+  size_t stride = std::max<size_t>(1, sv_.open.size() / kFinerBlocks);
+  for (size_t b = 0; b < sv_.open.size(); b += stride) {
+    int lo[3];
+    for (int a = 0; a < 3; ++a) {
+      double centre = g.at(a, std::min(sv_.open[b][a] + 4, g.n[a] - 1));
+      int i = static_cast<int>(std::floor((centre - own_.box[2 * a]) / own_.step(a)));
+      lo[a] = std::clamp(i - 4, 0, std::max(0, own_.n[a] - 8));
+    }
+    if (!finer_block(lo, missed, checked)) return;
+  }
+  if (missed.empty()) return;
+  ShapeFinding f;
+  f.issue = ShapeIssue::FinerThanGrid;
+  f.fraction = double(missed.size()) / double(checked);
+  int k = resolving_factor(missed);
+  int most = std::max({own_.n[0], own_.n[1], own_.n[2]});
+  f.resolution = k > 0 ? k * most : 0;
+  std::string m = "parts of the shape finer than its grid: in " + std::to_string(missed.size()) + " of the " +
+      std::to_string(checked) + " cells checked, the samples at the corners miss a part of the shape that passes " +
+      "through the cell";
+  m += k > 0 ? "; resolution [" + std::to_string(f.resolution) + "] shows them"
+             : "; even 8 times the resolution does not show them all";
+  f.diag = at("resolution", frontend::Severity::Warning, m);
+  out_.push_back(std::move(f));
+}
+
+bool Diagnoser::finer_block(const int lo[3], std::vector<std::array<int, 3>>& missed, uint64_t& checked) {
+  int hi[3];
+  for (int a = 0; a < 3; ++a) hi[a] = std::min(lo[a] + 8, own_.n[a]);
+  std::vector<float> x, y, z, v;
+  for (int k = lo[2]; k < hi[2]; ++k)
+    for (int j = lo[1]; j < hi[1]; ++j)
+      for (int i = lo[0]; i < hi[0]; ++i)
+        x.push_back(own_.at(0, i)), y.push_back(own_.at(1, j)), z.push_back(own_.at(2, k));
+  const size_t corners = x.size();
+  auto mid = [&](int a, int i) { return static_cast<float>(own_.box[2 * a] + (i + 1.0) * own_.step(a)); };
+  for (int k = lo[2]; k + 1 < hi[2]; ++k)
+    for (int j = lo[1]; j + 1 < hi[1]; ++j)
+      for (int i = lo[0]; i + 1 < hi[0]; ++i) x.push_back(mid(0, i)), y.push_back(mid(1, j)), z.push_back(mid(2, k));
+  v.resize(x.size());
+  mesh::Box3 box;  // the block's samples (its cells' centres lie within): its simplified tape holds there
+  for (int a = 0; a < 3; ++a) box.lo[a] = own_.at(a, lo[a]), box.hi[a] = own_.at(a, hi[a] - 1);
+  std::shared_ptr<const mesh::Field> local = field_.local(box);
+  const mesh::Field& f = local ? *local : field_;
+  if (!f.eval(x.data(), y.data(), z.data(), x.size(), v.data(), err_)) return false;
+  const int d[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+  auto value = [&](int i, int j, int k) { return v[(size_t(k) * d[1] + size_t(j)) * d[0] + size_t(i)]; };
+  size_t c = corners;
+  for (int k = 0; k + 1 < d[2]; ++k)
+    for (int j = 0; j + 1 < d[1]; ++j)
+      for (int i = 0; i + 1 < d[0]; ++i, ++c) {
+        int in = 0, nan = 0;
+        for (int q = 0; q < 8; ++q) {
+          float w = value(i + (q & 1), j + (q >> 1 & 1), k + (q >> 2 & 1));
+          nan += std::isnan(w), in += w > 0;
+        }
+        if (nan) continue;
+        ++checked;
+        if ((in == 0 && v[c] > 0) || (in == 8 && v[c] <= 0)) missed.push_back({lo[0] + i, lo[1] + j, lo[2] + k});
+      }
+  return true;
+}
+
+// The smallest of 2, 4 and 8 times the resolution whose samples, within the missed cells, take
+// both sides in nine of ten of them (0: none does).
+int Diagnoser::resolving_factor(const std::vector<std::array<int, 3>>& missed) {
+  const size_t n = std::min(missed.size(), kMissedChecked);
+  for (int k = 2; k <= 8; k *= 2) {
+    size_t resolved = 0;
+    for (size_t m = 0; m < n; ++m) {
+      std::vector<float> x, y, z, v;
+      // The k-times grid's k^3 samples between own samples i and i + 1: j from (2i + 1) k / 2.
+      for (int c = 0; c < k; ++c)
+        for (int b = 0; b < k; ++b)
+          for (int a = 0; a < k; ++a) {
+            const int q[3] = {a, b, c};
+            float p[3];
+            for (int ax = 0; ax < 3; ++ax) {
+              double h = own_.step(ax) / k;
+              int j = (2 * missed[m][ax] + 1) * k / 2 + q[ax];
+              p[ax] = static_cast<float>(own_.box[2 * ax] + (j + 0.5) * h);
+            }
+            x.push_back(p[0]), y.push_back(p[1]), z.push_back(p[2]);
+          }
+      v.resize(x.size());
+      if (!field_.eval(x.data(), y.data(), z.data(), x.size(), v.data(), err_)) return 0;
+      bool in = false, out = false;
+      for (float w : v) in |= w > 0, out |= w <= 0;
+      resolved += in && out;
+    }
+    if (10 * resolved >= 9 * n) return k;
+  }
+  return 0;
+}
+
+}  // namespace
+
+const char* issue_name(ShapeIssue i) {
+  switch (i) {
+    case ShapeIssue::Empty: return "empty";
+    case ShapeIssue::Full: return "full";
+    case ShapeIssue::Cut: return "cut";
+    case ShapeIssue::NotANumber: return "nan";
+    case ShapeIssue::FinerThanGrid: return "finer";
+  }
+  return "";
+}
+
+std::vector<ShapeFinding> diagnose_shape(const vrml::Scene& scene, const Shape& s, bool top) {
+  if (s.kind != ShapeKind::Implicit || !s.geometry.kernel || !s.geometry_node) return {};
+  return Diagnoser(scene, s).run(top);
+}
+
+std::vector<ShapeFinding> diagnose_scene(const vrml::Scene& scene, const SceneModel& model) {
+  std::vector<ShapeFinding> all;
+  for (const Shape& s : model.shapes)
+    for (ShapeFinding& f : diagnose_shape(scene, s, s.group < 0)) all.push_back(std::move(f));
+  return all;
+}
+
+}  // namespace fscript::scene

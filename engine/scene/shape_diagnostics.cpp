@@ -365,7 +365,7 @@ std::vector<ShapeFinding> diagnose_shape(const vrml::Scene& scene, const Shape& 
 std::vector<ShapeFinding> diagnose_scene(const vrml::Scene& scene, const SceneModel& model) {
   std::vector<ShapeFinding> all;
   for (const Shape& s : model.shapes)
-    for (ShapeFinding& f : diagnose_shape(scene, s, s.group < 0)) all.push_back(std::move(f));
+    for (ShapeFinding& f : diagnose_shape(scene, s, s.group < 0)) f.node = s.geometry_node, all.push_back(std::move(f));
   return all;
 }
 

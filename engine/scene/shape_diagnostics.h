@@ -16,6 +16,7 @@ const char* issue_name(ShapeIssue i);
 
 struct ShapeFinding {
   ShapeIssue issue = ShapeIssue::Empty;
+  const vrml::Node* node = nullptr;  // the FGeometry (what a quick fix edits)
   frontend::Diagnostic diag;  // at the definition, the operation, or the bboxSize / resolution field
   // What would fix it, where there is an obvious fix: a box that holds the shape (Empty: it lies
   // outside its box; Full and Cut: it is bounded just outside), or a resolution that shows what

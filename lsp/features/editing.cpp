@@ -138,6 +138,15 @@ json code_actions(const Document& d, const json& params) {
     std::smatch m;
     json edit;
     std::string title;
+    if (diag.contains("data") && diag["data"].is_object() &&
+        diag["data"].contains("edits")) {  // a shape diagnostic's fix
+      actions.push_back({{"title", diag["data"].value("title", "Fix the shape")},
+                         {"kind", "quickfix"},
+                         {"diagnostics", json::array({diag})},
+                         {"isPreferred", true},
+                         {"edit", {{"changes", {{d.uri, diag["data"]["edits"]}}}}}});
+      continue;
+    }
     if (std::regex_search(message, m, slip)) {
       title = "Change '" + m[1].str() + "' to '" + m[2].str() + "'";
       edit = {{"range", r}, {"newText", m[2].str()}};

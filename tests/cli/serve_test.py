@@ -180,6 +180,13 @@ def main(d):
           (warned.get("stats") or {}).get("missing_inlines", [{}])[0].get("url") == "nothere.wrl", json.dumps(warned)[:400])
     status, glb4 = s.request("GET", "/scene.glb")
     check("a missing Inline: the scene's glTF", status == 200 and glb4[:4] == b"glTF")
+    # A shape diagnostic: the ball is cut by its box; the page's overlay gets it, the stats too.
+    v = s.state()["version"]
+    write(scene, BALL.replace("RADIUS", "1.1"))
+    cut = events.wait(lambda st: st["version"] > v, 2.0)
+    check("a shape diagnostic in the diagnostics and the stats", cut is not None and cut["ok"] and
+          "scene.wrl:2:" in cut["diagnostics"] and "warning: the box cuts the shape" in cut["diagnostics"] and
+          "cut" in [d["issue"] for d in (cut.get("stats") or {}).get("shape_diagnostics", [])], json.dumps(cut)[:400])
     v = s.state()["version"]
     write(scene, BALL.replace("RADIUS", "0.6"))
     events.wait(lambda st: st["version"] > v, 2.0)

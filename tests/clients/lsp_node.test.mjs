@@ -37,7 +37,8 @@ test("fscript-lsp with vscode-jsonrpc: life cycle, sync and the features", async
   await conn.sendNotification(proto.InitializedNotification.type, {});
   let d = next();
   await conn.sendNotification(proto.DidOpenTextDocumentNotification.type, { textDocument: { uri, languageId: "fscript", version: 10, text } });
-  assert.deepEqual((await d).diagnostics, []);
+  // The slab of two 1D balls goes on along z: a shape diagnostic, as a hint.
+  assert.deepEqual((await d).diagnostics.map((x) => [x.code, x.severity]), [["shape-cut", proto.DiagnosticSeverity.Hint]]);
   d = next();
   await conn.sendNotification(proto.DidChangeTextDocumentNotification.type, {
     textDocument: { uri, version: 15 },
@@ -48,7 +49,7 @@ test("fscript-lsp with vscode-jsonrpc: life cycle, sync and the features", async
   assert.match(bad.diagnostics[0].message, /unknown name 'q'/);
   d = next();
   await conn.sendNotification(proto.DidChangeTextDocumentNotification.type, { textDocument: { uri, version: 20 }, contentChanges: [{ text }] });
-  assert.deepEqual((await d).diagnostics, []);
+  assert.equal((await d).diagnostics.filter((x) => x.severity !== proto.DiagnosticSeverity.Hint).length, 0);
   const hover = await conn.sendRequest(proto.HoverRequest.type, { textDocument: { uri }, position: { line: 4, character: 10 } });
   assert.match(hover.contents.value, /function ball\(p, r\)/);
   const items = await conn.sendRequest(proto.CompletionRequest.type, { textDocument: { uri }, position: { line: 4, character: 11 } });
@@ -63,6 +64,33 @@ test("fscript-lsp with vscode-jsonrpc: life cycle, sync and the features", async
   assert.equal(sig.signatures[0].label, "ball(p, r)");
   assert.equal(sig.activeParameter, 1);
   await assert.rejects(conn.sendRequest("textDocument/noSuchThing", {}), (e) => e.code === -32601);
+  await conn.sendRequest(proto.ShutdownRequest.type);
+  const exited = new Promise((resolve) => child.on("exit", resolve));
+  await conn.sendNotification(proto.ExitNotification.type);
+  assert.equal(await exited, 0);
+  conn.dispose();
+});
+
+test("fscript-lsp with vscode-jsonrpc: a shape diagnostic and its quick fix", async () => {
+  const { child, conn, next } = start();
+  await conn.sendRequest(proto.InitializeRequest.type, { processId: process.pid, rootUri: null, capabilities: {} });
+  await conn.sendNotification(proto.InitializedNotification.type, {});
+  const wrl = "file:///virtual/cut.wrl";
+  const scene = '#VRML V2.0 utf8\nFShape { geometry FGeometry {\n  definition "1.2 - x^2 - y^2 - z^2"\n  bboxSize 2 2 2 } }\n';
+  let d = next();
+  await conn.sendNotification(proto.DidOpenTextDocumentNotification.type, { textDocument: { uri: wrl, languageId: "vrml", version: 1, text: scene } });
+  const got = (await d).diagnostics;
+  assert.equal(got.length, 1);
+  assert.equal(got[0].code, "shape-cut");
+  assert.equal(got[0].severity, proto.DiagnosticSeverity.Warning);
+  assert.match(got[0].message, /bboxSize 2.6 2.6 2.6 holds it whole/);
+  const actions = await conn.sendRequest(proto.CodeActionRequest.type, { textDocument: { uri: wrl }, range: got[0].range, context: { diagnostics: got } });
+  assert.equal(actions[0].title, "Set the box to 2.6 2.6 2.6");
+  const edit = actions[0].edit.changes[wrl][0];
+  assert.deepEqual(edit.range, { start: { line: 3, character: 11 }, end: { line: 3, character: 16 } });
+  d = next();
+  await conn.sendNotification(proto.DidChangeTextDocumentNotification.type, { textDocument: { uri: wrl, version: 2 }, contentChanges: [{ range: edit.range, text: edit.newText }] });
+  assert.deepEqual((await d).diagnostics, []);
   await conn.sendRequest(proto.ShutdownRequest.type);
   const exited = new Promise((resolve) => child.on("exit", resolve));
   await conn.sendNotification(proto.ExitNotification.type);

@@ -21,7 +21,7 @@ want() {  # NAME OUTPUT REGEX
   if grep -Eq "$3" <<< "$2"; then echo "ok $1"; else echo "FAIL $1: no /$3/ in:"; echo "$2" | cut -c1-400; fails=$((fails + 1)); fi
 }
 if [ -f "$PROBE" ]; then  # the shared probe, when ../shared is there
-  printf 'function sq(a) {\n  return a * a;\n}\nfunction FRep(x, y, z, t) {\n  var r = sqrt(sq(x) + y * y);\n  return 1 - r;\n}\n' > "$T/probe.fs"
+  printf 'function sq(a) {\n  return a * a;\n}\nfunction FRep(x, y, z, t) {\n  var r = sqrt(sq(x) + y * y + z * z);\n  return 1 - r;\n}\n' > "$T/probe.fs"
   out=$(probe fscript "$T/probe.fs" 'textDocument/hover@4:12;textDocument/completion@4:12;textDocument/definition@4:15;textDocument/documentSymbol' '5:  return 1 - rr;')
   want "fs: diagnostics on open" "$out" '"phase": "open", "event": "diagnostics".*"items": \[\]'
   want "fs: hover on a built-in" "$out" '"method": "textDocument/hover", "result": \{.*sqrt\(x\)'
@@ -68,6 +68,10 @@ want "nvim .wrl diagnostics" "$out" "diagnostic=unknown name 'QQ'"
 want "nvim .wrl hover in a script" "$out" 'textDocument/hover => .*sqrt\(x\)'
 want "nvim .wrl definition in a script" "$out" 'textDocument/definition => .*"start": ?\{"character": ?51, ?"line": ?1\}'
 want "nvim .wrl completion of fields" "$out" 'textDocument/completion => .*"label": ?"geometry"'
+# A shape diagnostic: the box cuts a ball that ends just outside it.
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1.2 - x*x - y*y - z*z" bboxSize 2 2 2 } }\n' > "$T/cut.wrl"
+out=$(with_config cut.wrl "")
+want "nvim .wrl shape diagnostic" "$out" "diagnostic=the box cuts the shape on its faces .*bboxSize 2.6 2.6 2.6 holds it whole"
 # :FvrmlPreview is defined, and what it asks the server gives the live preview's URL.
 out=$(FVRML_RUN="${FVRML_RUN:-}" with_config bad2.wrl 'preview')
 want "nvim :FvrmlPreview is defined" "$out" '^command FvrmlPreview'

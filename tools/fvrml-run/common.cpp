@@ -145,10 +145,9 @@ void report_shapes(const Options& o, const Loaded& l, const SceneModel& model, n
   auto found = fscript::scene::diagnose_scene(l.scene, model);
   mesh::evaluation_ns() = eval_ns, tapes.regions = regions, tapes.simplified = simplified, tapes.tape_ops = tape_ops;
   tapes.full_ops = full_ops, tapes.gradients = gradients;
-  if (!o.stats) {
+  if (!o.stats || o.print_shape_diagnostics)
     for (const auto& f : found) std::cerr << fscript::frontend::render(f.diag);
-    return;
-  }
+  if (!o.stats) return;
   nlohmann::json list = nlohmann::json::array();
   for (const auto& f : found) {
     nlohmann::json j = {{"issue", fscript::scene::issue_name(f.issue)},

@@ -51,6 +51,8 @@ struct Options {
   double azimuth = 30, elevation = 20, zoom = 1;  // the picture's automatic camera (raster.h)
   bool view_given = false;
   bool view_json = false;  // --serve: the scene's Viewpoint, lights and background in the stats' "view"
+  // --serve: shape diagnostics printed (for the page's overlay) as well as kept in the stats.
+  bool print_shape_diagnostics = false;
   MeshMemo* memo = nullptr;  // --serve: the meshes of the last run, reused where nothing changed
   // --serve, glTF: the scene so far while animations are polygonized (its static shapes and the
   // frames made: `frames` of `of` of the animation under way).

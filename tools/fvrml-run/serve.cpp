@@ -153,10 +153,10 @@ std::vector<std::string> run_into(const Options& base, const std::string& dir, S
   if (ok) memo.sweep();
   std::string diagnostics = captured.str() + (rc == 0 && !ok ? "error: " + error + "\n" : "");
   // The terminal gets them too (a page may not be open): each new set once, and the word when a
-  // broken scene is good again.
+  // broken scene has no errors again (warnings may stay).
   if (diagnostics != st.printed) {
     if (!diagnostics.empty()) std::fprintf(stderr, "%s", diagnostics.c_str());
-    else if (st.printed.find("error:") != std::string::npos)
+    if (st.printed.find("error:") != std::string::npos && diagnostics.find("error:") == std::string::npos)
       std::fprintf(stderr, "fvrml-run: %s: no errors now\n", o.path.c_str());
     st.printed = diagnostics;
   }
@@ -372,6 +372,7 @@ Options preview_run_options(const Options& base, const std::string& output) {
   o.format = "glb";
   o.stats = true;
   o.view_json = true;
+  o.print_shape_diagnostics = true;
   return o;
 }
 

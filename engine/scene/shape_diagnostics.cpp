@@ -16,6 +16,7 @@ namespace {
 
 constexpr int kSurveyCells = 128;  // a grid finer than this is surveyed at one of at most kCoarseCells a side
 constexpr int kCoarseCells = 48;
+constexpr int kUnboundedCells = 16;
 constexpr int kAroundCells = 48;   // the survey of three times the box, for the shape's extent
 constexpr double kAround = 3;
 constexpr size_t kFinerBlocks = 64;   // blocks of 8^3 samples of the own grid checked for thin parts
@@ -31,10 +32,12 @@ std::string vec(const float* p) { return "(" + num(p[0]) + ", " + num(p[1]) + ",
 
 SurveyGrid own_grid(const Shape& s) { return {s.domain, s.resolution}; }
 
-SurveyGrid coarse(const SurveyGrid& g) {
-  int most = std::max({g.n[0], g.n[1], g.n[2]});
-  if (most <= kSurveyCells) return g;
-  int k = (most + kCoarseCells - 1) / kCoarseCells;
+// The grid surveyed: the own one up to kSurveyCells a side; past it, or for a function intervals
+// cannot bound (every brick is sampled: loops, calls), a coarser one.
+SurveyGrid coarse(const SurveyGrid& g, bool bounded) {
+  int most = std::max({g.n[0], g.n[1], g.n[2]}), cells = bounded ? kCoarseCells : kUnboundedCells;
+  if (most <= (bounded ? kSurveyCells : kUnboundedCells)) return g;
+  int k = (most + cells - 1) / cells;
   SurveyGrid c = g;
   for (int a = 0; a < 3; ++a) c.n[a] = std::max(1, (g.n[a] + k - 1) / k);
   return c;
@@ -101,10 +104,12 @@ class Diagnoser {
   Diagnoser(const vrml::Scene& scene, const Shape& s) : scene_(scene), s_(s), field_(s), own_(own_grid(s)) {}
 
   std::vector<ShapeFinding> run(bool top) {
-    SurveyGrid g = coarse(own_);
+    SurveyGrid g = coarse(own_, field_.can_bound());
     if (!survey(field_, g, {}, sv_, err_) || !sv_.complete) return {};
     bool empty = sv_.inside == 0, full = sv_.inside == sv_.points;
-    if ((empty || full) && g.n != own_.n) {  // a coarse grid may step over what the own grid sees
+    if ((empty || full) && g.n != own_.n && !field_.can_bound()) {
+      empty = full = false;  // a coarse grid may step over what the own grid sees: no claim
+    } else if ((empty || full) && g.n != own_.n) {  // ... so the own grid says
       Survey fine;
       SurveyOptions o;
       o.stop_at_inside = empty;
@@ -245,8 +250,8 @@ class Diagnoser {
 // eight corners are on one side while its centre is on the other holds a part of the shape the
 // samples step over (a sheet thinner than a cell, a small ball between samples).
 void Diagnoser::finer() {
-  if (sv_.open.empty()) return;
-  SurveyGrid g = coarse(own_);
+  if (sv_.open.empty() || !field_.can_bound()) return;  // without bounds every brick is open
+  SurveyGrid g = coarse(own_, true);
   std::vector<std::array<int, 3>> missed;
   uint64_t checked = 0;
   size_t stride = std::max<size_t>(1, sv_.open.size() / kFinerBlocks);

@@ -80,8 +80,7 @@ int main(int argc, char** argv) {
         {"jsonrpc", "2.0"},
         {"id", 1000 + k},
         {"method", "textDocument/completion"},
-        {"params",
-         {{"textDocument", {{"uri", uri}}}, {"position", {{"line", line + 1}, {"character", 10}}}}}};
+        {"params", {{"textDocument", {{"uri", uri}}}, {"position", {{"line", line + 1}, {"character", 10}}}}}};
     t = Clock::now();
     server.handle(complete);
     completion_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t).count());

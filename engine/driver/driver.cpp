@@ -20,7 +20,9 @@ EntryChoice named_entry(const std::string& name) {
 
 std::unique_ptr<ir::Module> build_module(const frontend::Script& s, const frontend::KernelSpec& spec,
                                          frontend::DiagnosticSink& diag, const BuildOptions& opts, std::string& error) {
-  auto m = frontend::lower_to_ir(*s.prog, s.sema, spec, *s.file, diag);
+  frontend::KernelSpec probed = spec;
+  probed.probe = opts.probe;
+  auto m = frontend::lower_to_ir(*s.prog, s.sema, probed, *s.file, diag);
   if (opts.verify_each) {
     error = ir::verify(*m);
     if (!error.empty()) {

@@ -17,6 +17,7 @@ namespace fscript::driver {
 struct BuildOptions {
   bool optimize = true;
   bool verify_each = false;  // the verifier after lowering and after every pass (tests)
+  bool probe = false;        // frontend::KernelSpec::probe: the variables as extra outputs
 };
 
 // Everything one compilation depends on. The ISA (FSCRIPT_ISA) and the llvm disk cache

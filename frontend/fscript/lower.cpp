@@ -62,6 +62,8 @@ struct Shared {
   DiagnosticSink& diag;
   ir::Module& mod;
   int value_slot = -1;  // "$value" for expression-form scripts
+  bool probe = false;   // KernelSpec::probe
+  std::vector<int> probe_slots;
 };
 
 class AstLowering {
@@ -78,6 +80,7 @@ class AstLowering {
       Inst* p = emit(Op::Param, {});
       p->aux = static_cast<int>(i);
       ssa_.write(info.params[i], cur_, p);
+      probe("arg", sym(info.params[i]).name, info.decl->name_span, p);
     }
     for (Stmt* s : info.decl->body->stmts) stmt(s);
     if (cur_) {
@@ -116,6 +119,8 @@ class AstLowering {
         outs.push_back(konst(o.constant));
       }
     }
+    for (int slot : sh_.probe_slots) outs.push_back(gload(slot));
+    fn_->num_results = static_cast<uint32_t>(outs.size());
     emit(Op::Ret, outs);
     finish();
   }
@@ -197,6 +202,19 @@ class AstLowering {
     fn_->remove_unreachable_blocks();
   }
 
+  // ---- the probe (KernelSpec::probe) ----
+  void probe(const char* kind, const std::string& name, Span at, Inst* v) {
+    if (!sh_.probe || !cur_) return;
+    LineCol lc = loc_of(at);
+    std::string fn = owner_ >= 0 ? sh_.sema.functions[static_cast<size_t>(owner_)].name : "";
+    std::string key = std::string(kProbePrefix) + kind + "|" + fn + "|" + name + "|" + std::to_string(lc.line) + "|" +
+        std::to_string(lc.col);
+    size_t before = sh_.mod.globals.size();
+    int slot = sh_.mod.global_slot(key);
+    if (sh_.mod.globals.size() > before) sh_.probe_slots.push_back(slot);
+    gstore(slot, v);
+  }
+
   // ---- variables ----
   const Symbol& sym(int id) const { return sh_.sema.symbols[id]; }
   bool is_global(int id) const { return sym(id).kind == SymKind::Global; }
@@ -258,7 +276,10 @@ class AstLowering {
       if (d.init) array_init(d.sym, d.init);
       return;
     }
-    if (d.init) write_var(d.sym, expr(d.init));
+    if (!d.init) return;
+    Inst* v = expr(d.init);
+    write_var(d.sym, v);
+    probe("var", sym(d.sym).name, d.span, v);
   }
 
   void array_init(int id, Expr* init) {
@@ -282,6 +303,7 @@ class AstLowering {
 
   void if_stmt(Stmt* s) {
     Inst* c = expr(s->expr);
+    probe("if", "", s->span, c);
     Block* then_b = fn_->add_block();
     Block* else_b = s->else_body ? fn_->add_block() : nullptr;
     Block* join = fn_->add_block();
@@ -447,6 +469,7 @@ class AstLowering {
 
   Inst* conditional(Expr* e) {
     Inst* c = expr(e->kids[0]);
+    probe("?:", "", e->span, c);
     Block* a_b = fn_->add_block();
     Block* b_b = fn_->add_block();
     Block* join = fn_->add_block();
@@ -479,6 +502,7 @@ class AstLowering {
       v = emit(binary_op(e->op), {old, expr(e->kids[1])}, loc_of(e->span));
     }
     write_var(id, v);
+    probe("var", sym(id).name, e->span, v);
     return v;
   }
 
@@ -516,6 +540,7 @@ class AstLowering {
     Inst* old = read_var(id, target->span);
     Inst* nv = emit(op, {old, one});
     write_var(id, nv);
+    probe("var", sym(id).name, e->span, nv);
     return e->prefix ? nv : old;
   }
 
@@ -525,7 +550,10 @@ class AstLowering {
     if (e->sym <= -2) {
       int b = -2 - e->sym;
       if (static_cast<int>(args.size()) != kBuiltins[b].arity) return konst(kNaN);
-      return emit(builtin_op(b), args, loc_of(e->span));
+      Op op = builtin_op(b);
+      if (op == Op::Min || op == Op::Max)
+        for (size_t k = 0; k < 2; ++k) probe(op == Op::Min ? "min" : "max", std::to_string(k + 1), e->span, args[k]);
+      return emit(op, args, loc_of(e->span));
     }
     if (e->sym < 0) return konst(kNaN);
     int fi = sym(e->sym).slot;
@@ -552,7 +580,8 @@ std::unique_ptr<ir::Module> lower_to_ir(const Program& prog, const SemaResult& s
   auto mod = std::make_unique<ir::Module>();
   mod->globals = sema.globals;
   mod->arrays = sema.global_arrays;
-  Shared sh{prog, sema, file, diag, *mod};
+  Shared sh{prog, sema, file, diag, *mod, -1, false, {}};
+  sh.probe = spec.probe;
   if (sema.form == ScriptForm::Expression) sh.value_slot = mod->global_slot(kValueGlobal);
   for (const auto& f : sema.functions) {
     auto fn = std::make_unique<ir::Function>();

@@ -28,7 +28,15 @@ struct KernelSpec {
   std::vector<std::string> input_names;
   std::vector<std::vector<int>> input_globals;  // per input: global slots it sets
   std::vector<KernelOutput> outputs;
+  // The probe (fscript probe, the REPL's :probe): every write of a variable, every function's
+  // arguments, each if's and ?:'s condition and each min's and max's operands also go to a probe
+  // slot, a module global named kProbePrefix + "kind|function|name|line|col" (kind: var, arg,
+  // if, ?:, min, max; a min's or max's name is 1 or 2, its operand), and the kernel returns the
+  // probe slots' last values after its outputs, in slot order (NaN: never reached).
+  bool probe = false;
 };
+
+constexpr const char* kProbePrefix = "\x01probe|";
 
 constexpr const char* kKernelName = "kernel";
 

@@ -10,6 +10,7 @@
 #include "tools/cli_suggest.h"
 #include "tools/limit_flags.h"
 #include "tools/fscript/commands.h"
+#include "tools/fscript/probe.h"
 #include "tools/fscript/repl.h"
 #include "runtime/support/version.h"
 
@@ -18,7 +19,7 @@ namespace {
 
 struct Args {
   Options opts;
-  std::string file, entry, points_path, size, bounds, out, passes;
+  std::string file, entry, points_path, size, bounds, out, passes, at, box;
   std::vector<std::string> files, values;
   size_t points = 1'000'000;
   unsigned threads = 1, repeat = 1;
@@ -61,6 +62,7 @@ int dispatch(CLI::App& app, Args& a) {
   }
   if (app.got_subcommand("eval")) return cmd_eval(a.opts, a.file, a.entry, a.points_path);
   if (app.got_subcommand("check")) return cmd_check(a.files);
+  if (app.got_subcommand("probe")) return cmd_probe(a.file, a.entry, a.at, a.box);
   if (app.got_subcommand("emit-ir")) return cmd_emit_ir(a.file, a.entry, a.opt, a.passes, a.llvm, a.gradient);
   if (app.got_subcommand("emit-asm")) return cmd_emit_asm(a.opts, a.file, a.entry);
   if (app.got_subcommand("fmt")) return cmd_fmt(a.file, a.in_place, a.check_only);
@@ -101,6 +103,12 @@ int real_main(int argc, char** argv) {
 
   CLI::App* check = app.add_subcommand("check", "diagnostics only, for .fs scripts and .wrl scenes");
   check->add_option("FILE", a.files, "files to check")->required();
+
+  CLI::App* probe = app.add_subcommand("probe", "every variable of the script at a point, or over a box");
+  probe->add_option("FILE", a.file, "the .fs script")->required();
+  probe->add_option("--entry,-e", a.entry, "function to probe (default: the script's entry point)");
+  probe->add_option("--at", a.at, "the point: x,y,z[,t] (the entry's inputs, missing ones 0)");
+  probe->add_option("--bound", a.box, "the box: x0,x1,y0,y1,z0,z1[,t0,t1]: intervals instead of values");
 
   CLI::App* emit = app.add_subcommand("emit-ir", "print the SSA IR");
   emit->add_option("FILE", a.file, "the .fs script")->required();

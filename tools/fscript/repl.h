@@ -45,6 +45,7 @@ class Session {
   void cmd_time(const std::string& arg, std::string& out);
   void cmd_plot(const std::string& arg, std::string& out);
   void cmd_load(const std::string& arg, std::string& out);
+  void cmd_probe(const std::string& arg, bool box, std::string& out);
   bool call_scene_script(const std::string& input, std::string& out);
 
   Options opts_;
@@ -55,6 +56,7 @@ class Session {
     std::shared_ptr<const std::vector<std::string>> lines;  // the .wrl's lines, for carets
   };
   std::map<std::string, SceneCallable> scene_;  // node name -> its script
+  std::string probed_;  // the last .fs :load-ed: what :probe and :bound look into
 };
 
 // Whether the brackets of `text` are all closed (outside strings and comments) and it does not end

@@ -11,6 +11,7 @@
 #include "frontend/vrml/scene_scripts.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "ir/text.h"
+#include "tools/fscript/probe.h"
 #include "tools/fscript/repl.h"
 #include "runtime/support/files.h"
 
@@ -32,6 +33,10 @@ constexpr CommandInfo kCommands[] = {
     {":time", "EXPR", "evaluations per second of EXPR"},
     {":plot", "EXPR [from A to B]", "EXPR of x as a chart, or of x and y as a picture (default -1 to 1)"},
     {":load", "FILE", "a .fs script's definitions, or every script of a .wrl scene, listed with a callable name"},
+    {":probe", "X Y Z [T]",
+     "every variable of the last :load-ed script at the point, each if's branch, each min's and max's side"},
+    {":bound", "X0 X1 Y0 Y1 Z0 Z1 [T0 T1]",
+     "every variable's interval over the box, and what each if, min and max does there"},
     {":reset", "", "forget every definition"},
     {":quit", "", "leave (also Ctrl-D); Ctrl-C stops a long evaluation"},
 };
@@ -177,6 +182,7 @@ bool Session::command(const std::string& input, std::string& out) {
   else if (cmd == ":time") cmd_time(arg, out);
   else if (cmd == ":plot") cmd_plot(arg, out);
   else if (cmd == ":load") cmd_load(arg, out);
+  else if (cmd == ":probe" || cmd == ":bound") cmd_probe(arg, cmd == ":bound", out);
   else out += "error: unknown command '" + cmd + "' (:help lists them)\n";
   return true;
 }
@@ -372,6 +378,29 @@ std::map<const vrml::Node*, std::string> script_owners(const vrml::Scene& scene)
 
 }  // namespace
 
+void Session::cmd_probe(const std::string& arg, bool box, std::string& out) {
+  if (probed_.empty()) {
+    out += "error: :load a .fs script first (:probe and :bound look into its entry point)\n";
+    return;
+  }
+  std::vector<float> v;
+  std::istringstream words(arg);
+  for (std::string w; words >> w;) {
+    float x;
+    if (!parse_number(w, x)) {
+      out += "error: '" + w + "' is not a number\n";
+      return;
+    }
+    v.push_back(x);
+  }
+  if (v.size() < (box ? 6u : 3u) || (box && v.size() % 2)) {
+    out += box ? "error: :bound X0 X1 Y0 Y1 Z0 Z1 [T0 T1]\n" : "error: :probe X Y Z [T]\n";
+    return;
+  }
+  if (box) probe_box(probed_, "", v, out);
+  else probe_point(probed_, "", v, out);
+}
+
 void Session::cmd_load(const std::string& path, std::string& out) {
   if (path.empty()) {
     out += "error: :load FILE\n";
@@ -392,6 +421,7 @@ void Session::cmd_load(const std::string& path, std::string& out) {
     defs_.erase(std::remove_if(defs_.begin(), defs_.end(), [&](const auto& d) { return d.first == "file:" + path; }),
                 defs_.end());
     defs_.push_back({"file:" + path, text});
+    probed_ = path;
     out += "loaded " + path + "\n";
     return;
   }

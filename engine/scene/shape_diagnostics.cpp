@@ -77,8 +77,7 @@ void suggest_box(const double e[6], double cell, ShapeFinding& f) {
 }
 
 std::string box_text(const ShapeFinding& f) {
-  return "bboxCenter " + num(f.center[0]) + " " + num(f.center[1]) + " " + num(f.center[2]) + " bboxSize " +
-      num(f.size[0]) + " " + num(f.size[1]) + " " + num(f.size[2]);
+  return "bboxCenter " + field_numbers(f.center) + " bboxSize " + field_numbers(f.size);
 }
 
 // What makes NaN out of numbers, by the op that first gives it.
@@ -184,7 +183,7 @@ class Diagnoser {
     }
     if (faces.empty()) return;
     ShapeFinding f;
-    f.issue = ShapeIssue::Cut;
+    f.issue = whole == 6 ? ShapeIssue::InsideOut : ShapeIssue::Cut;
     if (whole == 6) {
       f.diag = at(s_.geometry.field, frontend::Severity::Warning,
                   "inside-out shape: f > 0 on all six faces of its box and <= 0 within, so the box is drawn with a "
@@ -351,10 +350,13 @@ int Diagnoser::resolving_factor(const std::vector<std::array<int, 3>>& missed) {
 
 }  // namespace
 
+std::string field_numbers(const std::array<double, 3>& v) { return num(v[0]) + " " + num(v[1]) + " " + num(v[2]); }
+
 const char* issue_name(ShapeIssue i) {
   switch (i) {
     case ShapeIssue::Empty: return "empty";
     case ShapeIssue::Full: return "full";
+    case ShapeIssue::InsideOut: return "inside-out";
     case ShapeIssue::Cut: return "cut";
     case ShapeIssue::NotANumber: return "nan";
     case ShapeIssue::FinerThanGrid: return "finer";

@@ -3,6 +3,7 @@
 // without) meshing it: empty, full, cut by its box, not a number, finer than its grid. Found by
 // interval bounds over an octree and samples only where the bounds leave the sign open.
 #include <array>
+#include <string>
 #include <vector>
 
 #include "engine/scene/scene_model.h"
@@ -11,8 +12,10 @@
 
 namespace fscript::scene {
 
-enum class ShapeIssue { Empty, Full, Cut, NotANumber, FinerThanGrid };
+enum class ShapeIssue { Empty, Full, InsideOut, Cut, NotANumber, FinerThanGrid };
 const char* issue_name(ShapeIssue i);
+// Three numbers as the diagnostics write them (%.3g, space-separated): a field's value.
+std::string field_numbers(const std::array<double, 3>& v);
 
 struct ShapeFinding {
   ShapeIssue issue = ShapeIssue::Empty;

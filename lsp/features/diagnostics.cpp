@@ -12,16 +12,6 @@
 namespace fscript::lsp {
 namespace {
 
-std::string numbers(const double* v, size_t n) {
-  std::string out;
-  for (size_t k = 0; k < n; ++k) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.3g", std::abs(v[k]) < 1e-12 ? 0.0 : v[k]);
-    out += (k ? " " : "") + std::string(b);
-  }
-  return out;
-}
-
 // An edit setting `field` of node n to `value`: its value replaced where the file writes it, else
 // the field added after the definition.
 json set_field(const std::string& text, const vrml::Node& n, const std::string& field, const std::string& value) {
@@ -38,14 +28,15 @@ json fix_of(const std::string& text, const vrml::Scene& scene, const scene::Shap
   if (!f.node || vrml::file_of(scene, *f.node).path() != scene.file->path() || !f.node->slot("definition"))
     return nullptr;
   if (f.has_box) {
-    json edits = json::array({set_field(text, *f.node, "bboxSize", numbers(f.size.data(), 3))});
+    json edits = json::array({set_field(text, *f.node, "bboxSize", scene::field_numbers(f.size))});
     const vrml::Value* c = f.node->get("bboxCenter");
     bool moved = false;
     for (size_t a = 0; a < 3; ++a) moved |= std::abs((c && a < c->nums.size() ? c->nums[a] : 0) - f.center[a]) > 1e-9;
-    if (moved) edits.push_back(set_field(text, *f.node, "bboxCenter", numbers(f.center.data(), 3)));
-    return {{"title",
-             "Set the box to " + numbers(f.size.data(), 3) + (moved ? " around " + numbers(f.center.data(), 3) : "")},
-            {"edits", edits}};
+    if (moved) edits.push_back(set_field(text, *f.node, "bboxCenter", scene::field_numbers(f.center)));
+    return {
+        {"title",
+         "Set the box to " + scene::field_numbers(f.size) + (moved ? " around " + scene::field_numbers(f.center) : "")},
+        {"edits", edits}};
   }
   if (f.resolution > 0) {
     std::string r = "[" + std::to_string(f.resolution) + "]";

@@ -78,6 +78,9 @@ jcheck "--stats: finer than the grid with its resolution, the NaN share" err "
 {d['issue']: d for d in j['shape_diagnostics']}['finer']['resolution'] == 100 and
 {d['issue']: d for d in j['shape_diagnostics']}['empty']['line'] == 3
 " -- "$R" "$T/sheet.wrl" --stats -o "$T/s.ply"
+jcheck "--stats: an inside-out shape is its own issue" err "
+[d['issue'] for d in j['shape_diagnostics']] == ['inside-out']
+" -- "$R" "$T/inverted.wrl" --stats -o "$T/i.ply"
 jcheck "--stats: the NaN share" err "
 near(j['shape_diagnostics'][0]['fraction'], 0.5, 0.02) and j['shape_diagnostics'][0]['issue'] == 'nan'
 " -- "$R" "$T/sqrt.wrl" --stats -o "$T/q.ply"

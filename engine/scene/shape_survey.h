@@ -32,7 +32,6 @@ struct Survey {
   float nan_point[3] = {0, 0, 0};  // a sample where f is NaN
   std::vector<std::array<int, 3>> open;  // the first grid point of each brick that was sampled
   bool complete = true;                  // false: the sample budget ran out
-  uint64_t outside() const { return points - inside - nan; }
 };
 
 struct SurveyOptions {

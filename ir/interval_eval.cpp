@@ -2,6 +2,7 @@
 #include "ir/interval_eval.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "ir/eval.h"
@@ -169,9 +170,26 @@ void IntervalTape::emit(const Choice* choices, size_t stride, Needed needed, Sta
   }
   out.steps_.assign(kept.data(), next);
   out.values_ = n;
+  out.sources_.clear();
+  if (!sources_.empty() && keeping_sources()) keep_sources(needed, stands, out);
   out.outputs_.clear();
   for (uint32_t o : outputs_) out.outputs_.push_back(renumber[o]);
 }
+
+template <typename Needed, typename Stands>
+void IntervalTape::keep_sources(Needed needed, Stands stands, IntervalTape& out) const {
+  out.sources_.reserve(out.steps_.size());
+  for (size_t i = 0; i < steps_.size(); ++i)
+    if (needed(steps_[i].dst) && !stands(steps_[i].dst)) out.sources_.push_back(sources_[i]);
+}
+
+namespace {
+std::atomic<int> source_keepers{0};
+}  // namespace
+
+bool keeping_sources() { return source_keepers.load(std::memory_order_relaxed) > 0; }
+KeepSources::KeepSources() { source_keepers.fetch_add(1); }
+KeepSources::~KeepSources() { source_keepers.fetch_sub(1); }
 
 IntervalTape IntervalTape::simplified(const Choice* choices, size_t stride, size_t* collapsed) const {
   thread_local std::vector<uint8_t> live;  // bit 0: needed; bit 1: a decided choice, standing for its side
@@ -266,6 +284,11 @@ void IntervalTape::eval(const std::vector<Interval>& inputs, IntervalEval& out) 
   }
   out.outputs.clear();
   for (uint32_t o : outputs_) out.outputs.push_back(v[o]);
+}
+
+size_t IntervalTape::operations() const {
+  return static_cast<size_t>(std::count_if(steps_.begin(), steps_.end(),
+                                           [](const Step& s) { return s.op != Op::Param && s.op != Op::Const; }));
 }
 
 bool IntervalTape::simd_only() const {

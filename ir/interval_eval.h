@@ -102,7 +102,8 @@ class IntervalTape {
   const std::vector<Step>& steps() const { return steps_; }
   const std::vector<uint32_t>& outputs() const { return outputs_; }
   // Where each step's op is in the source (line and column; 0 where none): kept by the tape made
-  // from a function, not by simplified tapes (diagnostics point at the whole function's steps).
+  // from a function, and by the tapes simplified from one while a KeepSources lives (the profiler
+  // maps a region's steps to lines); empty otherwise, which costs simplification nothing.
   struct Where {
     uint32_t line = 0, col = 0;
   };
@@ -110,6 +111,7 @@ class IntervalTape {
   uint32_t num_values() const { return values_; }  // value ids are below this
   uint32_t num_params() const { return params_; }
   size_t length() const { return steps_.size(); }  // value ops, parameters and constants included
+  size_t operations() const;  // steps that compute: parameters and constants left out
   // Whether every step is a simd_interval_op (batched bounds cost about what a few points do).
   bool simd_only() const;
 
@@ -118,11 +120,23 @@ class IntervalTape {
   // The forward pass: the needed steps in order, renumbered, a standing choice taking its side's number.
   template <typename Needed, typename Stands>
   void emit(const Choice* choices, size_t stride, Needed needed, Stands stands, IntervalTape& out) const;
+  template <typename Needed, typename Stands>
+  void keep_sources(Needed needed, Stands stands, IntervalTape& out) const;
   std::vector<Step> steps_;
   std::vector<uint32_t> outputs_;
   std::vector<Where> sources_;  // by step; empty in simplified tapes
   uint32_t values_ = 0, params_ = 0;
 };
+
+// While one of these lives (in any thread), simplified tapes keep their steps' sources.
+class KeepSources {
+ public:
+  KeepSources();
+  ~KeepSources();
+  KeepSources(const KeepSources&) = delete;
+  KeepSources& operator=(const KeepSources&) = delete;
+};
+bool keeping_sources();
 
 // The tape's values at one point (`params`, one per parameter), step by step with the reference
 // semantics of constant folding (ir::eval_pure): the index of the first step whose value is NaN

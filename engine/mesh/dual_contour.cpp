@@ -15,6 +15,7 @@
 #include "engine/mesh/dc_cell_merge.h"
 #include "engine/mesh/dc_tubes.h"
 #include "engine/mesh/dc_slabs.h"
+#include "engine/mesh/field_profile.h"
 #include "engine/mesh/sample_pruning.h"
 #include "runtime/support/parallel.h"
 
@@ -291,6 +292,7 @@ DualContourStats dual_contour_totals() {
 }
 
 bool polygonize(const ImplicitJob& job, Mesh& out, backends::RuntimeError& err) {
+  if (job.profile) return polygonize_profiled(job, out, err);
   DualContourStats st;
   switch (job.mesher.kind) {
     case Mesher::MarchingTetrahedra:

@@ -75,6 +75,11 @@ class Field {
   // a tape takes both from one interval pass (local() alone bounds its box again).
   virtual void bounds_and_locals(const Box3* boxes, size_t n, math::Interval* out, const WantsLocal& wants,
                                  std::shared_ptr<const Field>* locals) const;
+  // The tapes this field runs for its values and for its gradient, where it runs one (nullptr: it
+  // runs something else): the profiler charges their steps to source lines. The gradient's tape may
+  // be made at this ask.
+  virtual const ir::IntervalTape* value_tape() const { return nullptr; }
+  virtual const ir::IntervalTape* gradient_tape() const { return nullptr; }
   // The mesher knows how many points the whole function will be asked for once the octree has
   // handed out its regions' tapes (backends::Kernel::expect_points: auto then compiles or not).
   virtual void expect_points(uint64_t) const {}
@@ -123,6 +128,7 @@ class KernelField : public Field {
   bool has_gradient() const override { return gradient_ != nullptr; }
   bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                      backends::RuntimeError& err) const override;
+  const ir::IntervalTape* value_tape() const override { return intervals_; }
 
  private:
   const backends::Kernel& k_;

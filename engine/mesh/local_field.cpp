@@ -66,10 +66,9 @@ class TapeField : public Field, public std::enable_shared_from_this<TapeField> {
     if (!t) return nullptr;
     return std::make_shared<TapeField>(std::move(t), b, shared_from_this(), owner_);
   }
-
- private:
+  const ir::IntervalTape* value_tape() const override { return tape_.get(); }
   // The gradient's tape for this region: the parent's (or the whole gradient) simplified for the box.
-  const ir::IntervalTape* gradient_tape() const {
+  const ir::IntervalTape* gradient_tape() const override {
     std::call_once(gradient_once_, [this] {
       const ir::IntervalTape* from = parent_ ? parent_->gradient_tape() : owner_.gradient_();
       if (!from) return;
@@ -81,6 +80,7 @@ class TapeField : public Field, public std::enable_shared_from_this<TapeField> {
     return gradient_from_;
   }
 
+ private:
   // Outputs [0, count) of `t` at n points, kPointLanes at a time.
   void run(const ir::IntervalTape& t, const float* x, const float* y, const float* z, size_t n, float* const* out,
            size_t count) const {

@@ -21,7 +21,9 @@ namespace fscript::mesh {
 // dual_contour.h) or marching tetrahedra on the same grid.
 enum class Mesher : uint8_t { MarchingTetrahedra, DualContouring };
 
-class SlabSplit;  // dc_slabs.h
+class SlabSplit;     // dc_slabs.h
+class Profiler;      // field_profile.h
+class FieldProfile;  // field_profile.h
 
 struct MesherOptions {
   Mesher kind = Mesher::DualContouring;
@@ -32,6 +34,8 @@ struct MesherOptions {
   // fvrml-run --shard K/M without --frames (dc_slabs.h): dual contouring makes only this shard's
   // slab of the blocks, or joins every shard's; marching tetrahedra is left to the merge.
   SlabSplit* slabs = nullptr;
+  // fvrml-run --profile: each job's evaluation is profiled in the profile of its shape.
+  Profiler* profiler = nullptr;
 };
 
 struct ImplicitJob {
@@ -44,6 +48,7 @@ struct ImplicitJob {
   PruneStats* stats = nullptr;  // filled when given (and added to prune_totals() in any case)
   MesherOptions mesher;
   support::ProgressJob* progress = nullptr;  // when given, told how much of the grid is done
+  FieldProfile* profile = nullptr;  // when given, the job's evaluation is counted there (field_profile.h)
 };
 
 // The brick map of the job's sample grid (null when job.prune is off or the field cannot bound

@@ -58,6 +58,12 @@ bool ShapeField::eval_gradient(const float* x, const float* y, const float* z, s
 
 ShapeField::~ShapeField() = default;
 
+const ir::IntervalTape* ShapeField::value_tape() const { return s_.texture ? nullptr : s_.geometry.intervals.get(); }
+
+const ir::IntervalTape* ShapeField::gradient_tape() const {
+  return has_gradient() ? s_.geometry.gradient->tape() : nullptr;
+}
+
 const mesh::LocalTapes* ShapeField::tapes() const {
   if (s_.texture || !s_.geometry.intervals) return nullptr;
   std::call_once(local_once_, [this] {

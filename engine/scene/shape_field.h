@@ -38,6 +38,8 @@ class ShapeField : public mesh::Field {
   void bounds_and_locals(const mesh::Box3* boxes, size_t n, math::Interval* out, const mesh::WantsLocal& wants,
                          std::shared_ptr<const mesh::Field>* locals) const override;
   void expect_points(uint64_t points) const override;
+  const ir::IntervalTape* value_tape() const override;  // the FRep's (not a 3D texture's)
+  const ir::IntervalTape* gradient_tape() const override;
   ~ShapeField() override;
 
  private:

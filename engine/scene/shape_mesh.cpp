@@ -6,6 +6,7 @@
 
 #include "runtime/support/progress.h"
 #include "engine/mesh/dc_slabs.h"
+#include "engine/mesh/field_profile.h"
 #include "engine/mesh/marching_tetrahedra.h"
 #include "engine/mesh/parametric.h"
 #include "engine/scene/shape_field.h"
@@ -211,6 +212,7 @@ bool mesh_shape(const Shape& s, mesh::Mesh& out, backends::RuntimeError& err, bo
     job.threads = threads;
     job.prune = prune;
     job.mesher = mesher;
+    if (mesher.profiler) job.profile = &mesher.profiler->of(s.fshape);
     ok = mesh::polygonize(job, out, err);
   } else {
     mesh::KernelParametric map(*s.geometry.kernel, static_cast<float>(s.geometry.t));
@@ -306,6 +308,7 @@ bool mesh_group(const SceneModel& m, int group, mesh::Mesh& out, backends::Runti
   job.threads = threads;
   job.prune = prune;
   job.mesher = mesher;
+  if (mesher.profiler) job.profile = &mesher.profiler->of(m.groups[group].node);
   if (!mesh::polygonize(job, out, err)) return false;
   const Shape* first = field.first_shape();
   if (first && (!colour_vertices(*first, out, err) || !evaluate_material(*first, out, err))) return false;

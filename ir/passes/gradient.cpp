@@ -21,8 +21,11 @@ class Builder {
  public:
   Builder(Function& f, Block* b) : f_(f), b_(b) {}
 
+  // The derivatives built next stand for `from`'s in the source (a profile charges them to its line).
+  void at(const Inst* from) { line_ = from->line, col_ = from->col; }
   Inst* op(Op o, Inst* a, Inst* b = nullptr, Inst* c = nullptr) {
     Inst* i = f_.make(o);
+    i->line = line_, i->col = col_;
     for (Inst* x : {a, b, c})
       if (x) i->args.push_back(x);
     return append(i);
@@ -78,6 +81,7 @@ class Builder {
   Function& f_;
   Block* b_;
   std::unordered_map<uint32_t, Inst*> consts_;
+  uint32_t line_ = 0, col_ = 0;
 };
 
 bool zero(const Tangent& t) { return !t[0] && !t[1] && !t[2]; }
@@ -213,6 +217,7 @@ std::unique_ptr<Module> gradient_module(const Module& m) {
     std::vector<Tangent> d;
     for (const Inst* a : i->args) c->args.push_back(copy[a->id]), d.push_back(tangent[a->id]);
     B.append(c);
+    B.at(i);
     copy[i->id] = c;
     if (!rule(B, c, d, tangent[i->id])) return nullptr;
   }

@@ -15,7 +15,7 @@ check "fscript run: a misspelt option, not a number" 2 "^error: unknown option '
 check "fscript run: a misspelt option with =" 2 "unknown option '--bakend' \(did you mean '--backend'\?\)" -- "$F" run "$T/id.fs" --bakend=vm
 check "fscript run: a misspelt short option" 2 "unknown option '-q'" -- "$F" run "$T/id.fs" -q
 check "fscript: a misspelt command" 2 "^error: unknown command 'rn' \(did you mean 'run'\?\); the commands are run, eval, check" -- "$F" rn "$T/id.fs"
-check "fscript: a command it does not know" 2 "^error: unknown command 'compile'; the commands are run, eval, check, probe, emit-ir, emit-asm, fmt, repl, bench, render2d" -- "$F" compile "$T/id.fs"
+check "fscript: a command it does not know" 2 "^error: unknown command 'compile'; the commands are run, eval, check, probe, profile, emit-ir, emit-asm, fmt, repl, bench, render2d" -- "$F" compile "$T/id.fs"
 check "fscript render2d: an option of another command" 2 "unknown option '--points' \(did you mean '--repeat'\?\)|unknown option '--points'" \
   -- "$F" render2d "$T/id.fs" --size 8 --bounds -1,1,-1,1 --points 4
 check "fvrml-run: a misspelt option" 2 "^error: unknown option '--backnd' \(did you mean '--backend'\?\)" -- "$R" "$T/ball.wrl" --backnd vm -o "$T/b.ply"

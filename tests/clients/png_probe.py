@@ -87,7 +87,9 @@ def bbox_mode(path):
                       'bbox_width': box[2] - box[0] + 1 if box else 0, 'bbox_height': box[3] - box[1] + 1 if box else 0}))
 
 
-if len(sys.argv) == 3 and sys.argv[2] == '--bbox':
+if __name__ != '__main__':
+    pass  # imported for read_png
+elif len(sys.argv) == 3 and sys.argv[2] == '--bbox':
     bbox_mode(sys.argv[1])
 elif len(sys.argv) == 5 and sys.argv[2] == '--tiles':
     tiles_mode(sys.argv[1], int(sys.argv[3]), int(sys.argv[4]))

@@ -11,6 +11,7 @@
 #include "tools/limit_flags.h"
 #include "tools/fscript/commands.h"
 #include "tools/fscript/probe.h"
+#include "tools/fscript/profile.h"
 #include "tools/fscript/repl.h"
 #include "runtime/support/version.h"
 
@@ -29,6 +30,7 @@ struct Args {
   uint32_t max_depth = 1000;
   tools::RunLimits limits;
   Render3dArgs r3d;
+  ProfileArgs profile;
 };
 
 void add_budget_flags(CLI::App& app, Args& a) { tools::add_budget_flags(app, a.opts.budgets, a.max_depth); }
@@ -63,6 +65,7 @@ int dispatch(CLI::App& app, Args& a) {
   if (app.got_subcommand("eval")) return cmd_eval(a.opts, a.file, a.entry, a.points_path);
   if (app.got_subcommand("check")) return cmd_check(a.files);
   if (app.got_subcommand("probe")) return cmd_probe(a.file, a.entry, a.at, a.box);
+  if (app.got_subcommand("profile")) return cmd_profile(a.profile);
   if (app.got_subcommand("emit-ir")) return cmd_emit_ir(a.file, a.entry, a.opt, a.passes, a.llvm, a.gradient);
   if (app.got_subcommand("emit-asm")) return cmd_emit_asm(a.opts, a.file, a.entry);
   if (app.got_subcommand("fmt")) return cmd_fmt(a.file, a.in_place, a.check_only);
@@ -109,6 +112,23 @@ int real_main(int argc, char** argv) {
   probe->add_option("--entry,-e", a.entry, "function to probe (default: the script's entry point)");
   probe->add_option("--at", a.at, "the point: x,y,z[,t] (the entry's inputs, missing ones 0)");
   probe->add_option("--bound", a.box, "the box: x0,x1,y0,y1,z0,z1[,t0,t1]: intervals instead of values");
+
+  CLI::App* profile = app.add_subcommand(
+      "profile", "where a shape's evaluation goes while it is meshed: each line's share, pruning, a picture");
+  profile->add_option("FILE", a.profile.file, "the .fs script or .wrl scene")->required();
+  profile->add_option("--backend,-b", a.profile.backend, "evaluation backend: auto, vm, sse or llvm (default: auto)")
+      ->check(CLI::IsMember({"auto", "vm", "sse", "llvm"}));
+  profile->add_option("--threads,-j", a.profile.threads, "threads, 1 to 256 (default 1)")
+      ->check(CLI::Range(1u, 256u).description(""));
+  profile->add_option("--resolution-scale", a.profile.resolution_scale, "multiply every node's resolution by K")
+      ->check(CLI::Range(1e-3, 1e3).description(""))
+      ->type_name("K");
+  profile
+      ->add_option("--picture", a.profile.picture,
+                   "a PNG of the box seen from +z: the work per column and the mean tape length")
+      ->type_name("FILE.png");
+  profile->add_flag("--json", a.profile.json, "the report as JSON");
+  profile->add_flag("!--no-prune", a.profile.prune, "sample every grid point (what pruning saves, by comparison)");
 
   CLI::App* emit = app.add_subcommand("emit-ir", "print the SSA IR");
   emit->add_option("FILE", a.file, "the .fs script")->required();

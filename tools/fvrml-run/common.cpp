@@ -7,16 +7,21 @@
 
 #include "frontend/fscript/embedded.h"
 #include "engine/mesh/field.h"
+#include "engine/mesh/field_profile.h"
 #include "engine/mesh/local_field.h"
 #include "engine/mesh/mesh_io.h"
 #include "engine/scene/shape_diagnostics.h"
 #include "engine/scene/shape_mesh.h"
+#include "engine/scene/shape_profile.h"
 #include "engine/scene/standard_geometry.h"
 #include "runtime/support/progress.h"
 #include "tools/fvrml-run/memo.h"
 #include "tools/fvrml-run/run.h"
 
 namespace fvrml_run {
+
+// The lines --profile prints per shape (the stats' "profile" has every line).
+constexpr size_t kProfileRows = 20;
 
 double evaluation_ms_since(uint64_t ns0) { return (mesh::evaluation_ns().load() - ns0) / 1e6; }
 
@@ -163,6 +168,28 @@ void report_shapes(const Options& o, const Loaded& l, const SceneModel& model, n
   }
   st["shape_diagnostics"] = list;
   st["shape_diagnostics_ms"] = ms_since(t0);
+}
+
+bool report_profiles(const Options& o, const Loaded& l, nlohmann::json& st) {
+  namespace sc = fscript::scene;
+  const auto& all = o.mesher.profiler->profiles();
+  nlohmann::json list = nlohmann::json::array();
+  int index = 0;
+  for (const auto& [key, p] : all) {
+    sc::ShapeProfile r = sc::profile_report(l.scene, *static_cast<const vrml::Node*>(key), *p);
+    std::cerr << sc::profile_text(r, kProfileRows);
+    list.push_back(sc::profile_json(r));
+    if (!o.profile_picture.empty()) {
+      std::string path = all.size() == 1 ? o.profile_picture : numbered(o.profile_picture, index, int(all.size()));
+      std::string error;
+      if (!sc::write_profile_picture(*p, path, error)) return std::cerr << "error: " << error << "\n", false;
+      std::cerr << "  cost picture: " << path << " (seen from +z; left: work per column, right: mean tape length)\n";
+    }
+    ++index;
+  }
+  if (all.empty()) std::cerr << o.path << ": note: --profile: no implicit shape was meshed, nothing to profile\n";
+  st["profile"] = list;
+  return true;
 }
 
 std::string numbered(const std::string& path, int frame, int frames) {

@@ -17,6 +17,7 @@
 #include "backends/row_split_kernel.h"
 #include "backends/tiered/tiered.h"
 #include "engine/mesh/dual_contour.h"
+#include "engine/mesh/field_profile.h"
 #include "engine/mesh/local_field.h"
 #include "engine/mesh/sample_pruning.h"
 #include "runtime/support/big_stack.h"
@@ -248,6 +249,12 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
                  "or mesh (the mesh the other formats write, rasterised) (png)")
       ->check(CLI::IsMember({"direct", "mesh"}))
       ->type_name("HOW");
+  app.add_flag("--profile", o.profile,
+               "after the run, where implicit shapes' evaluation went: each script line's share of the time and of "
+               "the operations evaluated after pruning, and the pruning figures (meshes pictures: --render mesh)");
+  app.add_option("--profile-picture", o.profile_picture,
+                 "with --profile: a PNG of the box seen from +z, the work per column and the mean tape length")
+      ->type_name("FILE.png");
   app.add_option("-o,--output", o.output, "output file: .wrl (default), .glb, .ply, .obj, .stl or .png");
   std::string shard_text;
   app.add_option("--shard", shard_text,
@@ -313,6 +320,9 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   o.prune = !no_prune;
   o.mesher.kind = mesher == "dc" ? mesh::Mesher::DualContouring : mesh::Mesher::MarchingTetrahedra;
   o.direct_pictures = render == "direct";
+  if (!o.profile_picture.empty() && !o.profile) o.profile = true;
+  mesh::Profiler profiler;
+  if (o.profile) o.mesher.profiler = &profiler, o.direct_pictures = false;
   if (tolerance->count() && o.mesher.kind != mesh::Mesher::DualContouring)
     std::cerr << "warning: --tolerance has no effect with --mesher mt (marching tetrahedra merges no cells)\n";
   if (std::string message; disk_cache && !fscript::backends::enable_llvm_disk_cache(message)) {
@@ -337,6 +347,8 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
     std::cerr << "no -o given: writing " << o.output << " (-o OUT.wrl|glb|ply|obj|stl|png chooses; -o - "
               << "writes VRML97 to standard output)\n";
   }
+  if (o.profile && (serve.on || !shard_text.empty() || merge))
+    return std::cerr << "error: --profile profiles one run on this machine: not with --serve, --shard or merge\n", 2;
   if (!shard_text.empty() && o.format.empty()) return std::cerr << kShardNeeds, 2;
   if (o.format.empty() && o.output == "-") o.format = "wrl";
   if (o.format.empty() && !o.output.empty()) o.format = o.output.substr(o.output.find_last_of('.') + 1);

@@ -53,6 +53,10 @@ struct Options {
   bool view_json = false;  // --serve: the scene's Viewpoint, lights and background in the stats' "view"
   // --serve: shape diagnostics printed (for the page's overlay) as well as kept in the stats.
   bool print_shape_diagnostics = false;
+  // --profile: where evaluation goes, by source line (printed after the run; mesher.profiler set),
+  // and --profile-picture: where in the box it goes, as a PNG.
+  bool profile = false;
+  std::string profile_picture;
   MeshMemo* memo = nullptr;  // --serve: the meshes of the last run, reused where nothing changed
   // --serve, glTF: the scene so far while animations are polygonized (its static shapes and the
   // frames made: `frames` of `of` of the animation under way).
@@ -105,6 +109,10 @@ struct Meshed {
 // the node's. A warning with --keep-going.
 void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, const fscript::backends::RuntimeError& err,
             const std::string& prefix = "");
+
+// --profile: each profiled shape's report on standard error (its lines, the costliest first), in
+// the stats as "profile", and the picture when asked; false when the picture cannot be written.
+bool report_profiles(const Options& o, const Loaded& l, nlohmann::json& st);
 
 // Meshes every shape outside an FTransform and every top-level FTransform except those in `skip`;
 // `world` applies the enclosing Transforms (mesh files and pictures) or not (the VRML97 output keeps

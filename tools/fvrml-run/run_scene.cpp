@@ -177,7 +177,9 @@ int run_scene(const Options& o, nlohmann::json& st, std::vector<std::string>* fi
   }
   if (o.view_json) st["view"] = view_json(render_options(o, l.scene, o.width, o.height));
   bool animation = o.format == "wrl" || o.format == "glb";
-  return o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
+  int rc = o.frames > 0 && !animation ? frames(o, l, st) : single(o, l, st);
+  if (rc == 0 && o.profile && !report_profiles(o, l, st)) return 1;
+  return rc;
 }
 
 namespace {

@@ -89,34 +89,34 @@ json Server::initialize_result() const {
             {"foldingRangeProvider", true},
             {"codeActionProvider", {{"codeActionKinds", {"quickfix"}}}},
             {"semanticTokensProvider", {{"legend", semantic_tokens_legend()}, {"full", true}}},
-            {"executeCommandProvider", {{"commands", {"fscript.preview"}}}}}},
+            {"codeLensProvider", {{"resolveProvider", false}}},
+            {"executeCommandProvider", {{"commands", {"fscript.preview", "fscript.profile"}}}}}},
           {"serverInfo", {{"name", "fscript-lsp"}, {"version", "0.1"}}}};
 }
 
-json Server::request(const std::string& method, const json& params, std::vector<json>&) {
+json Server::request(const std::string& method, const json& params, std::vector<json>& out) {
   auto doc = [&]() -> Document* { return docs_.find(params.at("textDocument").at("uri").get<std::string>()); };
   auto no_doc = [&] { return json{{"__error", kInvalidParams}, {"message", "the document is not open"}}; };
   if (method == "initialize") {
     initialized_ = true;
+    const json caps = params.value("capabilities", json::object());
+    if (caps.is_object() && caps.contains("workspace") && caps["workspace"].is_object()) {
+      const json& w = caps["workspace"];
+      lens_refresh_ =
+          w.contains("codeLens") && w["codeLens"].is_object() && w["codeLens"].value("refreshSupport", false) == true;
+    }
     return initialize_result();
   }
   if (method == "shutdown") {
     shutdown_ = true;
     return nullptr;
   }
-  if (method == "workspace/executeCommand") {  // fscript.preview [URI]: the live preview's URL
-    if (params.at("command") != "fscript.preview")
-      return {{"__error", kInvalidParams}, {"message", "unknown command " + params.at("command").dump()}};
-    const json& args = params.value("arguments", json::array());
-    if (args.empty() || !(args[0].is_string() || (args[0].is_object() && args[0].contains("uri"))))
-      return {{"__error", kInvalidParams}, {"message", "fscript.preview wants the document's URI as its argument"}};
-    return previews_.start(args[0].is_string() ? args[0].get<std::string>() : args[0].at("uri").get<std::string>());
-  }
+  if (method == "workspace/executeCommand") return execute_command(params, out);
   static const char* const kDocumentMethods[] = {
-      "textDocument/hover",          "textDocument/completion",         "textDocument/definition",
-      "textDocument/documentSymbol", "textDocument/formatting",         "textDocument/references",
-      "textDocument/rename",         "textDocument/signatureHelp",      "textDocument/foldingRange",
-      "textDocument/codeAction",     "textDocument/semanticTokens/full"};
+      "textDocument/hover",          "textDocument/completion",          "textDocument/definition",
+      "textDocument/documentSymbol", "textDocument/formatting",          "textDocument/references",
+      "textDocument/rename",         "textDocument/signatureHelp",       "textDocument/foldingRange",
+      "textDocument/codeAction",     "textDocument/semanticTokens/full", "textDocument/codeLens"};
   if (std::find(std::begin(kDocumentMethods), std::end(kDocumentMethods), method) != std::end(kDocumentMethods)) {
     Document* d = doc();
     if (!d) return no_doc();
@@ -138,9 +138,34 @@ json Server::request(const std::string& method, const json& params, std::vector<
     if (method == "textDocument/signatureHelp") return signature_help(*d, params);
     if (method == "textDocument/foldingRange") return folding_ranges(*d);
     if (method == "textDocument/semanticTokens/full") return semantic_tokens(*d);
+    if (method == "textDocument/codeLens") {
+      auto last = profiles_.find(d->uri);
+      return code_lenses(*d, last == profiles_.end() ? nullptr : &last->second);
+    }
     return code_actions(*d, params);
   }
   return {{"__error", kMethodNotFound}, {"message", "unknown method '" + method + "'"}};
+}
+
+// fscript.preview URI: the live preview's URL; fscript.profile URI: the document's profile (its
+// lenses kept for codeLens, and the client asked to refresh them where it can).
+json Server::execute_command(const json& params, std::vector<json>& out) {
+  const std::string command = params.at("command").is_string() ? params.at("command").get<std::string>() : "";
+  if (command != "fscript.preview" && command != "fscript.profile")
+    return {{"__error", kInvalidParams}, {"message", "unknown command " + params.at("command").dump()}};
+  const json& args = params.value("arguments", json::array());
+  if (!args.is_array() || args.empty() || !(args[0].is_string() || (args[0].is_object() && args[0].contains("uri"))))
+    return {{"__error", kInvalidParams}, {"message", command + " wants the document's URI as its argument"}};
+  std::string uri = args[0].is_string() ? args[0].get<std::string>() : args[0].at("uri").get<std::string>();
+  if (command == "fscript.preview") return previews_.start(uri);
+  Document* d = docs_.find(uri);
+  if (!d) return {{"__error", kInvalidParams}, {"message", "the document is not open"}};
+  json result = run_profile(*d, profiles_[uri]);
+  if (lens_refresh_ && !result.contains("__error"))
+    out.push_back({{"jsonrpc", "2.0"},
+                   {"id", "fscript-lens-refresh-" + std::to_string(++requests_)},
+                   {"method", "workspace/codeLens/refresh"}});
+  return result;
 }
 
 namespace {
@@ -215,6 +240,7 @@ void Server::notification(const std::string& method, const json& params, std::ve
   } else if (method == "textDocument/didClose") {
     std::string uri = params.at("textDocument").at("uri");
     docs_.close(uri);
+    profiles_.erase(uri);
     out.push_back({{"jsonrpc", "2.0"},
                    {"method", "textDocument/publishDiagnostics"},
                    {"params", {{"uri", uri}, {"diagnostics", json::array()}}}});

@@ -12,7 +12,8 @@
 #include <set>
 
 #include "backends/vm/vm_points.h"
-#include "engine/render/png.h"
+#include "engine/scene/shape_field.h"
+#include "engine/scene/shape_mesh.h"
 
 namespace fscript::scene {
 namespace {
@@ -189,6 +190,28 @@ std::string profile_text(const ShapeProfile& r, size_t rows) {
   return out;
 }
 
+bool profile_scene(const vrml::Scene& scene, const SceneModel& model, int threads, bool prune, SceneProfile& out,
+                   backends::RuntimeError& err, const vrml::Node*& where) {
+  mesh::MesherOptions mesher;
+  mesher.profiler = &out.profiler;
+  for (const Shape& s : model.shapes) {
+    if (s.group >= 0 || s.kind != ShapeKind::Implicit) continue;
+    mesh::Mesh m;
+    if (!mesh_shape(s, m, err, true, threads, prune, mesher)) return where = s.fshape, false;
+  }
+  for (size_t g = 0; g < model.groups.size(); ++g) {
+    if (model.groups[g].parent >= 0 || parametric_group(model, static_cast<int>(g))) continue;
+    mesh::Mesh m;
+    if (!mesh_group(model, static_cast<int>(g), m, err, true, threads, prune, mesher))
+      return where = model.groups[g].node, false;
+  }
+  for (const auto& [key, p] : out.profiler.profiles()) {
+    out.shapes.push_back(profile_report(scene, *static_cast<const vrml::Node*>(key), *p));
+    out.profiles.push_back(p.get());
+  }
+  return true;
+}
+
 nlohmann::json profile_json(const ShapeProfile& r) {
   nlohmann::json lines = nlohmann::json::array();
   for (const LineCost& c : r.lines)
@@ -230,9 +253,9 @@ void heat(double t, uint8_t* px) {
 
 }  // namespace
 
-bool write_profile_picture(const mesh::FieldProfile& p, const std::string& path, std::string& error) {
+std::vector<uint8_t> profile_picture(const mesh::FieldProfile& p, uint32_t& out_width, uint32_t& out_height) {
   const int w = p.width(), h = p.height();
-  if (!w) return error = "nothing was evaluated to draw", false;
+  if (!w) return {};
   const int zoom = std::max(1, kPictureSide / std::max(w, h)), gap = 4, width = 2 * w * zoom + gap;
   const int height = h * zoom;
   std::vector<uint8_t> px(static_cast<size_t>(width) * static_cast<size_t>(height) * 3, 255);
@@ -260,7 +283,8 @@ bool write_profile_picture(const mesh::FieldProfile& p, const std::string& path,
           std::copy(right, right + 3, &px[(row + static_cast<size_t>(w * zoom + gap + i * zoom + di)) * 3]);
         }
     }
-  return render::write_png(path, static_cast<uint32_t>(width), static_cast<uint32_t>(height), 3, px, error);
+  out_width = static_cast<uint32_t>(width), out_height = static_cast<uint32_t>(height);
+  return px;
 }
 
 }  // namespace fscript::scene

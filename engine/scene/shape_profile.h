@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/mesh/field_profile.h"
+#include "engine/scene/scene_model.h"
 #include "frontend/vrml/scene_graph.h"
 
 namespace fscript::scene {
@@ -38,6 +39,16 @@ struct ShapeProfile {
   std::vector<LineCost> lines;  // by line, those with work
 };
 
+// Every implicit shape outside an FTransform and every top-level implicit FTransform of the model
+// meshed as fvrml-run meshes them, profiled. False on a runtime error (`where`: its shape's node).
+struct SceneProfile {
+  mesh::Profiler profiler;
+  std::vector<ShapeProfile> shapes;  // in the order they were meshed
+  std::vector<const mesh::FieldProfile*> profiles;  // theirs, for pictures
+};
+bool profile_scene(const vrml::Scene& scene, const SceneModel& model, int threads, bool prune, SceneProfile& out,
+                   backends::RuntimeError& err, const vrml::Node*& where);
+
 // The report of one profile; `node`: the shape's FShape (or FTransform).
 ShapeProfile profile_report(const vrml::Scene& scene, const vrml::Node& node, const mesh::FieldProfile& p);
 
@@ -51,7 +62,8 @@ nlohmann::json profile_json(const ShapeProfile& r);
 
 // The picture: two panels of the box seen from +z, the operations evaluated per column (left) and
 // the mean tape length of the points there (right); columns where nothing was evaluated dark blue.
-bool write_profile_picture(const mesh::FieldProfile& p, const std::string& path, std::string& error);
+// RGB rows from the top; empty when nothing was evaluated.
+std::vector<uint8_t> profile_picture(const mesh::FieldProfile& p, uint32_t& width, uint32_t& height);
 
 // Nanoseconds per point of one step of `op` on the VM's tape evaluator, measured on this machine
 // at the first ask (what a region's time is split by).

@@ -48,16 +48,8 @@ json fix_of(const std::string& text, const vrml::Scene& scene, const scene::Shap
 // The shape diagnostics of the document's implicit shapes (none while it has errors).
 void shape_diagnostics(const Document& d, json& list) {
   vrml::Scene scene;
-  frontend::DiagnosticSink ignored;
-  std::string path = path_of_uri(d.uri);
-  bool ok = d.scene ? vrml::parse_scene(std::make_unique<frontend::SourceFile>(path.empty() ? d.uri : path, d.text),
-                                        ignored, scene) &&
-          vrml::load_inlines(scene, ignored)
-                    : vrml::script_scene(path.empty() ? d.uri : path, d.text, scene, ignored);
-  scene::ModelOptions mo;
-  mo.compile.backend = "vm";
   scene::SceneModel model;
-  if (!ok || !scene::build_scene_model(scene, mo, ignored, model)) return;
+  if (!scene_model_of(d, scene, model)) return;
   for (const auto& f : scene::diagnose_scene(scene, model)) {
     if (f.diag.path != scene.file->path()) continue;  // in an Inline's file
     json diag = {{"range", range_of(d.text, f.diag.pos.line, f.diag.pos.col, f.diag.length)},
@@ -71,6 +63,18 @@ void shape_diagnostics(const Document& d, json& list) {
 }
 
 }  // namespace
+
+bool scene_model_of(const Document& d, vrml::Scene& scene, scene::SceneModel& model) {
+  frontend::DiagnosticSink ignored;
+  std::string path = path_of_uri(d.uri);
+  bool ok = d.scene ? vrml::parse_scene(std::make_unique<frontend::SourceFile>(path.empty() ? d.uri : path, d.text),
+                                        ignored, scene) &&
+          vrml::load_inlines(scene, ignored)
+                    : vrml::script_scene(path.empty() ? d.uri : path, d.text, scene, ignored);
+  scene::ModelOptions mo;
+  mo.compile.backend = "vm";
+  return ok && scene::build_scene_model(scene, mo, ignored, model);
+}
 
 json range_of(const std::string& text, uint32_t line, uint32_t col, uint32_t length) {
   Position a = position_of_line_col(text, line, col), b = position_of_line_col(text, line, col + std::max(1u, length));

@@ -8,7 +8,11 @@
 namespace fscript::vrml {
 struct Interface;
 struct FieldDecl;
+struct Scene;
 }  // namespace fscript::vrml
+namespace fscript::scene {
+struct SceneModel;
+}  // namespace fscript::scene
 
 namespace fscript::lsp {
 
@@ -62,6 +66,18 @@ std::vector<SemanticToken> scene_token_list(const Document& d);   // a .wrl (lsp
 // The .wrl's outline: nodes, PROTOs and the scripts' functions; and its folding ranges.
 json scene_symbols(const Document& d);
 json scene_folding(const Document& d);
+
+// The document's scene (a .fs wrapped in one FShape) and its model on the VM; false when it has errors.
+bool scene_model_of(const Document& d, vrml::Scene& scene, scene::SceneModel& model);
+
+// fscript.profile and the code lenses (lsp/features/profile.cpp): the lenses of the last profile
+// of a document, at the revision it was made for.
+struct ProfileLenses {
+  uint64_t revision = 0;
+  json lenses = json::array();
+};
+json run_profile(const Document& d, ProfileLenses& out);  // executeCommand's result, or an __error
+json code_lenses(const Document& d, const ProfileLenses* last);
 
 // LSP range of frontend positions (1-based line and byte column, then a byte length).
 json range_of(const std::string& text, uint32_t line, uint32_t col, uint32_t length);

@@ -97,3 +97,52 @@ test("fscript-lsp with vscode-jsonrpc: a shape diagnostic and its quick fix", as
   assert.equal(await exited, 0);
   conn.dispose();
 });
+
+test("fscript-lsp with vscode-jsonrpc: fscript.profile and its code lenses", async () => {
+  const { child, conn, next } = start();
+  let refreshed = 0;
+  conn.onRequest("workspace/codeLens/refresh", () => {
+    refreshed += 1;
+    return null;
+  });
+  const caps = { workspace: { codeLens: { refreshSupport: true } } };
+  const init = await conn.sendRequest(proto.InitializeRequest.type, { processId: process.pid, rootUri: null, capabilities: caps });
+  assert.ok(init.capabilities.executeCommandProvider.commands.includes("fscript.profile"));
+  assert.ok(init.capabilities.codeLensProvider);
+  await conn.sendNotification(proto.InitializedNotification.type, {});
+  const wrl = "file:///virtual/union.wrl";
+  // The heavy branch (line 7, 0-based) is needed only near its small ball in a corner.
+  const scene = [
+    "#VRML V2.0 utf8",
+    "FShape { geometry FGeometry {",
+    "  resolution [96 96 96]",
+    "  bboxSize 2.4 2.4 2.4",
+    '  definition "function FRep(x, y, z, t) {',
+    "    light = 0.6 - sqrt(x*x + y*y + z*z);",
+    "    w = sin(3*x) * cos(5*y) + sin(7*z) * cos(2*x) + sin(4*y) * cos(6*z) + sin(9*x) * sin(8*y);",
+    "    heavy = 0.15 - sqrt((x-0.8)*(x-0.8) + (y-0.8)*(y-0.8) + (z-0.8)*(z-0.8)) + 0.01 * w;",
+    "    return max(light, heavy);",
+    '  }" } }',
+    "",
+  ].join("\n");
+  const d = next();
+  await conn.sendNotification(proto.DidOpenTextDocumentNotification.type, { textDocument: { uri: wrl, languageId: "vrml", version: 1, text: scene } });
+  await d;
+  let lenses = await conn.sendRequest(proto.CodeLensRequest.type, { textDocument: { uri: wrl } });
+  assert.equal(lenses.length, 1);
+  assert.equal(lenses[0].command.command, "fscript.profile");
+  const result = await conn.sendRequest(proto.ExecuteCommandRequest.type, lenses[0].command);
+  assert.equal(result.shapes.length, 1);
+  assert.ok(result.shapes[0].regions > 0);
+  assert.equal(refreshed, 1);
+  lenses = await conn.sendRequest(proto.CodeLensRequest.type, { textDocument: { uri: wrl } });
+  const at = (line) => lenses.find((l) => l.range.start.line === line && l.command.command === "");
+  assert.match(at(5).command.title, /runs at (9\d\.\d|100\.0)% of points$/);
+  const heavy = at(6).command.title.match(/runs at ([\d.]+)% of points$/);
+  assert.ok(Number(heavy[1]) < 30, at(6).command.title);
+  await conn.sendRequest(proto.ShutdownRequest.type);
+  const exited = new Promise((resolve) => child.on("exit", resolve));
+  await conn.sendNotification(proto.ExitNotification.type);
+  assert.equal(await exited, 0);
+  conn.dispose();
+});

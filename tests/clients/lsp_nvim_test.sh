@@ -72,6 +72,21 @@ want "nvim .wrl completion of fields" "$out" 'textDocument/completion => .*"labe
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "1.2 - x*x - y*y - z*z" bboxSize 2 2 2 } }\n' > "$T/cut.wrl"
 out=$(with_config cut.wrl "")
 want "nvim .wrl shape diagnostic" "$out" "diagnostic=the box cuts the shape on its faces .*bboxSize 2.6 2.6 2.6 holds it whole"
+# :FscriptProfile: the lenses of the profile, a line's share on the line (the heavy branch on line 6, a
+# tenth of the points), through Neovim's code-lens support.
+cat > "$T/prof.wrl" <<'WRL'
+#VRML V2.0 utf8
+FShape { geometry FGeometry { resolution [96 96 96] bboxSize 2.4 2.4 2.4
+  definition "function FRep(x, y, z, t) {
+    light = 0.6 - sqrt(x*x + y*y + z*z);
+    w = sin(3*x) * cos(5*y) + sin(7*z) * cos(2*x) + sin(4*y) * cos(6*z) + sin(9*x) * sin(8*y);
+    heavy = 0.15 - sqrt((x-1.15)*(x-1.15) + (y-1.15)*(y-1.15) + (z-1.15)*(z-1.15)) + 0.01 * w;
+    return max(light, heavy);
+  }" } }
+WRL
+out=$(with_config prof.wrl 'profile')
+want "nvim :FscriptProfile: the lens that runs it again" "$out" '^codelens 0: Profile evaluation again'
+want "nvim :FscriptProfile: a line's share" "$out" '^codelens 4: [0-9.]+% of time · [0-9.]+% of operations · runs at [0-9]\.[0-9]% of points'
 # :FvrmlPreview is defined, and what it asks the server gives the live preview's URL.
 out=$(FVRML_RUN="${FVRML_RUN:-}" with_config bad2.wrl 'preview')
 want "nvim :FvrmlPreview is defined" "$out" '^command FvrmlPreview'

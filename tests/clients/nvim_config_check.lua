@@ -16,6 +16,14 @@ for query in string.gmatch(os.getenv("QUERIES") or "", "[^;]+") do
     end
     goto continue
   end
+  if query == "profile" then  -- :FscriptProfile, then the lenses Neovim's own code-lens support holds
+    vim.cmd("FscriptProfile")
+    vim.wait(30000, function() return #(vim.lsp.codelens.get(0) or {}) > 1 end, 50)
+    for _, l in ipairs(vim.lsp.codelens.get(0) or {}) do
+      io.stdout:write("codelens " .. l.range.start.line .. ": " .. (l.command and l.command.title or "") .. "\n")
+    end
+    goto continue
+  end
   local method, line, character = string.match(query, "^([^@]+)@(%d+):(%d+)$")
   local params = { textDocument = vim.lsp.util.make_text_document_params(),
                    position = { line = tonumber(line), character = tonumber(character) } }

@@ -5,15 +5,13 @@
 #include <iostream>
 #include <memory>
 
-#include "engine/mesh/field_profile.h"
-#include "engine/scene/shape_field.h"
-#include "engine/scene/shape_mesh.h"
 #include "engine/scene/shape_profile.h"
 #include "frontend/vrml/inline.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/script_scene.h"
 #include "frontend/vrml/vrml_parser.h"
 #include "tools/fscript/common.h"
+#include "tools/profile_picture.h"
 
 namespace fscript::cli {
 namespace {
@@ -54,43 +52,28 @@ int cmd_profile(const ProfileArgs& a) {
   ok = scene::build_scene_model(scene, mo, diag, model);
   print_diagnostics(diag);
   if (!ok) return kExitInput;
-  mesh::Profiler profiler;
-  mesh::MesherOptions mesher;
-  mesher.profiler = &profiler;
-  const int threads = static_cast<int>(a.threads);
-  for (const scene::Shape& s : model.shapes) {
-    if (s.group >= 0 || s.kind != scene::ShapeKind::Implicit) continue;
-    mesh::Mesh m;
-    backends::RuntimeError err;
-    if (!scene::mesh_shape(s, m, err, true, threads, a.prune, mesher)) return report(scene, *s.fshape, err), kExitInput;
-  }
-  for (size_t g = 0; g < model.groups.size(); ++g) {
-    if (model.groups[g].parent >= 0 || scene::parametric_group(model, static_cast<int>(g))) continue;
-    mesh::Mesh m;
-    backends::RuntimeError err;
-    if (!scene::mesh_group(model, static_cast<int>(g), m, err, true, threads, a.prune, mesher))
-      return report(scene, *model.groups[g].node, err), kExitInput;
-  }
-  if (profiler.profiles().empty()) {
+  scene::SceneProfile sp;
+  backends::RuntimeError err;
+  const vrml::Node* where = nullptr;
+  if (!scene::profile_scene(scene, model, static_cast<int>(a.threads), a.prune, sp, err, where))
+    return report(scene, *where, err), kExitInput;
+  if (sp.shapes.empty()) {
     std::cerr << a.file << ": error: no implicit shape to profile (parametric shapes are sampled on their grid, "
               << "with no pruning to show)\n";
     return kExitInput;
   }
   nlohmann::json all = nlohmann::json::array();
-  size_t index = 0, count = profiler.profiles().size();
-  for (const auto& [key, p] : profiler.profiles()) {
-    scene::ShapeProfile r = scene::profile_report(scene, *static_cast<const vrml::Node*>(key), *p);
-    if (a.json) all.push_back(scene::profile_json(r));
-    else std::cout << scene::profile_text(r) << (index + 1 < count ? "\n" : "");
-    if (!a.picture.empty()) {
-      std::string path = a.picture, error;
-      if (count > 1)
-        path.insert(path.rfind('.') == std::string::npos ? path.size() : path.rfind('.'), "-" + std::to_string(index));
-      if (!scene::write_profile_picture(*p, path, error)) return std::cerr << "error: " << error << "\n", kExitInput;
-      if (!a.json)
-        std::cout << "  cost picture: " << path << " (seen from +z; left: work per column, right: mean tape length)\n";
-    }
-    ++index;
+  for (size_t i = 0; i < sp.shapes.size(); ++i) {
+    if (a.json) all.push_back(scene::profile_json(sp.shapes[i]));
+    else std::cout << (i ? "\n" : "") << scene::profile_text(sp.shapes[i]);
+    if (a.picture.empty()) continue;
+    std::string path = a.picture, error;
+    if (sp.shapes.size() > 1)
+      path.insert(path.rfind('.') == std::string::npos ? path.size() : path.rfind('.'), "-" + std::to_string(i));
+    if (!tools::write_profile_picture(*sp.profiles[i], path, error))
+      return std::cerr << "error: " << error << "\n", kExitInput;
+    if (!a.json)
+      std::cout << "  cost picture: " << path << " (seen from +z; left: work per column, right: mean tape length)\n";
   }
   if (a.json) std::cout << all.dump(1) << "\n";
   return kExitOk;

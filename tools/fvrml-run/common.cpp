@@ -16,6 +16,7 @@
 #include "engine/scene/standard_geometry.h"
 #include "runtime/support/progress.h"
 #include "tools/fvrml-run/memo.h"
+#include "tools/profile_picture.h"
 #include "tools/fvrml-run/run.h"
 
 namespace fvrml_run {
@@ -182,7 +183,8 @@ bool report_profiles(const Options& o, const Loaded& l, nlohmann::json& st) {
     if (!o.profile_picture.empty()) {
       std::string path = all.size() == 1 ? o.profile_picture : numbered(o.profile_picture, index, int(all.size()));
       std::string error;
-      if (!sc::write_profile_picture(*p, path, error)) return std::cerr << "error: " << error << "\n", false;
+      if (!fscript::tools::write_profile_picture(*p, path, error))
+        return std::cerr << "error: " << error << "\n", false;
       std::cerr << "  cost picture: " << path << " (seen from +z; left: work per column, right: mean tape length)\n";
     }
     ++index;

@@ -61,4 +61,19 @@ vim.api.nvim_create_user_command("FvrmlPreview", function()
   end)
 end, { desc = "FVRML: the live preview of this scene in the browser" })
 
+-- :FscriptProfile: the server meshes this buffer's shapes with a profiler (fscript.profile) and the
+-- code lenses show each line's share of the evaluation time and operations, and of the points whose
+-- tape still runs it. Nothing is profiled until asked; an edit takes the line lenses away.
+vim.api.nvim_create_user_command("FscriptProfile", function()
+  local bufnr = vim.api.nvim_get_current_buf()
+  local params = { command = "fscript.profile", arguments = { vim.uri_from_bufnr(bufnr) } }
+  vim.lsp.buf_request(bufnr, "workspace/executeCommand", params, function(err)
+    if err then
+      vim.notify("FscriptProfile: " .. err.message, vim.log.levels.ERROR)
+      return
+    end
+    vim.lsp.codelens.refresh()
+  end)
+end, { desc = "FScript: each line's share of the evaluation cost, as code lenses" })
+
 return { server = server }

@@ -21,6 +21,7 @@ constexpr int kAroundCells = 48;   // the survey of three times the box, for the
 constexpr double kAround = 3;
 constexpr size_t kFinerBlocks = 64;   // blocks of 8^3 samples of the own grid checked for thin parts
 constexpr size_t kMissedChecked = 32;  // missed cells tried at finer resolutions
+constexpr int kFrames = 24;  // an animation is checked at these fractions of its cycle (fvrml-run's default frames)
 
 std::string num(double v) {
   char b[32];
@@ -115,6 +116,7 @@ class Diagnoser {
       if (!survey(field_, own_, o, fine, err_) || !fine.complete) return {};
       empty = fine.inside == 0, full = fine.inside == fine.points;
     }
+    frames(top, empty, full);
     if (empty) this->empty();
     if (full && top) this->full();
     if (!empty && !full && top) cut();
@@ -150,12 +152,74 @@ class Diagnoser {
     return true;
   }
 
+  // Whether the shape changes along its animation: its FRep or 3D texture reads t over a timeSpan.
+  bool animated() const {
+    auto moves = [](const CompiledField& c) { return c.reads_t && c.span0 != c.span1; };
+    return moves(s_.geometry) || (s_.texture && moves(*s_.texture));
+  }
+
+  // Empty and full across the animation: the shape at kFrames fractions of its cycle, each on the
+  // grid the drawn time is surveyed on (and the own grid where that one says empty or full).
+  void frames(bool top, bool drawn_empty, bool drawn_full) {
+    if (!animated() || !field_.can_bound()) return;
+    for (int i = 0; i < kFrames; ++i) {
+      ShapeField f(s_, double(i) / kFrames);
+      SurveyGrid g = coarse(own_, true);
+      Survey sv;
+      SurveyOptions mixed;
+      mixed.stop_when_mixed = true;
+      if (!survey(f, g, mixed, sv, err_) || !sv.complete) return;
+      bool empty = sv.inside == 0, full = sv.inside == sv.points;
+      if ((empty || full) && g.n != own_.n) {
+        Survey fine;
+        SurveyOptions o;
+        o.stop_at_inside = empty;
+        if (!survey(f, own_, o, fine, err_) || !fine.complete) return;
+        empty = fine.inside == 0, full = fine.inside == fine.points;
+      }
+      if (empty) empty_frames_.push_back(i);
+      if (full && top) full_frames_.push_back(i);
+    }
+    frames_checked_ = true;
+    if (!drawn_empty && !empty_frames_.empty())
+      some_frames(ShapeIssue::Empty, empty_frames_, "empty", "nothing is drawn then");
+    if (!drawn_full && !full_frames_.empty())
+      some_frames(ShapeIssue::Full, full_frames_, "full", "a solid block the size of the box is drawn then");
+  }
+  // "in 6 of 24 frames of its animation (fractions 0.25 to 0.458)", or "in every frame of ...".
+  static std::string frames_text(const std::vector<int>& at) {
+    if (at.size() == size_t(kFrames)) return "in every frame of its animation";
+    std::string ranges;
+    for (size_t i = 0; i < at.size();) {
+      size_t j = i;
+      while (j + 1 < at.size() && at[j + 1] == at[j] + 1) ++j;
+      ranges += (ranges.empty() ? "" : ", ") + num(double(at[i]) / kFrames) +
+          (j > i ? " to " + num(double(at[j]) / kFrames) : "");
+      i = j + 1;
+    }
+    return "in " + std::to_string(at.size()) + " of " + std::to_string(kFrames) + " frames of its animation (" +
+        (at.size() == 1 ? "fraction " : "fractions ") + ranges + ")";
+  }
+  void some_frames(ShapeIssue issue, const std::vector<int>& at, const char* what, const char* then) {
+    ShapeFinding f;
+    f.issue = issue;
+    f.fraction = double(at.size()) / kFrames;
+    f.diag = at_field(scene_, geo(), s_.geometry.field, frontend::Severity::Warning,
+                      std::string(what) + " shape " + frames_text(at) + ": " + then);
+    out_.push_back(std::move(f));
+  }
+  // What the drawn frame's empty or full diagnostic adds about the animation.
+  std::string across(const std::vector<int>& at) const {
+    return frames_checked_ ? "; the same " + frames_text(at) : "";
+  }
+
   void empty() {
     ShapeFinding f;
     f.issue = ShapeIssue::Empty;
     std::string m = sv_.open.empty() && sv_.nan == 0
         ? "empty shape: f <= 0 everywhere in its box, so nothing is drawn"
         : "empty shape: f > 0 at none of the " + samples() + " samples of its box, so nothing is drawn";
+    m += across(empty_frames_);
     if (bounded_around(f)) m += "; the shape lies outside its box: " + box_text(f) + " holds it";
     f.diag = at(s_.geometry.field, frontend::Severity::Warning, m);
     out_.push_back(std::move(f));
@@ -164,7 +228,9 @@ class Diagnoser {
   void full() {
     ShapeFinding f;
     f.issue = ShapeIssue::Full;
-    std::string m = "full shape: f > 0 at every sample of its box, so it is drawn as a solid block the size of the box";
+    std::string m =
+        "full shape: f > 0 at every sample of its box, so it is drawn as a solid block the size of the box" +
+        across(full_frames_);
     if (bounded_around(f)) m += "; the shape ends just outside the box: " + box_text(f) + " holds it";
     else m += " (f > 0 goes on past three times the box: is the sign of f the right way round? FVRML draws f >= 0)";
     f.diag = at(s_.geometry.field, frontend::Severity::Warning, m);
@@ -243,6 +309,8 @@ class Diagnoser {
   bool around_done_ = false, around_ok_ = true;
   backends::RuntimeError err_;
   std::vector<ShapeFinding> out_;
+  std::vector<int> empty_frames_, full_frames_;  // the animation's frames (of kFrames) found so
+  bool frames_checked_ = false;                  // set when every frame was checked
 };
 
 // Blocks of 8^3 samples of the own grid at (up to kFinerBlocks of) the open bricks: a cell whose

@@ -14,13 +14,17 @@
 
 namespace fscript::scene {
 
+ShapeField::ShapeField(const Shape& s, double fraction)
+    : s_(s), geometry_t_(node_time(fraction, s.geometry.span0, s.geometry.span1)),
+      texture_t_(s.texture ? node_time(fraction, s.texture->span0, s.texture->span1) : 0) {}
+
 bool ShapeField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
                       backends::RuntimeError& err) const {
-  mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(s_.geometry.t));
+  mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(geometry_t_));
   if (!geometry.eval(x, y, z, n, out, err)) return false;
   if (!s_.texture) return true;
   // Displacement texture: the point kernel (x, y, z, u, v, w, t) -> d, added to f.
-  std::vector<float> t(n, static_cast<float>(s_.texture->t));
+  std::vector<float> t(n, static_cast<float>(texture_t_));
   std::vector<float> d(n), r(n), g(n), b(n);
   const float* in[7] = {x, y, z, x, y, z, t.data()};
   float* outs[4] = {d.data(), r.data(), g.data(), b.data()};
@@ -32,18 +36,18 @@ bool ShapeField::eval(const float* x, const float* y, const float* z, size_t n, 
 bool ShapeField::eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
                            backends::RuntimeError& err) const {
   if (s_.texture) return Field::eval_rows(x, count, y, z, rows, out, err);  // the texture takes points
-  mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(s_.geometry.t));
+  mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(geometry_t_));
   return geometry.eval_rows(x, count, y, z, rows, out, err);
 }
 
 math::Interval ShapeField::bound(const mesh::Box3& b) const {
   if (!can_bound()) return math::Interval::everything();
   math::Interval f =
-      mesh::kernel_bound(*s_.geometry.intervals, b, {math::Interval::point(static_cast<float>(s_.geometry.t))});
+      mesh::kernel_bound(*s_.geometry.intervals, b, {math::Interval::point(static_cast<float>(geometry_t_))});
   if (!s_.texture) return f;
   std::vector<math::Interval> uvw_t;  // the texture sees (x, y, z, u, v, w, t) with u, v, w = x, y, z
   for (int a = 0; a < 3; ++a) uvw_t.push_back({b.lo[a], b.hi[a], false});
-  uvw_t.push_back(math::Interval::point(static_cast<float>(s_.texture->t)));
+  uvw_t.push_back(math::Interval::point(static_cast<float>(texture_t_)));
   return math::iv::add(f, mesh::kernel_bound(*s_.texture->intervals, b, uvw_t));
 }
 
@@ -51,7 +55,7 @@ bool ShapeField::has_gradient() const { return !s_.texture && s_.geometry.gradie
 
 bool ShapeField::eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                                backends::RuntimeError& err) const {
-  mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(s_.geometry.t), nullptr,
+  mesh::KernelField geometry(*s_.geometry.kernel, static_cast<float>(geometry_t_), nullptr,
                              s_.geometry.gradient->get());
   return geometry.eval_gradient(x, y, z, n, out, err);
 }
@@ -69,7 +73,7 @@ const mesh::LocalTapes* ShapeField::tapes() const {
   std::call_once(local_once_, [this] {
     mesh::GradientTape gradient;
     if (has_gradient()) gradient = [this] { return s_.geometry.gradient->tape(); };
-    local_ = std::make_unique<mesh::LocalTapes>(*s_.geometry.intervals, static_cast<float>(s_.geometry.t),
+    local_ = std::make_unique<mesh::LocalTapes>(*s_.geometry.intervals, static_cast<float>(geometry_t_),
                                                 std::move(gradient));
   });
   return local_.get();
@@ -82,7 +86,7 @@ std::shared_ptr<const mesh::Field> ShapeField::local(const mesh::Box3& b) const 
 
 void ShapeField::bounds(const mesh::Box3* boxes, size_t n, math::Interval* out) const {
   if (s_.texture || !s_.geometry.intervals) return Field::bounds(boxes, n, out);
-  mesh::tape_bounds(*s_.geometry.intervals, static_cast<float>(s_.geometry.t), boxes, n, out);
+  mesh::tape_bounds(*s_.geometry.intervals, static_cast<float>(geometry_t_), boxes, n, out);
 }
 
 void ShapeField::bounds_and_locals(const mesh::Box3* boxes, size_t n, math::Interval* out,

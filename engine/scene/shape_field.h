@@ -22,7 +22,10 @@ bool invert_affine(const Mat4& m, Mat4& out);
 
 class ShapeField : public mesh::Field {
  public:
-  explicit ShapeField(const Shape& s) : s_(s) {}
+  explicit ShapeField(const Shape& s) : s_(s), geometry_t_(s.geometry.t), texture_t_(s.texture ? s.texture->t : 0) {}
+  // The shape at `fraction` of its animation's cycle (its nodes' t over their timeSpan), not at the
+  // model's time: what the diagnostics check an animation's frames with.
+  ShapeField(const Shape& s, double fraction);
   bool eval(const float* x, const float* y, const float* z, size_t n, float* out,
             backends::RuntimeError& err) const override;
   bool eval_rows(const float* x, size_t count, const float* y, const float* z, size_t rows, float* out,
@@ -45,6 +48,7 @@ class ShapeField : public mesh::Field {
  private:
   const mesh::LocalTapes* tapes() const;  // nullptr: a 3D texture, or no intervals
   const Shape& s_;
+  double geometry_t_, texture_t_;  // the t the FRep and the 3D texture are taken at
   mutable std::once_flag local_once_;
   mutable std::unique_ptr<mesh::LocalTapes> local_;  // made at the first local()
 };

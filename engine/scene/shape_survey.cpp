@@ -34,7 +34,10 @@ class Surveyor {
     return b;
   }
 
-  bool done() const { return (o_.stop_at_inside && s_.inside > 0) || !s_.complete; }
+  bool done() const {
+    return (o_.stop_at_inside && s_.inside > 0) || (o_.stop_when_mixed && s_.inside > 0 && s_.inside < s_.points) ||
+        !s_.complete;
+  }
 
   bool region(const int lo[3], int side, const math::Interval& v, const mesh::Field& f, backends::RuntimeError& err) {
     int hi[3];

@@ -37,6 +37,9 @@ struct Survey {
 struct SurveyOptions {
   uint64_t budget = 4'000'000;  // the most points sampled; past it the survey stops, incomplete
   bool stop_at_inside = false;  // stop at the first inside sample (all an emptiness check needs)
+  // Stop once some samples are inside and some not: neither empty nor full (all an animation's
+  // frames are checked for).
+  bool stop_when_mixed = false;
 };
 
 // Surveys `f` over `g`; false on a runtime error of the function.

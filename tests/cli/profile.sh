@@ -83,6 +83,10 @@ check "fvrml-run --profile" 0 "regions with a tape of their own" -- "$R" "$T/u.w
 tail -1 "$T/stats.txt" > "$T/stats.json"
 n=$((n + 1))
 python3 "$T/share.py" "$T/stats.json" > /dev/null || fail "fvrml-run --profile --stats: the profile in the JSON"
+# Profiling counts what the mesher does without changing it: the same mesh, byte for byte.
+"$R" "$T/u.wrl" -o "$T/plain.ply" 2> /dev/null
+n=$((n + 1))
+cmp -s "$T/plain.ply" "$T/u.ply" || fail "fvrml-run --profile: the same mesh as without it"
 check "fvrml-run --profile-picture" 0 "cost picture" -- "$R" "$T/u.wrl" -o "$T/u2.glb" --profile-picture "$T/v.png"
 n=$((n + 1))
 [ -s "$T/v.png" ] || fail "fvrml-run --profile-picture writes the picture"

@@ -32,6 +32,11 @@ printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "\nfunction FR
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "0.5 - log(x + y) - z*z" resolution [40] bboxSize 2 2 2 } }\n' > "$T/log.wrl"
 printf 'function FRep(x, y, z, t) {\n  var q = (x - x) / (y - y);\n  return 0.5 - q * (x*x + y*y + z*z);\n}\n' > "$T/zero.fs"
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "0.5 - (x*x + y*y) / (x*x + y*y) * (x*x + y*y + z*z)" bboxSize 2 2 2 resolution [41] } }\n' > "$T/line.wrl"
+# Animations: a ball that shrinks to nothing halfway through its cycle, a solid that fills its box
+# for its first frames and is gone after a quarter, and a gyroid that moves but never empties or fills.
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "(0.5 - t) - x*x - y*y - z*z" timeSpan 0 1 bboxSize 2 2 2 } }\n' > "$T/shrink.wrl"
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "(5 - 20 * t) - x*x - y*y - z*z" timeSpan 0 1 bboxSize 2 2 2 } }\n' > "$T/fills.wrl"
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "min(sin(5*x)*cos(5*y) + sin(5*y)*cos(5*z) + sin(5*z)*cos(5*x) + t, 0.9 - x*x - y*y - z*z)" timeSpan 0 1 bboxSize 2 2 2 } }\n' > "$T/moves.wrl"
 printf '#VRML V2.0 utf8\nFTransform { operation "intersection" children [\n FShape { geometry FGeometry { definition "y" bboxSize 2 2 2 } }\n FShape { geometry FGeometry { definition "0.5 - x^2 - y^2 - z^2" bboxSize 2 2 2 } } ] }\n' > "$T/group.wrl"
 
 for tool in run check; do
@@ -59,6 +64,24 @@ for tool in run check; do
     "sheet.wrl:5:3: warning: parts of the shape finer than its grid: .*resolution \[100\] shows them" -- run "$T/sheet.wrl"
   check "$tool finer than the grid: and so empty" 0 "sheet.wrl:3:15: warning: empty shape: f > 0 at none of the 50 x 50 x 50 samples" \
     -- run "$T/sheet.wrl"
+  check "$tool empty in some frames of an animation: which" 0 \
+    "shrink.wrl:2:43: warning: empty shape in 12 of 24 frames of its animation \(fractions 0.5 to 0.958\): nothing is drawn then" \
+    -- run "$T/shrink.wrl"
+  check "$tool full at the drawn time and in which frames" 0 \
+    "fills.wrl:2:43: warning: full shape: .*; the same in 3 of 24 frames of its animation \(fractions 0 to 0.0833\)" \
+    -- run "$T/fills.wrl"
+  check "$tool the same shape empty later in its animation" 0 \
+    "fills.wrl:2:43: warning: empty shape in 18 of 24 frames of its animation \(fractions 0.25 to 0.958\)" \
+    -- run "$T/fills.wrl"
+  if [ $tool = run ]; then  # another drawn time
+    check "$tool empty at the drawn time, and in which frames" 0 \
+      "shrink.wrl:2:43: warning: empty shape: f <= 0 everywhere in its box, so nothing is drawn; the same in 12 of 24 frames" \
+      -- run "$T/shrink.wrl" --fraction 0.75
+    check "$tool full in some frames, not at the drawn time" 0 \
+      "fills.wrl:2:43: warning: full shape in 3 of 24 frames of its animation \(fractions 0 to 0.0833\): a solid block" \
+      -- run "$T/fills.wrl" --fraction 0.2
+  fi
+  none "$tool an animation that never empties or fills" -- run "$T/moves.wrl"
   none "$tool a ball inside its box" -- run "$T/ball.wrl"
   none "$tool children of an FTransform are cut by their boxes on purpose" -- run "$T/group.wrl"
   for f in "$SRC"/examples/paper/*.wrl "$SRC"/examples/*.fs; do

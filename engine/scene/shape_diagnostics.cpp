@@ -21,6 +21,11 @@ constexpr int kAroundCells = 48;   // the survey of three times the box, for the
 constexpr double kAround = 3;
 constexpr size_t kFinerBlocks = 64;   // blocks of 8^3 samples of the own grid checked for thin parts
 constexpr size_t kMissedChecked = 32;  // missed cells tried at finer resolutions
+// Intervals look for parts between agreeing samples down to cells split kProofDepth times, over
+// at most kProofBoxes boxes a shape (bounded in batches on the blocks' tapes: a few milliseconds).
+constexpr int kProofDepth = 3;
+constexpr uint64_t kProofBoxes = 100'000;
+constexpr uint64_t kSliverShare = 1000;  // parts found by intervals alone in under 1 / this of the cells: slivers
 constexpr int kFrames = 24;  // an animation is checked at these fractions of its cycle (fvrml-run's default frames)
 
 std::string num(double v) {
@@ -299,6 +304,13 @@ class Diagnoser {
 
   void finer();
   bool finer_block(const int lo[3], std::vector<std::array<int, 3>>& missed, uint64_t& checked);
+  struct Agreeing {  // a cell whose samples (corners and centre) are all on one side
+    std::array<int, 3> cell;
+    bool inside;
+  };
+  void prove_parts(const mesh::Field& f, const std::vector<Agreeing>& cells, std::vector<std::array<int, 3>>& missed);
+  uint64_t proof_boxes_ = 0;  // boxes bounded by prove_parts, for all blocks
+  size_t proven_ = 0;         // cells prove_parts found a part in
   int resolving_factor(const std::vector<std::array<int, 3>>& missed);
 
   const vrml::Scene& scene_;
@@ -331,6 +343,9 @@ void Diagnoser::finer() {
     }
     if (!finer_block(lo, missed, checked)) return;
   }
+  // Parts only intervals find are told when they are more than slivers: where CSG parts meet at a
+  // grazing angle, a few cells in ten thousand hold a thin wedge at any resolution.
+  if (missed.size() == proven_ && proven_ * kSliverShare < checked) return;
   if (missed.empty()) return;
   ShapeFinding f;
   f.issue = ShapeIssue::FinerThanGrid;
@@ -356,6 +371,7 @@ bool Diagnoser::finer_block(const int lo[3], std::vector<std::array<int, 3>>& mi
       for (int i = lo[0]; i < hi[0]; ++i)
         x.push_back(own_.at(0, i)), y.push_back(own_.at(1, j)), z.push_back(own_.at(2, k));
   const size_t corners = x.size();
+  std::vector<Agreeing> agree;
   auto mid = [&](int a, int i) { return static_cast<float>(own_.box[2 * a] + (i + 1.0) * own_.step(a)); };
   for (int k = lo[2]; k + 1 < hi[2]; ++k)
     for (int j = lo[1]; j + 1 < hi[1]; ++j)
@@ -380,8 +396,64 @@ bool Diagnoser::finer_block(const int lo[3], std::vector<std::array<int, 3>>& mi
         if (nan) continue;
         ++checked;
         if ((in == 0 && v[c] > 0) || (in == 8 && v[c] <= 0)) missed.push_back({lo[0] + i, lo[1] + j, lo[2] + k});
+        else if ((in == 0 || in == 8) && !std::isnan(v[c]))
+          agree.push_back({{lo[0] + i, lo[1] + j, lo[2] + k}, in == 8});
       }
+  // Only on a tape, whose bounds come in batches (a 3D texture's field bounds box by box).
+  if (f.value_tape()) prove_parts(f, agree, missed);
   return true;
+}
+
+// Cells whose samples agree, where intervals prove the other side is there all the same: each
+// cell's bound, then its eighths' where the bound leaves the other side possible, down to an
+// eighth of a cell; a box wholly on the other side is a part between the samples (a thin sheet
+// the centre missed, a second sheet). Sound bounds (rounding included) make it a proof.
+void Diagnoser::prove_parts(const mesh::Field& f, const std::vector<Agreeing>& cells,
+                            std::vector<std::array<int, 3>>& missed) {
+  struct Piece {
+    mesh::Box3 box;
+    size_t cell;
+  };
+  std::vector<Piece> level;
+  for (size_t c = 0; c < cells.size(); ++c) {
+    mesh::Box3 b;
+    for (int a = 0; a < 3; ++a) b.lo[a] = own_.at(a, cells[c].cell[a]), b.hi[a] = own_.at(a, cells[c].cell[a] + 1);
+    level.push_back({b, c});
+  }
+  std::vector<uint8_t> proven(cells.size(), 0);
+  std::vector<math::Interval> bounds;
+  std::vector<mesh::Box3> boxes;
+  for (int depth = 0; depth <= kProofDepth && !level.empty() && proof_boxes_ < kProofBoxes; ++depth) {
+    boxes.clear();
+    for (const Piece& p : level) boxes.push_back(p.box);
+    bounds.resize(boxes.size());
+    f.bounds(boxes.data(), boxes.size(), bounds.data());
+    proof_boxes_ += boxes.size();
+    std::vector<Piece> next;
+    for (size_t q = 0; q < level.size(); ++q) {
+      const Piece& p = level[q];
+      const math::Interval& b = bounds[q];
+      if (proven[p.cell] || b.nan) continue;
+      const bool inside = cells[p.cell].inside;
+      if (inside ? b.hi <= 0 : b.lo > 0) {
+        proven[p.cell] = 1;
+        ++proven_;
+        missed.push_back(cells[p.cell].cell);
+        continue;
+      }
+      if (inside ? b.lo > 0 : b.hi <= 0) continue;  // nothing of the other side here
+      if (depth == kProofDepth) continue;
+      for (int o = 0; o < 8; ++o) {
+        Piece c = p;
+        for (int a = 0; a < 3; ++a) {
+          float m = 0.5f * (p.box.lo[a] + p.box.hi[a]);
+          (o >> a & 1 ? c.box.lo[a] : c.box.hi[a]) = m;
+        }
+        next.push_back(c);
+      }
+    }
+    level = std::move(next);
+  }
 }
 
 // The smallest of 2, 4 and 8 times the resolution whose samples, within the missed cells, take

@@ -32,6 +32,9 @@ printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "\nfunction FR
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "0.5 - log(x + y) - z*z" resolution [40] bboxSize 2 2 2 } }\n' > "$T/log.wrl"
 printf 'function FRep(x, y, z, t) {\n  var q = (x - x) / (y - y);\n  return 0.5 - q * (x*x + y*y + z*z);\n}\n' > "$T/zero.fs"
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "0.5 - (x*x + y*y) / (x*x + y*y) * (x*x + y*y + z*z)" bboxSize 2 2 2 resolution [41] } }\n' > "$T/line.wrl"
+# A sheet at z = 0.012, 0.008 thick, between the samples (z = +-0.02) and the cells' centres (z = 0):
+# only intervals over the cells' eighths find it.
+printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "max(0.3 - x*x - y*y - z*z, 0.004 - abs(z - 0.012))" bboxSize 2 2 2 resolution [50] } }\n' > "$T/between.wrl"
 # Animations: a ball that shrinks to nothing halfway through its cycle, a solid that fills its box
 # for its first frames and is gone after a quarter, and a gyroid that moves but never empties or fills.
 printf '#VRML V2.0 utf8\nFShape { geometry FGeometry { definition "(0.5 - t) - x*x - y*y - z*z" timeSpan 0 1 bboxSize 2 2 2 } }\n' > "$T/shrink.wrl"
@@ -64,6 +67,9 @@ for tool in run check; do
     "sheet.wrl:5:3: warning: parts of the shape finer than its grid: .*resolution \[100\] shows them" -- run "$T/sheet.wrl"
   check "$tool finer than the grid: and so empty" 0 "sheet.wrl:3:15: warning: empty shape: f > 0 at none of the 50 x 50 x 50 samples" \
     -- run "$T/sheet.wrl"
+  check "$tool finer than the grid: a sheet no sample meets, proven by intervals" 0 \
+    "between.wrl:2:110: warning: parts of the shape finer than its grid: in [0-9]+ of the [0-9]+ cells checked.*resolution \[100\] shows them" \
+    -- run "$T/between.wrl"
   check "$tool empty in some frames of an animation: which" 0 \
     "shrink.wrl:2:43: warning: empty shape in 12 of 24 frames of its animation \(fractions 0.5 to 0.958\): nothing is drawn then" \
     -- run "$T/shrink.wrl"

@@ -22,9 +22,10 @@ constexpr double kAround = 3;
 constexpr size_t kFinerBlocks = 64;   // blocks of 8^3 samples of the own grid checked for thin parts
 constexpr size_t kMissedChecked = 32;  // missed cells tried at finer resolutions
 // Intervals look for parts between agreeing samples down to cells split kProofDepth times, over
-// at most kProofBoxes boxes a shape (bounded in batches on the blocks' tapes: a few milliseconds).
+// at most kProofBoxes boxes a shape (bounded in batches on the blocks' tapes: a few milliseconds,
+// 6 ms for the gyroid in a ball, whose sines cost most in intervals).
 constexpr int kProofDepth = 3;
-constexpr uint64_t kProofBoxes = 100'000;
+constexpr uint64_t kProofBoxes = 20'000;
 constexpr uint64_t kSliverShare = 1000;  // parts found by intervals alone in under 1 / this of the cells: slivers
 constexpr int kFrames = 24;  // an animation is checked at these fractions of its cycle (fvrml-run's default frames)
 

@@ -35,10 +35,20 @@ Interval increasing(const Interval& a, F f, bool nan) {
   return make(f(static_cast<double>(a.lo)), f(static_cast<double>(a.hi)), nan, kMathUlps);
 }
 
-// Whether lo <= c + k * period <= hi for some integer k (a little generous, never less).
-bool hits(double lo, double hi, double c, double period) {
+// floor and ceil without a library call (the build targets baseline x86-64, which has no
+// rounding instruction): exact, as every double past 2^52 is an integer.
+double floor_of(double x) {
+  if (!(std::fabs(x) < 4503599627370496.0)) return x;
+  double t = static_cast<double>(static_cast<int64_t>(x));
+  return t > x ? t - 1 : t;
+}
+double ceil_of(double x) { return -floor_of(-x); }
+
+// Whether lo <= c + k * period <= hi for some integer k (a little generous, never less: the
+// slack, a billionth of the ends' size, is far beyond the rounding of multiplying by 1 / period).
+bool hits(double lo, double hi, double c, double inv_period) {
   double slack = 1e-9 * (1 + std::fabs(lo) + std::fabs(hi));
-  return std::floor((hi - c + slack) / period) >= std::ceil((lo - c - slack) / period);
+  return floor_of((hi - c + slack) * inv_period) >= ceil_of((lo - c - slack) * inv_period);
 }
 
 // sin or cos over a: the ends, and -1 / 1 where the interval reaches a trough / crest.
@@ -47,8 +57,8 @@ Interval periodic(const Interval& a, double (*f)(double), double crest, double t
   bool nan = a.nan || has_inf(a);
   if (has_inf(a) || static_cast<double>(a.hi) - a.lo >= 2 * kPi) return make(-1, 1, nan, kMathUlps);
   double x = f(a.lo), y = f(a.hi);
-  double lo = hits(a.lo, a.hi, trough, 2 * kPi) ? -1 : std::min(x, y);
-  double hi = hits(a.lo, a.hi, crest, 2 * kPi) ? 1 : std::max(x, y);
+  double lo = hits(a.lo, a.hi, trough, 1 / (2 * kPi)) ? -1 : std::min(x, y);
+  double hi = hits(a.lo, a.hi, crest, 1 / (2 * kPi)) ? 1 : std::max(x, y);
   return make(lo, hi, nan, kMathUlps);
 }
 
@@ -179,7 +189,7 @@ Interval cos(Interval a) {
 Interval tan(Interval a) {
   if (a.empty()) return Interval::nan_only();
   bool nan = a.nan || has_inf(a);
-  if (has_inf(a) || static_cast<double>(a.hi) - a.lo >= kPi || hits(a.lo, a.hi, kPi / 2, kPi))
+  if (has_inf(a) || static_cast<double>(a.hi) - a.lo >= kPi || hits(a.lo, a.hi, kPi / 2, 1 / kPi))
     return {-kInfF, kInfF, nan};
   return increasing(a, [](double x) { return std::tan(x); }, nan);
 }

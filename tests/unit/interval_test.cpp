@@ -3,7 +3,9 @@
 // table, for the shared benchmarks and examples, and for thousands of random programs.
 #include <catch2/catch.hpp>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -158,6 +160,41 @@ std::vector<std::vector<Interval>> batch_bounds(const ir::Function& fn,
 }
 
 }  // namespace
+
+TEST_CASE("intervals: outward rounding by ulps in one step equals stepping one ulp at a time") {
+  using fscript::math::detail::next_down;
+  using fscript::math::detail::next_up;
+  using fscript::math::detail::steps_down;
+  std::mt19937 rng(7);
+  std::vector<float> fs = {0.0f,
+                           -0.0f,
+                           std::numeric_limits<float>::denorm_min(),
+                           -std::numeric_limits<float>::denorm_min(),
+                           std::numeric_limits<float>::min(),
+                           -std::numeric_limits<float>::min(),
+                           std::numeric_limits<float>::max(),
+                           -std::numeric_limits<float>::max(),
+                           std::numeric_limits<float>::infinity(),
+                           -std::numeric_limits<float>::infinity(),
+                           1.0f,
+                           -1.0f};
+  for (uint32_t b = 1; b < 8; ++b)
+    fs.push_back(std::bit_cast<float>(b)), fs.push_back(std::bit_cast<float>(0x80000000u | b));
+  for (uint32_t b = 0x7f7ffff8u; b < 0x7f800000u; ++b)
+    fs.push_back(std::bit_cast<float>(b)), fs.push_back(std::bit_cast<float>(0x80000000u | b));
+  for (int i = 0; i < 100000; ++i) {
+    float f = std::bit_cast<float>(static_cast<uint32_t>(rng()));
+    if (f == f) fs.push_back(f);
+  }
+  for (float f : fs)
+    for (int ulps = 0; ulps <= 6; ++ulps) {
+      float down = f, up = f;
+      for (int k = 0; k < ulps; ++k) down = next_down(down), up = next_up(up);
+      INFO(f << " " << ulps);
+      REQUIRE(std::bit_cast<uint32_t>(steps_down(f, ulps)) == std::bit_cast<uint32_t>(down));
+      REQUIRE(std::bit_cast<uint32_t>(-steps_down(-f, ulps)) == std::bit_cast<uint32_t>(up));
+    }
+}
 
 TEST_CASE("intervals: every value op of the table holds every point result, on every backend") {
   std::mt19937 rng(20261202);

@@ -89,14 +89,21 @@ void ply(const Mesh& m, Out& out) {
     ply_faces(m, out);
     return;
   }
-  for (size_t i = 0; i < m.positions.size(); ++i) {
-    char v[27];
-    std::memcpy(v, m.positions[i].data(), 12);
-    if (normals) std::memcpy(v + 12, m.normals[i].data(), 12);
-    if (colours)
-      for (size_t c = 0; c < 3; ++c)
-        v[vertex - 3 + c] = static_cast<char>(std::lround(std::fmin(std::fmax(m.colours[i][c], 0.0f), 1.0f) * 255));
-    out.put(v, vertex);
+  // Records with normals or colours are assembled a few thousand at a time, then put at once.
+  constexpr size_t kVertices = 4096;
+  std::vector<char> buf(kVertices * vertex);
+  for (size_t first = 0; first < m.positions.size(); first += kVertices) {
+    size_t n = std::min(kVertices, m.positions.size() - first);
+    for (size_t q = 0; q < n; ++q) {
+      char* v = buf.data() + q * vertex;
+      size_t i = first + q;
+      std::memcpy(v, m.positions[i].data(), 12);
+      if (normals) std::memcpy(v + 12, m.normals[i].data(), 12);
+      if (colours)
+        for (size_t c = 0; c < 3; ++c)
+          v[vertex - 3 + c] = static_cast<char>(std::lround(std::fmin(std::fmax(m.colours[i][c], 0.0f), 1.0f) * 255));
+    }
+    out.put(buf.data(), n * vertex);
   }
   ply_faces(m, out);
 }

@@ -7,7 +7,7 @@ namespace fscript::ir {
 
 void IntervalTape::eval_batch(const std::vector<IntervalLanes>& inputs, IntervalBatchEval& out) const {
   out.values.resize(values_);
-  out.choices.assign(size_t(values_) * kIntervalLanes, Choice::Both);
+  out.choices.resize(size_t(values_) * kIntervalLanes);  // the choosing steps write theirs
   out.outputs = outputs_;
   out.masks = false;
   auto run = isa_base::eval_lanes;

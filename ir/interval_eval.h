@@ -3,6 +3,8 @@
 // inputs in given intervals, with, for each min / max / select, which operand every point takes.
 // The rule of each op comes from the op table (math_ops.def names runtime/math's iv::FN).
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "ir/ir.h"
@@ -12,6 +14,25 @@ namespace fscript::ir {
 
 // Which operand a min, max or select takes at every point of the region (Both: it depends).
 enum class Choice : uint8_t { Both, Left, Right };
+
+// An allocator whose vectors grow without initialising their new elements (resize does not zero
+// what is about to be written): evaluation scratch reused across tapes of other lengths.
+template <class T>
+struct Uninitialised : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = Uninitialised<U>;
+  };
+  using std::allocator<T>::allocator;
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
 
 struct IntervalEval {
   std::vector<math::Interval> values;   // by value id
@@ -32,8 +53,10 @@ struct IntervalLanes {
 };
 
 struct IntervalBatchEval {
-  std::vector<IntervalLanes> values;  // by value id
-  std::vector<Choice> choices;        // [value id * kIntervalLanes + lane]
+  std::vector<IntervalLanes, Uninitialised<IntervalLanes>> values;  // by value id
+  // [value id * kIntervalLanes + lane], written for the min, max and select steps only (nothing
+  // reads the others').
+  std::vector<Choice, Uninitialised<Choice>> choices;
   std::vector<uint32_t> outputs;      // value ids of the kernel's results
   // Simplification's backward pass for all lanes at once, by value id, a bit per lane: the value is
   // needed, and it is a decided choice standing for its side. Made by the first simplified().
@@ -78,6 +101,9 @@ class IntervalTape {
     uint32_t dst, a, b, c;
     float imm;  // Const; Param: the parameter's index is `a`
   };
+  // Grown uninitialised: simplification writes the new tape in place at the old one's length and
+  // then cuts it, with no zeroing and no second copy.
+  using Steps = std::vector<Step, Uninitialised<Step>>;
 
   explicit IntervalTape(const Function& fn);  // fn must be interval_evaluable
   IntervalTape() = default;                    // an empty tape, to be written by simplified()
@@ -99,7 +125,7 @@ class IntervalTape {
   // That backward pass now (so threads may then simplify lanes of `ev` at once).
   void lane_masks(IntervalBatchEval& ev) const;
 
-  const std::vector<Step>& steps() const { return steps_; }
+  const Steps& steps() const { return steps_; }
   const std::vector<uint32_t>& outputs() const { return outputs_; }
   // Where each step's op is in the source (line and column; 0 where none): kept by the tape made
   // from a function, and by the tapes simplified from one while a KeepSources lives (the profiler
@@ -113,19 +139,23 @@ class IntervalTape {
   size_t length() const { return steps_.size(); }  // value ops, parameters and constants included
   size_t operations() const;  // steps that compute: parameters and constants left out
   // Whether every step is a simd_interval_op (batched bounds cost about what a few points do).
-  bool simd_only() const;
+  bool simd_only() const { return simd_only_; }
 
  private:
   IntervalTape simplified(const Choice* choices, size_t stride, size_t* collapsed) const;
   // The forward pass: the needed steps in order, renumbered, a standing choice taking its side's number.
-  template <typename Needed, typename Stands>
-  void emit(const Choice* choices, size_t stride, Needed needed, Stands stands, IntervalTape& out) const;
-  template <typename Needed, typename Stands>
-  void keep_sources(Needed needed, Stands stands, IntervalTape& out) const;
-  std::vector<Step> steps_;
+  // `each(f)` calls f(i) for every needed step i, in order.
+  template <typename Each, typename Stands>
+  void emit(const Choice* choices, size_t stride, Each each, Stands stands, IntervalTape& out) const;
+  template <typename Needed>
+  auto every_step(Needed needed) const;
+  struct LaneSteps;
+  Steps steps_;
   std::vector<uint32_t> outputs_;
   std::vector<Where> sources_;  // by step; empty in simplified tapes
   uint32_t values_ = 0, params_ = 0;
+  bool simd_only_ = true;
+  bool dense_ = true;  // step i defines value i (simplified tapes always; a function's when numbered so)
 };
 
 // While one of these lives (in any thread), simplified tapes keep their steps' sources.

@@ -15,7 +15,7 @@ namespace fscript::vm {
 
 VmProgram tape_program(const ir::IntervalTape& t) {
   using Step = ir::IntervalTape::Step;
-  const std::vector<Step>& steps = t.steps();
+  const auto& steps = t.steps();
   VmProgram p;
   p.functions.emplace_back();
   VmFunction& f = p.functions.back();

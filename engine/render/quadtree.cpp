@@ -62,11 +62,13 @@ class Renderer {
   }
 
   // Bounds `rects` (regions of `level`) on `tape` in batches; fills the decided ones and hands each
-  // open one, with its batch evaluation and lane, to `open`. False on a runtime error.
+  // open one, with its batch evaluation and lane, to `open`. False on a runtime error. `keep`: each
+  // batch is evaluated into a new entry there (dropped again when none of its regions is open), for
+  // evaluations that outlive the call, instead of the level's scratch (no copy of either).
   template <typename Open>
-  bool bound(const Tape& tape, const std::vector<Rect>& rects, size_t level, Open open) {
+  bool bound(const Tape& tape, const std::vector<Rect>& rects, size_t level, Open open,
+             std::deque<ir::IntervalBatchEval>* keep = nullptr) {
     QuadtreeLevel& st = stats_.levels[level];
-    ir::IntervalBatchEval& ev = scratch_[level];  // per level: a parent's evaluation outlives its children's
     std::vector<ir::IntervalLanes>& in = lanes_[level];  // reused: threads share one malloc arena
     in.resize(dense_.num_inputs());
     for (auto& lanes : in)
@@ -78,7 +80,10 @@ class Renderer {
         in[0].set(k, math::iv::hull(math::Interval::point(xs_[r.c0]), math::Interval::point(xs_[r.c1 - 1])));
         in[1].set(k, math::iv::hull(math::Interval::point(ys_[r.r0]), math::Interval::point(ys_[r.r1 - 1])));
       }
+      // Per level: a parent's evaluation outlives its children's.
+      ir::IntervalBatchEval& ev = keep ? keep->emplace_back() : scratch_[level];
       tape.flat->eval_batch(in, ev);
+      bool any = false;
       for (size_t k = 0; k < n; ++k) {
         const Rect& r = rects[first + k];
         math::Interval f = ev.output(0, k);
@@ -87,10 +92,11 @@ class Renderer {
         } else if (f.empty() || f.hi < 0) {
           ++st.empty, fill(r, 0);  // NaN is outside too
         } else {
-          ++st.ambiguous;
+          ++st.ambiguous, any = true;
           if (!open(r, ev, k)) return false;
         }
       }
+      if (keep && !any) keep->pop_back();
     }
     return true;
   }
@@ -292,19 +298,21 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
     std::vector<Kid> open;
   };
   std::vector<Top> tops;
-  std::vector<ir::IntervalBatchEval> top;
+  std::deque<ir::IntervalBatchEval> top;  // the top level's bounds (stable addresses)
   bool ok = true;
   if (prune) {
     Renderer& r0 = *renderers[0];
-    size_t kept_for = SIZE_MAX;  // the batch whose evaluation top.back() is
     for (size_t first = 0; first < tiles.size(); first += ir::kIntervalLanes) {
       std::vector<Rect> part(tiles.begin() + static_cast<long>(first),
                              tiles.begin() + static_cast<long>(std::min(tiles.size(), first + ir::kIntervalLanes)));
-      ok = ok && r0.bound(full, part, 0, [&](Rect r, ir::IntervalBatchEval& ev, size_t k) {
-        if (kept_for != first) top.push_back(ev), kept_for = first;
-        tops.push_back({r, top.size() - 1, k, {}, {}, {}});
-        return true;
-      });
+      ok = ok &&
+          r0.bound(
+              full, part, 0,
+              [&](Rect r, ir::IntervalBatchEval&, size_t k) {
+                tops.push_back({r, top.size() - 1, k, {}, {}, {}});
+                return true;
+              },
+              &top);
     }
     for (auto& ev : top) full.flat->lane_masks(ev);  // before the threads share them
   }
@@ -328,14 +336,16 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
          for (size_t first = 0; first < kids.size(); first += ir::kIntervalLanes) {
            std::vector<Rect> part(kids.begin() + static_cast<long>(first),
                                   kids.begin() + static_cast<long>(std::min(kids.size(), first + ir::kIntervalLanes)));
-           bool kept = false;
-           bool fine = r.bound(t.tape, part, 1, [&](Rect c, ir::IntervalBatchEval& ev, size_t k) {
-             if (!kept) t.evals.push_back(ev), kept = true;
-             t.open.push_back({c, t.evals.size() - 1, k});
-             return true;
-           });
+           size_t before = t.evals.size();
+           bool fine = r.bound(
+               t.tape, part, 1,
+               [&](Rect c, ir::IntervalBatchEval&, size_t k) {
+                 t.open.push_back({c, t.evals.size() - 1, k});
+                 return true;
+               },
+               &t.evals);
            if (!fine) return false;
-           if (kept) t.tape.flat->lane_masks(t.evals.back());
+           if (t.evals.size() > before) t.tape.flat->lane_masks(t.evals.back());
          }
          return true;
        });

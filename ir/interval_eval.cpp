@@ -283,10 +283,17 @@ void IntervalTape::lane_masks(IntervalBatchEval& ev) const {
     uint16_t left = 0, right = 0;
     if (chooses(s.op)) {
       const Choice* c = ev.choices.data() + size_t(s.dst) * kIntervalLanes;
+#if defined(__SSE2__)  // the lanes' choices compared at once (the loop below is not vectorised)
+      static_assert(kIntervalLanes == 16 && sizeof(Choice) == 1, "one SSE register of choices");
+      const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c));
+      left = static_cast<uint16_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_set1_epi8(char(Choice::Left)))));
+      right = static_cast<uint16_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(v, _mm_set1_epi8(char(Choice::Right)))));
+#else
       for (size_t k = 0; k < kIntervalLanes; ++k) {
         left |= static_cast<uint16_t>((c[k] == Choice::Left) << k);
         right |= static_cast<uint16_t>((c[k] == Choice::Right) << k);
       }
+#endif
       left &= m, right &= m;
       ev.stands[s.dst] = left | right;
     }

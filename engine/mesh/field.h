@@ -80,6 +80,11 @@ class Field {
   // be made at this ask.
   virtual const ir::IntervalTape* value_tape() const { return nullptr; }
   virtual const ir::IntervalTape* gradient_tape() const { return nullptr; }
+  // Every tape an evaluation of this field runs: its own, or a combination's parts' (an
+  // FTransform's children and its operation), appended to `out`.
+  virtual void part_tapes(bool gradient, std::vector<const ir::IntervalTape*>& out) const {
+    if (const ir::IntervalTape* t = gradient ? gradient_tape() : value_tape()) out.push_back(t);
+  }
   // The mesher knows how many points the whole function will be asked for once the octree has
   // handed out its regions' tapes (backends::Kernel::expect_points: auto then compiles or not).
   virtual void expect_points(uint64_t) const {}

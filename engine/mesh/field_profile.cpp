@@ -17,6 +17,15 @@ uint64_t ns_since(std::chrono::steady_clock::time_point t0) {
       std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
 }
 
+// The operations of every tape `f` runs for a value (or a gradient): what one point costs it.
+uint32_t operations(const Field& f, bool gradient) {
+  std::vector<const ir::IntervalTape*> tapes;
+  f.part_tapes(gradient, tapes);
+  size_t n = 0;
+  for (const ir::IntervalTape* t : tapes) n += t->operations();
+  return static_cast<uint32_t>(n);
+}
+
 // What one field does while its job runs (counted from many threads at once).
 struct LiveRecord {
   std::shared_ptr<const Field> field;
@@ -81,9 +90,8 @@ class ProfiledField : public Field {
     bool ok = inner_->eval_gradient(x, y, z, n, out, err);
     count(rec_.gradients, rec_.gradient_ns, n, t0);
     uint32_t len = rec_.gradient_length.load(std::memory_order_relaxed);
-    if (!len) {  // the gradient's tape is made by its first evaluation
-      const ir::IntervalTape* g = inner_->gradient_tape();
-      len = g ? static_cast<uint32_t>(g->operations()) : 0;
+    if (!len) {  // the gradient's tapes are made by its first evaluation
+      len = operations(*inner_, true);
       rec_.gradient_length.store(len, std::memory_order_relaxed);
     }
     job_.profile.add_points(x, y, n, len, false);
@@ -104,6 +112,9 @@ class ProfiledField : public Field {
   void expect_points(uint64_t points) const override { inner_->expect_points(points); }
   const ir::IntervalTape* value_tape() const override { return inner_->value_tape(); }
   const ir::IntervalTape* gradient_tape() const override { return inner_->gradient_tape(); }
+  void part_tapes(bool gradient, std::vector<const ir::IntervalTape*>& out) const override {
+    inner_->part_tapes(gradient, out);
+  }
 
  private:
   static void count(std::atomic<uint64_t>& what, std::atomic<uint64_t>& ns, size_t n,
@@ -123,8 +134,7 @@ std::shared_ptr<const Field> JobRecords::wrap(std::shared_ptr<const Field> f, co
     rec = &live_.emplace_back();
   }
   if (box) rec->has_box = true, rec->box = *box;
-  const ir::IntervalTape* t = f->value_tape();
-  rec->value_length = t ? static_cast<uint32_t>(t->operations()) : 0;
+  rec->value_length = operations(*f, false);
   rec->field = f;
   return std::make_shared<ProfiledField>(std::move(f), *rec, *this);
 }
@@ -144,8 +154,12 @@ std::deque<FieldRecord> JobRecords::finish() {
     r.points = l.points.load(), r.point_ns = l.point_ns.load();
     r.gradients = l.gradients.load(), r.gradient_ns = l.gradient_ns.load();
     r.bounds = l.bounds.load(), r.bound_ns = l.bound_ns.load();
-    r.value = copy(l.field->value_tape());
-    if (r.gradients) r.gradient = copy(l.field->gradient_tape());
+    std::vector<const ir::IntervalTape*> tapes;
+    l.field->part_tapes(false, tapes);
+    for (const ir::IntervalTape* t : tapes) r.value.push_back(copy(t));
+    tapes.clear();
+    if (r.gradients) l.field->part_tapes(true, tapes);
+    for (const ir::IntervalTape* t : tapes) r.gradient.push_back(copy(t));
     l.field.reset();
   }
   return out;

@@ -24,7 +24,9 @@ struct FieldRecord {
   uint64_t points = 0, point_ns = 0;        // values evaluated, and their time
   uint64_t gradients = 0, gradient_ns = 0;  // gradients evaluated
   uint64_t bounds = 0, bound_ns = 0;        // boxes bounded by intervals
-  std::shared_ptr<const ir::IntervalTape> value, gradient;  // null: it runs no tape (or no gradient ran)
+  // The tapes it runs (Field::part_tapes: one, or an FTransform's parts'); none where it runs no
+  // tape, or no gradient was asked.
+  std::vector<std::shared_ptr<const ir::IntervalTape>> value, gradient;
 };
 
 class FieldProfile {

@@ -244,6 +244,11 @@ GroupField::GroupField(const SceneModel& m, int group) : m_(m), g_(m.groups[grou
                               [](const Shape& s) { return std::make_unique<ShapeField>(s); });
 }
 
+void GroupField::part_tapes(bool gradient, std::vector<const ir::IntervalTape*>& out) const {
+  for (const auto& k : kids_) k->part_tapes(gradient, out);
+  if (!gradient && g_.op_kernel && g_.op_kernel->intervals) out.push_back(g_.op_kernel->intervals.get());
+}
+
 bool GroupField::valid(std::string& why) const {
   why = invalid_;
   return invalid_.empty();

@@ -67,6 +67,7 @@ class GroupField : public mesh::Field {
   bool has_gradient() const override;
   bool eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                      backends::RuntimeError& err) const override;
+  void part_tapes(bool gradient, std::vector<const ir::IntervalTape*>& out) const override;
   // False (with a message) when a child cannot be part of an implicit field (a parametric shape).
   bool valid(std::string& why) const;
   std::array<double, 6> box() const;     // the union of the children's boxes

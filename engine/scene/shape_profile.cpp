@@ -81,24 +81,35 @@ namespace {
 // Parameters and constants are where a step's operands come from, not work of a line.
 bool operation(ir::Op op) { return op != ir::Op::Param && op != ir::Op::Const; }
 
+using Tapes = std::vector<std::shared_ptr<const ir::IntervalTape>>;
+
+size_t operations(const Tapes& tapes) {
+  size_t n = 0;
+  for (const auto& t : tapes) n += t->operations();
+  return n;
+}
+
 struct Lines {
   std::map<uint32_t, LineCost> by_line;
-  // Charges `points` evaluations of `t` taking `ns` to its steps' lines.
-  void charge(const ir::IntervalTape& t, uint64_t points, double ns, std::map<uint32_t, double>& runs) {
-    const auto& steps = t.steps();
-    const auto& src = t.sources();
-    std::vector<double> cost(steps.size());
+  // Charges `points` evaluations of `tapes` (each point runs them all) taking `ns` to their
+  // steps' lines, the time split by what each step's op costs.
+  void charge(const Tapes& tapes, uint64_t points, double ns, std::map<uint32_t, double>& runs) {
     double sum = 0;
-    for (size_t i = 0; i < steps.size(); ++i) sum += cost[i] = op_cost_ns(steps[i].op);
+    for (const auto& t : tapes)
+      for (const auto& step : t->steps()) sum += op_cost_ns(step.op);
     std::set<uint32_t> seen;
-    for (size_t i = 0; i < steps.size(); ++i) {
-      if (!operation(steps[i].op)) continue;
-      uint32_t line = i < src.size() ? src[i].line : 0;
-      LineCost& l = by_line[line];
-      l.line = line;
-      l.ops += static_cast<double>(points);
-      l.ns += sum > 0 ? ns * cost[i] / sum : 0;
-      if (seen.insert(line).second) runs[line] += static_cast<double>(points);
+    for (const auto& t : tapes) {
+      const auto& steps = t->steps();
+      const auto& src = t->sources();
+      for (size_t i = 0; i < steps.size(); ++i) {
+        if (!operation(steps[i].op)) continue;
+        uint32_t line = i < src.size() ? src[i].line : 0;
+        LineCost& l = by_line[line];
+        l.line = line;
+        l.ops += static_cast<double>(points);
+        l.ns += sum > 0 ? ns * op_cost_ns(steps[i].op) / sum : 0;
+        if (seen.insert(line).second) runs[line] += static_cast<double>(points);
+      }
     }
   }
 };
@@ -118,19 +129,19 @@ ShapeProfile profile_report(const vrml::Scene& scene, const vrml::Node& node, co
     uint64_t pts = rec.points, grads = rec.gradients;
     r.points += pts, r.gradients += grads, r.boxes += rec.bounds;
     r.value_ms += rec.point_ns / 1e6, r.gradient_ms += rec.gradient_ns / 1e6, r.bound_ms += rec.bound_ns / 1e6;
-    const ir::IntervalTape* v = rec.value.get();
-    if (!rec.has_box) r.whole_points += pts, r.whole_length = v ? v->operations() : 0;
-    if (!v) continue;
+    const size_t ops = operations(rec.value);
+    if (!rec.has_box) r.whole_points += pts, r.whole_length = ops;
+    if (rec.value.empty()) continue;
     r.mapped = true;
     if (rec.has_box && pts > 0) {
       ++r.regions;
-      r.tape_min = r.regions == 1 ? v->operations() : std::min(r.tape_min, v->operations());
-      r.tape_max = std::max(r.tape_max, v->operations());
-      tape_sum += static_cast<double>(v->operations());
+      r.tape_min = r.regions == 1 ? ops : std::min(r.tape_min, ops);
+      r.tape_max = std::max(r.tape_max, ops);
+      tape_sum += static_cast<double>(ops);
     }
-    value_ops += static_cast<double>(pts) * static_cast<double>(v->operations());
-    if (pts) lines.charge(*v, pts, static_cast<double>(rec.point_ns), runs);
-    if (grads && rec.gradient) lines.charge(*rec.gradient, grads, static_cast<double>(rec.gradient_ns), runs);
+    value_ops += static_cast<double>(pts) * static_cast<double>(ops);
+    if (pts) lines.charge(rec.value, pts, static_cast<double>(rec.point_ns), runs);
+    if (grads && !rec.gradient.empty()) lines.charge(rec.gradient, grads, static_cast<double>(rec.gradient_ns), runs);
   }
   if (r.regions) r.tape_mean = tape_sum / static_cast<double>(r.regions);
   if (r.points) r.ops_per_point = value_ops / static_cast<double>(r.points);

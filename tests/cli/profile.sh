@@ -93,6 +93,25 @@ n=$((n + 1))
 check "fvrml-run --profile of a PNG meshes it" 0 "regions with a tape of their own" -- \
   "$R" "$T/u.wrl" -o "$T/u.png" --profile --size 64
 check "fvrml-run --profile with --serve is refused" 2 "not with --serve" -- "$R" "$T/u.wrl" --profile --serve
+# An FTransform: its children's scripts run whole at every point (no region's tape), each line charged.
+cat > "$T/group.wrl" <<'WRL'
+#VRML V2.0 utf8
+FTransform { operation "union" children [
+  FShape { geometry FGeometry { resolution [48 48 48] bboxSize 2 2 2 definition "function FRep(x, y, z, t) {
+    ball = 0.5 - sqrt(x*x + y*y + z*z);
+    return ball;
+  }" } }
+  FShape { geometry FGeometry { resolution [48 48 48] bboxSize 2 2 2 definition "function FRep(x, y, z, t) {
+    g = sin(5*x)*cos(5*y) + sin(5*y)*cos(5*z) + sin(5*z)*cos(5*x);
+    return min(g, 0.8 - x*x - y*y - z*z);
+  }" } }
+] }
+WRL
+jcheck "profile of an FTransform: both children's lines, every point running them" out "
+(lambda l: j[0]['node'] == 'FTransform' and j[0]['mapped'] and set(l) == {4, 8, 9} and
+ all(c['runs_at'] == 1.0 for c in l.values()) and l[8]['ops'] > l[4]['ops'] and l[4]['ops'] == l[9]['ops'])(
+ {c['line']: c for c in j[0]['lines']})" \
+  -- "$F" profile "$T/group.wrl" --json
 # Bad input: clear messages, exit 1.
 check "profile: a parametric scene has nothing to profile" 1 "no implicit shape to profile" -- \
   "$F" profile "$SRC/examples/paper/figure1-morphing.wrl"

@@ -117,16 +117,20 @@ std::vector<Rough> rough_triangles(const Mesh& m, float cos_crease, std::vector<
     float len;
     Vec3 fn = face_normal(m, tri, len);
     float fits[3], limit = cos_crease * len;  // fits scaled by len: no division for most triangles
-    int best = 0;
     uint8_t own = 0;
     for (int k = 0; k < 3; ++k) {
       fits[k] = len > 0 ? dot(m.normals[tri[static_cast<size_t>(k)]], fn) : 0;
-      if (fits[k] > fits[best]) best = k;
-      if (len > 0 && fits[k] >= limit) own |= static_cast<uint8_t>(1 << k);
+      own |= static_cast<uint8_t>((len > 0 && fits[k] >= limit) << k);
     }
+    if (own == 7) {  // smooth: most triangles
+      keeps[tri[0]] = keeps[tri[1]] = keeps[tri[2]] = 1;
+      continue;
+    }
+    int best = 0;
+    for (int k = 1; k < 3; ++k)
+      if (fits[k] > fits[best]) best = k;
     for (int k = 0; k < 3; ++k)
       if (own >> k & 1) keeps[tri[static_cast<size_t>(k)]] = 1;
-    if (own == 7) continue;  // smooth: most triangles
     Vec3 side = own >> best & 1 ? m.normals[tri[static_cast<size_t>(best)]]
         : len > 0               ? Vec3{fn[0] / len, fn[1] / len, fn[2] / len}
                                 : Vec3{0, 0, 0};

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "ir/interval_lanes.h"
+#include "runtime/math/batch_isa.h"
 
 namespace fscript::ir::FS_ISA {
 
@@ -122,6 +123,51 @@ void sqrt(const Lanes& a, Lanes& r) {
   }
 }
 
+// sin or cos over each lane (interval.cpp's periodic, lane by lane in its decisions): the ends by
+// the batch twin the backends call (sincos_batch: their very bits, within 3 ulps of the truth, one
+// range reduction for both ends' sin and cos), widened by kTrigUlps so that every backend's value at
+// every point of the interval, itself within 3 ulps of the truth, lies inside; -1 and 1 (widened as
+// the scalar rule widens them) where the interval reaches a trough or a crest.
+constexpr int kTrigUlps = 6;
+
+// floor without a library call (exact: every double past 2^52 is an integer).
+inline double floor_of(double x) {
+  if (!(std::fabs(x) < 4503599627370496.0)) return x;
+  double t = static_cast<double>(static_cast<int64_t>(x));
+  return t > x ? t - 1 : t;
+}
+
+// Whether lo <= c + k * 2 pi <= hi for some integer k, a little generous (as interval.cpp's hits).
+inline bool reaches(double lo, double hi, double c) {
+  constexpr double kInvTwoPi = 0.15915494309189533577;
+  double slack = 1e-9 * (1 + std::fabs(lo) + std::fabs(hi));
+  return floor_of((hi - c + slack) * kInvTwoPi) >= -floor_of(-((lo - c - slack) * kInvTwoPi));
+}
+
+void trig(const Lanes& a, bool cos, Lanes& r) {
+  constexpr double kPi = 3.14159265358979323846;
+  float s_lo[L], c_lo[L], s_hi[L], c_hi[L];
+  math::FS_ISA::sincos_batch(a.lo, s_lo, c_lo, L);
+  math::FS_ISA::sincos_batch(a.hi, s_hi, c_hi, L);
+  const double crest = cos ? 0 : kPi / 2, trough = cos ? kPi : -kPi / 2;
+  for (size_t i = 0; i < L; ++i) {
+    const float lo = a.lo[i], hi = a.hi[i];
+    if (lo > hi) {  // no number: only NaN
+      r.lo[i] = kInf, r.hi[i] = -kInf, r.nan[i] = 1u;
+      continue;
+    }
+    const bool inf = lo == -kInf || hi == kInf;
+    r.nan[i] = a.nan[i] | static_cast<uint32_t>(inf);
+    if (inf || static_cast<double>(hi) - lo >= 2 * kPi) {
+      r.lo[i] = math::detail::down(-1, 4), r.hi[i] = math::detail::up(1, 4);  // the scalar rule's
+      continue;
+    }
+    const float x = cos ? c_lo[i] : s_lo[i], y = cos ? c_hi[i] : s_hi[i];
+    r.lo[i] = reaches(lo, hi, trough) ? math::detail::down(-1, 4) : math::detail::down(std::min(x, y), kTrigUlps);
+    r.hi[i] = reaches(lo, hi, crest) ? math::detail::up(1, 4) : math::detail::up(std::max(x, y), kTrigUlps);
+  }
+}
+
 void constant(float v, Lanes& r) {
   bool nan = v != v;
   for (size_t i = 0; i < L; ++i) {
@@ -171,6 +217,8 @@ void eval_lanes(const IntervalTape::Step* steps, size_t n, const IntervalLanes* 
       case Op::Min: min_max(true, v[s.a], v[s.b], r, choices + size_t(s.dst) * L); break;
       case Op::Max: min_max(false, v[s.a], v[s.b], r, choices + size_t(s.dst) * L); break;
       case Op::Sqrt: sqrt(v[s.a], r); break;
+      case Op::Sin: trig(v[s.a], false, r); break;
+      case Op::Cos: trig(v[s.a], true, r); break;
       default: scalar(s, v, r, choices + size_t(s.dst) * L); break;  // the rest: see scalar(), simd_interval_op
     }
   }

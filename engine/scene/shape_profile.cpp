@@ -4,6 +4,7 @@
 #include "engine/scene/shape_profile.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -91,12 +92,18 @@ size_t operations(const Tapes& tapes) {
 
 struct Lines {
   std::map<uint32_t, LineCost> by_line;
+  // op_cost_ns by op, asked once each here (it locks and looks up; a report charges millions of steps).
+  std::array<double, ir::kNumOps> costs{};
+  double cost(ir::Op op) {
+    double& c = costs[static_cast<size_t>(op)];
+    return c > 0 ? c : c = op_cost_ns(op);
+  }
   // Charges `points` evaluations of `tapes` (each point runs them all) taking `ns` to their
   // steps' lines, the time split by what each step's op costs.
   void charge(const Tapes& tapes, uint64_t points, double ns, std::map<uint32_t, double>& runs) {
     double sum = 0;
     for (const auto& t : tapes)
-      for (const auto& step : t->steps()) sum += op_cost_ns(step.op);
+      for (const auto& step : t->steps()) sum += cost(step.op);
     std::set<uint32_t> seen;
     for (const auto& t : tapes) {
       const auto& steps = t->steps();
@@ -107,7 +114,7 @@ struct Lines {
         LineCost& l = by_line[line];
         l.line = line;
         l.ops += static_cast<double>(points);
-        l.ns += sum > 0 ? ns * op_cost_ns(steps[i].op) / sum : 0;
+        l.ns += sum > 0 ? ns * cost(steps[i].op) / sum : 0;
         if (seen.insert(line).second) runs[line] += static_cast<double>(points);
       }
     }

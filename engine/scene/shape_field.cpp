@@ -11,6 +11,7 @@
 #include "engine/driver/driver.h"
 #include "engine/mesh/local_field.h"
 #include "runtime/math/math.h"
+#include "runtime/support/scratch.h"
 
 namespace fscript::scene {
 
@@ -286,18 +287,18 @@ std::array<int, 3> GroupField::cells() const {
 
 const Shape* GroupField::first_shape() const { return shapes_.empty() ? nullptr : shapes_.front(); }
 
-void GroupField::to_local(const float*& x, const float*& y, const float*& z, size_t n, std::vector<float>& lx,
-                          std::vector<float>& ly, std::vector<float>& lz) const {
+void GroupField::to_local(const float*& x, const float*& y, const float*& z, size_t n, float* room) const {
   if (!moved_) return;
-  lx.assign(x, x + n), ly.assign(y, y + n), lz.assign(z, z + n);
+  float *lx = room, *ly = room + n, *lz = room + 2 * n;
+  std::copy_n(x, n, lx), std::copy_n(y, n, ly), std::copy_n(z, n, lz);
   for (size_t i = 0; i < n; ++i) apply(inverse_, lx[i], ly[i], lz[i]);
-  x = lx.data(), y = ly.data(), z = lz.data();
+  x = lx, y = ly, z = lz;
 }
 
 bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, float* out,
                       backends::RuntimeError& err) const {
-  std::vector<float> lx, ly, lz;
-  to_local(x, y, z, n, lx, ly, lz);
+  support::ScratchFloats room(moved_ ? 3 * n : 0);
+  to_local(x, y, z, n, room.get());
   if (kids_.empty()) {  // an empty group holds nothing: outside everywhere
     std::fill_n(out, n, -1.0f);
     return true;
@@ -305,7 +306,7 @@ bool GroupField::eval(const float* x, const float* y, const float* z, size_t n, 
   if (g_.op_kernel) return eval_operator(x, y, z, n, out, err);
   // The first child straight into out and the others into one buffer left uninitialised: zeroing
   // and copying per batch cost as much as the folds themselves.
-  std::unique_ptr<float[]> rest(new float[n * (kids_.size() - 1)]);
+  support::ScratchFloats rest(n * (kids_.size() - 1));
   auto vals = [&](size_t k) { return k == 0 ? out : rest.get() + n * (k - 1); };
   for (size_t k = 0; k < kids_.size(); ++k)
     if (!kids_[k]->eval(x, y, z, n, vals(k), err)) return false;
@@ -318,7 +319,7 @@ bool GroupField::eval_rows(const float* x, size_t count, const float* y, const f
                            backends::RuntimeError& err) const {
   if (moved_ || kids_.empty() || g_.op_kernel) return Field::eval_rows(x, count, y, z, rows, out, err);
   size_t n = count * rows;
-  std::unique_ptr<float[]> rest(new float[n * (kids_.size() - 1)]);
+  support::ScratchFloats rest(n * (kids_.size() - 1));
   for (size_t k = 0; k < kids_.size(); ++k)
     if (!kids_[k]->eval_rows(x, count, y, z, rows, k == 0 ? out : rest.get() + n * (k - 1), err)) return false;
   fold(out, rest.get(), n);
@@ -368,10 +369,10 @@ bool GroupField::has_gradient() const {
 
 bool GroupField::eval_gradient(const float* x, const float* y, const float* z, size_t n, float* const out[4],
                                backends::RuntimeError& err) const {
-  std::vector<float> lx, ly, lz;
-  to_local(x, y, z, n, lx, ly, lz);
+  support::ScratchFloats room(moved_ ? 3 * n : 0);
+  to_local(x, y, z, n, room.get());
   if (!kids_[0]->eval_gradient(x, y, z, n, out, err)) return false;
-  std::unique_ptr<float[]> buf(new float[4 * n]);
+  support::ScratchFloats buf(4 * n);
   float* const g[4] = {buf.get(), buf.get() + n, buf.get() + 2 * n, buf.get() + 3 * n};
   for (size_t k = 1; k < kids_.size(); ++k) {
     if (!kids_[k]->eval_gradient(x, y, z, n, g, err)) return false;

@@ -79,10 +79,9 @@ class GroupField : public mesh::Field {
   // An analytical operation (the FTransform's operation as a script) over the children's values.
   bool eval_operator(const float* x, const float* y, const float* z, size_t n, float* out,
                      backends::RuntimeError& err) const;
-  // Points into the FTransform's own frame, where its children live (kept in lx, ly, lz; nothing
-  // to do when it does not move them).
-  void to_local(const float*& x, const float*& y, const float*& z, size_t n, std::vector<float>& lx,
-                std::vector<float>& ly, std::vector<float>& lz) const;
+  // Points into the FTransform's own frame, where its children live (kept in `room`, 3n floats;
+  // nothing to do when it does not move them).
+  void to_local(const float*& x, const float*& y, const float*& z, size_t n, float* room) const;
   // The set operation and its blend parameters (a0, a1, a2; sign +1 for blend_union), read once.
   struct SetOp {
     enum Kind { Union, Intersection, Subtraction, Blend } kind = Union;

@@ -41,6 +41,15 @@ bool huge_pages_available() {
   return ok;
 }
 
+// Without huge pages the faults of first touches stay, but freed batches and meshes need not give
+// their pages back to be faulted in again by the next ones (glibc trims a heap's top and unmaps
+// blocks over its threshold on every free, and grows the heap 128 KiB at a time).
+void keep_heap(size_t bytes) {
+  constexpr int kMmapThreshold = 32 << 20, kTopPad = 16 << 20;
+  if (mallopt(M_MMAP_THRESHOLD, kMmapThreshold) == 1) mallopt(M_TRIM_THRESHOLD, static_cast<int>(2 * bytes - 1));
+  mallopt(M_TOP_PAD, kTopPad);
+}
+
 }  // namespace
 
 void prepare_huge_heap() {
@@ -53,7 +62,11 @@ HugeHeap reserve_huge_heap(size_t bytes) {
   constexpr int kMmapThreshold = 32 << 20;  // glibc's largest: buffers below it come from the heap
   constexpr size_t kMaxReserve = size_t{1} << 30;  // mallopt takes an int; the trim threshold is twice it
   bytes = std::min(bytes, kMaxReserve);
-  if (!g_prepared || g_heap.reserved || bytes < (size_t{4} << 20)) return g_heap;
+  if (g_heap.reserved || bytes < (size_t{4} << 20)) return g_heap;
+  if (!g_prepared) {  // no huge pages: still one heap that keeps its pages, grown in large steps
+    keep_heap(bytes);
+    return g_heap;
+  }
   if (mallopt(M_MMAP_THRESHOLD, kMmapThreshold) != 1 ||
       mallopt(M_TRIM_THRESHOLD, static_cast<int>(2 * bytes - 1)) != 1 ||
       mallopt(M_TOP_PAD, static_cast<int>(bytes)) != 1)

@@ -17,7 +17,9 @@ void prepare_huge_heap();
 
 // Grows the heap by `bytes` at once (virtual memory, committed only as touched), keeps it from being
 // trimmed and advises the kernel to back it with 2 MiB pages. Call it after the memory cap is set
-// (limits.h), which then counts the reservation: the cap still bounds the whole run.
+// (limits.h), which then counts the reservation: the cap still bounds the whole run. Without huge
+// pages (but with glibc's malloc) it still keeps the heap: no trimming below 2 x `bytes`, blocks
+// up to 32 MiB from the heap, growth in 16 MiB steps.
 HugeHeap reserve_huge_heap(size_t bytes);
 
 // What reserve_huge_heap did in this process.

@@ -1,10 +1,13 @@
 // The huge heap (runtime/support/huge_heap.h): where the machine allows it, the memory malloc hands
-// out afterwards is in the reserved range and the kernel has it marked for huge pages; elsewhere
-// (a sanitizer's allocator, huge pages off) nothing changes.
+// out afterwards is in the reserved range and the kernel has it marked for huge pages; with huge
+// pages off (ctest runs it again with FSCRIPT_HUGE_PAGES=0) the heap is still kept; under a
+// sanitizer's allocator nothing changes.
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <malloc.h>
+#include <unistd.h>
 #include <sstream>
 #include <string>
 
@@ -58,4 +61,20 @@ TEST_CASE("huge heap: later allocations land in the range advised for huge pages
   std::free(buffer);
   // Once is enough: a second call changes nothing.
   CHECK(support::reserve_huge_heap(size_t{128} << 20).reserved == h.reserved);
+}
+
+TEST_CASE("huge heap: without huge pages the heap is still kept: large blocks from it, not trimmed") {
+  support::prepare_huge_heap();
+  support::HugeHeap h = support::reserve_huge_heap(size_t{64} << 20);
+  if (sanitized() || h.reserved > 0) return;  // the huge heap keeps it too (the case above)
+  // 8 MiB would be a mapping of its own under glibc's first threshold (128 KiB), given back to the
+  // kernel when freed and faulted in again by the next one.
+  const size_t mapped = mallinfo2().hblkhd;
+  auto* buffer = static_cast<char*>(std::malloc(size_t{8} << 20));
+  REQUIRE(buffer);
+  buffer[0] = buffer[(size_t{8} << 20) - 1] = 1;
+  CHECK(mallinfo2().hblkhd == mapped);
+  void* top = sbrk(0);
+  std::free(buffer);
+  CHECK(sbrk(0) == top);  // not trimmed
 }

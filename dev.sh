@@ -17,6 +17,8 @@
 #                    build, WORKERS processes (default: the cores) that yield to other work
 #   ./dev.sh oracle [SECONDS]   generated programs on every backend and under node, fresh seeds
 #                    for SECONDS (default 300; tests/oracle; docs/testing.md)
+#   ./dev.sh wasm    the browser build with Debian's Emscripten (build-wasm/web: open index.html),
+#                    then its tests against the native build (docs/browser.md); ./dev.sh test builds it too
 # With CI set (CI=true ./dev.sh test), a test skipped because something is missing fails instead.
 # FVRML_SHARED=DIR names the shared folder (corpus, paper data) when it is not ../shared.
 set -euo pipefail
@@ -31,6 +33,9 @@ PACKAGES=(cmake ninja-build ccache g++ python3 catch2 nlohmann-json3-dev libcli1
 TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim nodejs chromium slurm-wlm munge clang-format-19)
 # The fuzz build (build-fuzz) and the replay of the fuzz corpora in the normal build.
 FUZZ_PACKAGES=(clang-19 libfuzzer-19-dev)
+# The browser build (preset wasm): Emscripten, Node for its tools, the header-only libraries it
+# links from Debian, three.js for the page.
+WASM_PACKAGES=(emscripten nodejs libjs-three nlohmann-json3-dev libeigen3-dev libcli11-dev)
 FUZZ_TARGETS=(fscript_frontend ir_reader vrml_reader lsp_server backend_diff straight_diff interval_sound)
 
 install_missing() {
@@ -59,6 +64,18 @@ build() {
   cmake --preset "$preset" "${extra[@]}" >/dev/null
   ninja -C "$dir" -k 0 >&2  # -k 0: every failing file in one build (a table change names every missing case)
   BUILD_DIR=$dir
+}
+
+build_wasm() {
+  install_missing "${WASM_PACKAGES[@]}" || { echo "note: could not install ${WASM_PACKAGES[*]}; the browser build's tests will be skipped"; return 0; }
+  # Emscripten's tools load Debian's node modules (acorn): a node that is not Debian's own does not
+  # look for them there.
+  export NODE_PATH="/usr/share/nodejs${NODE_PATH:+:$NODE_PATH}"
+  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(dirname "$PWD")}"
+  local extra=()
+  [ -n "${FVRML_SHARED:-}" ] && extra+=(-DFS_SHARED_DIR="$(cd "$FVRML_SHARED" && pwd)")
+  cmake --preset wasm "${extra[@]}" > /dev/null
+  ninja -C build-wasm -k 0 >&2
 }
 
 cmd="${1:-demo}"
@@ -127,6 +144,7 @@ case "$cmd" in
     else
       install_missing "${TEST_PACKAGES[@]}" || echo "note: could not install ${TEST_PACKAGES[*]}; the VRML97 browser test will be skipped"
       install_npm_tools
+      build_wasm || status=$?
       (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)") || status=$?
       FS_SKIP_LOG="$PWD/$BUILD_DIR/skipped.txt" fuzz_briefly || status=1
     fi
@@ -167,6 +185,13 @@ case "$cmd" in
     echo "oracle: fresh seeds from $seed for ${2:-300} s (./dev.sh oracle SECONDS); a difference prints both programs"
     exec "$BUILD_DIR/tests/oracle/js_oracle" --prelude tests/oracle/prelude.js --seed "$seed" --seconds "${2:-300}"
     ;;
+  wasm)
+    install_missing "${TEST_PACKAGES[@]}" || true
+    install_npm_tools
+    build_wasm
+    echo "built build-wasm/web (open build-wasm/web/index.html in a browser); its tests:"
+    (cd "$BUILD_DIR" && ctest --output-on-failure -L wasm)
+    ;;
   mutation)
     shift
     exec tests/mutation/run.sh "$@"
@@ -177,5 +202,5 @@ case "$cmd" in
     echo "installed fscript, fvrml-run, fvrml-meshdiff and fscript-lsp in $2/bin"
     case ":$PATH:" in *":$2/bin:"*) ;; *) echo "note: $2/bin is not on PATH; add it for editors to find fscript-lsp" ;; esac
     ;;
-  *) echo "usage: ./dev.sh demo|test [--fast]|build|setup|format [--check]|install PREFIX|mutation|fuzz [TARGET|all] [SECONDS]|campaign TARGET [SECONDS] [WORKERS]|oracle [SECONDS]" >&2; exit 2 ;;
+  *) echo "usage: ./dev.sh demo|test [--fast]|build|setup|format [--check]|install PREFIX|mutation|fuzz [TARGET|all] [SECONDS]|campaign TARGET [SECONDS] [WORKERS]|oracle [SECONDS]|wasm" >&2; exit 2 ;;
 esac

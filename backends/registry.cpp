@@ -1,7 +1,9 @@
 // Which backends this binary has, and how to make one by name.
 #include "backends/backend.h"
 #include "backends/llvm_module.h"
+#if defined(FS_HAVE_SSE)
 #include "backends/sse/sse_backend.h"
+#endif
 #include "backends/tiered/tiered.h"
 #include "backends/vm/vm_backend.h"
 
@@ -10,16 +12,20 @@ namespace fscript::backends {
 std::string default_backend() { return "auto"; }
 
 std::vector<std::string> available_backends() {
-#ifdef FS_HAVE_LLVM
+#if defined(FS_HAVE_LLVM)
   return {"vm", "sse", "llvm"};
-#else
+#elif defined(FS_HAVE_SSE)
   return {"vm", "sse"};
+#else
+  return {"vm"};
 #endif
 }
 
 std::unique_ptr<Backend> make_backend(const std::string& name) {
   if (name == "vm") return std::make_unique<vm::VmBackend>();
+#if defined(FS_HAVE_SSE)
   if (name == "sse") return std::make_unique<sse::SseBackend>();
+#endif
   if (name == "auto") return std::make_unique<TieredBackend>();
   if (name == "llvm") {
     const LlvmModule* m = llvm_module();

@@ -148,7 +148,8 @@ class Compiler {
     std::string error;
     // Decided before the module loads, since loading it is part of the wait.
     if (native_compile_ns(s.ops) > kMiddleTierNs) {
-      if (auto m = make_backend("sse")->compile(*s.module, s.budgets, error)) {
+      auto sse = make_backend("sse");  // (none in the browser build)
+      if (auto m = sse ? sse->compile(*s.module, s.budgets, error) : nullptr) {
         std::lock_guard<std::mutex> hold(s.lock);
         s.middle = std::move(m);
         s.ready.store(s.middle.get(), std::memory_order_release);

@@ -186,8 +186,10 @@ std::string encode_glb(const Mesh& m, const std::vector<GltfAnimation>& animatio
   nlohmann::json j;
   j["asset"] = {{"version", "2.0"}, {"generator", "fvrml-run"}};
   j["scene"] = 0;
-  j["scenes"] = {{{"nodes", {0}}}};
-  j["nodes"] = {nlohmann::json::object()};
+  // Arrays of one element spelt out: nested braces of one element read as the element itself or
+  // as an array of it depending on the compiler (GCC and Clang differ: CWG 1467).
+  j["scenes"] = nlohmann::json::array({nlohmann::json::object({{"nodes", nlohmann::json::array({0})}})});
+  j["nodes"] = nlohmann::json::array({nlohmann::json::object()});
   for (const char* k : {"bufferViews", "accessors", "meshes", "materials", "animations"})
     j[k] = nlohmann::json::array();
   std::string bin;
@@ -195,7 +197,7 @@ std::string encode_glb(const Mesh& m, const std::vector<GltfAnimation>& animatio
   for (const auto& a : animations) add_animation(a, bin, j);
   for (const char* k : {"bufferViews", "accessors", "meshes", "materials", "animations"})
     if (j[k].empty()) j.erase(k);
-  if (!bin.empty()) j["buffers"] = {{{"byteLength", bin.size()}}};
+  if (!bin.empty()) j["buffers"] = nlohmann::json::array({nlohmann::json::object({{"byteLength", bin.size()}})});
   std::string json = j.dump();
   while (json.size() % 4) json += ' ';
   while (bin.size() % 4) bin += '\0';

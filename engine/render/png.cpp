@@ -1,7 +1,10 @@
-// PNG writer (libpng), atomic by rename.
+// PNG writer (libpng), atomic by rename. The browser build has no libpng: its page shows shapes
+// in 3D, and a PNG asked of it is an error that says so.
 #include "engine/render/png.h"
 
+#if defined(FS_HAVE_PNG)
 #include <png.h>
+#endif
 
 #include <string>
 
@@ -9,6 +12,7 @@
 
 namespace fscript::render {
 
+#if defined(FS_HAVE_PNG)
 namespace {
 
 void append(png_structp png, png_bytep data, png_size_t n) {
@@ -52,5 +56,11 @@ bool write_png(const std::string& path, uint32_t width, uint32_t height, int cha
   std::string bytes;
   return encode(width, height, channels, pixels, bytes, error) && support::write_file_atomic(path, bytes, error);
 }
+#else
+bool write_png(const std::string& path, uint32_t, uint32_t, int, const std::vector<uint8_t>&, std::string& error) {
+  error = "cannot write " + path + ": this build (the browser's) writes no PNG pictures; write .glb or .wrl";
+  return false;
+}
+#endif
 
 }  // namespace fscript::render

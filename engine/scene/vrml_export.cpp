@@ -1,7 +1,6 @@
 // VRML97 export by copying the scene graph with replacements, then the ordinary writer.
 #include "engine/scene/vrml_export.h"
 
-#include <charconv>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -10,6 +9,7 @@
 
 #include "frontend/vrml/inline.h"
 #include "frontend/vrml/writer.h"
+#include "runtime/support/shortest.h"
 
 namespace fscript::scene {
 namespace {
@@ -48,9 +48,8 @@ Value node_value(NodePtr n) {
 }
 
 double tidy(float v) {
-  char buf[32];
-  auto r = std::to_chars(buf, buf + sizeof buf - 1, v);
-  *r.ptr = '\0';
+  char buf[64];
+  *support::shortest_text(buf, sizeof buf - 1, v) = '\0';
   return std::strtod(buf, nullptr);
 }
 

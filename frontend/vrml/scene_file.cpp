@@ -1,7 +1,10 @@
-// Scene files on disk, with transparent gzip (zlib).
+// Scene files on disk, with transparent gzip (zlib; the browser build has none: its page inflates
+// files before they reach the toolchain).
 #include "frontend/vrml/scene_file.h"
 
+#if defined(FS_HAVE_ZLIB)
 #include <zlib.h>
+#endif
 
 #include <string>
 
@@ -10,6 +13,12 @@
 
 namespace fscript::vrml {
 
+#if !defined(FS_HAVE_ZLIB)
+bool gunzip(const std::string&, std::string&, std::string& error) {
+  error = "gzip-compressed data: this build reads only inflated scenes";
+  return false;
+}
+#else
 bool gunzip(const std::string& data, std::string& out, std::string& error) {
   z_stream z{};
   if (inflateInit2(&z, 16 + MAX_WBITS) != Z_OK) {
@@ -47,6 +56,7 @@ bool gunzip(const std::string& data, std::string& out, std::string& error) {
   inflateEnd(&z);
   return true;
 }
+#endif
 
 bool read_scene_text(const std::string& path, std::string& text, std::string& error) {
   std::string raw;

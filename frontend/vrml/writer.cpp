@@ -1,22 +1,22 @@
 // VRML97 writer and structural scene comparison.
 #include "frontend/vrml/writer.h"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <unordered_map>
 #include <unordered_set>
 
+#include "runtime/support/shortest.h"
+
 namespace fscript::vrml {
 namespace {
 
-// The shortest text that reads back as the same double (std::to_chars: meshes write millions).
+// The shortest text that reads back as the same double (as std::to_chars: meshes write millions).
 std::string number(double v) {
   if (std::isinf(v)) return v > 0 ? "1e999" : "-1e999";
-  char buf[40];
-  auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
+  char buf[400];
+  return std::string(buf, support::shortest_text(buf, sizeof buf, v));
 }
 
 std::string quoted(const std::string& s) {

@@ -7,6 +7,9 @@
 namespace fscript::math {
 
 static Isa detect() {
+#if !defined(__x86_64__)
+  return Isa::Base;  // WebAssembly (the browser build): one variant, 128-bit SIMD
+#else
   __builtin_cpu_init();
   Isa best = Isa::Base;
   if (__builtin_cpu_supports("x86-64-v3")) best = Isa::Avx2;
@@ -16,6 +19,7 @@ static Isa detect() {
     if (static_cast<int>(w) <= static_cast<int>(best)) best = w;
   }
   return best;
+#endif
 }
 
 Isa active_isa() {

@@ -39,6 +39,10 @@ void run_with_big_stack(const std::function<void()>& fn, size_t stack_bytes) {
 }
 
 void set_default_thread_stack(size_t bytes) {
+#if defined(__EMSCRIPTEN__)
+  (void)bytes;  // no threads in the browser build: its one stack is sized at link time (TOTAL_STACK)
+  return;
+#endif
   pthread_attr_t attr;
   if (pthread_attr_init(&attr) != 0) return;
   if (pthread_attr_setstacksize(&attr, bytes) == 0) pthread_setattr_default_np(&attr);

@@ -287,3 +287,35 @@ TEST_CASE("vrml: declarations print as the standard writes them") {
   CHECK(decl("FMaterial", "bboxSize") == "exposedField SFVec3f bboxSize -1 -1 -1");
   CHECK(decl("Viewpoint", "fieldOfView") == "exposedField SFFloat fieldOfView 0.785398");
 }
+
+#include <bit>
+#include <charconv>
+#include <random>
+
+#include "runtime/support/shortest.h"
+
+// The browser build writes numbers the printf way (its libc++ has no floating to_chars): the same
+// text as std::to_chars, so its VRML97 and glTF files are the native build's bytes.
+TEST_CASE("vrml: numbers' shortest text the printf way is std::to_chars's, for doubles and floats") {
+  std::mt19937_64 rng(2003);
+  auto same = [](auto v) {
+    char a[400], b[400];
+    auto r = std::to_chars(a, a + sizeof a, v);
+    char* e = support::shortest_text_by_printf(b, sizeof b, v);
+    REQUIRE(e);
+    return std::string(a, r.ptr) == std::string(b, e);
+  };
+  int bad = 0;
+  for (int i = 0; i < 200000; ++i) {
+    uint64_t bits = rng();
+    double d = i % 3 == 0 ? std::bit_cast<double>(bits)
+        : i % 3 == 1      ? std::ldexp(static_cast<double>(bits >> 11), static_cast<int>(rng() % 80) - 113)
+                          : static_cast<double>(static_cast<int>(bits % 100000)) / 1000.0;
+    float f = i % 2 ? std::bit_cast<float>(static_cast<uint32_t>(bits)) : static_cast<float>(d);
+    bad += !same(d) + !same(f);
+  }
+  CHECK(bad == 0);
+  for (double d : {0.0, -0.0, 1e20, 1e21, 1e-4, 1e-5, 0.1, 123456789012345680000.0, 5e-324, 1.7976931348623157e308})
+    CHECK(same(d));
+  for (float f : {0.0f, -0.0f, 1e-45f, 3.4028235e38f, 0.3f, 16777216.0f, 1e10f}) CHECK(same(f));
+}

@@ -35,8 +35,10 @@
 namespace fvrml_run {
 namespace {
 
+#if defined(FS_HAVE_SERVE)
 // --serve without --max-seconds: a run of the live preview that takes longer is cancelled.
 constexpr double kServeMaxSeconds = 60;
+#endif
 
 // "640x480" or "512" (a square), each side in [16, 8192].
 bool parse_size(const std::string& s, uint32_t& w, uint32_t& h) {
@@ -227,6 +229,11 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
           ""))
       ->type_name("K");
   app.add_flag("--stats", o.stats, "print one JSON object describing the resolved scene on standard error");
+  std::string stats_file;
+  app.add_option("--stats-file", stats_file,
+                 "write --stats' object to FILE instead, with the scene's view (camera, lights, background), the "
+                 "diagnostics still on standard error (the browser page reads it)")
+      ->type_name("FILE");
   bool no_prune = false;
   app.add_flag("--no-prune", no_prune,
                "sample every grid point of implicit shapes, and every step of a direct picture's rays (the same "
@@ -383,11 +390,16 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
     o.merging = merge->first, o.memo = merge->memo, o.whole_frames = merge->whole_frames, o.mesher.slabs = merge->slabs;
   // Under --serve the clock is per run (cancelled, the server goes on), not a watchdog on the process.
   o.instant = app.count("--time") > 0 || app.count("--fraction") > 0;
+  if (!stats_file.empty()) o.stats = o.view_json = o.print_shape_diagnostics = true;
   if (!fscript::tools::apply_limits("fvrml-run", limits, !serve.on)) return 1;
   o.model.max_memory_mib = limits.max_memory_mib;
   if (serve.on) {
+#if defined(FS_HAVE_SERVE)
     o.max_seconds = limits.max_seconds > 0 ? limits.max_seconds : kServeMaxSeconds;
     return fvrml_run::serve(o, serve);
+#else
+    return std::cerr << "error: --serve is not in the browser build: its page is the preview\n", 2;
+#endif
   }
   auto t0 = Clock::now();
   nlohmann::json st;
@@ -403,7 +415,10 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
     fscript::backends::RowStats rs = fscript::backends::row_stats();
     st["row_split"] = {{"kernels", rs.kernels}, {"rows", rs.rows}, {"points", rs.points}};
     st["huge_heap_mib"] = fscript::support::huge_heap().reserved >> 20;
-    std::cerr << st.dump() << "\n";
+    std::string error;
+    if (stats_file.empty()) std::cerr << st.dump() << "\n";
+    else if (!fscript::support::write_file_atomic(stats_file, st.dump() + "\n", error))
+      return std::cerr << "error: " << error << "\n", 1;
   }
   if (o.shard_part && rc == 0) {
     std::string error;

@@ -1,0 +1,127 @@
+// The browser page (web/, the browser build's site) in headless Chromium from file://: its worker
+// starts; a course file opened with the file picker, and another dropped on the page, show their
+// shapes (pixels, not only the DOM); a broken script shows its error at the right line with the
+// source line; the animation's slider changes the picture; the .glb saved from the page is the
+// Khronos validator's clean file.
+// usage: node page_browser.mjs SITE_DIR COURSE_FILE DROPPED_FILE OUT_DIR   (beside node_modules)
+import { chromium } from 'playwright-core';
+import fs from 'node:fs';
+import path from 'node:path';
+import assert from 'node:assert/strict';
+
+const [site, course, dropped, out] = process.argv.slice(2);
+const browser = await chromium.launch({
+  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
+  args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox'],
+});
+let failures = 0;
+async function check(name, fn) {
+  try {
+    await fn();
+    console.log('ok   ' + name);
+  } catch (e) {
+    failures++;
+    console.log('FAIL ' + name + ': ' + e.message);
+  }
+}
+try {
+  const page = await browser.newPage({ viewport: { width: 900, height: 600 }, acceptDownloads: true });
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(e.message));
+  // The canvas's pixels that are not the background, and a digest of them (through a 2D copy).
+  const picture = () => page.evaluate(() => {
+    const c = document.querySelector('canvas'), copy = document.createElement('canvas');
+    copy.width = c.width, copy.height = c.height;
+    const g = copy.getContext('2d');
+    g.drawImage(c, 0, 0);
+    const d = g.getImageData(0, 0, c.width, c.height).data;
+    let drawn = 0, digest = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      if (d[i] < 250 || d[i + 1] < 250 || d[i + 2] < 250) drawn++;
+      digest = (digest * 31 + d[i] + 7 * d[i + 1] + 13 * d[i + 2]) >>> 0;
+    }
+    return { drawn, total: d.length / 4, digest };
+  });
+  const settled = async () => {
+    await page.waitForFunction(() => ['ok', 'error'].includes(document.body.dataset.state), null, { timeout: 120000 });
+    return page.evaluate(() => document.body.dataset.state);
+  };
+  const run = async (act) => {
+    await page.evaluate(() => { document.body.dataset.state = 'asked'; });
+    await act();
+    return settled();
+  };
+
+  await page.goto('file://' + path.resolve(site, 'index.html'));
+  await check('the page loads from file:// and starts its worker', async () => {
+    assert.equal(await page.evaluate(() => document.body.dataset.worker), 'yes');
+    assert.deepEqual(errors, []);
+  });
+  await check('a course file opened with the file picker shows its shape', async () => {
+    assert.equal(await run(() => page.setInputFiles('#pick', course)), 'ok', await page.textContent('#diagnostics'));
+    const p = await picture();
+    assert.ok(p.drawn > p.total / 100, `${p.drawn} of ${p.total} pixels drawn`);
+  });
+  await check('a file dropped on the page shows its shape', async () => {
+    const before = await picture();
+    const text = fs.readFileSync(dropped, 'utf8'), name = path.basename(dropped);
+    const state = await run(() => page.evaluate(([t, n]) => {
+      const data = new DataTransfer();
+      data.items.add(new File([t], n));
+      window.dispatchEvent(new DragEvent('drop', { dataTransfer: data, bubbles: true, cancelable: true }));
+    }, [text, name]));
+    assert.equal(state, 'ok', await page.textContent('#diagnostics'));
+    const p = await picture();
+    assert.ok(p.drawn > p.total / 100 && p.digest !== before.digest, `${p.drawn} pixels drawn, digest ${p.digest}`);
+  });
+  await check('a broken script shows its error at its line with the source line', async () => {
+    const broken = 'function FRep(x, y, z, t) {\n  var r = x * x + y * y;\n  return 1 - r - z * * z;\n}\n';
+    const state = await run(() => page.evaluate((t) => {
+      document.getElementById('source').value = t;
+      document.getElementById('runSource').click();
+    }, broken));
+    assert.equal(state, 'error');
+    const shown = await page.textContent('#diagnostics');
+    assert.match(shown, /pasted\.fs:3:\d+: error: /);
+    assert.ok(shown.includes('  return 1 - r - z * * z;'), shown);
+    assert.ok(await page.isVisible('#diagnostics'));
+  });
+  await check("the animation's slider changes the picture", async () => {
+    assert.equal(await run(() => page.setInputFiles('#pick', course)), 'ok');
+    assert.equal(await page.evaluate(() => document.body.dataset.animated), 'yes');
+    await page.click('#play');  // pause
+    const at = async (v) => {
+      await page.evaluate((x) => {
+        const s = document.getElementById('time');
+        s.value = String(x);
+        s.dispatchEvent(new Event('input'));
+      }, v);
+      return picture();
+    };
+    const a = await at(0.05), b = await at(0.55), c = await at(0.05);
+    assert.notEqual(a.digest, b.digest);
+    assert.equal(a.digest, c.digest);
+  });
+  await check('the .glb saved from the page passes the Khronos validator', async () => {
+    const [download] = await Promise.all([page.waitForEvent('download'), page.click('#saveGlb')]);
+    const file = path.join(out, 'saved.glb');
+    await download.saveAs(file);
+    assert.ok(download.suggestedFilename().endsWith('.glb'));
+    const { createRequire } = await import('node:module');
+    const validator = createRequire(import.meta.url)('gltf-validator');
+    const report = await validator.validateBytes(new Uint8Array(fs.readFileSync(file)), { maxIssues: 100 });
+    assert.equal(report.issues.numErrors, 0);
+    assert.equal(report.issues.numWarnings, 0);
+    assert.ok(report.info.totalTriangleCount > 1000);
+  });
+  await check('the .wrl saved from the page is VRML97', async () => {
+    const [download] = await Promise.all([page.waitForEvent('download'), page.click('#saveWrl')]);
+    const file = path.join(out, 'saved.wrl');
+    await download.saveAs(file);
+    assert.ok(fs.readFileSync(file, 'utf8').startsWith('#VRML V2.0 utf8'));
+  });
+  await check('no script error on the page', async () => assert.deepEqual(errors, []));
+} finally {
+  await browser.close();
+}
+process.exit(failures ? 1 : 0);

@@ -14,6 +14,11 @@ if [ -n "$R" ]; then
   jcheck fvrml-run-time err "near(j['shapes'][0]['fraction'], 0.6)" -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --stats --time 3
   jcheck fvrml-run-fraction err "near(j['shapes'][0]['geometry']['t'], 0.25)" -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" --stats --fraction 0.25
   check fvrml-run-kind 0 '"kind":"implicit"' -- "$R" "$SRC/examples/paper/figure6-blends.wrl" --stats
+  # --stats-file: the object in a file, with the scene's view, and the file written beside it.
+  check fvrml-run-stats-file 0 '' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" -o "$T/sf.glb" --stats-file "$T/sf.json"
+  jcheck fvrml-run-stats-file-json out "j['view']['background'] == [1.0, 1.0, 1.0] and j['animations'][0]['frames'] == 24" -- cat "$T/sf.json"
+  [ -s "$T/sf.glb" ] || fail "fvrml-run-stats-file: no glTF written"
+  check fvrml-run-stats-file-bad 1 'error: .*nowhere' -- "$R" "$SRC/examples/paper/figure1-morphing.wrl" -o "$T/sf2.glb" --stats-file "$T/nowhere/s.json"
   check fvrml-run-script-error 1 'scene.wrl:4:23: error: unknown name' -- "$R" "$T/scene.wrl" --stats
   printf '#VRML V2.0 utf8\nTransform { translation 1 2 }\n' > "$T/badfield.wrl"
   check fvrml-run-bad-field 1 'badfield.wrl:2:29: error: expected 3 numbers \(SFVec3f\)' -- "$R" "$T/badfield.wrl" --stats

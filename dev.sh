@@ -35,7 +35,7 @@ TEST_PACKAGES=(view3dscene xvfb xauth binutils neovim nodejs chromium slurm-wlm 
 FUZZ_PACKAGES=(clang-19 libfuzzer-19-dev)
 # The browser build (preset wasm): Emscripten, Node for its tools, the header-only libraries it
 # links from Debian, three.js for the page.
-WASM_PACKAGES=(emscripten nodejs libjs-three nlohmann-json3-dev libeigen3-dev libcli11-dev)
+WASM_PACKAGES=(emscripten nodejs libjs-three nlohmann-json3-dev libeigen3-dev libcli11-dev catch2)
 FUZZ_TARGETS=(fscript_frontend ir_reader vrml_reader lsp_server backend_diff straight_diff interval_sound)
 
 install_missing() {

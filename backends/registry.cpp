@@ -4,6 +4,9 @@
 #if defined(FS_HAVE_SSE)
 #include "backends/sse/sse_backend.h"
 #endif
+#if defined(FS_HAVE_WASM)
+#include "backends/wasm/wasm_backend.h"
+#endif
 #include "backends/tiered/tiered.h"
 #include "backends/vm/vm_backend.h"
 
@@ -16,6 +19,8 @@ std::vector<std::string> available_backends() {
   return {"vm", "sse", "llvm"};
 #elif defined(FS_HAVE_SSE)
   return {"vm", "sse"};
+#elif defined(FS_HAVE_WASM)
+  return {"vm", "wasm"};
 #else
   return {"vm"};
 #endif
@@ -25,6 +30,9 @@ std::unique_ptr<Backend> make_backend(const std::string& name) {
   if (name == "vm") return std::make_unique<vm::VmBackend>();
 #if defined(FS_HAVE_SSE)
   if (name == "sse") return std::make_unique<sse::SseBackend>();
+#endif
+#if defined(FS_HAVE_WASM)
+  if (name == "wasm") return std::make_unique<wasm::WasmBackend>();
 #endif
   if (name == "auto") return std::make_unique<TieredBackend>();
   if (name == "llvm") {

@@ -1,0 +1,567 @@
+// SSA to WebAssembly (wasm_compile.h). Every value is a v128 local of four lanes; the engine that
+// loads the module allocates registers. Lane operations are SIMD instructions that give
+// runtime/math's bits (min and max with its NaN rule and its zero order, round with its sign,
+// truthiness as "not 0 and not NaN"); Batch and Trig rows of ir/math_ops.def call the batch twin.
+//
+// Control flow is masked, as in the SSE emitter: blocks run in reverse post-order, each for the
+// lanes waiting at it (skipped when none), under a scan that repeats while lanes wait (a back edge
+// leaves its lanes waiting at an earlier block). Values, phis and globals are written under the
+// block's mask, so a lane keeps what it computed where it last ran; phi moves are parallel copies
+// on each edge under the edge's mask; the loop budget is a per-lane count. A kernel of one block
+// without globals or ticks needs none of this and runs as straight-line code.
+#include "backends/wasm/wasm_compile.h"
+
+#include <algorithm>
+#include <climits>
+#include <map>
+
+#include "backends/jit_support.h"
+#include "backends/lane_arrays.h"
+#include "backends/wasm/wasm_encoder.h"
+#include "runtime/math/math.h"
+
+namespace fscript::wasm {
+namespace {
+
+using ir::Inst;
+using ir::Op;
+
+void mod_batch(const float* a, const float* b, float* out, size_t n) {
+  for (size_t i = 0; i < n; ++i) out[i] = math::mod(a[i], b[i]);
+}
+
+// Parameters and fixed locals of the kernel function.
+// The kernel's parameters and fixed locals. A callee (a recursive function, called for the four
+// lanes of its caller under the caller's mask) takes its arguments, the mask, scratch, arrays and
+// its call depth, and returns its value and a status.
+constexpr uint32_t kIn = 0, kOut = 1, kN = 2, kScratch = 3, kArrays = 4, kAt = 5, kEnd = 6, kFirstPointer = 7;
+// Scratch: the arguments at 0, 16, 32, the result at 48, the lane mask at 64 (array helpers), then
+// the globals where the program has callees (they share them).
+constexpr uint32_t kScratchResult = 48, kScratchMask = 64, kScratchGlobals = 80;
+
+// What every function of the program shares: their indices, the imports, globals in memory.
+struct Program {
+  std::vector<uint32_t> index_of;  // wasm function index by the module's function index
+  std::map<const void*, uint32_t> imports;
+  bool globals_in_memory = false;
+  int num_globals = 0;
+  uint32_t global_arrays = 0;
+};
+
+const void* helper_of(Op op);
+const void* batch_of(Op op);
+
+class Emitter {
+ public:
+  Emitter(const ir::Module& m, const ir::Function& fn, bool callee, const backends::Budgets& b, Program& program,
+          Module& mod)
+      : module_(m), fn_(fn), callee_(callee), budgets_(b), program_(program), mod_(mod) {
+    uint32_t np = fn.num_params;
+    scratch_ = callee ? np + 1 : kScratch, arrays_param_ = callee ? np + 2 : kArrays, depth_ = np + 3;
+  }
+
+  bool run(std::string& error) {
+    if (!check(error)) return false;
+    order();
+    layout();
+    return callee_ ? run_callee(error) : run_kernel(error);
+  }
+
+ private:
+  // The callee: one pass of the scan for its caller's lanes (the mask parameter), its value under
+  // the lanes' masks, and status 0.
+  bool run_callee(std::string& error) {
+    Code& c = c_;
+    straight_ = false;
+    for (const ir::Block* b : rpo_) {
+      if (b == rpo_[0]) c.local_get(fn_.num_params);
+      else c.i32x4_const(0);
+      c.local_set(pending(*b));
+    }
+    c.f32x4_const(0), c.local_set(output_);
+    if (!scan(error)) return false;
+    c.local_get(output_), c.i64_const(0);
+    std::vector<ValType> params(fn_.num_params + 1, ValType::V128);
+    params.insert(params.end(), 3, ValType::I32);
+    mod_.function({params, {ValType::V128, ValType::I64}},
+                  {{next_v128_ - first_v128_, ValType::V128}, {1, ValType::I64}}, std::move(c_));
+    return true;
+  }
+
+  // Blocks in reverse post-order, each for its waiting lanes, again while lanes wait.
+  bool scan(std::string& error) {
+    Code& c = c_;
+    c.loop();
+    for (const ir::Block* b : rpo_) {
+      c.local_get(pending(*b)), c.simd(Simd::V128AnyTrue), c.if_();
+      c.local_get(pending(*b)), c.local_set(mask_);
+      c.i32x4_const(0), c.local_set(pending(*b));
+      if (!block(*b, error)) return false;
+      c.end();
+    }
+    for (size_t k = 0; k < rpo_.size(); ++k) {
+      c.local_get(pending(*rpo_[k]));
+      if (k) c.simd(Simd::V128Or);
+    }
+    c.simd(Simd::V128AnyTrue), c.br_if(0);
+    c.end();
+    return true;
+  }
+
+  bool run_kernel(std::string& error) {
+    Code& c = c_;
+    for (uint32_t k = 0; k < fn_.num_params; ++k) pointer(kIn, k, kFirstPointer + k);
+    for (uint32_t k = 0; k < fn_.num_results; ++k) pointer(kOut, k, kFirstPointer + fn_.num_params + k);
+    c.local_get(kN), c.i32_const(2), c.op(Opc::I32Shl), c.local_set(kEnd);
+    c.block();  // exit
+    c.loop();   // one group of four points a turn
+    c.local_get(kAt), c.local_get(kEnd), c.op(Opc::I32GeU), c.br_if(1);
+    start_group();
+    if (straight_ ? !block(*rpo_[0], error) : !scan(error)) return false;
+    for (uint32_t k = 0; k < fn_.num_results; ++k) {  // the outputs, then the next group
+      c.local_get(kFirstPointer + fn_.num_params + k), c.local_get(kAt), c.op(Opc::I32Add);
+      c.local_get(output_ + k), c.v128_store_any(0);
+    }
+    c.local_get(kAt), c.i32_const(16), c.op(Opc::I32Add), c.local_set(kAt);
+    c.br(0);
+    c.end();
+    c.end();
+    c.i64_const(0);
+    FuncType t{{ValType::I32, ValType::I32, ValType::I32, ValType::I32, ValType::I32}, {ValType::I64}};
+    uint32_t pointers = kFirstPointer - kAt + fn_.num_params + fn_.num_results;
+    uint32_t f = mod_.function(
+        t, {{pointers, ValType::I32}, {next_v128_ - first_v128_, ValType::V128}, {1, ValType::I64}}, std::move(c_));
+    mod_.export_function("kernel", f);
+    return true;
+  }
+
+  // What this emitter compiles (the rest runs on the VM until it does).
+  bool check(std::string& error) {
+    if (fn_.row_params_from > 0) return error = "row parameters", false;
+    if (callee_ && !fn_.arrays.empty()) return error = "arrays local to a recursive function", false;
+    if (callee_ && fn_.num_results != 1) return error = "a function of several results", false;
+    if (budgets_.max_loop_iterations > static_cast<uint64_t>(INT32_MAX - 1))
+      return error = "a loop budget past 2^31 - 2", false;
+    for (const auto& b : fn_.blocks)
+      for (const Inst* in : b->insts) switch (in->op) {
+          case Op::ANew:
+          case Op::ALoad:
+          case Op::AStore:
+          case Op::ALen: arrays_ = true; break;
+          case Op::Call:
+          case Op::Tick:
+          case Op::GLoad:
+          case Op::GStore: straight_ = false; break;
+          default: break;
+        }
+    if (fn_.blocks.size() > 1) straight_ = false;
+    return true;
+  }
+
+  // Reverse post-order from the entry.
+  void order() {
+    std::vector<char> seen(fn_.next_block + 1, 0);
+    std::vector<const ir::Block*> post;
+    std::vector<std::pair<const ir::Block*, size_t>> stack = {{fn_.entry(), 0}};
+    seen[fn_.entry()->id] = 1;
+    while (!stack.empty()) {
+      auto& [b, k] = stack.back();
+      auto succs = b->succs();
+      if (k < succs.size()) {
+        const ir::Block* s = succs[k++];
+        if (!seen[s->id]) seen[s->id] = 1, stack.push_back({s, 0});
+        continue;
+      }
+      post.push_back(b);
+      stack.pop_back();
+    }
+    rpo_.assign(post.rbegin(), post.rend());
+  }
+
+  // v128 locals: values by id, outputs, globals, the mask, the loop counter, pending masks, temps.
+  void layout() {
+    first_v128_ = next_v128_ = callee_ ? fn_.num_params + 4 : kFirstPointer + fn_.num_params + fn_.num_results;
+    value_ = take(fn_.next_value);
+    output_ = take(fn_.num_results);
+    global_ = take(program_.globals_in_memory ? 0 : static_cast<uint32_t>(program_.num_globals));
+    mask_ = take(1);
+    ticks_ = take(1);
+    temp_ = take(1);
+    pending_ = take(fn_.next_block + 1);
+    size_t phis = 0;
+    for (const auto& b : fn_.blocks) phis = std::max(phis, b->first_non_phi());
+    phi_temp_ = take(static_cast<uint32_t>(phis));
+    status_ = next_v128_;  // the one i64 local, after the v128 ones
+  }
+  uint32_t take(uint32_t n) {
+    uint32_t first = next_v128_;
+    next_v128_ += n;
+    return first;
+  }
+  uint32_t pending(const ir::Block& b) const { return pending_ + b.id; }
+
+  // Local `dst` = the k-th pointer of the array at param `array`.
+  void pointer(uint32_t array, uint32_t k, uint32_t dst) { c_.local_get(array), c_.i32_load(4 * k), c_.local_set(dst); }
+
+  void start_group() {
+    Code& c = c_;
+    for (uint32_t k = 0; k < fn_.num_results; ++k) c.f32x4_const(0), c.local_set(output_ + k);
+    c.i32x4_const(-1), c.local_set(mask_);
+    if (arrays_) {  // every array of every lane gone: a new evaluation
+      c.local_get(kArrays), c.call(import(reinterpret_cast<const void*>(&backends::fs_lanes_reset)));
+      c.op(Opc::Drop);
+    }
+    if (straight_) return;
+    for (const ir::Block* b : rpo_) c.i32x4_const(b == rpo_[0] ? -1 : 0), c.local_set(pending(*b));
+    for (int g = 0; g < program_.num_globals; ++g) {
+      if (!program_.globals_in_memory) {
+        c.f32x4_const(__builtin_nanf("")), c.local_set(global_ + static_cast<uint32_t>(g));
+        continue;
+      }
+      c.local_get(kScratch), c.f32x4_const(__builtin_nanf("")),
+          c.v128_store(kScratchGlobals + 16 * static_cast<uint32_t>(g));
+    }
+    if (program_.globals_in_memory) c.local_get(kScratch), c.i32x4_const(0), c.v128_store(ticks_at());
+    else c.i32x4_const(0), c.local_set(ticks_);
+  }
+
+  void push(const Inst* v) {
+    if (v->op == Op::Const) c_.f32x4_const(v->imm);
+    else c_.local_get(value_ + v->id);
+  }
+  // The value on the stack into `local`, under the block's mask where control flow is masked.
+  void assign(uint32_t local) {
+    if (!straight_) c_.local_get(local), c_.local_get(mask_), c_.simd(Simd::V128Bitselect);
+    c_.local_set(local);
+  }
+  void simd2(Simd s, const Inst& in) { push(in.args[0]), push(in.args[1]), c_.simd(s); }
+  // The lanes where `v` is truthy (not 0, not NaN), as a mask.
+  void truthy(const Inst* v) {
+    push(v), push(v), c_.simd(Simd::F32x4Eq);
+    push(v), c_.f32x4_const(0), c_.simd(Simd::F32x4Ne), c_.simd(Simd::V128And);
+  }
+  void one_where_mask() { c_.f32x4_const(1), c_.simd(Simd::V128And); }  // mask -> 1.0 or 0.0
+
+  bool block(const ir::Block& b, std::string& error) {
+    for (const Inst* in : b.insts)
+      if (!inst(*in, b, error)) return false;
+    return true;
+  }
+
+  // One instruction: every op is named (no default), so a new op fails the build until it is here.
+  bool inst(const Inst& in, const ir::Block& b, std::string& error) {
+    Code& c = c_;
+    switch (in.op) {
+      case Op::Const:
+      case Op::Phi: return true;  // constants are made where used; phis are written on edges
+      case Op::Param:
+        if (callee_) {
+          c.local_get(static_cast<uint32_t>(in.aux));
+          break;
+        }
+        c.local_get(kFirstPointer + static_cast<uint32_t>(in.aux)), c.local_get(kAt), c.op(Opc::I32Add);
+        c.v128_load_any(0);
+        break;
+      case Op::Add: simd2(Simd::F32x4Add, in); break;
+      case Op::Sub: simd2(Simd::F32x4Sub, in); break;
+      case Op::Mul: simd2(Simd::F32x4Mul, in); break;
+      case Op::Div: simd2(Simd::F32x4Div, in); break;
+      case Op::Neg: push(in.args[0]), c.simd(Simd::F32x4Neg); break;
+      case Op::Abs: push(in.args[0]), c.simd(Simd::F32x4Abs); break;
+      case Op::Sqrt: push(in.args[0]), c.simd(Simd::F32x4Sqrt); break;
+      case Op::Floor: push(in.args[0]), c.simd(Simd::F32x4Floor); break;
+      case Op::Ceil: push(in.args[0]), c.simd(Simd::F32x4Ceil); break;
+      case Op::Min:
+      case Op::Max: min_max(in.op == Op::Min, in.args[0], in.args[1]); break;
+      case Op::Clamp:  // min(max(a, lo), hi)
+        min_max(false, in.args[0], in.args[1]);
+        c.local_set(temp_);
+        min_max_with_temp(in.args[2]);
+        break;
+      case Op::Round: round(in.args[0]); break;
+      case Op::Sign: sign(in.args[0]); break;
+      case Op::Eq: simd2(Simd::F32x4Eq, in), one_where_mask(); break;
+      case Op::Ne: simd2(Simd::F32x4Ne, in), one_where_mask(); break;
+      case Op::Lt: simd2(Simd::F32x4Lt, in), one_where_mask(); break;
+      case Op::Le: simd2(Simd::F32x4Le, in), one_where_mask(); break;
+      case Op::Gt: simd2(Simd::F32x4Gt, in), one_where_mask(); break;
+      case Op::Ge: simd2(Simd::F32x4Ge, in), one_where_mask(); break;
+      case Op::Not: truthy(in.args[0]), c.simd(Simd::V128Not), one_where_mask(); break;
+      case Op::Truth: truthy(in.args[0]), one_where_mask(); break;
+      case Op::Select: push(in.args[1]), push(in.args[2]), truthy(in.args[0]), c.simd(Simd::V128Bitselect); break;
+      case Op::Mod:
+#define FS_MATH(N, FN, A, HOW) FS_WASM_MATH_##HOW(N)
+#define FS_WASM_MATH_Lane(N)
+#define FS_WASM_MATH_Batch(N) case Op::N:
+#define FS_WASM_MATH_Trig(N) case Op::N:
+#include "ir/math_ops.def"
+#undef FS_WASM_MATH_Lane
+#undef FS_WASM_MATH_Batch
+#undef FS_WASM_MATH_Trig
+        batch(in, batch_of(in.op));
+        break;
+      case Op::GLoad:
+        if (program_.globals_in_memory) c.local_get(scratch_), c.v128_load(global_at(in));
+        else c.local_get(global_ + static_cast<uint32_t>(in.aux));
+        break;
+      case Op::GStore:
+        if (!program_.globals_in_memory) return push(in.args[0]), assign(global_ + static_cast<uint32_t>(in.aux)), true;
+        c.local_get(scratch_), push(in.args[0]), c.local_get(scratch_), c.v128_load(global_at(in));
+        c.local_get(mask_), c.simd(Simd::V128Bitselect), c.v128_store(global_at(in));
+        return true;
+      case Op::Tick: tick(in); return true;
+      case Op::Jump: edge(b, *in.targets[0], [&] { c.local_get(mask_); }); return true;
+      case Op::Branch: branch(in, b); return true;
+      case Op::Ret:  // the kernel's outputs, or the callee's value
+        for (size_t k = 0; k < in.args.size(); ++k) push(in.args[k]), assign(output_ + static_cast<uint32_t>(k));
+        return true;
+      case Op::Call: call_function(in); break;
+      case Op::ANew:
+      case Op::AStore: array_op(in); return true;
+      case Op::ALoad:
+      case Op::ALen: array_op(in); break;
+    }
+    (void)error;
+    assign(value_ + in.id);
+    return true;
+  }
+
+  // math::min/max: b < a ? b : a (a where a is NaN), then b where b is NaN: the zeros' order and the
+  // NaN rule exactly (the SIMD min would give -0 for min(+0, -0)).
+  void min_max(bool min, const Inst* a, const Inst* b) {
+    Code& c = c_;
+    push(b), push(a), push(b), push(a), c.simd(min ? Simd::F32x4Lt : Simd::F32x4Gt), c.simd(Simd::V128Bitselect);
+    c.local_set(temp_);
+    push(b), c.local_get(temp_), push(b), push(b), c.simd(Simd::F32x4Ne), c.simd(Simd::V128Bitselect);
+  }
+  // min(temp, hi) with the same rule, `temp` holding the first operand.
+  void min_max_with_temp(const Inst* hi) {
+    Code& c = c_;
+    push(hi), c.local_get(temp_), push(hi), c.local_get(temp_), c.simd(Simd::F32x4Lt), c.simd(Simd::V128Bitselect);
+    c.local_set(temp_);
+    push(hi), c.local_get(temp_), push(hi), push(hi), c.simd(Simd::F32x4Ne), c.simd(Simd::V128Bitselect);
+  }
+  // f = floor(a); a - f >= 0.5 ? f + 1 : f, then a's sign.
+  void round(const Inst* a) {
+    Code& c = c_;
+    push(a), c.simd(Simd::F32x4Floor), c.local_set(temp_);
+    c.local_get(temp_), c.f32x4_const(1), c.simd(Simd::F32x4Add), c.local_get(temp_);
+    push(a), c.local_get(temp_), c.simd(Simd::F32x4Sub), c.f32x4_const(0.5f), c.simd(Simd::F32x4Ge);
+    c.simd(Simd::V128Bitselect);
+    c.i32x4_const(INT32_MAX), c.simd(Simd::V128And);
+    push(a), c.i32x4_const(INT32_MIN), c.simd(Simd::V128And), c.simd(Simd::V128Or);
+  }
+  // a > 0 ? 1 : (a < 0 ? -1 : a)
+  void sign(const Inst* a) {
+    Code& c = c_;
+    c.f32x4_const(1), c.f32x4_const(-1), push(a), push(a), c.f32x4_const(0), c.simd(Simd::F32x4Lt);
+    c.simd(Simd::V128Bitselect);
+    push(a), c.f32x4_const(0), c.simd(Simd::F32x4Gt), c.simd(Simd::V128Bitselect);
+  }
+
+  // A runtime batch function on the four lanes, through the scratch area.
+  void batch(const Inst& in, const void* fn) {  // (fn: batch_of(in.op), declared by declare_imports)
+    Code& c = c_;
+    for (size_t k = 0; k < in.args.size(); ++k)
+      c.local_get(scratch_), push(in.args[k]), c.v128_store(16 * static_cast<uint32_t>(k));
+    for (size_t k = 0; k < in.args.size(); ++k)
+      c.local_get(scratch_), c.i32_const(16 * static_cast<int32_t>(k)), c.op(Opc::I32Add);
+    c.local_get(scratch_), c.i32_const(kScratchResult), c.op(Opc::I32Add);
+    c.i32_const(4);
+    c.call(import(fn));
+    c.local_get(scratch_), c.v128_load(kScratchResult);
+  }
+  // An array operation through backends/lane_arrays.h's helpers (the VM's storage and messages):
+  // the arrays, the slot, the operands' and result's places, the lanes' mask; a helper's 1 ends the
+  // run with its message.
+  void array_op(const Inst& in) {
+    Code& c = c_;
+    for (size_t k = 0; k < in.args.size(); ++k)
+      c.local_get(scratch_), push(in.args[k]), c.v128_store(16 * static_cast<uint32_t>(k));
+    c.local_get(scratch_), c.local_get(mask_), c.v128_store(kScratchMask);
+    uint32_t slot =
+        in.array_global ? static_cast<uint32_t>(in.aux) : program_.global_arrays + static_cast<uint32_t>(in.aux);
+    c.local_get(arrays_param_), c.i32_const(static_cast<int32_t>(slot));
+    auto place = [&](uint32_t offset) {
+      c.local_get(scratch_), c.i32_const(static_cast<int32_t>(offset)), c.op(Opc::I32Add);
+    };
+    switch (in.op) {
+      case Op::ANew: place(0); break;
+      case Op::ALoad: place(0), place(kScratchResult); break;
+      case Op::AStore: place(0), place(16); break;
+      default: place(kScratchResult); break;  // ALen
+    }
+    place(kScratchMask);
+    c.call(import(helper_of(in.op)));
+    c.if_(), trap(backends::trap_code(2, &in)), c.end();
+    if (in.op == Op::ALoad || in.op == Op::ALen) c.local_get(scratch_), c.v128_load(kScratchResult);
+  }
+
+  uint32_t import(const void* fn) const { return program_.imports.at(fn); }
+  uint32_t global_at(const Inst& in) const { return kScratchGlobals + 16 * static_cast<uint32_t>(in.aux); }
+  uint32_t ticks_at() const { return kScratchGlobals + 16 * static_cast<uint32_t>(program_.num_globals); }
+
+  // A recursive function for this block's lanes: its depth checked (as the VM counts it), its
+  // status passed on, its value under the block's mask.
+  void call_function(const Inst& in) {
+    Code& c = c_;
+    const ir::Function& callee = *module_.functions[static_cast<size_t>(in.aux)];
+    auto depth = [&] { callee_ ? c.local_get(depth_) : c.i32_const(0); };
+    if (callee.recursive) {
+      depth(), c.i32_const(static_cast<int32_t>(std::min<uint64_t>(budgets_.max_call_depth, INT32_MAX))),
+          c.op(Opc::I32GeU);
+      c.if_(), trap(backends::trap_code(3, &in)), c.end();
+    }
+    for (const Inst* a : in.args) push(a);
+    c.local_get(mask_), c.local_get(scratch_), c.local_get(arrays_param_);
+    depth();
+    if (callee.recursive) c.i32_const(1), c.op(Opc::I32Add);
+    c.call(program_.index_of[static_cast<size_t>(in.aux)]);
+    c.local_set(status_), c.local_set(temp_);
+    c.local_get(status_), c.op(Opc::I64Eqz), c.op(Opc::I32Eqz), c.if_(), pass_status(), c.end();
+    c.local_get(temp_);
+  }
+  // Returns `code` (a kernel) or (any value, code) (a callee).
+  void trap(uint64_t code) {
+    if (callee_) c_.f32x4_const(0);
+    c_.i64_const(static_cast<int64_t>(code)), c_.op(Opc::Return);
+  }
+  void pass_status() {
+    if (callee_) c_.f32x4_const(0);
+    c_.local_get(status_), c_.op(Opc::Return);
+  }
+
+  // One iteration per active lane; a lane past the budget ends the run with the loop's position.
+  // Where the program has callees the counts are in memory (scratch), one evaluation's for all of
+  // its functions, as the VM counts them.
+  void tick(const Inst& in) {
+    Code& c = c_;
+    const uint32_t at = ticks_at();
+    if (program_.globals_in_memory) c.local_get(scratch_), c.local_get(scratch_), c.v128_load(at);
+    else c.local_get(ticks_);
+    c.local_get(mask_), c.simd(Simd::I32x4Sub), c.local_tee(temp_);
+    if (program_.globals_in_memory) c.v128_store(at);
+    else c.local_set(ticks_);
+    c.local_get(temp_), c.i32x4_const(static_cast<int32_t>(budgets_.max_loop_iterations)), c.simd(Simd::I32x4GtS);
+    c.simd(Simd::V128AnyTrue), c.if_(), trap(backends::trap_code(1, &in)), c.end();
+  }
+
+  // The lanes of `edge_mask` (pushed by the function) go from `from` to `to`: its phis take their
+  // operands from `from` (all read before any is written), and the lanes wait at `to`.
+  template <typename PushMask>
+  void edge(const ir::Block& from, const ir::Block& to, PushMask edge_mask) {
+    Code& c = c_;
+    size_t phis = to.first_non_phi(), pred = 0;
+    while (pred < to.preds.size() && to.preds[pred] != &from) ++pred;
+    for (size_t k = 0; k < phis; ++k) {
+      const Inst* phi = to.insts[k];
+      push(phi->args[pred]), c.local_get(value_ + phi->id), edge_mask(), c.simd(Simd::V128Bitselect);
+      c.local_set(phi_temp_ + static_cast<uint32_t>(k));
+    }
+    for (size_t k = 0; k < phis; ++k)
+      c.local_get(phi_temp_ + static_cast<uint32_t>(k)), c.local_set(value_ + to.insts[k]->id);
+    c.local_get(pending(to)), edge_mask(), c.simd(Simd::V128Or), c.local_set(pending(to));
+  }
+
+  void branch(const Inst& in, const ir::Block& b) {
+    Code& c = c_;
+    truthy(in.args[0]);
+    c.local_set(temp_);
+    edge(b, *in.targets[0], [&] { c.local_get(temp_), c.local_get(mask_), c.simd(Simd::V128And); });
+    edge(b, *in.targets[1], [&] { c.local_get(mask_), c.local_get(temp_), c.simd(Simd::V128AndNot); });
+  }
+
+  const ir::Module& module_;
+  const ir::Function& fn_;
+  bool callee_;
+  const backends::Budgets& budgets_;
+  Program& program_;
+  Module& mod_;
+  Code c_;
+  bool straight_ = true, arrays_ = false;
+  uint32_t scratch_ = 0, arrays_param_ = 0, depth_ = 0;  // parameters' locals
+  std::vector<const ir::Block*> rpo_;
+  uint32_t first_v128_ = 0, next_v128_ = 0, value_ = 0, output_ = 0, global_ = 0, mask_ = 0, ticks_ = 0, temp_ = 0;
+  uint32_t pending_ = 0, phi_temp_ = 0, status_ = 0;
+};
+
+// The runtime function an array op calls.
+const void* helper_of(Op op) {
+  switch (op) {
+    case Op::ANew: return reinterpret_cast<const void*>(&backends::fs_lanes_anew);
+    case Op::ALoad: return reinterpret_cast<const void*>(&backends::fs_lanes_aload);
+    case Op::AStore: return reinterpret_cast<const void*>(&backends::fs_lanes_astore);
+    default: return reinterpret_cast<const void*>(&backends::fs_lanes_alen);  // ALen
+  }
+}
+
+// The batch function a math op calls (nullptr: it is made of SIMD instructions).
+const void* batch_of(Op op) {
+  switch (op) {
+    case Op::Mod: return reinterpret_cast<const void*>(&mod_batch);
+#define FS_MATH(N, FN, A, HOW) FS_WASM_BATCH_##HOW(N, FN)
+#define FS_WASM_BATCH_Lane(N, FN)
+#define FS_WASM_BATCH_Batch(N, FN) \
+  case Op::N: return reinterpret_cast<const void*>(&math::FN##_batch);
+#define FS_WASM_BATCH_Trig(N, FN) FS_WASM_BATCH_Batch(N, FN)
+#include "ir/math_ops.def"
+#undef FS_WASM_BATCH_Lane
+#undef FS_WASM_BATCH_Batch
+#undef FS_WASM_BATCH_Trig
+    default: return nullptr;
+  }
+}
+
+// Every import the program's functions call, in the order first met: imports precede the module's
+// own functions in its index space, so all are declared before any body.
+void declare_imports(const backends::JitProgram& jp, Program& p, Module& mod, CompiledModule& out) {
+  auto add = [&](const void* fn, size_t params, bool returns) {
+    if (!fn || p.imports.count(fn)) return;
+    FuncType t{std::vector<ValType>(params, ValType::I32), {}};
+    if (returns) t.results.push_back(ValType::I32);
+    p.imports[fn] = mod.import_function("env", "f" + std::to_string(out.imports.size()), t);
+    out.imports.push_back(fn);
+  };
+  for (int f : jp.functions)
+    for (const auto& b : jp.module->functions[static_cast<size_t>(f)]->blocks)
+      for (const Inst* in : b->insts) {
+        const bool array = in->op == Op::ANew || in->op == Op::ALoad || in->op == Op::AStore || in->op == Op::ALen;
+        if (array) {
+          add(reinterpret_cast<const void*>(&backends::fs_lanes_reset), 1, true);
+          add(helper_of(in->op), in->op == Op::ALoad || in->op == Op::AStore ? 5 : 4, true);
+        }
+        if (const void* fn = batch_of(in->op)) add(fn, in->args.size() + 2, false);
+      }
+}
+
+}  // namespace
+
+bool compile_module(const ir::Module& m, const backends::Budgets& budgets, CompiledModule& out, std::string& error) {
+  backends::JitProgram jp;
+  if (!backends::prepare_program(m, jp, error)) return false;
+  const ir::Module& pm = *jp.module;
+  const ir::Function& fn = *pm.functions[static_cast<size_t>(jp.kernel)];
+  out = CompiledModule{};
+  out.inputs = fn.num_params, out.outputs = fn.num_results;
+  Module mod;
+  mod.import_memory("env", "memory", 1);
+  Program p;
+  declare_imports(jp, p, mod, out);
+  p.num_globals = jp.num_globals;
+  p.globals_in_memory = jp.functions.size() > 1;  // the callees share them
+  p.global_arrays = static_cast<uint32_t>(pm.arrays.size());
+  p.index_of.assign(pm.functions.size(), 0);
+  for (size_t k = 0; k < jp.functions.size(); ++k)
+    p.index_of[static_cast<size_t>(jp.functions[k])] = static_cast<uint32_t>(out.imports.size() + k);
+  out.array_names = pm.arrays;
+  out.array_names.insert(out.array_names.end(), fn.arrays.begin(), fn.arrays.end());
+  out.scratch_bytes = kScratchGlobals + 16 * static_cast<size_t>(jp.num_globals) + 16;  // + the loop counts
+  for (size_t k = 0; k < jp.functions.size(); ++k) {  // the kernel first, then its callees
+    Emitter e(pm, *pm.functions[static_cast<size_t>(jp.functions[k])], k > 0, budgets, p, mod);
+    if (!e.run(error)) return false;
+  }
+  out.bytes = mod.encode();
+  return true;
+}
+
+}  // namespace fscript::wasm

@@ -45,7 +45,13 @@ double first_native_ns(size_t ops) {
 
 // LLVM when its module loads (the first call loads it: from the compile thread, off the job's
 // path), else the SSE emitter.
-std::string native_backend() { return llvm_module() ? "llvm" : "sse"; }
+std::string native_backend() {
+#if defined(FS_HAVE_WASM)
+  return "wasm";  // the browser build: our WebAssembly emitter
+#else
+  return llvm_module() ? "llvm" : "sse";
+#endif
+}
 
 // FSCRIPT_AUTO_SWITCH_AFTER=N (tests): compile at once, and run every batch after the N-th point
 // natively, waiting for the compile if need be: a switch in the middle of a job, on purpose.
@@ -101,10 +107,14 @@ class Compiler {
     if (!thread_.joinable()) {
       try {
         thread_ = std::thread([this] { loop(); });
-      } catch (const std::system_error&) {  // no thread to be had: the kernel stays on the VM
-        std::lock_guard<std::mutex> done(s->lock);
-        s->done = true;
-        s->done_cv.notify_all();
+      } catch (const std::system_error&) {
+        // No thread to be had (the browser build has none): the compile runs here, on the caller's
+        // thread, once the work done says it pays, and its code takes the rest of the job.
+        {
+          std::lock_guard<std::mutex> run(s->lock);
+          s->running = true;
+        }
+        compile(*s);
         return;
       }
     }
@@ -361,8 +371,10 @@ TierStats tier_stats() {
   // Without a native compile the module was never needed: name it without loading LLVM for it.
   // With compiles but no module loaded, the native code was the SSE emitter's (the middle tier
   // alone, or a module that failed to load): asking native_backend() would load it only to say so.
-#ifdef FS_HAVE_LLVM
+#if defined(FS_HAVE_LLVM)
   s.native = llvm_module_loaded() || !t.compiles ? "llvm" : "sse";
+#elif defined(FS_HAVE_WASM)
+  s.native = "wasm";
 #else
   s.native = "sse";
 #endif

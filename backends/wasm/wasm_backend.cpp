@@ -5,6 +5,7 @@
 
 #include <emscripten.h>
 
+#include <cstring>
 #include <vector>
 
 #include "backends/jit_support.h"
@@ -25,14 +26,8 @@ EM_JS(int, fs_wasm_instantiate, (const uint8_t* bytes, int size, const uint32_t*
     return 0;
   }
 });
-// The kernel's status as two halves (a JavaScript BigInt does not cross into C++ here).
-EM_JS(uint32_t, fs_wasm_call,
-      (int id, const void* inputs, const void* outputs, int n, void* scratch, void* arrays, uint32_t* high), {
-        var status = Module.fsKernels[id](inputs, outputs, n, scratch, arrays);
-        var mask = BigInt(0xffffffff);  // (no BigInt literals: Emscripten's JavaScript optimiser reads ES2018)
-        HEAPU32[high >> 2] = Number((status >> BigInt(32)) & mask);
-        return Number(status & mask);
-      });
+EM_JS(int, fs_wasm_call, (int id, const void* inputs, const void* outputs, int n, void* scratch, void* arrays),
+      { return Module.fsKernels[id](inputs, outputs, n, scratch, arrays); });
 EM_JS(void, fs_wasm_release, (int id), { Module.fsKernels[id] = null; });
 
 namespace fscript::wasm {
@@ -41,38 +36,62 @@ namespace {
 class WasmKernel : public backends::Kernel {
  public:
   WasmKernel(int id, const CompiledModule& c, const backends::Budgets& budgets)
-      : id_(id), inputs_(c.inputs), outputs_(c.outputs), scratch_floats_(c.scratch_bytes / 4), budgets_(budgets),
-        arrays_(c.array_names) {}
+      : id_(id), inputs_(c.inputs), outputs_(c.outputs), scratch_floats_(c.scratch_bytes / 4), row_from_(c.row_from),
+        budgets_(budgets), arrays_(c.array_names) {}
   ~WasmKernel() override { fs_wasm_release(id_); }
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
 
+  // A kernel with row parameters takes a batch as one row (the tiered kernel's convention).
   bool eval_batch(const float* const* inputs, float* const* outputs, size_t n,
                   backends::RuntimeError& err) const override {
-    if (n == 0) return true;
-    backends::LaneArrays arrays;
-    arrays.init(4, budgets_.max_array_elements, arrays_);
-    return backends::run_padded(
-        4, inputs_, outputs_, inputs, outputs, n, [&](const float* const* in, float* const* out, size_t count) {
-          std::vector<float> room(scratch_floats_ + 4);  // aligned to 16 below
-          auto* scratch = reinterpret_cast<uint8_t*>((reinterpret_cast<uintptr_t>(room.data()) + 15) & ~uintptr_t{15});
-          uint32_t high = 0;
-          uint32_t low = fs_wasm_call(id_, in, out, static_cast<int>(count), scratch, &arrays, &high);
-          uint64_t code = uint64_t{high} << 32 | low;
-          return backends::jit_status(code, arrays, budgets_, err);
-        });
+    if (row_from_) return eval_rows(inputs[0], n, inputs + 1, 1, outputs, err);
+    return run(inputs, outputs, n, err);
   }
   bool eval(const float* inputs, float* outputs, backends::RuntimeError& err) const override {
+    return backends::eval_one(*this, inputs_, outputs_, inputs, outputs, err);
+  }
+  // Rows go in one call, their values spread over their points: a call per row (the SSE code's way)
+  // crosses into JavaScript and back for every row.
+  bool eval_rows(const float* first, size_t count, const float* const* rest, size_t rows, float* const* outputs,
+                 backends::RuntimeError& err) const override {
+    if (!row_from_) return Kernel::eval_rows(first, count, rest, rows, outputs, err);
+    const size_t n = rows * count;
+    std::vector<std::vector<float>> spread(inputs_);
     std::vector<const float*> in(inputs_);
-    std::vector<float*> out(outputs_);
-    for (size_t k = 0; k < inputs_; ++k) in[k] = inputs + k;
-    for (size_t k = 0; k < outputs_; ++k) out[k] = outputs + k;
-    return eval_batch(in.data(), out.data(), 1, err);
+    for (size_t k = 0; k < inputs_; ++k) {
+      spread[k].resize(n);
+      for (size_t r = 0; r < rows; ++r) {  // (the first input per point, the others per row)
+        auto at = spread[k].begin() + static_cast<ptrdiff_t>(r * count);
+        if (k == 0) std::copy(first, first + count, at);
+        else std::fill_n(at, count, rest[k - 1][r]);
+      }
+      in[k] = spread[k].data();
+    }
+    return run(in.data(), outputs, n, err);
   }
 
  private:
+  // Every input one value a point.
+  bool run(const float* const* inputs, float* const* outputs, size_t n, backends::RuntimeError& err) const {
+    if (n == 0) return true;
+    backends::LaneArrays arrays;  // (set up only for a kernel with arrays: small batches are many)
+    if (!arrays_.empty()) arrays.init(4, budgets_.max_array_elements, arrays_);
+    backends::Scratch<uint64_t, 32> room(scratch_floats_ / 2 + 2);
+    auto* scratch = reinterpret_cast<uint8_t*>((reinterpret_cast<uintptr_t>(room.data) + 15) & ~uintptr_t{15});
+    auto group = [&](const float* const* in, float* const* out, size_t count) {
+      if (!fs_wasm_call(id_, in, out, static_cast<int>(count), scratch, arrays_.empty() ? nullptr : &arrays))
+        return true;
+      uint64_t code;
+      std::memcpy(&code, scratch, sizeof code);
+      return backends::jit_status(code, arrays, budgets_, err);
+    };
+    return backends::run_padded(4, inputs_, outputs_, inputs, outputs, n, group);
+  }
+
   int id_;
   size_t inputs_, outputs_, scratch_floats_;
+  uint32_t row_from_;
   backends::Budgets budgets_;
   std::vector<std::string> arrays_;  // names by slot
 };

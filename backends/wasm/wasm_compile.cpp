@@ -126,8 +126,8 @@ class Emitter {
     c.br(0);
     c.end();
     c.end();
-    c.i64_const(0);
-    FuncType t{{ValType::I32, ValType::I32, ValType::I32, ValType::I32, ValType::I32}, {ValType::I64}};
+    c.i32_const(0);
+    FuncType t{{ValType::I32, ValType::I32, ValType::I32, ValType::I32, ValType::I32}, {ValType::I32}};
     uint32_t pointers = kFirstPointer - kAt + fn_.num_params + fn_.num_results;
     uint32_t f = mod_.function(
         t, {{pointers, ValType::I32}, {next_v128_ - first_v128_, ValType::V128}, {1, ValType::I64}}, std::move(c_));
@@ -137,7 +137,6 @@ class Emitter {
 
   // What this emitter compiles (the rest runs on the VM until it does).
   bool check(std::string& error) {
-    if (fn_.row_params_from > 0) return error = "row parameters", false;
     if (callee_ && !fn_.arrays.empty()) return error = "arrays local to a recursive function", false;
     if (callee_ && fn_.num_results != 1) return error = "a function of several results", false;
     if (budgets_.max_loop_iterations > static_cast<uint64_t>(INT32_MAX - 1))
@@ -422,13 +421,17 @@ class Emitter {
     c.local_get(temp_);
   }
   // Returns `code` (a kernel) or (any value, code) (a callee).
+  // A callee returns (any value, status); the kernel stores the status at scratch's start and
+  // returns 1 (no 64-bit value crosses into JavaScript, where it would be a BigInt).
   void trap(uint64_t code) {
-    if (callee_) c_.f32x4_const(0);
-    c_.i64_const(static_cast<int64_t>(code)), c_.op(Opc::Return);
+    if (callee_) return c_.f32x4_const(0), c_.i64_const(static_cast<int64_t>(code)), c_.op(Opc::Return);
+    c_.local_get(kScratch), c_.i64_const(static_cast<int64_t>(code)), c_.i64_store(0);
+    c_.i32_const(1), c_.op(Opc::Return);
   }
   void pass_status() {
-    if (callee_) c_.f32x4_const(0);
-    c_.local_get(status_), c_.op(Opc::Return);
+    if (callee_) return c_.f32x4_const(0), c_.local_get(status_), c_.op(Opc::Return);
+    c_.local_get(kScratch), c_.local_get(status_), c_.i64_store(0);
+    c_.i32_const(1), c_.op(Opc::Return);
   }
 
   // One iteration per active lane; a lane past the budget ends the run with the loop's position.
@@ -542,7 +545,7 @@ bool compile_module(const ir::Module& m, const backends::Budgets& budgets, Compi
   const ir::Module& pm = *jp.module;
   const ir::Function& fn = *pm.functions[static_cast<size_t>(jp.kernel)];
   out = CompiledModule{};
-  out.inputs = fn.num_params, out.outputs = fn.num_results;
+  out.inputs = fn.num_params, out.outputs = fn.num_results, out.row_from = fn.row_params_from;
   Module mod;
   mod.import_memory("env", "memory", 1);
   Program p;

@@ -69,6 +69,7 @@ enum class Opc : uint8_t {
   LocalSet = 0x21,
   LocalTee = 0x22,
   I32Load = 0x28,
+  I64Store = 0x37,
   I32Const = 0x41,
   I64Const = 0x42,
   I32Eqz = 0x45,
@@ -105,6 +106,7 @@ class Code {
   void br_if(uint32_t depth) { op(Opc::BrIf), u32(depth); }
   void call(uint32_t f) { op(Opc::Call), u32(f); }
   void i32_load(uint32_t offset) { op(Opc::I32Load), u32(2), u32(offset); }  // aligned to 4
+  void i64_store(uint32_t offset) { op(Opc::I64Store), u32(3), u32(offset); }  // aligned to 8
   void v128_load(uint32_t offset) { simd(Simd::V128Load), u32(4), u32(offset); }   // aligned to 16
   void v128_store(uint32_t offset) { simd(Simd::V128Store), u32(4), u32(offset); }
   // Unaligned forms, for arrays the caller owns (alignment is a hint: any address is valid).

@@ -10,7 +10,9 @@
 #include <sstream>
 
 #include "backends/runtime_errors.h"
+#if defined(FS_HAVE_SSE)
 #include "backends/sse/sse_backend.h"
+#endif
 #include "backends/llvm_module.h"
 #include "backends/vm/vm_backend.h"
 #include "frontend/check.h"
@@ -284,6 +286,7 @@ std::string backend_listing(const std::string& name, const ir::Module& m, const 
     vm::VmProgram p;
     return vm::compile_program(m, p, error) ? vm::disassemble(p) : "";
   }
+#if defined(FS_HAVE_SSE)
   if (name == "sse") {
     std::string text;
     double bound = 0;
@@ -296,6 +299,7 @@ std::string backend_listing(const std::string& name, const ir::Module& m, const 
           " (other batches run the general code)\n" + text;
     return text;
   }
+#endif
   if (name == "llvm") {
     const backends::LlvmModule* lm = backends::llvm_module(&error);
     return lm ? lm->kernel_text(m, budgets, true, error) : "";

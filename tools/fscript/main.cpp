@@ -18,6 +18,17 @@
 namespace fscript::cli {
 namespace {
 
+// The REPL needs a terminal and line editing (libedit): not in the browser build.
+int repl(const Options& o) {
+#if defined(FS_HAVE_REPL)
+  return run_repl(o);
+#else
+  (void)o;
+  std::cerr << "error: the REPL is not in the browser build; run a file: fscript run FILE\n";
+  return 2;
+#endif
+}
+
 struct Args {
   Options opts;
   std::string file, entry, points_path, size, bounds, out, passes, at, box;
@@ -69,7 +80,7 @@ int dispatch(CLI::App& app, Args& a) {
   if (app.got_subcommand("emit-ir")) return cmd_emit_ir(a.file, a.entry, a.opt, a.passes, a.llvm, a.gradient);
   if (app.got_subcommand("emit-asm")) return cmd_emit_asm(a.opts, a.file, a.entry);
   if (app.got_subcommand("fmt")) return cmd_fmt(a.file, a.in_place, a.check_only);
-  if (app.got_subcommand("repl")) return run_repl(a.opts);
+  if (app.got_subcommand("repl")) return repl(a.opts);
   if (app.got_subcommand("bench"))
     return cmd_bench(a.opts, a.file, a.entry, a.points, a.threads,
                      a.one_point  ? BenchPath::OnePoint
@@ -84,7 +95,7 @@ int dispatch(CLI::App& app, Args& a) {
   if (app.got_subcommand("render2d"))
     return cmd_render2d(a.opts, a.file, a.entry, a.size, a.bounds, a.out, a.threads, !a.no_prune, a.stats, a.repeat);
   // No subcommand: the REPL on a terminal; otherwise the program on standard input runs once.
-  if (isatty(STDIN_FILENO)) return run_repl(a.opts);
+  if (isatty(STDIN_FILENO)) return repl(a.opts);
   return cmd_run(a.opts, "-", a.entry, {});
 }
 
@@ -158,7 +169,7 @@ int real_main(int argc, char** argv) {
 
   CLI::App* bench = add_compiling(app, "bench", "time the batch path over many points", a);
   bench->add_option("--points,-n", a.points, "number of points, at least 1 (default 1,000,000)")
-      ->check(CLI::Range(size_t{1}, size_t{1} << 32).description(""))
+      ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 32).description(""))
       ->type_name("N");
   bench->add_option("--threads,-j", a.threads, "threads, 1 to 1,024 (default 1)")
       ->check(CLI::Range(1u, 1024u).description(""))

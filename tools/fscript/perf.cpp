@@ -281,13 +281,14 @@ int cmd_render2d(const Options& o, const std::string& file, const std::string& e
     std::string stem = file == "-" ? "render2d" : std::filesystem::path(file).stem().string();
     path = (stem.empty() ? std::string("render2d") : stem) + ".png";
   }
+  // The figures first: a build without PNG (the browser's, in Node) still times the picture.
+  std::printf("%zu white pixels\n%.3f ms\n", white, ms);
+  std::fflush(stdout);
   std::string error;
   if (!render::write_png(path, w, h, 1, px, error)) {
     std::cerr << "error: " << error << "\n";
     return kExitInput;
   }
-  std::printf("%zu white pixels\n%.3f ms\n", white, ms);
-  std::fflush(stdout);
   std::cerr << "wrote " << path << ": " << w << "x" << h << ", " << white << " white pixels\n";
   if (stats) print_quadtree_stats(st, size_t(w) * h);
   return kExitOk;

@@ -1,7 +1,8 @@
-// The browser page's 3D view (classic script: a page opened from file:// may load no ES module):
-// shows a glTF binary made by fvrml-run with three.js, plays its animation (our glTF's STEP
-// animation of frame nodes) under a play button and a time slider, with the scene's viewpoint,
-// lights and background from fvrml-run's view (--stats-file), as the preview of --serve does.
+// The 3D view of the browser page and of fvrml-run --serve's preview (one copy for both; a
+// classic script: a page opened from file:// may load no ES module): shows a glTF binary made by
+// fvrml-run with three.js, plays its animation (our glTF's STEP animation of frame nodes) under a
+// play button and a time slider, with the scene's viewpoint, lights and background (fvrml-run's
+// view: --stats-file, or the preview's stats).
 /* global THREE */
 'use strict';
 
@@ -110,9 +111,11 @@ function FvrmlViewer(container, controlsOf) {
     draw();
   };
 
-  // Shows a .glb (an ArrayBuffer); `keepCamera` keeps the user's camera (the same files again).
+  // Shows a .glb (an ArrayBuffer); `keepCamera` keeps the user's camera and the animation's time
+  // (a new version of the same scene).
   this.show = (glb, view, keepCamera) => new Promise((resolve, reject) => {
     new THREE.GLTFLoader().parse(glb, '', (gltf) => {
+      const time = keepCamera && mixer ? mixer.time : 0;  // the animation goes on where it was
       if (content) scene.remove(content);
       content = gltf.scene;
       content.traverse((o) => { if (o.isMesh && o.material) o.material.side = THREE.DoubleSide; });
@@ -129,6 +132,7 @@ function FvrmlViewer(container, controlsOf) {
         action = mixer.clipAction(gltf.animations[0]);
         action.play();
         duration = gltf.animations[0].duration;
+        mixer.setTime(duration > 0 ? time % duration : 0);
         action.paused = !playing;
       }
       slider.disabled = play.disabled = !mixer;

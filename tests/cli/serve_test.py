@@ -128,11 +128,13 @@ def main(d):
     s = Server(scene)
     check("--serve prints its URL", s.url.startswith("http://127.0.0.1:"), repr(s.url))
     status, page = s.request("GET", "/")
-    check("the page", status == 200 and b'<script type="module" src="/preview.js">' in page, str(status))
+    check("the page", status == 200 and b'<script src="/preview.js">' in page and b'<script src="/viewer.js">' in page, str(status))
     status, js = s.request("GET", "/preview.js")
     check("the page's script", status == 200 and b"new EventSource('/events?page=' + pageId)" in js and b"sendBeacon('/closed?page='" in js, str(status))
-    for path in ["/three/build/three.module.js", "/three/examples/jsm/loaders/GLTFLoader.js",
-                 "/three/examples/jsm/controls/OrbitControls.js"]:
+    status, js = s.request("GET", "/viewer.js")
+    check("the view shared with the browser page (web/viewer.js)", status == 200 and b"function FvrmlViewer(" in js, str(status))
+    for path in ["/three/three.min.js", "/three/examples/js/loaders/GLTFLoader.js",
+                 "/three/examples/js/controls/OrbitControls.js"]:
         status, _ = s.request("GET", path)
         check("three.js from libjs-three: " + path, status == 200, str(status))
     first = s.wait_state(lambda st: st.get("version", 0) >= 1, 30)
@@ -222,7 +224,7 @@ def main(d):
     # Nothing else can be read.
     for path in ["/../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/three/../../../../etc/passwd",
                  "/three/build/..%2f..%2f..%2f..%2fetc%2fpasswd", "//etc/passwd", "/etc/passwd", "/passwd",
-                 "/scene.wrl", "/part.wrl", "/" + scene, "/three/build/three.module.jsx", "/scene.glb/../state.json"]:
+                 "/scene.wrl", "/part.wrl", "/" + scene, "/three/three.min.jsx", "/scene.glb/../state.json"]:
         status, data = s.request("GET", path)
         check("404 for " + path, status == 404 and b"root:" not in data, f"{status} {data[:60]!r}")
 

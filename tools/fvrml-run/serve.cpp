@@ -1,5 +1,5 @@
 // fvrml-run --serve: the live preview. An HTTP server (Debian's cpp-httplib) on 127.0.0.1 serves one
-// page (preview/index.html and preview.js, compiled in), three.js from Debian's libjs-three, and the
+// page (preview/index.html, preview.js and web/viewer.js, compiled in), three.js from Debian's libjs-three, and the
 // scene as our own glTF; a watcher re-runs the scene when the scene or a file it pulls in changes and
 // pushes the new state to every open page as a Server-Sent Event, with the scene so far while an
 // animation's frames are made. A save that breaks the scene keeps the last good glTF and sends the
@@ -42,16 +42,19 @@ const char kIndexHtml[] =
 const char kPreviewJs[] =
 #include "preview_js.inc"
     ;
+const char kViewerJs[] =  // web/viewer.js: the browser page's view, the same file
+#include "viewer_js.inc"
+    ;
 
 constexpr int kMaxStreams = 4;  // open pages at once (each holds a server thread)
 int stop_pipe[2] = {-1, -1};    // the signal handler's way to the thread that stops the server
 
-// The served three.js files: URL path to the file under FS_THREE_DIR (the jsm modules import
-// ../../../build/three.module.js, so the tree keeps its shape).
+// The served three.js files (classic scripts, as the browser page loads them): URL path to the
+// file under FS_THREE_DIR.
 const std::pair<const char*, const char*> kThreeFiles[] = {
-    {"/three/build/three.module.js", "build/three.module.js"},
-    {"/three/examples/jsm/loaders/GLTFLoader.js", "examples/jsm/loaders/GLTFLoader.js"},
-    {"/three/examples/jsm/controls/OrbitControls.js", "examples/jsm/controls/OrbitControls.js"},
+    {"/three/three.min.js", "three.min.js"},
+    {"/three/examples/js/loaders/GLTFLoader.js", "examples/js/loaders/GLTFLoader.js"},
+    {"/three/examples/js/controls/OrbitControls.js", "examples/js/controls/OrbitControls.js"},
 };
 
 // What the page sees: the last good glTF, and the state of the last run.
@@ -249,6 +252,9 @@ void routes(httplib::Server& svr, State& st, std::atomic<bool>& rerun) {
   svr.Get(R"(/favicon\.ico)", [](const httplib::Request&, httplib::Response& res) { res.status = 204; });
   svr.Get(R"(/preview\.js)", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(kPreviewJs, "text/javascript; charset=utf-8");
+  });
+  svr.Get(R"(/viewer\.js)", [](const httplib::Request&, httplib::Response& res) {
+    res.set_content(kViewerJs, "text/javascript; charset=utf-8");
   });
   for (const auto& [url, file] : kThreeFiles) {
     std::string path = std::string(FS_THREE_DIR) + "/" + file, pattern;

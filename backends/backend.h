@@ -17,7 +17,15 @@ struct Budgets {
   uint32_t max_call_depth = 1000;             // nested user-function calls
   uint64_t max_array_elements = 1'000'000;    // per evaluation, all arrays together
 };
-constexpr uint32_t kCallDepthCeiling = 100'000;  // the largest depth a user may ask for
+// The largest depth a user may ask for. The browser build runs on the browser's stack (about
+// 1 MiB, not ours to size; docs/browser.md), which holds about a thousand of the VM's nested calls.
+#ifdef __EMSCRIPTEN__
+constexpr uint32_t kCallDepthCeiling = 1'000;
+constexpr const char* kCallDepthCeilingText = "1,000";
+#else
+constexpr uint32_t kCallDepthCeiling = 100'000;
+constexpr const char* kCallDepthCeilingText = "100,000";
+#endif
 
 struct RuntimeError {
   std::string message;

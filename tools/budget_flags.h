@@ -13,7 +13,8 @@ inline void add_budget_flags(CLI::App& app, backends::Budgets& budgets, uint32_t
                  "loop iterations allowed per evaluation, at least 1 (default 10,000,000)")
       ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 62).description(""))
       ->type_name("N");
-  app.add_option("--max-call-depth", max_call_depth, "nested calls allowed, 1 to 100,000 (default 1,000)")
+  app.add_option("--max-call-depth", max_call_depth,
+                 std::string("nested calls allowed, 1 to ") + backends::kCallDepthCeilingText + " (default 1,000)")
       ->check(CLI::Range(1u, backends::kCallDepthCeiling).description(""))
       ->type_name("N");
   app.add_option("--max-array-elements", budgets.max_array_elements,

@@ -1,6 +1,6 @@
 // The wasm backend's Kernel (wasm_backend.h): the module's bytes handed to JavaScript, which
 // compiles and instantiates them against this program's memory and function table; batches run
-// in groups of four points with the tail padded (backends::run_padded), as the SSE code's do.
+// in groups of the module's points per turn with the tail padded (backends::run_padded), as the SSE code's do.
 #include "backends/wasm/wasm_backend.h"
 
 #include <emscripten.h>
@@ -37,7 +37,7 @@ class WasmKernel : public backends::Kernel {
  public:
   WasmKernel(int id, const CompiledModule& c, const backends::Budgets& budgets)
       : id_(id), inputs_(c.inputs), outputs_(c.outputs), scratch_floats_(c.scratch_bytes / 4), row_from_(c.row_from),
-        budgets_(budgets), arrays_(c.array_names) {}
+        group_(c.group), budgets_(budgets), arrays_(c.array_names) {}
   ~WasmKernel() override { fs_wasm_release(id_); }
   size_t num_inputs() const override { return inputs_; }
   size_t num_outputs() const override { return outputs_; }
@@ -86,12 +86,12 @@ class WasmKernel : public backends::Kernel {
       std::memcpy(&code, scratch, sizeof code);
       return backends::jit_status(code, arrays, budgets_, err);
     };
-    return backends::run_padded(4, inputs_, outputs_, inputs, outputs, n, group);
+    return backends::run_padded(group_, inputs_, outputs_, inputs, outputs, n, group);
   }
 
   int id_;
   size_t inputs_, outputs_, scratch_floats_;
-  uint32_t row_from_;
+  uint32_t row_from_, group_;
   backends::Budgets budgets_;
   std::vector<std::string> arrays_;  // names by slot
 };

@@ -1,7 +1,8 @@
 // SSA to WebAssembly (wasm_compile.h). Every value is a v128 local of four lanes; the engine that
 // loads the module allocates registers. Lane operations are SIMD instructions that give
 // runtime/math's bits (min and max with its NaN rule and its zero order, round with its sign,
-// truthiness as "not 0 and not NaN"); Batch and Trig rows of ir/math_ops.def call the batch twin.
+// truthiness as "not 0 and not NaN"), sin and cos as runtime/math's batch functions compute them;
+// the other Batch rows of ir/math_ops.def call the batch twin.
 //
 // Control flow is masked, as in the SSE emitter: blocks run in reverse post-order, each for the
 // lanes waiting at it (skipped when none), under a scan that repeats while lanes wait (a back edge
@@ -12,13 +13,16 @@
 #include "backends/wasm/wasm_compile.h"
 
 #include <algorithm>
+#include <array>
 #include <climits>
+#include <cstring>
 #include <map>
 
 #include "backends/jit_support.h"
 #include "backends/lane_arrays.h"
 #include "backends/wasm/wasm_encoder.h"
 #include "runtime/math/math.h"
+#include "runtime/math/trig_constants.h"
 
 namespace fscript::wasm {
 namespace {
@@ -38,6 +42,10 @@ constexpr uint32_t kIn = 0, kOut = 1, kN = 2, kScratch = 3, kArrays = 4, kAt = 5
 // Scratch: the arguments at 0, 16, 32, the result at 48, the lane mask at 64 (array helpers), then
 // the globals where the program has callees (they share them).
 constexpr uint32_t kScratchResult = 48, kScratchMask = 64, kScratchGlobals = 80;
+// What recursion may take of the browser's stack, by frame_bytes() (V8's is about 984 KiB, and the
+// estimate is about 1.2x the frames measured; the VM's and the page's
+// frames below the kernel take the rest): deeper budgets leave a recursive kernel to the VM.
+constexpr size_t kStackForCalls = 768 << 10;
 
 // What every function of the program shares: their indices, the imports, globals in memory.
 struct Program {
@@ -45,7 +53,8 @@ struct Program {
   std::map<const void*, uint32_t> imports;
   bool globals_in_memory = false;
   int num_globals = 0;
-  uint32_t global_arrays = 0;
+  bool arrays = false;    // some function of the program has array operations
+  uint32_t save_at = 0;   // scratch's room for a recursive function's saved array slots
 };
 
 const void* helper_of(Op op);
@@ -53,9 +62,9 @@ const void* batch_of(Op op);
 
 class Emitter {
  public:
-  Emitter(const ir::Module& m, const ir::Function& fn, bool callee, const backends::Budgets& b, Program& program,
-          Module& mod)
-      : module_(m), fn_(fn), callee_(callee), budgets_(b), program_(program), mod_(mod) {
+  Emitter(const ir::Module& m, const ir::Function& fn, bool callee, uint32_t first_slot, const backends::Budgets& b,
+          Program& program, Module& mod)
+      : module_(m), fn_(fn), callee_(callee), budgets_(b), program_(program), mod_(mod), first_slot_(first_slot) {
     uint32_t np = fn.num_params;
     scratch_ = callee ? np + 1 : kScratch, arrays_param_ = callee ? np + 2 : kArrays, depth_ = np + 3;
   }
@@ -66,6 +75,10 @@ class Emitter {
     layout();
     return callee_ ? run_callee(error) : run_kernel(error);
   }
+  uint32_t points_per_turn() const { return 4 * copies_; }
+  // What a call of this function takes of the engine's stack, about: V8 spills every v128 local
+  // (parameters among them) to a frame of about 20 bytes each (measured in Node), plus its own.
+  size_t frame_bytes() const { return 20 * (next_v128_ - first_v128_ + num_constants() + fn_.num_params + 1) + 96; }
 
  private:
   // The callee: one pass of the scan for its caller's lanes (the mask parameter), its value under
@@ -75,18 +88,47 @@ class Emitter {
     straight_ = false;
     for (const ir::Block* b : rpo_) {
       if (b == rpo_[0]) c.local_get(fn_.num_params);
-      else c.i32x4_const(0);
+      else i32(0);
       c.local_set(pending(*b));
     }
-    c.f32x4_const(0), c.local_set(output_);
+    f32(0), c.local_set(output_);
+    if (!fn_.arrays.empty()) enter_arrays();
     if (!scan(error)) return false;
+    if (!fn_.arrays.empty()) leave_arrays();
     c.local_get(output_), c.i64_const(0);
     std::vector<ValType> params(fn_.num_params + 1, ValType::V128);
     params.insert(params.end(), 3, ValType::I32);
     mod_.function({params, {ValType::V128, ValType::I64}},
-                  {{next_v128_ - first_v128_, ValType::V128}, {1, ValType::I64}}, std::move(c_));
+                  {{next_v128_ - first_v128_, ValType::V128}, {1, ValType::I64}, {num_constants(), ValType::V128}},
+                  with_constants());
     return true;
   }
+
+  // A recursive function's own arrays belong to its activation (the VM's rule): entering saves
+  // their slots' state (backends::fs_lanes_enter, through scratch) into this activation's locals,
+  // leaving puts it back (an error return ends the run, arrays and all).
+  void enter_arrays() {
+    Code& c = c_;
+    lanes_call(&backends::fs_lanes_enter);
+    for (uint32_t k = 0; k < save_vectors(); ++k)
+      c.local_get(scratch_), c.v128_load(program_.save_at + 16 * k), c.local_set(saved_ + k);
+  }
+  void leave_arrays() {
+    Code& c = c_;
+    for (uint32_t k = 0; k < save_vectors(); ++k)
+      c.local_get(scratch_), c.local_get(saved_ + k), c.v128_store(program_.save_at + 16 * k);
+    lanes_call(&backends::fs_lanes_leave);
+  }
+  template <typename Helper>
+  void lanes_call(Helper* helper) {
+    Code& c = c_;
+    c.local_get(arrays_param_), c.i32_const(static_cast<int32_t>(first_slot_));
+    c.i32_const(static_cast<int32_t>(fn_.arrays.size()));
+    c.local_get(scratch_), c.i32_const(static_cast<int32_t>(program_.save_at)), c.op(Opc::I32Add);
+    c.call(import(reinterpret_cast<const void*>(helper))), c.op(Opc::Drop);
+  }
+  // Four lanes' offset and length (int64) per array.
+  uint32_t save_vectors() const { return 4 * static_cast<uint32_t>(fn_.arrays.size()); }
 
   // Blocks in reverse post-order, each for its waiting lanes, again while lanes wait.
   bool scan(std::string& error) {
@@ -95,7 +137,7 @@ class Emitter {
     for (const ir::Block* b : rpo_) {
       c.local_get(pending(*b)), c.simd(Simd::V128AnyTrue), c.if_();
       c.local_get(pending(*b)), c.local_set(mask_);
-      c.i32x4_const(0), c.local_set(pending(*b));
+      i32(0), c.local_set(pending(*b));
       if (!block(*b, error)) return false;
       c.end();
     }
@@ -114,30 +156,37 @@ class Emitter {
     for (uint32_t k = 0; k < fn_.num_results; ++k) pointer(kOut, k, kFirstPointer + fn_.num_params + k);
     c.local_get(kN), c.i32_const(2), c.op(Opc::I32Shl), c.local_set(kEnd);
     c.block();  // exit
-    c.loop();   // one group of four points a turn
+    c.loop();   // one group of 4 x copies_ points a turn
     c.local_get(kAt), c.local_get(kEnd), c.op(Opc::I32GeU), c.br_if(1);
     start_group();
     if (straight_ ? !block(*rpo_[0], error) : !scan(error)) return false;
-    for (uint32_t k = 0; k < fn_.num_results; ++k) {  // the outputs, then the next group
-      c.local_get(kFirstPointer + fn_.num_params + k), c.local_get(kAt), c.op(Opc::I32Add);
-      c.local_get(output_ + k), c.v128_store_any(0);
+    for (uint32_t u = 0; u < copies_; ++u) {  // the outputs, then the next group
+      copy(u);
+      for (uint32_t k = 0; k < fn_.num_results; ++k) {
+        c.local_get(kFirstPointer + fn_.num_params + k), c.local_get(kAt), c.op(Opc::I32Add);
+        c.local_get(output_ + k), c.v128_store_any(16 * u);
+      }
     }
-    c.local_get(kAt), c.i32_const(16), c.op(Opc::I32Add), c.local_set(kAt);
+    copy(0);
+    c.local_get(kAt), c.i32_const(16 * static_cast<int32_t>(copies_)), c.op(Opc::I32Add), c.local_set(kAt);
     c.br(0);
     c.end();
     c.end();
     c.i32_const(0);
     FuncType t{{ValType::I32, ValType::I32, ValType::I32, ValType::I32, ValType::I32}, {ValType::I32}};
     uint32_t pointers = kFirstPointer - kAt + fn_.num_params + fn_.num_results;
-    uint32_t f = mod_.function(
-        t, {{pointers, ValType::I32}, {next_v128_ - first_v128_, ValType::V128}, {1, ValType::I64}}, std::move(c_));
+    uint32_t f = mod_.function(t,
+                               {{pointers, ValType::I32},
+                                {next_v128_ - first_v128_, ValType::V128},
+                                {1, ValType::I64},
+                                {num_constants(), ValType::V128}},
+                               with_constants());
     mod_.export_function("kernel", f);
     return true;
   }
 
   // What this emitter compiles (the rest runs on the VM until it does).
   bool check(std::string& error) {
-    if (callee_ && !fn_.arrays.empty()) return error = "arrays local to a recursive function", false;
     if (callee_ && fn_.num_results != 1) return error = "a function of several results", false;
     if (budgets_.max_loop_iterations > static_cast<uint64_t>(INT32_MAX - 1))
       return error = "a loop budget past 2^31 - 2", false;
@@ -151,9 +200,12 @@ class Emitter {
           case Op::Tick:
           case Op::GLoad:
           case Op::GStore: straight_ = false; break;
+          case Op::Sin:
+          case Op::Cos: trig_used_ = true; break;
           default: break;
         }
     if (fn_.blocks.size() > 1) straight_ = false;
+    if (straight_ && !arrays_) copies_ = kCopies;
     return true;
   }
 
@@ -180,18 +232,59 @@ class Emitter {
   // v128 locals: values by id, outputs, globals, the mask, the loop counter, pending masks, temps.
   void layout() {
     first_v128_ = next_v128_ = callee_ ? fn_.num_params + 4 : kFirstPointer + fn_.num_params + fn_.num_results;
-    value_ = take(fn_.next_value);
-    output_ = take(fn_.num_results);
+    value_ = take(fn_.next_value * copies_);
+    output_ = take(fn_.num_results * copies_);
     global_ = take(program_.globals_in_memory ? 0 : static_cast<uint32_t>(program_.num_globals));
     mask_ = take(1);
     ticks_ = take(1);
-    temp_ = take(1);
+    temp_ = take(copies_);
     pending_ = take(fn_.next_block + 1);
     size_t phis = 0;
     for (const auto& b : fn_.blocks) phis = std::max(phis, b->first_non_phi());
     phi_temp_ = take(static_cast<uint32_t>(phis));
+    trig_ = take(trig_used_ ? kTrigLocals * copies_ : 0);
+    saved_ = take(callee_ ? save_vectors() : 0);
+    base_ = {value_, output_, temp_, trig_};
+    made_early_.assign(fn_.next_value, 0);
     status_ = next_v128_;  // the one i64 local, after the v128 ones
   }
+  // Vector constants live in locals set once at the function's start (after the one i64 local):
+  // the engine would otherwise build the vector again at every use inside the loop. Zero and
+  // all-ones stay inline, one instruction each.
+  void vconst(const std::array<uint8_t, 16>& bytes) {
+    bool zeros = true, ones = true;
+    for (uint8_t b : bytes) zeros &= b == 0, ones &= b == 0xff;
+    if (zeros || ones || callee_) return c_.v128_const(bytes.data());  // (a callee's frame stays small)
+    auto [at, added] = constants_.try_emplace(bytes, static_cast<uint32_t>(constants_.size()));
+    (void)added;
+    c_.local_get(status_ + 1 + at->second);
+  }
+  template <typename T>
+  void splat(T v) {
+    std::array<uint8_t, 16> b;
+    for (size_t k = 0; k < 16; k += sizeof v) std::memcpy(b.data() + k, &v, sizeof v);
+    vconst(b);
+  }
+  void f32(float v) { splat(v); }
+  void i32(int32_t v) { splat(v); }
+  void f64(double v) { splat(v); }
+  uint32_t num_constants() const { return static_cast<uint32_t>(constants_.size()); }
+  // The constants' locals set, then the body.
+  Code with_constants() {
+    Code out;
+    for (const auto& [bytes, k] : constants_) out.v128_const(bytes.data()), out.local_set(status_ + 1 + k);
+    out.append(c_);
+    return out;
+  }
+
+  // Copy u of the straight code's values: the locals of values, outputs, temp and trig's move to
+  // its own (copy 0's are the layout's).
+  void copy(uint32_t u) {
+    value_ = base_[0] + u * fn_.next_value, output_ = base_[1] + u * fn_.num_results;
+    temp_ = base_[2] + u, trig_ = base_[3] + u * kTrigLocals;
+    u_ = u;
+  }
+
   uint32_t take(uint32_t n) {
     uint32_t first = next_v128_;
     next_v128_ += n;
@@ -204,28 +297,27 @@ class Emitter {
 
   void start_group() {
     Code& c = c_;
-    for (uint32_t k = 0; k < fn_.num_results; ++k) c.f32x4_const(0), c.local_set(output_ + k);
-    c.i32x4_const(-1), c.local_set(mask_);
-    if (arrays_) {  // every array of every lane gone: a new evaluation
+    for (uint32_t k = 0; k < fn_.num_results; ++k) f32(0), c.local_set(output_ + k);
+    i32(-1), c.local_set(mask_);
+    if (program_.arrays) {  // every array of every lane gone: a new evaluation
       c.local_get(kArrays), c.call(import(reinterpret_cast<const void*>(&backends::fs_lanes_reset)));
       c.op(Opc::Drop);
     }
     if (straight_) return;
-    for (const ir::Block* b : rpo_) c.i32x4_const(b == rpo_[0] ? -1 : 0), c.local_set(pending(*b));
+    for (const ir::Block* b : rpo_) i32(b == rpo_[0] ? -1 : 0), c.local_set(pending(*b));
     for (int g = 0; g < program_.num_globals; ++g) {
       if (!program_.globals_in_memory) {
-        c.f32x4_const(__builtin_nanf("")), c.local_set(global_ + static_cast<uint32_t>(g));
+        f32(__builtin_nanf("")), c.local_set(global_ + static_cast<uint32_t>(g));
         continue;
       }
-      c.local_get(kScratch), c.f32x4_const(__builtin_nanf("")),
-          c.v128_store(kScratchGlobals + 16 * static_cast<uint32_t>(g));
+      c.local_get(kScratch), f32(__builtin_nanf("")), c.v128_store(kScratchGlobals + 16 * static_cast<uint32_t>(g));
     }
-    if (program_.globals_in_memory) c.local_get(kScratch), c.i32x4_const(0), c.v128_store(ticks_at());
-    else c.i32x4_const(0), c.local_set(ticks_);
+    if (program_.globals_in_memory) c.local_get(kScratch), i32(0), c.v128_store(ticks_at());
+    else i32(0), c.local_set(ticks_);
   }
 
   void push(const Inst* v) {
-    if (v->op == Op::Const) c_.f32x4_const(v->imm);
+    if (v->op == Op::Const) f32(v->imm);
     else c_.local_get(value_ + v->id);
   }
   // The value on the stack into `local`, under the block's mask where control flow is masked.
@@ -237,13 +329,32 @@ class Emitter {
   // The lanes where `v` is truthy (not 0, not NaN), as a mask.
   void truthy(const Inst* v) {
     push(v), push(v), c_.simd(Simd::F32x4Eq);
-    push(v), c_.f32x4_const(0), c_.simd(Simd::F32x4Ne), c_.simd(Simd::V128And);
+    push(v), f32(0), c_.simd(Simd::F32x4Ne), c_.simd(Simd::V128And);
   }
-  void one_where_mask() { c_.f32x4_const(1), c_.simd(Simd::V128And); }  // mask -> 1.0 or 0.0
+  void one_where_mask() { f32(1), c_.simd(Simd::V128And); }  // mask -> 1.0 or 0.0
 
+  // The block's instructions in order, each for every copy in turn (straight code's groups side
+  // by side: independent work the processor overlaps).
   bool block(const ir::Block& b, std::string& error) {
-    for (const Inst* in : b.insts)
-      if (!inst(*in, b, error)) return false;
+    trig_uses_.clear();
+    for (size_t k = 0; k < b.insts.size(); ++k)
+      if (b.insts[k]->op == Op::Sin || b.insts[k]->op == Op::Cos) trig_uses_[b.insts[k]->args[0]].push_back(k);
+    for (size_t k = 0; k < b.insts.size(); ++k) {
+      const Inst& in = *b.insts[k];
+      if (made_early_[in.id]) continue;
+      partner_ = in.op == Op::Sin || in.op == Op::Cos ? trig_partner(in, b, k) : nullptr;
+      if (partner_ || in.op == Op::Sin || in.op == Op::Cos) {  // (all copies at once)
+        trig(in);
+        if (partner_) made_early_[partner_->id] = 1;
+        continue;
+      }
+      for (uint32_t u = 0; u < copies_; ++u) {
+        copy(u);
+        if (!inst(in, b, error)) return false;
+      }
+      copy(0);
+      if (partner_) made_early_[partner_->id] = 1;
+    }
     return true;
   }
 
@@ -259,7 +370,7 @@ class Emitter {
           break;
         }
         c.local_get(kFirstPointer + static_cast<uint32_t>(in.aux)), c.local_get(kAt), c.op(Opc::I32Add);
-        c.v128_load_any(0);
+        c.v128_load_any(16 * u_);
         break;
       case Op::Add: simd2(Simd::F32x4Add, in); break;
       case Op::Sub: simd2(Simd::F32x4Sub, in); break;
@@ -292,13 +403,15 @@ class Emitter {
 #define FS_MATH(N, FN, A, HOW) FS_WASM_MATH_##HOW(N)
 #define FS_WASM_MATH_Lane(N)
 #define FS_WASM_MATH_Batch(N) case Op::N:
-#define FS_WASM_MATH_Trig(N) case Op::N:
+#define FS_WASM_MATH_Trig(N)
 #include "ir/math_ops.def"
 #undef FS_WASM_MATH_Lane
 #undef FS_WASM_MATH_Batch
 #undef FS_WASM_MATH_Trig
         batch(in, batch_of(in.op));
         break;
+      case Op::Sin:
+      case Op::Cos: return true;  // made by block() for every copy
       case Op::GLoad:
         if (program_.globals_in_memory) c.local_get(scratch_), c.v128_load(global_at(in));
         else c.local_get(global_ + static_cast<uint32_t>(in.aux));
@@ -325,37 +438,128 @@ class Emitter {
     return true;
   }
 
-  // math::min/max: b < a ? b : a (a where a is NaN), then b where b is NaN: the zeros' order and the
-  // NaN rule exactly (the SIMD min would give -0 for min(+0, -0)).
+  // math::min/max: b < a ? b : a (a where a is NaN; pmin's rule, pmax's for max), then b where b is
+  // NaN: the zeros' order and the NaN rule exactly (the IEEE min would give -0 for min(+0, -0)).
   void min_max(bool min, const Inst* a, const Inst* b) {
     Code& c = c_;
-    push(b), push(a), push(b), push(a), c.simd(min ? Simd::F32x4Lt : Simd::F32x4Gt), c.simd(Simd::V128Bitselect);
-    c.local_set(temp_);
-    push(b), c.local_get(temp_), push(b), push(b), c.simd(Simd::F32x4Ne), c.simd(Simd::V128Bitselect);
+    push(b), push(a), push(b), c.simd(min ? Simd::F32x4Pmin : Simd::F32x4Pmax);
+    push(b), push(b), c.simd(Simd::F32x4Ne), c.simd(Simd::V128Bitselect);
   }
   // min(temp, hi) with the same rule, `temp` holding the first operand.
   void min_max_with_temp(const Inst* hi) {
     Code& c = c_;
-    push(hi), c.local_get(temp_), push(hi), c.local_get(temp_), c.simd(Simd::F32x4Lt), c.simd(Simd::V128Bitselect);
-    c.local_set(temp_);
-    push(hi), c.local_get(temp_), push(hi), push(hi), c.simd(Simd::F32x4Ne), c.simd(Simd::V128Bitselect);
+    push(hi), c.local_get(temp_), push(hi), c.simd(Simd::F32x4Pmin);
+    push(hi), push(hi), c.simd(Simd::F32x4Ne), c.simd(Simd::V128Bitselect);
   }
   // f = floor(a); a - f >= 0.5 ? f + 1 : f, then a's sign.
   void round(const Inst* a) {
     Code& c = c_;
     push(a), c.simd(Simd::F32x4Floor), c.local_set(temp_);
-    c.local_get(temp_), c.f32x4_const(1), c.simd(Simd::F32x4Add), c.local_get(temp_);
-    push(a), c.local_get(temp_), c.simd(Simd::F32x4Sub), c.f32x4_const(0.5f), c.simd(Simd::F32x4Ge);
+    c.local_get(temp_), f32(1), c.simd(Simd::F32x4Add), c.local_get(temp_);
+    push(a), c.local_get(temp_), c.simd(Simd::F32x4Sub), f32(0.5f), c.simd(Simd::F32x4Ge);
     c.simd(Simd::V128Bitselect);
-    c.i32x4_const(INT32_MAX), c.simd(Simd::V128And);
-    push(a), c.i32x4_const(INT32_MIN), c.simd(Simd::V128And), c.simd(Simd::V128Or);
+    i32(INT32_MAX), c.simd(Simd::V128And);
+    push(a), i32(INT32_MIN), c.simd(Simd::V128And), c.simd(Simd::V128Or);
   }
   // a > 0 ? 1 : (a < 0 ? -1 : a)
   void sign(const Inst* a) {
     Code& c = c_;
-    c.f32x4_const(1), c.f32x4_const(-1), push(a), push(a), c.f32x4_const(0), c.simd(Simd::F32x4Lt);
+    f32(1), f32(-1), push(a), push(a), f32(0), c.simd(Simd::F32x4Lt);
     c.simd(Simd::V128Bitselect);
-    push(a), c.f32x4_const(0), c.simd(Simd::F32x4Gt), c.simd(Simd::V128Bitselect);
+    push(a), f32(0), c.simd(Simd::F32x4Gt), c.simd(Simd::V128Bitselect);
+  }
+
+  // sin and cos inline: runtime/math/batch.cpp's trig_lane step for step (the argument reduced in
+  // double, two lanes at a time; Cephes' polynomials; the quadrant by bit tricks), so the result is
+  // the batch function's, bit for bit. A group with a lane outside the fast range (huge, inf, NaN)
+  // calls the batch function instead. Both polynomials are made whatever the quadrant, so a later
+  // cos (sin) of the same value in the block (the gyroid's pairs) is made here too and skipped at
+  // its turn (partner_, found by block()).
+  // Every copy's steps side by side, under one test of all their lanes.
+  void trig(const Inst& in) {
+    Code& c = c_;
+    const Inst* partner = partner_;
+    auto each = [&](auto step) {
+      for (uint32_t u = 0; u < copies_; ++u) copy(u), step(u);
+      copy(0);
+    };
+    each([&](uint32_t u) {
+      push(in.args[0]), c.local_tee(trig_ + kX), c.simd(Simd::F32x4Abs), f32(math::trig::kFastLimit);
+      c.simd(Simd::F32x4Le);
+      if (u) c.simd(Simd::V128And);
+    });
+    c.simd(Simd::I32x4AllTrue);
+    c.if_();
+    each([&](uint32_t) { reduce_half(0, kRLo, kQLo); });
+    each([&](uint32_t) { reduce_half(1, kRHi, kQHi); });
+    each([&](uint32_t) {
+      static constexpr uint8_t kJoin[16] = {0, 1, 2, 3, 4, 5, 6, 7, 16, 17, 18, 19, 20, 21, 22, 23};
+      c.local_get(trig_ + kRLo), c.local_get(trig_ + kRHi), c.i8x16_shuffle(kJoin), c.local_set(trig_ + kR);
+      static constexpr uint8_t kLowWords[16] = {0, 1, 2, 3, 8, 9, 10, 11, 16, 17, 18, 19, 24, 25, 26, 27};
+      c.local_get(trig_ + kQLo), c.local_get(trig_ + kQHi), c.i8x16_shuffle(kLowWords), c.local_set(trig_ + kQ);
+    });
+    each([&](uint32_t) { trig_polynomials(); });
+    const int offset = in.op == Op::Cos;
+    each([&](uint32_t) { quadrant_value(offset), assign(value_ + in.id); });
+    if (partner) each([&](uint32_t) { quadrant_value(1 - offset), assign(value_ + partner->id); });
+    c.op(Opc::Else);
+    each([&](uint32_t) {
+      batch(in, batch_of(in.op)), assign(value_ + in.id);
+      if (partner) batch(*partner, batch_of(partner->op)), assign(value_ + partner->id);
+    });
+    c.end();
+  }
+  // The first later cos (sin) of the same value in this block, for a sin (cos).
+  const Inst* trig_partner(const Inst& in, const ir::Block& b, size_t pos) const {
+    Op want = in.op == Op::Sin ? Op::Cos : Op::Sin;
+    for (size_t k : trig_uses_.at(in.args[0]))
+      if (k > pos && b.insts[k]->op == want && !made_early_[b.insts[k]->id]) return b.insts[k];
+    return nullptr;
+  }
+  // Lanes 0-1 (half 0) or 2-3 of x in double: j = round(x 2/pi) by adding and taking away 1.5 2^52,
+  // r = x - j pi/2 in two parts, then r to float in the half's low two lanes, and the sum with the
+  // magic number kept: its low 32 bits are j as an int32 (the quadrant).
+  void reduce_half(int half, uint32_t r_out, uint32_t q_out) {
+    using namespace math::trig;
+    Code& c = c_;
+    static constexpr uint8_t kHigh[16] = {8, 9, 10, 11, 12, 13, 14, 15, 8, 9, 10, 11, 12, 13, 14, 15};
+    c.local_get(trig_ + kX);
+    if (half) c.local_get(trig_ + kX), c.i8x16_shuffle(kHigh);
+    c.simd(Simd::F64x2PromoteLowF32x4), c.local_set(trig_ + kD);
+    c.local_get(trig_ + kD), f64(kTwoOverPi), c.simd(Simd::F64x2Mul), f64(kRoundMagic), c.simd(Simd::F64x2Add);
+    c.local_tee(trig_ + q_out), f64(kRoundMagic), c.simd(Simd::F64x2Sub), c.local_set(trig_ + kJ);
+    c.local_get(trig_ + kD), c.local_get(trig_ + kJ), f64(kPio2Hi), c.simd(Simd::F64x2Mul);
+    c.simd(Simd::F64x2Sub), c.local_get(trig_ + kJ), f64(kPio2Lo), c.simd(Simd::F64x2Mul);
+    c.simd(Simd::F64x2Sub), c.simd(Simd::F32x4DemoteF64x2Zero), c.local_set(trig_ + r_out);
+  }
+  // sin(r) with r's sign (the sum has it, or is +0 at r = -0, where sin(-0) is -0: or-ing the sign
+  // bit is copysign here) and cos(r), z = r r; and the lanes of odd quadrant.
+  void trig_polynomials() {
+    using namespace math::trig;
+    Code& c = c_;
+    auto z = [&] { c.local_get(trig_ + kZ); };
+    auto r = [&] { c.local_get(trig_ + kR); };
+    r(), r(), c.simd(Simd::F32x4Mul), c.local_set(trig_ + kZ);
+    f32(kSin1), z(), c.simd(Simd::F32x4Mul), f32(kSin2), c.simd(Simd::F32x4Add);
+    z(), c.simd(Simd::F32x4Mul), f32(kSin3), c.simd(Simd::F32x4Sub);
+    z(), c.simd(Simd::F32x4Mul), r(), c.simd(Simd::F32x4Mul), r(), c.simd(Simd::F32x4Add);
+    r(), i32(INT32_MIN), c.simd(Simd::V128And), c.simd(Simd::V128Or), c.local_set(trig_ + kSin);
+    f32(kCos1), z(), c.simd(Simd::F32x4Mul), f32(kCos2), c.simd(Simd::F32x4Sub);
+    z(), c.simd(Simd::F32x4Mul), f32(kCos3), c.simd(Simd::F32x4Add);
+    z(), c.simd(Simd::F32x4Mul), z(), c.simd(Simd::F32x4Mul);
+    f32(0.5f), z(), c.simd(Simd::F32x4Mul), c.simd(Simd::F32x4Sub);
+    f32(1), c.simd(Simd::F32x4Add), c.local_set(trig_ + kCos);
+    c.local_get(trig_ + kQ), i32(1), c.simd(Simd::V128And), i32(1), c.simd(Simd::I32x4Eq), c.local_set(trig_ + kOdd);
+  }
+  // sin in quadrant q + offset (cos x = sin(x + pi/2)): the cos polynomial where that is odd,
+  // negated where its bit 1 is set.
+  void quadrant_value(int offset) {
+    Code& c = c_;
+    c.local_get(trig_ + (offset ? kSin : kCos)), c.local_get(trig_ + (offset ? kCos : kSin));
+    c.local_get(trig_ + kOdd), c.simd(Simd::V128Bitselect);
+    c.local_get(trig_ + kQ);
+    if (offset) i32(1), c.simd(Simd::I32x4Add);
+    i32(2), c.simd(Simd::V128And), c.i32_const(30), c.simd(Simd::I32x4Shl), c.simd(Simd::V128Xor);
   }
 
   // A runtime batch function on the four lanes, through the scratch area.
@@ -378,8 +582,7 @@ class Emitter {
     for (size_t k = 0; k < in.args.size(); ++k)
       c.local_get(scratch_), push(in.args[k]), c.v128_store(16 * static_cast<uint32_t>(k));
     c.local_get(scratch_), c.local_get(mask_), c.v128_store(kScratchMask);
-    uint32_t slot =
-        in.array_global ? static_cast<uint32_t>(in.aux) : program_.global_arrays + static_cast<uint32_t>(in.aux);
+    uint32_t slot = in.array_global ? static_cast<uint32_t>(in.aux) : first_slot_ + static_cast<uint32_t>(in.aux);
     c.local_get(arrays_param_), c.i32_const(static_cast<int32_t>(slot));
     auto place = [&](uint32_t offset) {
       c.local_get(scratch_), c.i32_const(static_cast<int32_t>(offset)), c.op(Opc::I32Add);
@@ -424,12 +627,12 @@ class Emitter {
   // A callee returns (any value, status); the kernel stores the status at scratch's start and
   // returns 1 (no 64-bit value crosses into JavaScript, where it would be a BigInt).
   void trap(uint64_t code) {
-    if (callee_) return c_.f32x4_const(0), c_.i64_const(static_cast<int64_t>(code)), c_.op(Opc::Return);
+    if (callee_) return f32(0), c_.i64_const(static_cast<int64_t>(code)), c_.op(Opc::Return);
     c_.local_get(kScratch), c_.i64_const(static_cast<int64_t>(code)), c_.i64_store(0);
     c_.i32_const(1), c_.op(Opc::Return);
   }
   void pass_status() {
-    if (callee_) return c_.f32x4_const(0), c_.local_get(status_), c_.op(Opc::Return);
+    if (callee_) return f32(0), c_.local_get(status_), c_.op(Opc::Return);
     c_.local_get(kScratch), c_.local_get(status_), c_.i64_store(0);
     c_.i32_const(1), c_.op(Opc::Return);
   }
@@ -445,7 +648,7 @@ class Emitter {
     c.local_get(mask_), c.simd(Simd::I32x4Sub), c.local_tee(temp_);
     if (program_.globals_in_memory) c.v128_store(at);
     else c.local_set(ticks_);
-    c.local_get(temp_), c.i32x4_const(static_cast<int32_t>(budgets_.max_loop_iterations)), c.simd(Simd::I32x4GtS);
+    c.local_get(temp_), i32(static_cast<int32_t>(budgets_.max_loop_iterations)), c.simd(Simd::I32x4GtS);
     c.simd(Simd::V128AnyTrue), c.if_(), trap(backends::trap_code(1, &in)), c.end();
   }
 
@@ -481,11 +684,24 @@ class Emitter {
   Program& program_;
   Module& mod_;
   Code c_;
-  bool straight_ = true, arrays_ = false;
+  bool straight_ = true, arrays_ = false, trig_used_ = false;
   uint32_t scratch_ = 0, arrays_param_ = 0, depth_ = 0;  // parameters' locals
   std::vector<const ir::Block*> rpo_;
   uint32_t first_v128_ = 0, next_v128_ = 0, value_ = 0, output_ = 0, global_ = 0, mask_ = 0, ticks_ = 0, temp_ = 0;
-  uint32_t pending_ = 0, phi_temp_ = 0, status_ = 0;
+  uint32_t pending_ = 0, phi_temp_ = 0, status_ = 0, trig_ = 0, saved_ = 0;
+  uint32_t first_slot_ = 0;  // this function's own arrays' first slot
+  // Straight code runs kCopies groups of four points side by side, the loop's body a chain of
+  // dependent operations (csg8's smooth unions) that one group alone leaves the processor waiting on.
+  static constexpr uint32_t kCopies = 4;
+  uint32_t copies_ = 1, u_ = 0;
+  std::array<uint32_t, 4> base_{};  // copy 0's value, output, temp and trig locals
+  const Inst* partner_ = nullptr;   // the later trig op the current one makes too
+  // sin and cos's locals, from trig_: the argument, a half in double, its j, the halves' r and q,
+  // the joined r and q, z = r r, the two polynomials, the odd quadrants.
+  enum : uint32_t { kX, kD, kJ, kRLo, kQLo, kRHi, kQHi, kR, kQ, kZ, kSin, kCos, kOdd, kTrigLocals };
+  std::map<const Inst*, std::vector<size_t>> trig_uses_;  // this block's sin and cos by argument
+  std::vector<char> made_early_;                          // values made ahead (a trig pair's second)
+  std::map<std::array<uint8_t, 16>, uint32_t> constants_;  // vector constant -> its number
 };
 
 // The runtime function an array op calls.
@@ -525,16 +741,23 @@ void declare_imports(const backends::JitProgram& jp, Program& p, Module& mod, Co
     p.imports[fn] = mod.import_function("env", "f" + std::to_string(out.imports.size()), t);
     out.imports.push_back(fn);
   };
-  for (int f : jp.functions)
-    for (const auto& b : jp.module->functions[static_cast<size_t>(f)]->blocks)
+  for (int f : jp.functions) {
+    const ir::Function& fn = *jp.module->functions[static_cast<size_t>(f)];
+    if (f != jp.kernel && !fn.arrays.empty())
+      for (const void* h : {reinterpret_cast<const void*>(&backends::fs_lanes_enter),
+                            reinterpret_cast<const void*>(&backends::fs_lanes_leave)})
+        add(h, 4, true);
+    for (const auto& b : fn.blocks)
       for (const Inst* in : b->insts) {
         const bool array = in->op == Op::ANew || in->op == Op::ALoad || in->op == Op::AStore || in->op == Op::ALen;
         if (array) {
+          p.arrays = true;
           add(reinterpret_cast<const void*>(&backends::fs_lanes_reset), 1, true);
           add(helper_of(in->op), in->op == Op::ALoad || in->op == Op::AStore ? 5 : 4, true);
         }
-        if (const void* fn = batch_of(in->op)) add(fn, in->args.size() + 2, false);
+        if (const void* batch = batch_of(in->op)) add(batch, in->args.size() + 2, false);
       }
+  }
 }
 
 }  // namespace
@@ -552,16 +775,27 @@ bool compile_module(const ir::Module& m, const backends::Budgets& budgets, Compi
   declare_imports(jp, p, mod, out);
   p.num_globals = jp.num_globals;
   p.globals_in_memory = jp.functions.size() > 1;  // the callees share them
-  p.global_arrays = static_cast<uint32_t>(pm.arrays.size());
   p.index_of.assign(pm.functions.size(), 0);
   for (size_t k = 0; k < jp.functions.size(); ++k)
     p.index_of[static_cast<size_t>(jp.functions[k])] = static_cast<uint32_t>(out.imports.size() + k);
+  // Slots: the global arrays, then each function's own (the SSE emitter's layout).
   out.array_names = pm.arrays;
-  out.array_names.insert(out.array_names.end(), fn.arrays.begin(), fn.arrays.end());
-  out.scratch_bytes = kScratchGlobals + 16 * static_cast<size_t>(jp.num_globals) + 16;  // + the loop counts
+  size_t most_saved = 0;
+  for (size_t k = 1; k < jp.functions.size(); ++k)
+    most_saved = std::max(most_saved, pm.functions[static_cast<size_t>(jp.functions[k])]->arrays.size());
+  p.save_at = kScratchGlobals + 16 * static_cast<uint32_t>(jp.num_globals) + 16;  // after the loop counts
+  out.scratch_bytes = p.save_at + 64 * most_saved;
   for (size_t k = 0; k < jp.functions.size(); ++k) {  // the kernel first, then its callees
-    Emitter e(pm, *pm.functions[static_cast<size_t>(jp.functions[k])], k > 0, budgets, p, mod);
+    const ir::Function& f = *pm.functions[static_cast<size_t>(jp.functions[k])];
+    Emitter e(pm, f, k > 0, static_cast<uint32_t>(out.array_names.size()), budgets, p, mod);
+    out.array_names.insert(out.array_names.end(), f.arrays.begin(), f.arrays.end());
     if (!e.run(error)) return false;
+    if (k == 0) out.group = e.points_per_turn();
+    if (k > 0 && e.frame_bytes() * budgets.max_call_depth > kStackForCalls)
+      return error = std::to_string(budgets.max_call_depth) + " nested calls of `" + f.name + "` (frames of about " +
+                 std::to_string(e.frame_bytes()) + " bytes) could outgrow the browser's stack (about " +
+                 std::to_string(kStackForCalls >> 10) + " KiB for them)",
+             false;
   }
   out.bytes = mod.encode();
   return true;

@@ -14,7 +14,7 @@ namespace fscript::wasm {
 
 // The module exports "kernel": (inputs i32, outputs i32, n i32, scratch i32, arrays i32) -> i32,
 // where inputs and outputs point to arrays of pointers to each input's and output's floats, n is a
-// multiple of 4 (every input one value a point: the Kernel expands a row parameter,
+// multiple of `group` (every input one value a point: the Kernel expands a row parameter,
 // ir::Function::row_params_from), scratch to `scratch_bytes` aligned to 16, arrays to a backends::LaneArrays for four
 // lanes with `array_names` (or 0 when there are none); it returns 0, or 1 with
 // backends::trap_code(kind, position) as an i64 at scratch's start. It imports "env"
@@ -27,10 +27,11 @@ struct CompiledModule {
   size_t inputs = 0, outputs = 0;
   size_t scratch_bytes = 0;
   uint32_t row_from = 0;  // the kernel's row parameters (0: none)
+  uint32_t group = 4;     // points per turn of the kernel's loop: n is a multiple of it
 };
 
-// False with a message where the kernel uses what this emitter does not compile yet (arrays local
-// to a recursive function, a loop budget past 2^31 - 2): the VM runs those.
+// False with a message where the kernel uses what this emitter does not compile (a loop budget
+// past 2^31 - 2): the VM runs those.
 bool compile_module(const ir::Module& m, const backends::Budgets& budgets, CompiledModule& out, std::string& error);
 
 }  // namespace fscript::wasm

@@ -71,6 +71,17 @@ void Code::i32x4_const(int32_t v) {
   v128_const(b);
 }
 
+void Code::f64x2_const(double v) {
+  uint8_t b[16];
+  for (int k = 0; k < 2; ++k) std::memcpy(b + 8 * k, &v, 8);
+  v128_const(b);
+}
+
+void Code::i8x16_shuffle(const uint8_t lanes[16]) {
+  simd(Simd::I8x16Shuffle);
+  bytes_.insert(bytes_.end(), lanes, lanes + 16);
+}
+
 uint32_t Module::type(const FuncType& t) {
   for (size_t i = 0; i < types_.size(); ++i)
     if (types_[i] == t) return static_cast<uint32_t>(i);

@@ -21,6 +21,7 @@ enum class Simd : uint32_t {
   V128Load = 0x00,
   V128Store = 0x0b,
   V128Const = 0x0c,
+  I8x16Shuffle = 0x0d,  // then 16 lane indices
   I32x4Splat = 0x11,
   F32x4Splat = 0x13,
   F32x4ExtractLane = 0x1f,
@@ -39,8 +40,12 @@ enum class Simd : uint32_t {
   V128Xor = 0x51,
   V128Bitselect = 0x52,
   V128AnyTrue = 0x53,
+  F32x4DemoteF64x2Zero = 0x5e,
+  F64x2PromoteLowF32x4 = 0x5f,
   F32x4Ceil = 0x67,
   F32x4Floor = 0x68,
+  I32x4AllTrue = 0xa3,
+  I32x4Shl = 0xab,
   I32x4Add = 0xae,
   I32x4Sub = 0xb1,
   F32x4Abs = 0xe0,
@@ -50,6 +55,11 @@ enum class Simd : uint32_t {
   F32x4Sub = 0xe5,
   F32x4Mul = 0xe6,
   F32x4Div = 0xe7,
+  F32x4Pmin = 0xea,  // b < a ? b : a
+  F32x4Pmax = 0xeb,  // a < b ? b : a
+  F64x2Add = 0xf0,
+  F64x2Sub = 0xf1,
+  F64x2Mul = 0xf2,
 };
 
 // Scalar instructions (one byte).
@@ -97,6 +107,9 @@ class Code {
   void v128_const(const uint8_t bytes[16]);
   void f32x4_const(float v);  // the same float in every lane
   void i32x4_const(int32_t v);
+  void f64x2_const(double v);
+  // A vector of the 16 bytes picked from the two operands' 32 (0-15 the first's, 16-31 the second's).
+  void i8x16_shuffle(const uint8_t lanes[16]);
   // Block instructions without results (0x40) or with one of `result`.
   void block() { op(Opc::Block), byte(0x40); }
   void loop() { op(Opc::Loop), byte(0x40); }
@@ -113,6 +126,7 @@ class Code {
   void v128_load_any(uint32_t offset) { simd(Simd::V128Load), u32(0), u32(offset); }
   void v128_store_any(uint32_t offset) { simd(Simd::V128Store), u32(0), u32(offset); }
 
+  void append(const Code& more) { bytes_.insert(bytes_.end(), more.bytes_.begin(), more.bytes_.end()); }
   const std::vector<uint8_t>& bytes() const { return bytes_; }
 
  private:

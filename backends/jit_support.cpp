@@ -1,6 +1,10 @@
 // Runtime errors, the stack limit and the input guard of the JIT backends.
 #include "backends/jit_support.h"
 
+#ifdef __EMSCRIPTEN__
+#include <emscripten/stack.h>
+#endif
+
 #include "ir/ranges.h"
 
 #include <pthread.h>
@@ -82,6 +86,12 @@ uintptr_t stack_limit() {
   // (a dlopened library's default model calls __tls_get_addr, a third of a small kernel's call).
   static thread_local uintptr_t limit __attribute__((tls_model("initial-exec"))) = 0;
   if (limit) return limit;
+#ifdef __EMSCRIPTEN__
+  // The shadow stack's bounds (TOTAL_STACK at link time): pthread_getattr_np reports none here, and
+  // the fallback below, measured from wherever the first call happens, cut recursion short.
+  limit = emscripten_stack_get_end() + kStackMargin;
+  return limit;
+#endif
   pthread_attr_t attr;
   void* addr = nullptr;
   size_t size = 0;

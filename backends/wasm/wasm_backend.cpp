@@ -6,26 +6,33 @@
 #include <emscripten.h>
 
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "backends/jit_support.h"
 #include "backends/lane_arrays.h"
 #include "backends/wasm/wasm_compile.h"
 
-// The instances live in a JavaScript list; a kernel holds its index (0: none).
-EM_JS(int, fs_wasm_instantiate, (const uint8_t* bytes, int size, const uint32_t* imports, int count), {
-  try {
-    var env = {memory : wasmMemory};
-    for (var k = 0; k < count; ++k) env['f' + k] = wasmTable.get(HEAPU32[(imports >> 2) + k]);
-    var module = new WebAssembly.Module(HEAPU8.slice(bytes, bytes + size));
-    var kernel = new WebAssembly.Instance(module, {env : env}).exports.kernel;
-    if (!Module.fsKernels) Module.fsKernels = [null];
-    Module.fsKernels.push(kernel);
-    return Module.fsKernels.length - 1;
-  } catch (e) {
-    return 0;
-  }
-});
+EM_JS(int, fs_wasm_validate, (const uint8_t* bytes, int size),
+      { return WebAssembly.validate(HEAPU8.slice(bytes, bytes + size)) ? 1 : 0; });
+// The instances live in a JavaScript list; a kernel holds its index (0: none, and the engine's
+// reason in `why`).
+EM_JS(int, fs_wasm_instantiate,
+      (const uint8_t* bytes, int size, const uint32_t* imports, int count, char* why, int why_size), {
+        var code = HEAPU8.slice(bytes, bytes + size);
+        try {
+          var env = {memory : wasmMemory};
+          for (var k = 0; k < count; ++k) env['f' + k] = wasmTable.get(HEAPU32[(imports >> 2) + k]);
+          var module = new WebAssembly.Module(code);
+          var kernel = new WebAssembly.Instance(module, {env : env}).exports.kernel;
+          if (!Module.fsKernels) Module.fsKernels = [null];
+          Module.fsKernels.push(kernel);
+          return Module.fsKernels.length - 1;
+        } catch (e) {
+          stringToUTF8(String(e && e.message ? e.message : e), why, why_size);
+          return 0;
+        }
+      });
 EM_JS(int, fs_wasm_call, (int id, const void* inputs, const void* outputs, int n, void* scratch, void* arrays),
       { return Module.fsKernels[id](inputs, outputs, n, scratch, arrays); });
 EM_JS(void, fs_wasm_release, (int id), { Module.fsKernels[id] = null; });
@@ -98,6 +105,10 @@ class WasmKernel : public backends::Kernel {
 
 }  // namespace
 
+bool valid_module(const std::vector<uint8_t>& bytes) {
+  return fs_wasm_validate(bytes.data(), static_cast<int>(bytes.size())) != 0;
+}
+
 std::unique_ptr<backends::Kernel> WasmBackend::compile(const ir::Module& m, const backends::Budgets& budgets,
                                                        std::string& error) const {
   CompiledModule c;
@@ -107,10 +118,16 @@ std::unique_ptr<backends::Kernel> WasmBackend::compile(const ir::Module& m, cons
   }
   std::vector<uint32_t> imports;
   for (const void* f : c.imports) imports.push_back(static_cast<uint32_t>(reinterpret_cast<uintptr_t>(f)));
+  // Validated first, so that an emitter bug is named as one.
+  if (!valid_module(c.bytes)) {
+    error = "the wasm backend wrote a module WebAssembly.validate refuses";
+    return nullptr;
+  }
+  char why[256] = "";
   int id = fs_wasm_instantiate(c.bytes.data(), static_cast<int>(c.bytes.size()), imports.data(),
-                               static_cast<int>(imports.size()));
+                               static_cast<int>(imports.size()), why, sizeof why);
   if (id == 0) {
-    error = "the browser refused the wasm backend's module (WebAssembly.Module)";
+    error = std::string("the browser refused the wasm backend's module: ") + why;
     return nullptr;
   }
   return std::make_unique<WasmKernel>(id, c, budgets);

@@ -232,13 +232,19 @@ class Emitter {
   // v128 locals: values by id, outputs, globals, the mask, the loop counter, pending masks, temps.
   void layout() {
     first_v128_ = next_v128_ = callee_ ? fn_.num_params + 4 : kFirstPointer + fn_.num_params + fn_.num_results;
-    value_ = take(fn_.next_value * copies_);
+    local_of_.assign(fn_.next_value, 0);
+    for (const auto& b : fn_.blocks)
+      for (const Inst* in : b->insts)
+        if (has_value(in->op)) local_of_[in->id] = num_values_++;
+    value_ = take(num_values_ * copies_);
     output_ = take(fn_.num_results * copies_);
     global_ = take(program_.globals_in_memory ? 0 : static_cast<uint32_t>(program_.num_globals));
     mask_ = take(1);
     ticks_ = take(1);
     temp_ = take(copies_);
-    pending_ = take(fn_.next_block + 1);
+    pending_ = take(static_cast<uint32_t>(rpo_.size()));
+    rpo_index_.assign(fn_.next_block + 1, 0);
+    for (size_t k = 0; k < rpo_.size(); ++k) rpo_index_[rpo_[k]->id] = static_cast<uint32_t>(k);
     size_t phis = 0;
     for (const auto& b : fn_.blocks) phis = std::max(phis, b->first_non_phi());
     phi_temp_ = take(static_cast<uint32_t>(phis));
@@ -280,9 +286,17 @@ class Emitter {
   // Copy u of the straight code's values: the locals of values, outputs, temp and trig's move to
   // its own (copy 0's are the layout's).
   void copy(uint32_t u) {
-    value_ = base_[0] + u * fn_.next_value, output_ = base_[1] + u * fn_.num_results;
+    value_ = base_[0] + u * num_values_, output_ = base_[1] + u * fn_.num_results;
     temp_ = base_[2] + u, trig_ = base_[3] + u * kTrigLocals;
     u_ = u;
+  }
+
+  // A value's local (a recursive function's frame holds every local: only values that are made
+  // have one).
+  uint32_t val(const Inst* v) const { return value_ + local_of_[v->id]; }
+  static bool has_value(Op op) {
+    return op != Op::Const && op != Op::GStore && op != Op::Tick && op != Op::Jump && op != Op::Branch &&
+        op != Op::Ret && op != Op::ANew && op != Op::AStore;
   }
 
   uint32_t take(uint32_t n) {
@@ -290,7 +304,7 @@ class Emitter {
     next_v128_ += n;
     return first;
   }
-  uint32_t pending(const ir::Block& b) const { return pending_ + b.id; }
+  uint32_t pending(const ir::Block& b) const { return pending_ + rpo_index_[b.id]; }
 
   // Local `dst` = the k-th pointer of the array at param `array`.
   void pointer(uint32_t array, uint32_t k, uint32_t dst) { c_.local_get(array), c_.i32_load(4 * k), c_.local_set(dst); }
@@ -318,7 +332,7 @@ class Emitter {
 
   void push(const Inst* v) {
     if (v->op == Op::Const) f32(v->imm);
-    else c_.local_get(value_ + v->id);
+    else c_.local_get(val(v));
   }
   // The value on the stack into `local`, under the block's mask where control flow is masked.
   void assign(uint32_t local) {
@@ -434,7 +448,7 @@ class Emitter {
       case Op::ALen: array_op(in); break;
     }
     (void)error;
-    assign(value_ + in.id);
+    assign(val(&in));
     return true;
   }
 
@@ -500,12 +514,12 @@ class Emitter {
     });
     each([&](uint32_t) { trig_polynomials(); });
     const int offset = in.op == Op::Cos;
-    each([&](uint32_t) { quadrant_value(offset), assign(value_ + in.id); });
-    if (partner) each([&](uint32_t) { quadrant_value(1 - offset), assign(value_ + partner->id); });
+    each([&](uint32_t) { quadrant_value(offset), assign(val(&in)); });
+    if (partner) each([&](uint32_t) { quadrant_value(1 - offset), assign(val(partner)); });
     c.op(Opc::Else);
     each([&](uint32_t) {
-      batch(in, batch_of(in.op)), assign(value_ + in.id);
-      if (partner) batch(*partner, batch_of(partner->op)), assign(value_ + partner->id);
+      batch(in, batch_of(in.op)), assign(val(&in));
+      if (partner) batch(*partner, batch_of(partner->op)), assign(val(partner));
     });
     c.end();
   }
@@ -661,11 +675,10 @@ class Emitter {
     while (pred < to.preds.size() && to.preds[pred] != &from) ++pred;
     for (size_t k = 0; k < phis; ++k) {
       const Inst* phi = to.insts[k];
-      push(phi->args[pred]), c.local_get(value_ + phi->id), edge_mask(), c.simd(Simd::V128Bitselect);
+      push(phi->args[pred]), c.local_get(val(phi)), edge_mask(), c.simd(Simd::V128Bitselect);
       c.local_set(phi_temp_ + static_cast<uint32_t>(k));
     }
-    for (size_t k = 0; k < phis; ++k)
-      c.local_get(phi_temp_ + static_cast<uint32_t>(k)), c.local_set(value_ + to.insts[k]->id);
+    for (size_t k = 0; k < phis; ++k) c.local_get(phi_temp_ + static_cast<uint32_t>(k)), c.local_set(val(to.insts[k]));
     c.local_get(pending(to)), edge_mask(), c.simd(Simd::V128Or), c.local_set(pending(to));
   }
 
@@ -690,6 +703,9 @@ class Emitter {
   uint32_t first_v128_ = 0, next_v128_ = 0, value_ = 0, output_ = 0, global_ = 0, mask_ = 0, ticks_ = 0, temp_ = 0;
   uint32_t pending_ = 0, phi_temp_ = 0, status_ = 0, trig_ = 0, saved_ = 0;
   uint32_t first_slot_ = 0;  // this function's own arrays' first slot
+  std::vector<uint32_t> local_of_;  // value id -> its number among the values made
+  std::vector<uint32_t> rpo_index_;  // block id -> its place in rpo_
+  uint32_t num_values_ = 0;
   // Straight code runs kCopies groups of four points side by side, the loop's body a chain of
   // dependent operations (csg8's smooth unions) that one group alone leaves the processor waiting on.
   static constexpr uint32_t kCopies = 4;

@@ -4,25 +4,12 @@
 // warning shows over the scene drawn without it, the scene is drawn with no animation frame (a
 // headless screenshot), quick reloads each get the scene, an animation plays the
 // frames made so far before the last exists, and paths outside the page are 404. usage: node preview_browser.mjs URL SCENE_FILE   (fvrml-run --serve already runs)
-import { chromium } from 'playwright-core';
+import { launch, check, failed, picture as pictureOf } from './chromium.mjs';
 import fs from 'node:fs';
 import assert from 'node:assert/strict';
 
 const [url, scene] = process.argv.slice(2);
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox'],
-});
-let failures = 0;
-async function check(name, fn) {
-  try {
-    await fn();
-    console.log('ok   ' + name);
-  } catch (e) {
-    failures++;
-    console.log('FAIL ' + name + ': ' + e.message);
-  }
-}
+const browser = await launch();
 try {
   const page = await browser.newPage({ viewport: { width: 640, height: 480 } });
   // In every page: the WebGL canvas's RGBA bytes, read through a 2D copy.
@@ -36,16 +23,7 @@ try {
     };
   };
   await page.addInitScript(withPixels);
-  // The canvas's pixels that are not the white background, and a digest of them.
-  const picture = () => page.evaluate(() => {
-    const d = window.canvasPixels();
-    let drawn = 0, digest = 0;
-    for (let i = 0; i < d.length; i += 4) {
-      if (d[i] < 250 || d[i + 1] < 250 || d[i + 2] < 250) drawn++;
-      digest = (digest * 31 + d[i] + 7 * d[i + 1] + 13 * d[i + 2]) >>> 0;
-    }
-    return { drawn, total: d.length / 4, digest };
-  });
+  const picture = () => pictureOf(page);
   const shown = () => page.evaluate(() => Number(document.body.dataset.shown ?? -1));
   const until = (fn, ms, arg = null) => page.waitForFunction(fn, arg, { timeout: ms, polling: 50 });
   const write = (text) => { fs.writeFileSync(scene + '.tmp', text); fs.renameSync(scene + '.tmp', scene); };
@@ -174,4 +152,4 @@ try {
 } finally {
   await browser.close();
 }
-process.exit(failures ? 1 : 0);
+process.exit(failed() ? 1 : 0);

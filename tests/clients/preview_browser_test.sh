@@ -25,5 +25,5 @@ if ! NODE_PATH="$NPM/node_modules" node -e "
   fs_skip machine preview_browser "Chromium cannot start here: $(head -c 300 "$T/launch.err")" && exit 77
   exit 1
 fi
-cp "$SRC/tests/clients/preview_browser.mjs" "$NPM/preview_browser.mjs"  # beside node_modules, for its imports
+cp "$SRC/tests/clients/preview_browser.mjs" "$SRC/tests/support/chromium.mjs" "$NPM/"  # beside node_modules, for their imports
 FS_SOURCE_DIR="$SRC" node "$NPM/preview_browser.mjs" "$URL" "$T/scene.wrl"

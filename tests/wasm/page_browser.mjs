@@ -4,44 +4,18 @@
 // source line; the animation's slider changes the picture; the .glb saved from the page is the
 // Khronos validator's clean file.
 // usage: node page_browser.mjs SITE_DIR COURSE_FILE DROPPED_FILE OUT_DIR   (beside node_modules)
-import { chromium } from 'playwright-core';
+import { launch, check, failed, picture as pictureOf } from './chromium.mjs';
 import fs from 'node:fs';
 import path from 'node:path';
 import assert from 'node:assert/strict';
 
 const [site, course, dropped, out] = process.argv.slice(2);
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  args: ['--use-gl=angle', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--no-sandbox'],
-});
-let failures = 0;
-async function check(name, fn) {
-  try {
-    await fn();
-    console.log('ok   ' + name);
-  } catch (e) {
-    failures++;
-    console.log('FAIL ' + name + ': ' + e.message);
-  }
-}
+const browser = await launch();
 try {
   const page = await browser.newPage({ viewport: { width: 900, height: 600 }, acceptDownloads: true });
   const errors = [];
   page.on('pageerror', (e) => errors.push(e.message));
-  // The canvas's pixels that are not the background, and a digest of them (through a 2D copy).
-  const picture = () => page.evaluate(() => {
-    const c = document.querySelector('canvas'), copy = document.createElement('canvas');
-    copy.width = c.width, copy.height = c.height;
-    const g = copy.getContext('2d');
-    g.drawImage(c, 0, 0);
-    const d = g.getImageData(0, 0, c.width, c.height).data;
-    let drawn = 0, digest = 0;
-    for (let i = 0; i < d.length; i += 4) {
-      if (d[i] < 250 || d[i + 1] < 250 || d[i + 2] < 250) drawn++;
-      digest = (digest * 31 + d[i] + 7 * d[i + 1] + 13 * d[i + 2]) >>> 0;
-    }
-    return { drawn, total: d.length / 4, digest };
-  });
+  const picture = () => pictureOf(page);
   const settled = async () => {
     await page.waitForFunction(() => ['ok', 'error'].includes(document.body.dataset.state), null, { timeout: 120000 });
     return page.evaluate(() => document.body.dataset.state);
@@ -124,4 +98,4 @@ try {
 } finally {
   await browser.close();
 }
-process.exit(failures ? 1 : 0);
+process.exit(failed() ? 1 : 0);

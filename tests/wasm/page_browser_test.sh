@@ -13,6 +13,6 @@ command -v node > /dev/null || { fs_skip missing wasm_page "node is not installe
 [ -d "$NPM/node_modules/gltf-validator" ] || { fs_skip missing wasm_page "gltf-validator is not installed in $NPM (./dev.sh test installs it)" && exit 77; exit 1; }
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
-cp "$SRC/tests/wasm/page_browser.mjs" "$NPM/page_browser.mjs"  # beside node_modules, for its imports
+cp "$SRC/tests/wasm/page_browser.mjs" "$SRC/tests/support/chromium.mjs" "$NPM/"  # beside node_modules, for their imports
 node "$NPM/page_browser.mjs" "$SITE" "$SRC/examples/paper/figure1-morphing.wrl" \
   "$SHARED/corpus/wilsonteng97-CZ2003-CGV/FVRML code templates/solid.wrl" "$T"

@@ -12,6 +12,7 @@
 #include "backends/jit_support.h"
 #include "backends/lane_arrays.h"
 #include "backends/wasm/wasm_compile.h"
+#include "runtime/support/scratch.h"
 
 EM_JS(int, fs_wasm_validate, (const uint8_t* bytes, int size),
       { return WebAssembly.validate(HEAPU8.slice(bytes, bytes + size)) ? 1 : 0; });
@@ -64,18 +65,17 @@ class WasmKernel : public backends::Kernel {
                  backends::RuntimeError& err) const override {
     if (!row_from_) return Kernel::eval_rows(first, count, rest, rows, outputs, err);
     const size_t n = rows * count;
-    std::vector<std::vector<float>> spread(inputs_);
-    std::vector<const float*> in(inputs_);
+    support::ScratchFloats spread(inputs_ * n);  // (per-thread room, reused: rows come often)
+    backends::Scratch<const float*> in(inputs_);
     for (size_t k = 0; k < inputs_; ++k) {
-      spread[k].resize(n);
+      float* column = spread.get() + k * n;
       for (size_t r = 0; r < rows; ++r) {  // (the first input per point, the others per row)
-        auto at = spread[k].begin() + static_cast<ptrdiff_t>(r * count);
-        if (k == 0) std::copy(first, first + count, at);
-        else std::fill_n(at, count, rest[k - 1][r]);
+        if (k == 0) std::copy(first, first + count, column + r * count);
+        else std::fill_n(column + r * count, count, rest[k - 1][r]);
       }
-      in[k] = spread[k].data();
+      in.data[k] = column;
     }
-    return run(in.data(), outputs, n, err);
+    return run(in.data, outputs, n, err);
   }
 
  private:

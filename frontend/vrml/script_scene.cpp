@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "frontend/vrml/inline.h"
 #include "frontend/vrml/vrml_parser.h"
 
 namespace fscript::vrml {
@@ -25,6 +26,12 @@ bool script_scene(const std::string& path, const std::string& text, Scene& out, 
     }
   diag.plain_error(path, "internal: the FShape wrapper of a script has no definition");
   return false;
+}
+
+bool scene_of_text(const std::string& path, const std::string& text, bool is_wrl, Scene& out,
+                   frontend::DiagnosticSink& diag) {
+  if (!is_wrl) return script_scene(path, text, out, diag);
+  return parse_scene(std::make_unique<frontend::SourceFile>(path, text), diag, out) && load_inlines(out, diag);
 }
 
 }  // namespace fscript::vrml

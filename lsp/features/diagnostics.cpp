@@ -2,9 +2,7 @@
 // the shape diagnostics with the edits of their quick fixes.
 #include "engine/scene/shape_diagnostics.h"
 #include "frontend/check.h"
-#include "frontend/vrml/inline.h"
 #include "frontend/vrml/script_scene.h"
-#include "frontend/vrml/vrml_parser.h"
 #include "lsp/analysis.h"
 #include "lsp/features/features.h"
 #include "lsp/preview.h"
@@ -67,10 +65,7 @@ void shape_diagnostics(const Document& d, json& list) {
 bool scene_model_of(const Document& d, vrml::Scene& scene, scene::SceneModel& model) {
   frontend::DiagnosticSink ignored;
   std::string path = path_of_uri(d.uri);
-  bool ok = d.scene ? vrml::parse_scene(std::make_unique<frontend::SourceFile>(path.empty() ? d.uri : path, d.text),
-                                        ignored, scene) &&
-          vrml::load_inlines(scene, ignored)
-                    : vrml::script_scene(path.empty() ? d.uri : path, d.text, scene, ignored);
+  bool ok = vrml::scene_of_text(path.empty() ? d.uri : path, d.text, d.scene, scene, ignored);
   scene::ModelOptions mo;
   mo.compile.backend = "vm";
   return ok && scene::build_scene_model(scene, mo, ignored, model);

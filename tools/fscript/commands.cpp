@@ -19,7 +19,6 @@
 #include "frontend/fscript/formatter.h"
 #include "frontend/fscript/parser.h"
 #include "frontend/fscript/embedded.h"
-#include "frontend/vrml/inline.h"
 #include "frontend/vrml/scene_scripts.h"
 #include "frontend/vrml/script_scene.h"
 #include "frontend/vrml/scene_file.h"
@@ -177,9 +176,7 @@ size_t known_failures_in_scene(const std::string& path, const std::string& text)
 size_t shape_findings(const std::string& path, const std::string& text, bool is_wrl) {
   vrml::Scene scene;
   frontend::DiagnosticSink ignored;
-  bool ok = is_wrl ? vrml::parse_scene(std::make_unique<frontend::SourceFile>(path, text), ignored, scene) &&
-          vrml::load_inlines(scene, ignored)
-                   : vrml::script_scene(path, text, scene, ignored);
+  bool ok = vrml::scene_of_text(path, text, is_wrl, scene, ignored);
   scene::ModelOptions mo;
   mo.compile.backend = "vm";  // checks want answers at once, not native code
   scene::SceneModel model;

@@ -6,10 +6,8 @@
 #include <memory>
 
 #include "engine/scene/shape_profile.h"
-#include "frontend/vrml/inline.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/script_scene.h"
-#include "frontend/vrml/vrml_parser.h"
 #include "tools/fscript/common.h"
 #include "tools/profile_picture.h"
 
@@ -23,9 +21,7 @@ bool load(const std::string& path, vrml::Scene& scene, frontend::DiagnosticSink&
     if (is_wrl) std::cerr << path << ":1:1: error: " << error << "\n";
     return false;
   }
-  return is_wrl ? vrml::parse_scene(std::make_unique<frontend::SourceFile>(path, text), diag, scene) &&
-          vrml::load_inlines(scene, diag)
-                : vrml::script_scene(path, text, scene, diag);
+  return vrml::scene_of_text(path, text, is_wrl, scene, diag);
 }
 
 // A runtime error of the shape at `n`: at the script's line where the error knows it.

@@ -17,6 +17,7 @@
 #include "backends/runtime_errors.h"
 #include "ir/analysis.h"
 #include "ir/passes/passes.h"
+#include "runtime/math/math.h"
 #include "runtime/support/big_stack.h"
 
 namespace fscript::backends {
@@ -111,6 +112,10 @@ uint64_t on_budget_stack(uint64_t (*thunk)(void*), void* ctx, uint64_t fallback)
   uint64_t result = fallback;
   support::run_with_big_stack([&] { result = thunk(ctx); });
   return result;
+}
+
+void mod_batch(const float* a, const float* b, float* out, size_t n) {
+  for (size_t i = 0; i < n; ++i) out[i] = math::mod(a[i], b[i]);
 }
 
 extern "C" uint32_t fs_ticks_carry(int32_t* counters, uint64_t budget) {

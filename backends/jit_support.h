@@ -68,6 +68,10 @@ uint64_t call_generated(const Call& call) {
 // (16 bytes on) and returns 1 when a lane is over the budget.
 extern "C" uint32_t fs_ticks_carry(int32_t* counters, uint64_t budget);
 
+// `%` over a batch (math::mod per point): what the compiling backends call for it, as the batch
+// twins of the other runtime rows.
+void mod_batch(const float* a, const float* b, float* out, size_t n);
+
 // Every input of the batch finite with |x| <= bound (NaN fails too).
 // Inputs from `row_from` on (when not 0) are one value each: a row parameter (ir::Function), held
 // to its range in `row_ranges` (one per row parameter) when given, else to the bound.

@@ -34,10 +34,6 @@ namespace {
 
 using namespace detail;
 
-void mod_batch(const float* a, const float* b, float* out, size_t n) {
-  for (size_t i = 0; i < n; ++i) out[i] = math::mod(a[i], b[i]);
-}
-
 // The functions compiled into one piece of code: the kernel first (the code's start), then every
 // function it calls, directly or not. Calls left after inlining are of recursive functions.
 struct Program {
@@ -380,7 +376,7 @@ class Codegen : public detail::LaneCode {
       case Op::Truth:
       case Op::Select: return logic(in, pos), true;
       case Op::Mod:
-        return call(in, pos, reinterpret_cast<const void*>(&mod_batch));
+        return call(in, pos, reinterpret_cast<const void*>(&backends::mod_batch));
         // Batch rows of ir/math_ops.def call runtime/math's batch function; Trig rows inline it
         // (sse_compile_lanes.h); Lane rows have their own cases above.
 #define FS_SSE_Lane(N, FN)

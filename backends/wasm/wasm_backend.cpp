@@ -1,6 +1,7 @@
 // The wasm backend's Kernel (wasm_backend.h): the module's bytes handed to JavaScript, which
 // compiles and instantiates them against this program's memory and function table; batches run
-// in groups of the module's points per turn with the tail padded (backends::run_padded), as the SSE code's do.
+// in groups of the module's points per turn with the tail padded (backends::run_padded), as the
+// SSE code's do.
 #include "backends/wasm/wasm_backend.h"
 
 #include <emscripten.h>
@@ -118,16 +119,12 @@ std::unique_ptr<backends::Kernel> WasmBackend::compile(const ir::Module& m, cons
   }
   std::vector<uint32_t> imports;
   for (const void* f : c.imports) imports.push_back(static_cast<uint32_t>(reinterpret_cast<uintptr_t>(f)));
-  // Validated first, so that an emitter bug is named as one.
-  if (!valid_module(c.bytes)) {
-    error = "the wasm backend wrote a module WebAssembly.validate refuses";
-    return nullptr;
-  }
   char why[256] = "";
   int id = fs_wasm_instantiate(c.bytes.data(), static_cast<int>(c.bytes.size()), imports.data(),
                                static_cast<int>(imports.size()), why, sizeof why);
-  if (id == 0) {
-    error = std::string("the browser refused the wasm backend's module: ") + why;
+  if (id == 0) {  // (compiling validates; a refused module is named as the emitter's bug if it is one)
+    error = valid_module(c.bytes) ? std::string("the browser refused the wasm backend's module: ") + why
+                                  : "the wasm backend wrote a module WebAssembly.validate refuses: " + std::string(why);
     return nullptr;
   }
   return std::make_unique<WasmKernel>(id, c, budgets);

@@ -16,7 +16,7 @@ class WasmBackend : public backends::Backend {
                                             std::string& error) const override;
 };
 
-// The engine's WebAssembly.validate of a module's bytes (compile runs it before instantiating).
+// The engine's WebAssembly.validate of a module's bytes (compile asks it of a module it refuses).
 bool valid_module(const std::vector<uint8_t>& bytes);
 
 }  // namespace fscript::wasm

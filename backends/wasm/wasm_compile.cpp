@@ -30,11 +30,6 @@ namespace {
 using ir::Inst;
 using ir::Op;
 
-void mod_batch(const float* a, const float* b, float* out, size_t n) {
-  for (size_t i = 0; i < n; ++i) out[i] = math::mod(a[i], b[i]);
-}
-
-// Parameters and fixed locals of the kernel function.
 // The kernel's parameters and fixed locals. A callee (a recursive function, called for the four
 // lanes of its caller under the caller's mask) takes its arguments, the mask, scratch, arrays and
 // its call depth, and returns its value and a status.
@@ -42,9 +37,9 @@ constexpr uint32_t kIn = 0, kOut = 1, kN = 2, kScratch = 3, kArrays = 4, kAt = 5
 // Scratch: the arguments at 0, 16, 32, the result at 48, the lane mask at 64 (array helpers), then
 // the globals where the program has callees (they share them).
 constexpr uint32_t kScratchResult = 48, kScratchMask = 64, kScratchGlobals = 80;
-// What recursion may take of the browser's stack, by frame_bytes() (V8's is about 984 KiB, and the
-// estimate is about 1.2x the frames measured; the VM's and the page's
-// frames below the kernel take the rest): deeper budgets leave a recursive kernel to the VM.
+// What recursion may take of the browser's stack, by frame_bytes() (V8's is about 984 KiB, the
+// estimate about 1.2x the frames measured, and the VM's and the page's frames below the kernel
+// take the rest): deeper budgets leave a recursive kernel to the VM.
 constexpr size_t kStackForCalls = 768 << 10;
 
 // What every function of the program shares: their indices, the imports, globals in memory.
@@ -229,7 +224,7 @@ class Emitter {
     rpo_.assign(post.rbegin(), post.rend());
   }
 
-  // v128 locals: values by id, outputs, globals, the mask, the loop counter, pending masks, temps.
+  // v128 locals: the values made, outputs, globals, the mask, the loop counter, pending masks, temps.
   void layout() {
     first_v128_ = next_v128_ = callee_ ? fn_.num_params + 4 : kFirstPointer + fn_.num_params + fn_.num_results;
     local_of_.assign(fn_.next_value, 0);
@@ -356,8 +351,8 @@ class Emitter {
     for (size_t k = 0; k < b.insts.size(); ++k) {
       const Inst& in = *b.insts[k];
       if (made_early_[in.id]) continue;
-      partner_ = in.op == Op::Sin || in.op == Op::Cos ? trig_partner(in, b, k) : nullptr;
-      if (partner_ || in.op == Op::Sin || in.op == Op::Cos) {  // (all copies at once)
+      if (in.op == Op::Sin || in.op == Op::Cos) {  // (all copies at once)
+        partner_ = trig_partner(in, b, k);
         trig(in);
         if (partner_) made_early_[partner_->id] = 1;
         continue;
@@ -367,7 +362,6 @@ class Emitter {
         if (!inst(in, b, error)) return false;
       }
       copy(0);
-      if (partner_) made_early_[partner_->id] = 1;
     }
     return true;
   }
@@ -488,8 +482,8 @@ class Emitter {
   // the batch function's, bit for bit. A group with a lane outside the fast range (huge, inf, NaN)
   // calls the batch function instead. Both polynomials are made whatever the quadrant, so a later
   // cos (sin) of the same value in the block (the gyroid's pairs) is made here too and skipped at
-  // its turn (partner_, found by block()).
-  // Every copy's steps side by side, under one test of all their lanes.
+  // its turn (partner_, found by block()). Every copy's steps side by side, under one test of all
+  // their lanes.
   void trig(const Inst& in) {
     Code& c = c_;
     const Inst* partner = partner_;
@@ -637,7 +631,6 @@ class Emitter {
     c.local_get(status_), c.op(Opc::I64Eqz), c.op(Opc::I32Eqz), c.if_(), pass_status(), c.end();
     c.local_get(temp_);
   }
-  // Returns `code` (a kernel) or (any value, code) (a callee).
   // A callee returns (any value, status); the kernel stores the status at scratch's start and
   // returns 1 (no 64-bit value crosses into JavaScript, where it would be a BigInt).
   void trap(uint64_t code) {
@@ -733,7 +726,7 @@ const void* helper_of(Op op) {
 // The batch function a math op calls (nullptr: it is made of SIMD instructions).
 const void* batch_of(Op op) {
   switch (op) {
-    case Op::Mod: return reinterpret_cast<const void*>(&mod_batch);
+    case Op::Mod: return reinterpret_cast<const void*>(&backends::mod_batch);
 #define FS_MATH(N, FN, A, HOW) FS_WASM_BATCH_##HOW(N, FN)
 #define FS_WASM_BATCH_Lane(N, FN)
 #define FS_WASM_BATCH_Batch(N, FN) \

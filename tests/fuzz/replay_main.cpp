@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -20,7 +21,9 @@ std::vector<std::filesystem::path> inputs(int argc, char** argv, size_t& random)
   std::vector<std::filesystem::path> files;
   for (int i = 1; i < argc; ++i) {
     if (std::string(argv[i]) == "--random" && i + 1 < argc) {
-      random = std::stoul(argv[++i]);
+      char* end = nullptr;
+      random = std::strtoul(argv[++i], &end, 10);
+      if (*end) std::fprintf(stderr, "fuzz replay: --random wants a count, not '%s'\n", argv[i]), std::exit(2);
       continue;
     }
     std::filesystem::path p = argv[i];

@@ -21,6 +21,7 @@
 #include "backends/jit_support.h"
 #include "backends/lane_arrays.h"
 #include "backends/wasm/wasm_encoder.h"
+#include "ir/ranges.h"
 #include "runtime/math/math.h"
 #include "runtime/math/trig_constants.h"
 
@@ -37,6 +38,11 @@ constexpr uint32_t kIn = 0, kOut = 1, kN = 2, kScratch = 3, kArrays = 4, kAt = 5
 // Scratch: the arguments at 0, 16, 32, the result at 48, the lane mask at 64 (array helpers), then
 // the globals where the program has callees (they share them).
 constexpr uint32_t kScratchResult = 48, kScratchMask = 64, kScratchGlobals = 80;
+// Straight code runs kCopies groups of four points side by side, the loop's body a chain of
+// dependent operations (csg8's smooth unions) that one group alone leaves the processor waiting on.
+constexpr uint32_t kCopies = 4;
+// Speculating straight code stores a sin/cos pair's values per copy to scratch (straight_block).
+constexpr uint32_t kScratchPins = 2 * 16 * kCopies;
 // What recursion may take of the browser's stack, by frame_bytes() (V8's is about 984 KiB, the
 // estimate about 1.2x the frames measured, and the VM's and the page's frames below the kernel
 // take the rest): deeper budgets leave a recursive kernel to the VM.
@@ -154,22 +160,15 @@ class Emitter {
     c.loop();   // one group of 4 x copies_ points a turn
     c.local_get(kAt), c.local_get(kEnd), c.op(Opc::I32GeU), c.br_if(1);
     start_group();
-    if (straight_ ? !block(*rpo_[0], error) : !scan(error)) return false;
-    for (uint32_t u = 0; u < copies_; ++u) {  // the outputs, then the next group
-      copy(u);
-      for (uint32_t k = 0; k < fn_.num_results; ++k) {
-        c.local_get(kFirstPointer + fn_.num_params + k), c.local_get(kAt), c.op(Opc::I32Add);
-        c.local_get(output_ + k), c.v128_store_any(16 * u);
-      }
-    }
-    copy(0);
+    if (straight_ ? !straight_block(error) : !scan(error)) return false;
+    if (!straight_) store_outputs();
     c.local_get(kAt), c.i32_const(16 * static_cast<int32_t>(copies_)), c.op(Opc::I32Add), c.local_set(kAt);
     c.br(0);
     c.end();
     c.end();
     c.i32_const(0);
     FuncType t{{ValType::I32, ValType::I32, ValType::I32, ValType::I32, ValType::I32}, {ValType::I32}};
-    uint32_t pointers = kFirstPointer - kAt + fn_.num_params + fn_.num_results;
+    uint32_t pointers = kFirstPointer - kAt + fn_.num_params + fn_.num_results + 1;  // and trig_ok_
     uint32_t f = mod_.function(t,
                                {{pointers, ValType::I32},
                                 {next_v128_ - first_v128_, ValType::V128},
@@ -178,6 +177,81 @@ class Emitter {
                                with_constants());
     mod_.export_function("kernel", f);
     return true;
+  }
+
+  void store_outputs() {
+    Code& c = c_;
+    for (uint32_t u = 0; u < copies_; ++u) {
+      copy(u);
+      for (uint32_t k = 0; k < fn_.num_results; ++k) {
+        c.local_get(kFirstPointer + fn_.num_params + k), c.local_get(kAt), c.op(Opc::I32Add);
+        c.local_get(output_ + k), c.v128_store_any(16 * u);
+      }
+    }
+    copy(0);
+  }
+
+  // Straight code, speculating where it pays: the block's trig arguments in the fast range (tested
+  // after each trig op) and the second operands of its min and max not NaN (the exact rules then
+  // need no per-op test; their sum is tested at the end). A failed test runs the group again with
+  // the exact code (straight code has no effects but its values: running it twice is safe).
+  bool straight_block(std::string& error) {
+    Code& c = c_;
+    if (!speculate_) {
+      if (!block(*rpo_[0], error)) return false;
+      return store_outputs(), true;
+    }
+    c.block();  // done
+    c.block();  // exact: the fast code's tests branch here
+    fast_ = true;
+    std::fill(made_early_.begin(), made_early_.end(), 0);
+    if (bound_ > 0) inputs_in_bound();
+    if (!block(*rpo_[0], error)) return false;
+    store_outputs();  // (before the test: the engine then computes them ahead of it, not after)
+    if (checked_) {
+      for (uint32_t u = 0; u < copies_; ++u) {
+        c.local_get(nan_sum_ + u), c.local_get(nan_sum_ + u), c.simd(Simd::F32x4Eq);
+        if (u) c.simd(Simd::V128And);
+      }
+      c.simd(Simd::I32x4AllTrue), c.op(Opc::I32Eqz), c.br_if(0);
+    }
+    c.br(1);
+    c.end();
+    fast_ = false;
+    std::fill(made_early_.begin(), made_early_.end(), 0);
+    if (!block(*rpo_[0], error)) return false;
+    store_outputs();
+    c.end();
+    return true;
+  }
+
+  // The inputs loaded ahead of the block (made early) and tested against the bound the value
+  // ranges assume: |x| <= bound, or a row parameter's own range (ir::row_param_range).
+  void inputs_in_bound() {
+    Code& c = c_;
+    bool first = true;
+    for (const Inst* in : fn_.entry()->insts) {
+      if (in->op != Op::Param) continue;
+      made_early_[in->id] = 1;
+      const ir::ParamRange* r = ir::row_param_range(fn_, bound_, static_cast<uint32_t>(in->aux));
+      for (uint32_t u = 0; u < copies_; ++u) {
+        copy(u);
+        std::string unused;
+        inst(*in, *fn_.entry(), unused);
+        if (!r) {
+          push(in), i32(INT32_MAX), c.simd(Simd::V128And), f32(static_cast<float>(bound_));
+          c.simd(Simd::F32x4Le);
+        } else {
+          push(in), f32(r->lo), c.simd(Simd::F32x4Ge);
+          push(in), f32(r->hi), c.simd(Simd::F32x4Le), c.simd(Simd::V128And);
+          if (r->nan) push(in), push(in), c.simd(Simd::F32x4Ne), c.simd(Simd::V128Or);
+        }
+        if (!first) c.simd(Simd::V128And);
+        first = false;
+      }
+      copy(0);
+    }
+    if (!first) c.simd(Simd::I32x4AllTrue), c.op(Opc::I32Eqz), c.br_if(0);
   }
 
   // What this emitter compiles (the rest runs on the VM until it does).
@@ -201,7 +275,25 @@ class Emitter {
         }
     if (fn_.blocks.size() > 1) straight_ = false;
     if (straight_ && !arrays_) copies_ = kCopies;
+    if (straight_ && !arrays_ && !callee_) speculation();
     return true;
+  }
+
+  // What straight code may guess (straight_block): inputs within the bound that removes the most
+  // NaN tests (ir/ranges), trig arguments in the fast range; the min and max whose second operand
+  // may still be NaN then keep a NaN sum (checked_).
+  void speculation() {
+    bound_ = ir::best_param_bound(fn_);
+    if (bound_ > 0) ranges_ = ir::value_ranges(fn_, bound_);
+    fast_ = true;
+    for (const Inst* in : fn_.entry()->insts) switch (in->op) {
+        case Op::Min:
+        case Op::Max: checked_ |= !never_nan(in->args[1]); break;
+        case Op::Clamp: checked_ |= !never_nan(in->args[1]) || !never_nan(in->args[2]); break;
+        default: break;
+      }
+    fast_ = false;
+    speculate_ = trig_used_ || checked_ || bound_ > 0;
   }
 
   // Reverse post-order from the entry.
@@ -226,7 +318,8 @@ class Emitter {
 
   // v128 locals: the values made, outputs, globals, the mask, the loop counter, pending masks, temps.
   void layout() {
-    first_v128_ = next_v128_ = callee_ ? fn_.num_params + 4 : kFirstPointer + fn_.num_params + fn_.num_results;
+    trig_ok_ = kFirstPointer + fn_.num_params + fn_.num_results;  // (the kernel's one i32 after its pointers)
+    first_v128_ = next_v128_ = callee_ ? fn_.num_params + 4 : trig_ok_ + 1;
     local_of_.assign(fn_.next_value, 0);
     for (const auto& b : fn_.blocks)
       for (const Inst* in : b->insts)
@@ -244,6 +337,7 @@ class Emitter {
     for (const auto& b : fn_.blocks) phis = std::max(phis, b->first_non_phi());
     phi_temp_ = take(static_cast<uint32_t>(phis));
     trig_ = take(trig_used_ ? kTrigLocals * copies_ : 0);
+    nan_sum_ = take(speculate_ ? copies_ : 0);
     saved_ = take(callee_ ? save_vectors() : 0);
     base_ = {value_, output_, temp_, trig_};
     made_early_.assign(fn_.next_value, 0);
@@ -273,7 +367,7 @@ class Emitter {
   // The constants' locals set, then the body.
   Code with_constants() {
     Code out;
-    for (const auto& [bytes, k] : constants_) out.v128_const(bytes.data()), out.local_set(status_ + 1 + k);
+    for (const auto& [bytes, k] : constants_) out.global_get(mod_.global_v128(bytes)), out.local_set(status_ + 1 + k);
     out.append(c_);
     return out;
   }
@@ -312,7 +406,10 @@ class Emitter {
       c.local_get(kArrays), c.call(import(reinterpret_cast<const void*>(&backends::fs_lanes_reset)));
       c.op(Opc::Drop);
     }
-    if (straight_) return;
+    if (straight_) {
+      for (uint32_t u = 0; speculate_ && u < copies_; ++u) f32(0), c.local_set(nan_sum_ + u);
+      return;
+    }
     for (const ir::Block* b : rpo_) i32(b == rpo_[0] ? -1 : 0), c.local_set(pending(*b));
     for (int g = 0; g < program_.num_globals; ++g) {
       if (!program_.globals_in_memory) {
@@ -337,8 +434,8 @@ class Emitter {
   void simd2(Simd s, const Inst& in) { push(in.args[0]), push(in.args[1]), c_.simd(s); }
   // The lanes where `v` is truthy (not 0, not NaN), as a mask.
   void truthy(const Inst* v) {
-    push(v), push(v), c_.simd(Simd::F32x4Eq);
-    push(v), f32(0), c_.simd(Simd::F32x4Ne), c_.simd(Simd::V128And);
+    push(v), f32(0), c_.simd(Simd::F32x4Ne);
+    if (!never_nan(v)) push(v), push(v), c_.simd(Simd::F32x4Eq), c_.simd(Simd::V128And);
   }
   void one_where_mask() { f32(1), c_.simd(Simd::V128And); }  // mask -> 1.0 or 0.0
 
@@ -384,8 +481,9 @@ class Emitter {
       case Op::Sub: simd2(Simd::F32x4Sub, in); break;
       case Op::Mul: simd2(Simd::F32x4Mul, in); break;
       case Op::Div: simd2(Simd::F32x4Div, in); break;
-      case Op::Neg: push(in.args[0]), c.simd(Simd::F32x4Neg); break;
-      case Op::Abs: push(in.args[0]), c.simd(Simd::F32x4Abs); break;
+      // (the sign bit by a mask: the engine would build the mask at every use of abs or neg)
+      case Op::Neg: push(in.args[0]), i32(INT32_MIN), c.simd(Simd::V128Xor); break;
+      case Op::Abs: push(in.args[0]), i32(INT32_MAX), c.simd(Simd::V128And); break;
       case Op::Sqrt: push(in.args[0]), c.simd(Simd::F32x4Sqrt); break;
       case Op::Floor: push(in.args[0]), c.simd(Simd::F32x4Floor); break;
       case Op::Ceil: push(in.args[0]), c.simd(Simd::F32x4Ceil); break;
@@ -448,17 +546,26 @@ class Emitter {
 
   // math::min/max: b < a ? b : a (a where a is NaN; pmin's rule, pmax's for max), then b where b is
   // NaN: the zeros' order and the NaN rule exactly (the IEEE min would give -0 for min(+0, -0)).
-  void min_max(bool min, const Inst* a, const Inst* b) {
+  // Where b cannot be NaN (a constant) pmin is the rule; speculating, b joins the group's NaN sum.
+  void min_max(bool min, const Inst* a, const Inst* b) { push(a), min_max_tail(min, b); }
+  // min(temp, hi) with the same rule, `temp` holding the first operand.
+  void min_max_with_temp(const Inst* hi) { c_.local_get(temp_), min_max_tail(true, hi); }
+  // The first operand on the stack.
+  void min_max_tail(bool min, const Inst* b) {
     Code& c = c_;
-    push(b), push(a), push(b), c.simd(min ? Simd::F32x4Pmin : Simd::F32x4Pmax);
+    Simd op = min ? Simd::F32x4Pmin : Simd::F32x4Pmax;
+    if (never_nan(b)) return push(b), c.simd(op);
+    if (fast_) {
+      push(b), c.simd(op);
+      c.local_get(nan_sum_ + u_), push(b), c.simd(Simd::F32x4Add), c.local_set(nan_sum_ + u_);
+      return;
+    }
+    c.local_set(temp_);
+    push(b), c.local_get(temp_), push(b), c.simd(op);
     push(b), push(b), c.simd(Simd::F32x4Ne), c.simd(Simd::V128Bitselect);
   }
-  // min(temp, hi) with the same rule, `temp` holding the first operand.
-  void min_max_with_temp(const Inst* hi) {
-    Code& c = c_;
-    push(hi), c.local_get(temp_), push(hi), c.simd(Simd::F32x4Pmin);
-    push(hi), push(hi), c.simd(Simd::F32x4Ne), c.simd(Simd::V128Bitselect);
-  }
+  // Speculating, by the value ranges under the input bound; otherwise constants only.
+  bool never_nan(const Inst* v) const { return !ir::may_be_nan(v, fast_ ? ranges_ : no_ranges_); }
   // f = floor(a); a - f >= 0.5 ? f + 1 : f, then a's sign.
   void round(const Inst* a) {
     Code& c = c_;
@@ -487,31 +594,51 @@ class Emitter {
   void trig(const Inst& in) {
     Code& c = c_;
     const Inst* partner = partner_;
+    const int offset = in.op == Op::Cos;
+    auto range = [&](uint32_t u) {
+      push(in.args[0]), c.local_tee(trig_ + kX), i32(INT32_MAX), c.simd(Simd::V128And);
+      f32(math::trig::kFastLimit), c.simd(Simd::F32x4Le);
+      if (u) c.simd(Simd::V128And);
+    };
+    auto inline_path = [&](auto each) {
+      each([&] { reduce_half(0, kRLo, kQLo); });
+      each([&] { reduce_half(1, kRHi, kQHi); });
+      each([&] {
+        static constexpr uint8_t kJoin[16] = {0, 1, 2, 3, 4, 5, 6, 7, 16, 17, 18, 19, 20, 21, 22, 23};
+        c.local_get(trig_ + kRLo), c.local_get(trig_ + kRHi), c.i8x16_shuffle(kJoin), c.local_set(trig_ + kR);
+        static constexpr uint8_t kLowWords[16] = {0, 1, 2, 3, 8, 9, 10, 11, 16, 17, 18, 19, 24, 25, 26, 27};
+        c.local_get(trig_ + kQLo), c.local_get(trig_ + kQHi), c.i8x16_shuffle(kLowWords), c.local_set(trig_ + kQ);
+      });
+      each([&] { trig_polynomials(); });
+      each([&] { quadrant_value(offset), assign(val(&in)); });
+      if (partner) each([&] { quadrant_value(1 - offset), assign(val(partner)); });
+    };
     auto each = [&](auto step) {
-      for (uint32_t u = 0; u < copies_; ++u) copy(u), step(u);
+      for (uint32_t u = 0; u < copies_; ++u) copy(u), step();
       copy(0);
     };
-    each([&](uint32_t u) {
-      push(in.args[0]), c.local_tee(trig_ + kX), c.simd(Simd::F32x4Abs), f32(math::trig::kFastLimit);
-      c.simd(Simd::F32x4Le);
-      if (u) c.simd(Simd::V128And);
-    });
+    for (uint32_t u = 0; u < copies_; ++u) copy(u), range(u);
+    copy(0);
     c.simd(Simd::I32x4AllTrue);
+    if (fast_) {
+      // Speculating: the values made, then the test (to the exact code where a lane is out of
+      // range). The engine places a computation in the last block before its first use: stores
+      // of the values (to scratch, never read) keep each trig op's work in its own block, ahead
+      // of the test, rather than all of them in one block at the end where the engine would
+      // interleave every copy of every one and run out of registers.
+      c.local_set(trig_ok_);
+      inline_path(each);
+      each([&] {
+        c.local_get(scratch_), c.local_get(val(&in)), c.v128_store(16 * u_);
+        if (partner) c.local_get(scratch_), c.local_get(val(partner)), c.v128_store(16 * (copies_ + u_));
+      });
+      c.local_get(trig_ok_), c.op(Opc::I32Eqz), c.br_if(0);
+      return;
+    }
     c.if_();
-    each([&](uint32_t) { reduce_half(0, kRLo, kQLo); });
-    each([&](uint32_t) { reduce_half(1, kRHi, kQHi); });
-    each([&](uint32_t) {
-      static constexpr uint8_t kJoin[16] = {0, 1, 2, 3, 4, 5, 6, 7, 16, 17, 18, 19, 20, 21, 22, 23};
-      c.local_get(trig_ + kRLo), c.local_get(trig_ + kRHi), c.i8x16_shuffle(kJoin), c.local_set(trig_ + kR);
-      static constexpr uint8_t kLowWords[16] = {0, 1, 2, 3, 8, 9, 10, 11, 16, 17, 18, 19, 24, 25, 26, 27};
-      c.local_get(trig_ + kQLo), c.local_get(trig_ + kQHi), c.i8x16_shuffle(kLowWords), c.local_set(trig_ + kQ);
-    });
-    each([&](uint32_t) { trig_polynomials(); });
-    const int offset = in.op == Op::Cos;
-    each([&](uint32_t) { quadrant_value(offset), assign(val(&in)); });
-    if (partner) each([&](uint32_t) { quadrant_value(1 - offset), assign(val(partner)); });
+    inline_path(each);
     c.op(Opc::Else);
-    each([&](uint32_t) {
+    each([&] {
       batch(in, batch_of(in.op)), assign(val(&in));
       if (partner) batch(*partner, batch_of(partner->op)), assign(val(partner));
     });
@@ -541,7 +668,7 @@ class Emitter {
     c.simd(Simd::F64x2Sub), c.simd(Simd::F32x4DemoteF64x2Zero), c.local_set(trig_ + r_out);
   }
   // sin(r) with r's sign (the sum has it, or is +0 at r = -0, where sin(-0) is -0: or-ing the sign
-  // bit is copysign here) and cos(r), z = r r; and the lanes of odd quadrant.
+  // bit is copysign here) and cos(r), z = r r; then the quadrant's masks.
   void trig_polynomials() {
     using namespace math::trig;
     Code& c = c_;
@@ -557,17 +684,26 @@ class Emitter {
     z(), c.simd(Simd::F32x4Mul), z(), c.simd(Simd::F32x4Mul);
     f32(0.5f), z(), c.simd(Simd::F32x4Mul), c.simd(Simd::F32x4Sub);
     f32(1), c.simd(Simd::F32x4Add), c.local_set(trig_ + kCos);
-    c.local_get(trig_ + kQ), i32(1), c.simd(Simd::V128And), i32(1), c.simd(Simd::I32x4Eq), c.local_set(trig_ + kOdd);
+    quadrant_masks();
   }
-  // sin in quadrant q + offset (cos x = sin(x + pi/2)): the cos polynomial where that is odd,
-  // negated where its bit 1 is set.
+  // Quadrant q's picks by shifts alone (no constants to hold): q31 = q << 31 (bit 0 of q in the
+  // sign bit); where q is odd the polynomials swap, by xor with m = (sin ^ cos) & odd; bit 1 of q
+  // is the sign of sin in quadrant q. flip = m ^ that sign. For q + 1 (cos) the swap is the other
+  // way round (sin ^ m is cos's pick where q is even) and the sign bit is bit 1 of q + 1: bit 1
+  // of q xor bit 0 of q, the sign of q31.
+  void quadrant_masks() {
+    Code& c = c_;
+    c.local_get(trig_ + kQ), c.i32_const(31), c.simd(Simd::I32x4Shl), c.local_tee(trig_ + kQ31);
+    c.i32_const(31), c.simd(Simd::I32x4ShrS);
+    c.local_get(trig_ + kSin), c.local_get(trig_ + kCos), c.simd(Simd::V128Xor), c.simd(Simd::V128And);
+    c.local_get(trig_ + kQ), c.i32_const(1), c.simd(Simd::I32x4ShrU), c.i32_const(31), c.simd(Simd::I32x4Shl);
+    c.simd(Simd::V128Xor), c.local_set(trig_ + kFlip);
+  }
+  // sin in quadrant q + offset (cos x = sin(x + pi/2)).
   void quadrant_value(int offset) {
     Code& c = c_;
-    c.local_get(trig_ + (offset ? kSin : kCos)), c.local_get(trig_ + (offset ? kCos : kSin));
-    c.local_get(trig_ + kOdd), c.simd(Simd::V128Bitselect);
-    c.local_get(trig_ + kQ);
-    if (offset) i32(1), c.simd(Simd::I32x4Add);
-    i32(2), c.simd(Simd::V128And), c.i32_const(30), c.simd(Simd::I32x4Shl), c.simd(Simd::V128Xor);
+    c.local_get(trig_ + (offset ? kCos : kSin)), c.local_get(trig_ + kFlip), c.simd(Simd::V128Xor);
+    if (offset) c.local_get(trig_ + kQ31), c.simd(Simd::V128Xor);
   }
 
   // A runtime batch function on the four lanes, through the scratch area.
@@ -691,25 +827,29 @@ class Emitter {
   Module& mod_;
   Code c_;
   bool straight_ = true, arrays_ = false, trig_used_ = false;
+  // Straight code speculates (straight_block) where it has trig or a min or max whose second
+  // operand may be NaN (checked_); fast_ while its speculating copy is written.
+  bool checked_ = false, speculate_ = false, fast_ = false;
   uint32_t scratch_ = 0, arrays_param_ = 0, depth_ = 0;  // parameters' locals
   std::vector<const ir::Block*> rpo_;
   uint32_t first_v128_ = 0, next_v128_ = 0, value_ = 0, output_ = 0, global_ = 0, mask_ = 0, ticks_ = 0, temp_ = 0;
   uint32_t pending_ = 0, phi_temp_ = 0, status_ = 0, trig_ = 0, saved_ = 0;
+  uint32_t nan_sum_ = 0, trig_ok_ = 0;
+  double bound_ = 0;  // speculating: the inputs' bound (0: none)
+  std::vector<ir::Range> ranges_,
+      no_ranges_;  // the value ranges under bound_; none  // per copy: the sum of min's and max's second operands (speculating)
   uint32_t first_slot_ = 0;  // this function's own arrays' first slot
   std::vector<uint32_t> local_of_;  // value id -> its number among the values made
   std::vector<uint32_t> rpo_index_;  // block id -> its place in rpo_
   uint32_t num_values_ = 0;
-  // Straight code runs kCopies groups of four points side by side, the loop's body a chain of
-  // dependent operations (csg8's smooth unions) that one group alone leaves the processor waiting on.
-  static constexpr uint32_t kCopies = 4;
   uint32_t copies_ = 1, u_ = 0;
   std::array<uint32_t, 4> base_{};  // copy 0's value, output, temp and trig locals
-  const Inst* partner_ = nullptr;   // the later trig op the current one makes too
+  const Inst* partner_ = nullptr;  // the later trig op the current one makes too
   // sin and cos's locals, from trig_: the argument, a half in double, its j, the halves' r and q,
-  // the joined r and q, z = r r, the two polynomials, the odd quadrants.
-  enum : uint32_t { kX, kD, kJ, kRLo, kQLo, kRHi, kQHi, kR, kQ, kZ, kSin, kCos, kOdd, kTrigLocals };
+  // the joined r and q, z = r r, the two polynomials, q << 31, the flip (quadrant_masks).
+  enum : uint32_t { kX, kD, kJ, kRLo, kQLo, kRHi, kQHi, kR, kQ, kZ, kSin, kCos, kQ31, kFlip, kTrigLocals };
   std::map<const Inst*, std::vector<size_t>> trig_uses_;  // this block's sin and cos by argument
-  std::vector<char> made_early_;                          // values made ahead (a trig pair's second)
+  std::vector<char> made_early_;  // values made ahead (a trig pair's second)
   std::map<std::array<uint8_t, 16>, uint32_t> constants_;  // vector constant -> its number
 };
 
@@ -793,7 +933,7 @@ bool compile_module(const ir::Module& m, const backends::Budgets& budgets, Compi
   for (size_t k = 1; k < jp.functions.size(); ++k)
     most_saved = std::max(most_saved, pm.functions[static_cast<size_t>(jp.functions[k])]->arrays.size());
   p.save_at = kScratchGlobals + 16 * static_cast<uint32_t>(jp.num_globals) + 16;  // after the loop counts
-  out.scratch_bytes = p.save_at + 64 * most_saved;
+  out.scratch_bytes = std::max<size_t>(p.save_at + 64 * most_saved, kScratchPins);
   for (size_t k = 0; k < jp.functions.size(); ++k) {  // the kernel first, then its callees
     const ir::Function& f = *pm.functions[static_cast<size_t>(jp.functions[k])];
     Emitter e(pm, f, k > 0, static_cast<uint32_t>(out.array_names.size()), budgets, p, mod);

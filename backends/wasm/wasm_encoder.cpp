@@ -105,6 +105,11 @@ uint32_t Module::function(const FuncType& t, std::vector<std::pair<uint32_t, Val
 
 void Module::export_function(const std::string& name, uint32_t index) { exports_.emplace_back(name, index); }
 
+uint32_t Module::global_v128(const std::array<uint8_t, 16>& bytes) {
+  globals_.push_back(bytes);
+  return static_cast<uint32_t>(globals_.size() - 1);
+}
+
 std::vector<uint8_t> Module::encode() const {
   std::vector<uint8_t> out = {0x00, 0x61, 0x73, 0x6d, 0x01, 0x00, 0x00, 0x00};
   std::vector<uint8_t> s;
@@ -125,6 +130,17 @@ std::vector<uint8_t> Module::encode() const {
   for (const Function& f : functions_) put_u32(s, f.type);
   section(out, 3, s);
   s.clear();
+  if (!globals_.empty()) {
+    put_u32(s, static_cast<uint32_t>(globals_.size()));
+    for (const auto& g : globals_) {
+      s.push_back(static_cast<uint8_t>(ValType::V128)), s.push_back(0x01);  // mutable
+      s.push_back(0xfd), put_u32(s, static_cast<uint32_t>(Simd::V128Const));
+      s.insert(s.end(), g.begin(), g.end());
+      s.push_back(0x0b);
+    }
+    section(out, 6, s);
+    s.clear();
+  }
   put_u32(s, static_cast<uint32_t>(exports_.size()));
   for (const auto& [name, index] : exports_) put_name(s, name), s.push_back(0x00), put_u32(s, index);
   section(out, 7, s);

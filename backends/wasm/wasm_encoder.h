@@ -2,6 +2,7 @@
 // A WebAssembly binary encoder: modules of imported memory and functions, our functions and their
 // exports, written in the binary format (types, imports, functions, exports, code), with the
 // instructions the emitter uses, SIMD's among them. Nothing here knows the IR.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -46,6 +47,8 @@ enum class Simd : uint32_t {
   F32x4Floor = 0x68,
   I32x4AllTrue = 0xa3,
   I32x4Shl = 0xab,
+  I32x4ShrS = 0xac,
+  I32x4ShrU = 0xad,
   I32x4Add = 0xae,
   I32x4Sub = 0xb1,
   F32x4Abs = 0xe0,
@@ -78,6 +81,7 @@ enum class Opc : uint8_t {
   LocalGet = 0x20,
   LocalSet = 0x21,
   LocalTee = 0x22,
+  GlobalGet = 0x23,
   I32Load = 0x28,
   I64Store = 0x37,
   I32Const = 0x41,
@@ -102,6 +106,7 @@ class Code {
   void local_get(uint32_t i) { op(Opc::LocalGet), u32(i); }
   void local_set(uint32_t i) { op(Opc::LocalSet), u32(i); }
   void local_tee(uint32_t i) { op(Opc::LocalTee), u32(i); }
+  void global_get(uint32_t i) { op(Opc::GlobalGet), u32(i); }
   void i32_const(int32_t v) { op(Opc::I32Const), s32(v); }
   void i64_const(int64_t v) { op(Opc::I64Const), s64(v); }
   void v128_const(const uint8_t bytes[16]);
@@ -142,6 +147,9 @@ class Module {
   // `locals`: runs of (count, type) after the parameters.
   uint32_t function(const FuncType& t, std::vector<std::pair<uint32_t, ValType>> locals, Code body);
   void export_function(const std::string& name, uint32_t index);
+  // A mutable v128 global of these bytes, its index. The engine cannot take a mutable global's
+  // value for a constant, so it keeps it in a register or a stack slot rather than rebuilding it.
+  uint32_t global_v128(const std::array<uint8_t, 16>& bytes);
   std::vector<uint8_t> encode() const;
 
  private:
@@ -160,6 +168,7 @@ class Module {
   uint32_t imported_functions_ = 0;
   std::vector<Function> functions_;
   std::vector<std::pair<std::string, uint32_t>> exports_;
+  std::vector<std::array<uint8_t, 16>> globals_;
 };
 
 }  // namespace fscript::wasm

@@ -7,6 +7,8 @@ set -u
 check run-frep 0 '^0$' -- "$F" run "$T/sphere.fs" 1 0 0
 check run-frep-nan-arg 0 '^nan$' -- "$F" run "$T/sphere.fs" nan 0 0
 check run-frep-inf-arg 0 '^-inf$' -- "$F" run "$T/sphere.fs" -inf 0 0
+check run-args-in-order 0 'x=-inf' -- "$F" run "$T/parts.fs" -inf 2 3
+check run-args-in-order-z 0 'z=inf' -- "$F" run "$T/parts.fs" 1 -1 -inf
 check run-entry-case 0 '^1$' -- "$F" run "$T/sphere.fs" --entry frep 0 0 0
 check run-assignments 0 'x=1' -- "$F" run "$T/parts.fs" 1 2 3
 check run-assignments-y 0 'y=4' -- "$F" run "$T/parts.fs" 1 2 3

@@ -70,7 +70,7 @@ int dispatch(CLI::App& app, Args& a) {
   bool session = app.got_subcommand("repl") || (app.get_subcommands().empty() && isatty(STDIN_FILENO));
   if (!tools::apply_limits("fscript", a.limits, !session)) return kExitInput;
   if (CLI::App* run = app.get_subcommand("run"); run->parsed()) {
-    for (const auto& extra : run->remaining()) a.values.push_back(extra);
+    a.values = run->remaining();
     return cmd_run(a.opts, a.file, a.entry, a.values);
   }
   if (app.got_subcommand("eval")) return cmd_eval(a.opts, a.file, a.entry, a.points_path);
@@ -109,8 +109,11 @@ int real_main(int argc, char** argv) {
 
   CLI::App* run =
       add_compiling(app, "run", "call the entry (or --entry NAME) with numeric ARGs and print the result", a);
-  run->add_option("ARG", a.values, "arguments (nan, inf, -inf accepted); missing ones are 0");
-  run->allow_extras();  // "-inf" and "-1e3" are arguments, not options
+  // The arguments are the subcommand's extras, in their order: a positional option would take
+  // "1" but leave "-inf" (not a number to the parser, so not a positional) to the extras, out of
+  // order.
+  run->allow_extras();
+  run->footer("ARG...: the entry's arguments (nan, inf, -inf accepted); missing ones are 0");
 
   CLI::App* eval = add_compiling(app, "eval", "evaluate rows of comma-separated arguments in batches", a);
   eval->add_option("--points,-p", a.points_path, "file of rows ('-' or absent: standard input)");

@@ -156,6 +156,7 @@ class Emitter {
     for (uint32_t k = 0; k < fn_.num_params; ++k) pointer(kIn, k, kFirstPointer + k);
     for (uint32_t k = 0; k < fn_.num_results; ++k) pointer(kOut, k, kFirstPointer + fn_.num_params + k);
     c.local_get(kN), c.i32_const(2), c.op(Opc::I32Shl), c.local_set(kEnd);
+    if (bound_ > 0) inputs_in_bound();
     c.block();  // exit
     c.loop();   // one group of 4 x copies_ points a turn
     c.local_get(kAt), c.local_get(kEnd), c.op(Opc::I32GeU), c.br_if(1);
@@ -168,7 +169,7 @@ class Emitter {
     c.end();
     c.i32_const(0);
     FuncType t{{ValType::I32, ValType::I32, ValType::I32, ValType::I32, ValType::I32}, {ValType::I32}};
-    uint32_t pointers = kFirstPointer - kAt + fn_.num_params + fn_.num_results + 1;  // and trig_ok_
+    uint32_t pointers = kFirstPointer - kAt + fn_.num_params + fn_.num_results + 2;  // trig_ok_, in_bound_
     uint32_t f = mod_.function(t,
                                {{pointers, ValType::I32},
                                 {next_v128_ - first_v128_, ValType::V128},
@@ -205,7 +206,7 @@ class Emitter {
     c.block();  // exact: the fast code's tests branch here
     fast_ = true;
     std::fill(made_early_.begin(), made_early_.end(), 0);
-    if (bound_ > 0) inputs_in_bound();
+    if (bound_ > 0) c.local_get(in_bound_), c.op(Opc::I32Eqz), c.br_if(0);
     if (!block(*rpo_[0], error)) return false;
     store_outputs();  // (before the test: the engine then computes them ahead of it, not after)
     if (checked_) {
@@ -225,33 +226,48 @@ class Emitter {
     return true;
   }
 
-  // The inputs loaded ahead of the block (made early) and tested against the bound the value
-  // ranges assume: |x| <= bound, or a row parameter's own range (ir::row_param_range).
+  // Whether every input of the batch is within the bound the value ranges assume (|x| <= bound,
+  // or a row parameter's own range, ir::row_param_range), into in_bound_: one pass over the
+  // inputs before the groups, a group's vectors a turn (a batch is whole groups), so the
+  // groups' code tests nothing of its inputs. |x| <= bound as integers: the bits shifted left by
+  // one (the sign gone) at most the bound's, NaN and the infinities above it.
   void inputs_in_bound() {
     Code& c = c_;
-    bool first = true;
+    uint32_t widest = temp_, ranged = mask_, value = ticks_;  // (free before the groups)
+    i32(0), c.local_set(widest), i32(-1), c.local_set(ranged);
+    std::vector<bool> seen(fn_.num_params, false);
     for (const Inst* in : fn_.entry()->insts) {
-      if (in->op != Op::Param) continue;
-      made_early_[in->id] = 1;
+      if (in->op != Op::Param || seen[static_cast<size_t>(in->aux)]) continue;
+      seen[static_cast<size_t>(in->aux)] = true;
       const ir::ParamRange* r = ir::row_param_range(fn_, bound_, static_cast<uint32_t>(in->aux));
-      for (uint32_t u = 0; u < copies_; ++u) {
-        copy(u);
-        std::string unused;
-        inst(*in, *fn_.entry(), unused);
+      const uint32_t pointer = kFirstPointer + static_cast<uint32_t>(in->aux);
+      c.i32_const(0), c.local_set(kAt);
+      c.block(), c.loop();
+      c.local_get(kAt), c.local_get(kEnd), c.op(Opc::I32GeU), c.br_if(1);
+      for (uint32_t k = 0; k < copies_; ++k) {
+        auto load = [&] { c.local_get(pointer), c.local_get(kAt), c.op(Opc::I32Add), c.v128_load_any(16 * k); };
         if (!r) {
-          push(in), i32(INT32_MAX), c.simd(Simd::V128And), f32(static_cast<float>(bound_));
-          c.simd(Simd::F32x4Le);
-        } else {
-          push(in), f32(r->lo), c.simd(Simd::F32x4Ge);
-          push(in), f32(r->hi), c.simd(Simd::F32x4Le), c.simd(Simd::V128And);
-          if (r->nan) push(in), push(in), c.simd(Simd::F32x4Ne), c.simd(Simd::V128Or);
+          c.local_get(widest), load(), c.i32_const(1), c.simd(Simd::I32x4Shl), c.simd(Simd::I32x4MaxU);
+          c.local_set(widest);
+          continue;
         }
-        if (!first) c.simd(Simd::V128And);
-        first = false;
+        load(), c.local_set(value);
+        c.local_get(value), f32(r->lo), c.simd(Simd::F32x4Ge);
+        c.local_get(value), f32(r->hi), c.simd(Simd::F32x4Le), c.simd(Simd::V128And);
+        if (r->nan) c.local_get(value), c.local_get(value), c.simd(Simd::F32x4Ne), c.simd(Simd::V128Or);
+        c.local_get(ranged), c.simd(Simd::V128And), c.local_set(ranged);
       }
-      copy(0);
+      c.local_get(kAt), c.i32_const(16 * static_cast<int32_t>(copies_)), c.op(Opc::I32Add), c.local_set(kAt);
+      c.br(0);
+      c.end(), c.end();
     }
-    if (!first) c.simd(Simd::I32x4AllTrue), c.op(Opc::I32Eqz), c.br_if(0);
+    const float bound = static_cast<float>(bound_);
+    uint32_t bound_bits;
+    std::memcpy(&bound_bits, &bound, 4);
+    c.local_get(widest), i32(static_cast<int32_t>(bound_bits << 1)), c.simd(Simd::I32x4LeU);
+    c.simd(Simd::I32x4AllTrue);
+    c.local_get(ranged), c.simd(Simd::I32x4AllTrue), c.op(Opc::I32And), c.local_set(in_bound_);
+    c.i32_const(0), c.local_set(kAt);
   }
 
   // What this emitter compiles (the rest runs on the VM until it does).
@@ -318,8 +334,9 @@ class Emitter {
 
   // v128 locals: the values made, outputs, globals, the mask, the loop counter, pending masks, temps.
   void layout() {
-    trig_ok_ = kFirstPointer + fn_.num_params + fn_.num_results;  // (the kernel's one i32 after its pointers)
-    first_v128_ = next_v128_ = callee_ ? fn_.num_params + 4 : trig_ok_ + 1;
+    trig_ok_ = kFirstPointer + fn_.num_params + fn_.num_results;  // (the kernel's i32s after its pointers)
+    in_bound_ = trig_ok_ + 1;
+    first_v128_ = next_v128_ = callee_ ? fn_.num_params + 4 : in_bound_ + 1;
     local_of_.assign(fn_.next_value, 0);
     for (const auto& b : fn_.blocks)
       for (const Inst* in : b->insts)
@@ -834,7 +851,7 @@ class Emitter {
   std::vector<const ir::Block*> rpo_;
   uint32_t first_v128_ = 0, next_v128_ = 0, value_ = 0, output_ = 0, global_ = 0, mask_ = 0, ticks_ = 0, temp_ = 0;
   uint32_t pending_ = 0, phi_temp_ = 0, status_ = 0, trig_ = 0, saved_ = 0;
-  uint32_t nan_sum_ = 0, trig_ok_ = 0;
+  uint32_t nan_sum_ = 0, trig_ok_ = 0, in_bound_ = 0;
   double bound_ = 0;  // speculating: the inputs' bound (0: none)
   std::vector<ir::Range> ranges_,
       no_ranges_;  // the value ranges under bound_; none  // per copy: the sum of min's and max's second operands (speculating)

@@ -28,6 +28,7 @@ enum class Simd : uint32_t {
   F32x4ExtractLane = 0x1f,
   I32x4Eq = 0x37,
   I32x4GtS = 0x3b,
+  I32x4LeU = 0x3e,
   F32x4Eq = 0x41,
   F32x4Ne = 0x42,
   F32x4Lt = 0x43,
@@ -51,6 +52,7 @@ enum class Simd : uint32_t {
   I32x4ShrU = 0xad,
   I32x4Add = 0xae,
   I32x4Sub = 0xb1,
+  I32x4MaxU = 0xb9,
   F32x4Abs = 0xe0,
   F32x4Neg = 0xe1,
   F32x4Sqrt = 0xe3,
@@ -87,9 +89,11 @@ enum class Opc : uint8_t {
   I32Const = 0x41,
   I64Const = 0x42,
   I32Eqz = 0x45,
+  I32LtU = 0x49,
   I32GeU = 0x4f,
   I64Eqz = 0x50,
   I32Add = 0x6a,
+  I32And = 0x71,
   I32Shl = 0x74,
 };
 

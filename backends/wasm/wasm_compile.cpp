@@ -32,7 +32,7 @@ bool Emitter::run_callee(std::string& error) {
   params.insert(params.end(), 3, ValType::I32);
   mod_.function({params, {ValType::V128, ValType::I64}},
                 {{next_v128_ - first_v128_, ValType::V128}, {1, ValType::I64}, {num_constants(), ValType::V128}},
-                with_constants());
+                with_constants(c_));
   return true;
 }
 
@@ -75,8 +75,7 @@ bool Emitter::scan(std::string& error) {
 
 bool Emitter::run_kernel(std::string& error) {
   Code& c = c_;
-  for (uint32_t k = 0; k < fn_.num_params; ++k) pointer(kIn, k, kFirstPointer + k);
-  for (uint32_t k = 0; k < fn_.num_results; ++k) pointer(kOut, k, kFirstPointer + fn_.num_params + k);
+  set_pointers();
   c.local_get(kN), c.i32_const(2), c.op(Opc::I32Shl), c.local_set(kEnd);
   if (bound_ > 0) inputs_in_bound();
   c.block();  // exit
@@ -92,14 +91,24 @@ bool Emitter::run_kernel(std::string& error) {
   c.i32_const(0);
   FuncType t{{ValType::I32, ValType::I32, ValType::I32, ValType::I32, ValType::I32}, {ValType::I32}};
   uint32_t pointers = kFirstPointer - kAt + fn_.num_params + fn_.num_results + 2;  // trig_ok_, in_bound_
-  uint32_t f = mod_.function(t,
-                             {{pointers, ValType::I32},
-                              {next_v128_ - first_v128_, ValType::V128},
-                              {1, ValType::I64},
-                              {num_constants(), ValType::V128}},
-                             with_constants());
-  mod_.export_function("kernel", f);
+  auto locals = [&](uint32_t i32s) {
+    return std::vector<std::pair<uint32_t, ValType>>{{i32s, ValType::I32},
+                                                     {next_v128_ - first_v128_, ValType::V128},
+                                                     {1, ValType::I64},
+                                                     {num_constants(), ValType::V128}};
+  };
+  mod_.export_function("kernel", mod_.function(t, locals(pointers), with_constants(c_)));
+  if (exact_index_) {  // (params: the kernel's and its group's offset, kAt)
+    FuncType e{std::vector<ValType>(kAt + 1, ValType::I32), {}};
+    uint32_t f = mod_.function(e, locals(pointers - 1), with_constants(exact_));
+    if (f != exact_index_) return error = "the wasm emitter numbered its exact function wrongly", false;
+  }
   return true;
+}
+
+void Emitter::set_pointers() {
+  for (uint32_t k = 0; k < fn_.num_params; ++k) pointer(kIn, k, kFirstPointer + k);
+  for (uint32_t k = 0; k < fn_.num_results; ++k) pointer(kOut, k, kFirstPointer + fn_.num_params + k);
 }
 
 void Emitter::store_outputs() {
@@ -140,11 +149,21 @@ bool Emitter::straight_block(std::string& error) {
   }
   c.br(1);
   c.end();
+  for (uint32_t k : {kIn, kOut, kN, kScratch, kArrays, kAt}) c.local_get(k);
+  c.call(exact_index_ = program_.next_index++);
+  c.end();
+  // The exact code is a function of its own: the kernel's loop stays half the size, which the
+  // engine optimises sooner, and the exact code, seldom run, stays in its baseline compiler.
+  Code kernel = std::move(c_);
+  c_ = Code();
+  set_pointers();
+  start_group();
   fast_ = false;
   std::fill(made_early_.begin(), made_early_.end(), 0);
   if (!block(*rpo_[0], error)) return false;
   store_outputs();
-  c.end();
+  exact_ = std::move(c_);
+  c_ = std::move(kernel);
   return true;
 }
 
@@ -295,11 +314,15 @@ void Emitter::vconst(const std::array<uint8_t, 16>& bytes) {
   c_.local_get(status_ + 1 + at->second);
 }
 
-// The constants' locals set, then the body.
-Code Emitter::with_constants() {
+Code Emitter::with_constants(const Code& body) {
   Code out;
-  for (const auto& [bytes, k] : constants_) out.global_get(mod_.global_v128(bytes)), out.local_set(status_ + 1 + k);
-  out.append(c_);
+  if (constant_globals_.size() != constants_.size()) {  // (once: the kernel and its exact function share them)
+    constant_globals_.assign(constants_.size(), 0);
+    for (const auto& [bytes, k] : constants_) constant_globals_[k] = mod_.global_v128(bytes);
+  }
+  for (uint32_t k = 0; k < constant_globals_.size(); ++k)
+    out.global_get(constant_globals_[k]), out.local_set(status_ + 1 + k);
+  out.append(body);
   return out;
 }
 
@@ -489,6 +512,7 @@ bool compile_module(const ir::Module& m, const backends::Budgets& budgets, Compi
   p.index_of.assign(pm.functions.size(), 0);
   for (size_t k = 0; k < jp.functions.size(); ++k)
     p.index_of[static_cast<size_t>(jp.functions[k])] = static_cast<uint32_t>(out.imports.size() + k);
+  p.next_index = static_cast<uint32_t>(out.imports.size() + jp.functions.size());
   // Slots: the global arrays, then each function's own (the SSE emitter's layout).
   out.array_names = pm.arrays;
   size_t most_saved = 0;

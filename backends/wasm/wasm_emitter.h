@@ -60,6 +60,7 @@ struct Program {
   int num_globals = 0;
   bool arrays = false;    // some function of the program has array operations
   uint32_t save_at = 0;   // scratch's room for a recursive function's saved array slots
+  uint32_t next_index = 0;  // the next function index after the program's own (a kernel's exact code)
 };
 
 const void* helper_of(Op op);
@@ -121,7 +122,8 @@ class Emitter {
   void i32(int32_t v) { splat(v); }
   void f64(double v) { splat(v); }
   uint32_t num_constants() const { return static_cast<uint32_t>(constants_.size()); }
-  Code with_constants();
+  Code with_constants(const Code& body);  // the constants' locals set, then the body
+  void set_pointers();
 
   // Copy u of the straight code's values: the locals of values, outputs, temp and trig's move to
   // its own (copy 0's are the layout's).
@@ -252,6 +254,9 @@ class Emitter {
   std::map<const Inst*, std::vector<size_t>> trig_uses_;  // this block's sin and cos by argument
   std::vector<char> made_early_;  // values made ahead (a trig pair's second)
   std::map<std::array<uint8_t, 16>, uint32_t> constants_;  // vector constant -> its number
+  std::vector<uint32_t> constant_globals_;                  // its number -> its global
+  Code exact_;                // speculating straight code's exact group, a function of its own
+  uint32_t exact_index_ = 0;  // that function's index (0: none)
 };
 
 }  // namespace fscript::wasm::detail

@@ -517,4 +517,12 @@ std::vector<ShapeFinding> diagnose_scene(const vrml::Scene& scene, const SceneMo
   return all;
 }
 
+frontend::Diagnostic runtime_diagnostic(const vrml::Scene& scene, const vrml::Node& n,
+                                        const backends::RuntimeError& err, frontend::Severity sev,
+                                        const std::string& prefix, const std::string& path) {
+  const frontend::SourceFile& file = vrml::file_of(scene, n);
+  frontend::LineCol at = err.line ? frontend::LineCol{err.line, std::max(err.col, 1u)} : file.position(n.span.begin);
+  return frontend::located(sev, path.empty() ? file.path() : path, at, file.line_at(at.line), prefix + err.message);
+}
+
 }  // namespace fscript::scene

@@ -36,6 +36,12 @@ struct ShapeFinding {
 // meshed) ends the survey with what was found before it.
 std::vector<ShapeFinding> diagnose_shape(const vrml::Scene& scene, const Shape& s, bool top);
 
+// A runtime error of the shape or transform at `n`, at the script's line and column where the
+// error knows them, else at the node; in `path` where given (the name the user gave the scene).
+frontend::Diagnostic runtime_diagnostic(const vrml::Scene& scene, const vrml::Node& n,
+                                        const backends::RuntimeError& err, frontend::Severity sev,
+                                        const std::string& prefix = "", const std::string& path = "");
+
 // Every implicit shape of the model (cut-by-box and full only for shapes outside FTransforms,
 // whose children are cut by their boxes on purpose).
 std::vector<ShapeFinding> diagnose_scene(const vrml::Scene& scene, const SceneModel& model);

@@ -125,6 +125,9 @@ check "profile: a parametric scene has nothing to profile" 1 "no implicit shape 
   "$F" profile "$SRC/examples/paper/figure1-morphing.wrl"
 check "profile: a script error at its place" 1 "bad.fs:2:14: error" -- bash -c \
   "printf 'function FRep(x, y, z, t) {\n  return 1 - qq;\n}\n' > '$T/bad.fs'; '$F' profile '$T/bad.fs'"
+check "profile: a runtime error at its line, under the budget flags" 1 \
+  "spin.fs:3:3: error: loop iteration budget exceeded: more than 100 iterations" -- bash -c \
+  "printf 'function FRep(x, y, z, t) {\n  var k = 0;\n  while (k < 1e9) { k = k + 1; }\n  return 1 - x*x;\n}\n' > '$T/spin.fs'; '$F' --max-loop-iterations 100 profile '$T/spin.fs'"
 check "profile: a missing file" 1 "error" -- "$F" profile "$T/none.fs"
 check "profile: a picture that cannot be written" 1 "error" -- "$F" profile "$T/u.wrl" --picture "$T/no/dir/p.png"
 finish profile

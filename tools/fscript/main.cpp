@@ -76,7 +76,7 @@ int dispatch(CLI::App& app, Args& a) {
   if (app.got_subcommand("eval")) return cmd_eval(a.opts, a.file, a.entry, a.points_path);
   if (app.got_subcommand("check")) return cmd_check(a.files);
   if (app.got_subcommand("probe")) return cmd_probe(a.file, a.entry, a.at, a.box);
-  if (app.got_subcommand("profile")) return cmd_profile(a.profile);
+  if (app.got_subcommand("profile")) return a.profile.budgets = a.opts.budgets, cmd_profile(a.profile);
   if (app.got_subcommand("emit-ir")) return cmd_emit_ir(a.file, a.entry, a.opt, a.passes, a.llvm, a.gradient);
   if (app.got_subcommand("emit-asm")) return cmd_emit_asm(a.opts, a.file, a.entry);
   if (app.got_subcommand("fmt")) return cmd_fmt(a.file, a.in_place, a.check_only);

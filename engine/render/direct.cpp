@@ -37,6 +37,22 @@ struct Found {
   bool has_at = false, has_before = false;
 };
 
+// A sample's ray: its points are computed as RayGrid::point does, in double and then rounded.
+struct Ray {
+  double o[3], v[3];
+  // The point at d, rounded to float and clamped to the box.
+  void at(double d, const mesh::Box3& box, float p[3]) const {
+    for (int a = 0; a < 3; ++a) p[a] = std::clamp(static_cast<float>(o[a] + d * v[a]), box.lo[a], box.hi[a]);
+  }
+  bool in_box(const mesh::Box3& box, double d) const {
+    for (int a = 0; a < 3; ++a) {
+      float p = static_cast<float>(o[a] + d * v[a]);
+      if (!(p >= box.lo[a] && p <= box.hi[a])) return false;
+    }
+    return true;
+  }
+};
+
 // Points gathered for one batch evaluation.
 struct Batch {
   std::vector<float> x, y, z, f;
@@ -45,8 +61,10 @@ struct Batch {
   void reserve(size_t more) {
     if (n + more > x.size()) x.resize(2 * (n + more) + 256), y.resize(x.size()), z.resize(x.size());
   }
-  void add(const float p[3]) {
-    reserve(1);
+  // The ray's point at d into the batch (room reserved before).
+  void put(const Ray& r, double d, const mesh::Box3& box) {
+    float p[3];
+    r.at(d, box, p);
     x[n] = p[0], y[n] = p[1], z[n] = p[2], ++n;
   }
   size_t size() const { return n; }
@@ -57,11 +75,11 @@ struct Batch {
   }
 };
 
-// A probed point's ray, step and tile.
+// The points one ray gave a probe's batch, [first, end), in step order.
 struct Probe {
   uint32_t col, row;
-  int32_t step;
   uint32_t tile;
+  uint32_t first, end;
 };
 
 bool inside(float v) { return v >= 0.0f; }  // NaN is outside
@@ -185,18 +203,17 @@ class Tracer {
   }
 
   bool region_box(const Corners& c, uint32_t k0, uint32_t k1, mesh::Box3& b, bool& within) const {
-    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    const double ds[2] = {depths_[k0 ? k0 - 1 : 0], depths_[k1 - 1]};
-    for (int k = 0; k < 4; ++k)
-      for (double d : ds) {
-        double p[3];
-        RayGrid::at(&c[6 * k], &c[6 * k + 3], d, p);
-        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-      }
+    const double d0 = depths_[k0 ? k0 - 1 : 0], d1 = depths_[k1 - 1];
     within = true;
-    for (int a = 0; a < 3; ++a) {
-      double m = 1e-9 * (std::fabs(lo[a]) + std::fabs(hi[a]) + (hi[a] - lo[a]));
-      float l = below(static_cast<float>(lo[a] - m)), h = above(static_cast<float>(hi[a] + m));
+    for (int a = 0; a < 3; ++a) {  // axis by axis: the eight corners' coordinates stay in registers
+      double lo = HUGE_VAL, hi = -HUGE_VAL;
+      for (int k = 0; k < 4; ++k) {
+        const double o = c[6 * k + a], v = c[6 * k + 3 + a];
+        const double p0 = o + d0 * v, p1 = o + d1 * v;  // RayGrid::at
+        lo = std::min(lo, std::min(p0, p1)), hi = std::max(hi, std::max(p0, p1));
+      }
+      double m = 1e-9 * (std::fabs(lo) + std::fabs(hi) + (hi - lo));
+      float l = below(static_cast<float>(lo - m)), h = above(static_cast<float>(hi + m));
       within = within && l >= g_.box.lo[a] && h <= g_.box.hi[a];
       b.lo[a] = std::max(l, g_.box.lo[a]), b.hi[a] = std::min(h, g_.box.hi[a]);
       if (b.lo[a] > b.hi[a]) return false;
@@ -267,7 +284,7 @@ class Tracer {
           if (leaf) {
             for (uint32_t row = t.r0; row < t.r1; ++row)
               for (uint32_t col = t.c0; col < t.c1; ++col)
-                if (step_at(col, row) < 0) probe(col, row, c0, c1, static_cast<uint32_t>(i));
+                if (step_at(col, row) < 0) probe(col, row, c0, c1, static_cast<uint32_t>(i), s.within[j]);
           } else {
             std::shared_ptr<const mesh::Field> local = std::move(s.locals[j]);
             size_t met = 0;
@@ -290,36 +307,40 @@ class Tracer {
     return refine(field, found);
   }
 
-  // The in-box points of the ray of (col, row) at steps [k0, k1), to the batch.
-  void probe(uint32_t col, uint32_t row, uint32_t k0, uint32_t k1, uint32_t tile = 0) {
-    double o[3], v[3];
-    g_.ray(col, row, o, v);
+  // The in-box points of the ray of (col, row) at steps [k0, k1), to the batch (`within`: the
+  // steps are known to lie in the box).
+  void probe(uint32_t col, uint32_t row, uint32_t k0, uint32_t k1, uint32_t tile = 0, bool within = false) {
+    Ray r;
+    g_.ray(col, row, r.o, r.v);
     batch_.reserve(k1 - k0);
+    if (steps_.size() < batch_.x.size()) steps_.resize(batch_.x.size());
+    Probe pr{col, row, tile, static_cast<uint32_t>(batch_.n), 0};
     for (uint32_t k = k0; k < k1; ++k) {
       const double d = depths_[k];
       float p[3];
-      for (int a = 0; a < 3; ++a) p[a] = static_cast<float>(o[a] + d * v[a]);  // RayGrid::at, rounded
-      if (!g_.in_box(p)) continue;
-      batch_.add(p);
-      owner_.push_back({col, row, static_cast<int32_t>(k), tile});
+      for (int a = 0; a < 3; ++a) p[a] = static_cast<float>(r.o[a] + d * r.v[a]);  // RayGrid::at, rounded
+      if (!within && !g_.in_box(p)) continue;
+      const size_t i = batch_.n++;
+      batch_.x[i] = p[0], batch_.y[i] = p[1], batch_.z[i] = p[2], steps_[i] = static_cast<int32_t>(k);
     }
+    pr.end = static_cast<uint32_t>(batch_.n);
+    if (pr.end > pr.first) owner_.push_back(pr);
   }
 
-  // The batch evaluated: each ray's first step inside (the points of a ray are in step order);
-  // found_tile_ the probe's tile of each hit.
+  // The batch evaluated: each ray's first step inside; found_tile_ the probe's tile of each hit.
   bool finish_probe(const mesh::Field& field, std::vector<Found>& found) {
     if (!batch_.eval(field, err_)) return false;
     stats_.points += batch_.size();
     found_tile_.clear();
-    for (size_t i = 0; i < owner_.size(); ++i) {
-      const Probe& o = owner_[i];
-      int32_t& s = step_at(o.col, o.row);
-      if (s >= 0 || !inside(batch_.f[i])) continue;
-      s = o.step;
-      Found h{o.col, o.row, o.step};
-      h.at = batch_.f[i], h.has_at = true;
-      if (i > 0 && owner_[i - 1].col == o.col && owner_[i - 1].row == o.row && owner_[i - 1].step == o.step - 1)
-        h.before = batch_.f[i - 1], h.has_before = true;
+    const float* f = batch_.f.data();
+    for (const Probe& o : owner_) {
+      uint32_t i = o.first;
+      while (i < o.end && !inside(f[i])) ++i;
+      if (i == o.end) continue;
+      step_at(o.col, o.row) = steps_[i];
+      Found h{o.col, o.row, steps_[i]};
+      h.at = f[i], h.has_at = true;
+      if (i > o.first && steps_[i - 1] == steps_[i] - 1) h.before = f[i - 1], h.has_before = true;
       found.push_back(h), found_tile_.push_back(o.tile);
     }
     return true;
@@ -353,7 +374,8 @@ class Tracer {
   std::vector<double> depths_;  // depth(k), once
   float h_ = 0;                 // the normals' differences, half the span
   Batch batch_;
-  std::vector<Probe> owner_;          // per batch point of a probe
+  std::vector<Probe> owner_;          // per ray of a probe's batch
+  std::vector<int32_t> steps_;        // per point of a probe's batch: its step
   // refine()'s buffers, reused: the threads share one malloc arena, and allocating them afresh
   // for every region put them behind its lock.
   std::vector<Bracket> brackets_;
@@ -361,6 +383,8 @@ class Tracer {
   std::vector<float> ends_;
   std::vector<double> mid_;
   std::vector<uint32_t> found_tile_;  // per hit of the last probe: its tile
+  std::vector<Ray> rays_;             // per hit being refined
+  std::vector<std::array<float, 3>> points_;  // per hit refined: its point
 };
 
 bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
@@ -368,34 +392,29 @@ bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
   const size_t n = found.size();
   std::vector<Bracket>& br = brackets_;
   br.assign(n, Bracket{});
+  rays_.resize(n);
   Batch& b = batch_;
   b.clear();
-  float p[3];
+  b.reserve(2 * n);
   std::vector<size_t>& want = want_;  // per batch point: which end (2 i: lo, 2 i + 1: hi) it gives
   want.clear();
   for (size_t i = 0; i < n; ++i) {
     const Found& h = found[i];
     Bracket& k = br[i];
-    k.hi = g_.depth(static_cast<uint32_t>(h.step));
-    k.lo = h.step > 0 ? g_.depth(static_cast<uint32_t>(h.step - 1)) : k.hi;
+    Ray& r = rays_[i];
+    g_.ray(h.col, h.row, r.o, r.v);
+    k.hi = depths_[static_cast<size_t>(h.step)];
+    k.lo = h.step > 0 ? depths_[static_cast<size_t>(h.step - 1)] : k.hi;
     double enter;
     int face;
-    g_.point(h.col, h.row, k.lo, p);
-    if (h.step == 0 || !g_.in_box(p)) {  // came into the box since the step before
+    if (h.step == 0 || !r.in_box(g_.box, k.lo)) {  // came into the box since the step before
       if (g_.entry(h.col, h.row, enter, face) && enter > k.lo && enter <= k.hi) k.lo = enter, k.face = face;
       else if (h.step == 0) k.lo = k.hi, k.face = g_.entry(h.col, h.row, enter, face) ? face : 4;
     }
     // The ends' values: from the probe where it has them, else evaluated now.
-    if (!h.has_before || k.lo != g_.depth(static_cast<uint32_t>(h.step - 1))) {
-      g_.point(h.col, h.row, k.lo, p);
-      g_.clamp_to_box(p);
-      b.add(p), want.push_back(2 * i);
-    }
-    if (!h.has_at) {
-      g_.point(h.col, h.row, k.hi, p);
-      g_.clamp_to_box(p);
-      b.add(p), want.push_back(2 * i + 1);
-    }
+    if (!h.has_before || k.lo != depths_[static_cast<size_t>(h.step - 1)])
+      b.put(r, k.lo, g_.box), want.push_back(2 * i);
+    if (!h.has_at) b.put(r, k.hi, g_.box), want.push_back(2 * i + 1);
   }
   if (!b.eval(field, err_)) return false;
   stats_.refines += b.size();
@@ -403,31 +422,33 @@ bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
   ends.resize(2 * n);
   for (size_t i = 0; i < n; ++i) ends[2 * i] = found[i].before, ends[2 * i + 1] = found[i].at;
   for (size_t j = 0; j < want.size(); ++j) ends[want[j]] = b.f[j];
+  const double tol = std::max(std::fabs(g_.near), std::fabs(g_.far)) * 0x1p-22;
+  std::vector<size_t>& active = active_;  // the brackets still closing in
+  active.clear();
   for (size_t i = 0; i < n; ++i) {
     Bracket& k = br[i];
     float flo = ends[2 * i], fhi = ends[2 * i + 1];
     if (k.face >= 0 && inside(flo)) k.hi = k.lo, k.done = true;  // the box's face closes the solid here
     else k.face = -1;
     k.wlo = flo, k.whi = fhi;
+    if (!k.done) active.push_back(i);
   }
-  const double tol = std::max(std::fabs(g_.near), std::fabs(g_.far)) * 0x1p-22;
-  std::vector<size_t>& active = active_;
   std::vector<double>& mid = mid_;
-  for (int it = 0; it < kRefineSteps; ++it) {
-    active.clear(), mid.clear(), b.clear();
-    for (size_t i = 0; i < n; ++i) {
+  for (int it = 0; it < kRefineSteps && !active.empty(); ++it) {
+    mid.clear(), b.clear();
+    size_t kept = 0;
+    for (size_t i : active) {
       Bracket& k = br[i];
-      if (k.done || k.hi - k.lo <= tol) continue;
+      if (k.hi - k.lo <= tol) continue;  // a bracket left once stays as it is
       double m = 0.5 * (k.lo + k.hi);
       if (std::isfinite(k.wlo) && std::isfinite(k.whi) && k.wlo < 0 && k.whi >= 0) {
         double f = k.lo + (k.hi - k.lo) * (k.wlo / (k.wlo - k.whi));
         if (f > k.lo && f < k.hi) m = f;
       }
       if (!(m > k.lo && m < k.hi)) continue;  // no double between: as close as it gets
-      g_.point(found[i].col, found[i].row, m, p);
-      g_.clamp_to_box(p);
-      b.add(p), active.push_back(i), mid.push_back(m);
+      b.put(rays_[i], m, g_.box), active[kept++] = i, mid.push_back(m);
     }
+    active.resize(kept);
     if (active.empty()) break;
     if (!b.eval(field, err_)) return false;
     stats_.refines += b.size();
@@ -446,13 +467,14 @@ bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
   }
   std::vector<size_t>& smooth = smooth_;
   smooth.clear();
+  points_.resize(n);
   for (size_t i = 0; i < n; ++i) {
     const Found& h = found[i];
     size_t at = size_t(h.row) * g_.w + h.col;
-    g_.point(h.col, h.row, br[i].hi, p);
-    g_.clamp_to_box(p);
+    std::array<float, 3>& p = points_[i];
+    rays_[i].at(br[i].hi, g_.box, p.data());
     out_.depth[at] = static_cast<float>(br[i].hi);
-    out_.point[at] = {p[0], p[1], p[2]};
+    if (!out_.point.empty()) out_.point[at] = p;
     if (br[i].face >= 0) {
       std::array<float, 3> nrm{0, 0, 0};
       nrm[static_cast<size_t>(br[i].face / 2)] = br[i].face % 2 ? 1.0f : -1.0f;
@@ -476,13 +498,14 @@ bool Tracer::normals(const mesh::Field& field, const std::vector<size_t>& which,
   };
   Batch& d = batch_;
   d.clear();
+  d.reserve(6 * which.size());
   for (size_t j = 0; j < which.size(); ++j) {
-    const auto& q = out_.point[at(j)];
+    const auto& q = points_[which[j]];
     for (int a = 0; a < 3; ++a)
       for (float s : {-h_, h_}) {
         float p[3] = {q[0], q[1], q[2]};
         p[a] += s;
-        d.add(p);
+        d.x[d.n] = p[0], d.y[d.n] = p[1], d.z[d.n] = p[2], ++d.n;
       }
   }
   if (!d.eval(field, err_)) return false;
@@ -493,10 +516,8 @@ bool Tracer::normals(const mesh::Field& field, const std::vector<size_t>& which,
       ++stats_.gradients;
       continue;
     }
-    const Found& hh = found[which[j]];
-    double o[3], v[3];
-    g_.ray(hh.col, hh.row, o, v);
-    set(j, v[0], v[1], v[2]);  // no slope there: facing the ray
+    const Ray& r = rays_[which[j]];
+    set(j, r.v[0], r.v[1], r.v[2]);  // no slope there: facing the ray
   }
   return true;
 }
@@ -517,7 +538,8 @@ bool trace(const mesh::Field& f, const RayGrid& g, const DirectOptions& o, Hits&
            backends::RuntimeError& err) {
   const size_t n = size_t(g.w) * g.h;
   out.depth.assign(n, std::numeric_limits<float>::infinity());
-  out.point.assign(n, {0, 0, 0});
+  if (o.points) out.point.assign(n, {0, 0, 0});
+  else out.point.clear(), out.point.shrink_to_fit();
   out.normal.assign(n, {0, 0, 0});
   // A sample left out is marked met (beyond every step) while tracing, so no region waits for it.
   constexpr int32_t kLeftOut = INT32_MAX;

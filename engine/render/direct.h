@@ -77,7 +77,7 @@ RayGrid parallel(const std::array<double, 6>& box, const std::array<double, 3>& 
 // What a picture's rays met, per sample (row-major from the top row).
 struct Hits {
   std::vector<float> depth;                    // the ray's d at its first surface point; +inf: none
-  std::vector<std::array<float, 3>> point;     // that point, in the field's coordinates
+  std::vector<std::array<float, 3>> point;     // that point, in the field's coordinates (empty unless asked for)
   std::vector<std::array<float, 3>> normal;    // outward and unit, in the field's coordinates
   std::vector<int32_t> step;                   // the first step found inside; -1: none
 };
@@ -101,6 +101,7 @@ struct DirectOptions {
   bool prune = true;
   support::ProgressJob* progress = nullptr;  // told as top-level tiles are done
   const std::vector<char>* wanted = nullptr;  // when given, only the samples marked here are traced
+  bool points = true;  // fill Hits::point (12 bytes a sample: a picture that only shades goes without)
 };
 
 // Where in `box` a shape is, by interval subdivision down to cells of 1/64 of the box a side: the

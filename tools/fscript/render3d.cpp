@@ -122,6 +122,7 @@ int cmd_render3d(const Options& o, const Render3dArgs& a) {
   render::DirectOptions ro;
   ro.threads = std::max(1u, a.threads);
   ro.prune = a.prune;
+  ro.points = false;
   render::Hits hits;
   render::DirectStats st;
   backends::RuntimeError err;

@@ -1,4 +1,4 @@
-// The direct tape loop, compiled once per ISA (FS_ISA): each step over all kPointLanes lanes, the
+// The direct tape loop, compiled once per ISA (FS_ISA): each step over the batch's lanes, the
 // lane ops through the same math:: functions and the batch ops through the same batch twins as the
 // VM's executor, so every bit agrees with it.
 #include "backends/vm/vm_points.h"
@@ -14,7 +14,8 @@ constexpr size_t K = kPointLanes;
 using ir::Op;
 }  // namespace
 
-void run_tape_points(const ir::IntervalTape::Step* steps, size_t count, float* values) {
+void run_tape_points(const ir::IntervalTape::Step* steps, size_t count, float* values, size_t lanes) {
+  const size_t L = lanes & ~size_t{15};  // whole vectors (the caller rounds up)
   for (size_t k = 0; k < count; ++k) {
     const ir::IntervalTape::Step& s = steps[k];
     float* __restrict d = values + size_t(s.dst) * K;
@@ -24,27 +25,27 @@ void run_tape_points(const ir::IntervalTape::Step* steps, size_t count, float* v
     switch (s.op) {
 #define FS_PT_Lane1(N, FN)                             \
   case Op::N:                                          \
-    for (size_t i = 0; i < K; ++i) d[i] = M::FN(a[i]); \
+    for (size_t i = 0; i < L; ++i) d[i] = M::FN(a[i]); \
     break;
 #define FS_PT_Lane2(N, FN)                                   \
   case Op::N:                                                \
-    for (size_t i = 0; i < K; ++i) d[i] = M::FN(a[i], b[i]); \
+    for (size_t i = 0; i < L; ++i) d[i] = M::FN(a[i], b[i]); \
     break;
 #define FS_PT_Lane3(N, FN)                                         \
   case Op::N:                                                      \
-    for (size_t i = 0; i < K; ++i) d[i] = M::FN(a[i], b[i], c[i]); \
+    for (size_t i = 0; i < L; ++i) d[i] = M::FN(a[i], b[i], c[i]); \
     break;
 #define FS_PT_Batch1(N, FN) \
-  case Op::N: M::FS_ISA::FN##_batch(a, d, K); break;
+  case Op::N: M::FS_ISA::FN##_batch(a, d, L); break;
 #define FS_PT_Batch2(N, FN) \
-  case Op::N: M::FS_ISA::FN##_batch(a, b, d, K); break;
+  case Op::N: M::FS_ISA::FN##_batch(a, b, d, L); break;
 #define FS_PT_Batch3(N, FN) \
-  case Op::N: M::FS_ISA::FN##_batch(a, b, c, d, K); break;
+  case Op::N: M::FS_ISA::FN##_batch(a, b, c, d, L); break;
 #define FS_PT_Trig1 FS_PT_Batch1
 #define FS_MATH(N, FN, A, HOW) FS_PT_##HOW##A(N, FN)
 #include "ir/math_ops.def"
       case Op::Const:
-        for (size_t i = 0; i < K; ++i) d[i] = s.imm;
+        for (size_t i = 0; i < L; ++i) d[i] = s.imm;
         break;
       case Op::Param:
         break;  // placed by eval_tape_points

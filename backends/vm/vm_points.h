@@ -18,7 +18,9 @@ void eval_tape_points(const ir::IntervalTape& t, const float* const* inputs, siz
 void eval_tape_points(const ir::IntervalTape& t, const float* const* inputs, size_t num_inputs, size_t n,
                       float* const* out, size_t count);
 
-// The per-ISA loop: `values` holds kPointLanes floats per value id, parameters already in place.
-FS_FOR_EACH_ISA_DECLARE(void run_tape_points(const ir::IntervalTape::Step* steps, size_t count, float* values))
+// The per-ISA loop: `values` holds kPointLanes floats per value id, parameters already in place;
+// the first `lanes` of each are computed (a multiple of 16, at most kPointLanes).
+FS_FOR_EACH_ISA_DECLARE(void run_tape_points(const ir::IntervalTape::Step* steps, size_t count, float* values,
+                                             size_t lanes))
 
 }  // namespace fscript::vm

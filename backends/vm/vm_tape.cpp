@@ -96,16 +96,19 @@ void eval_tape_points(const ir::IntervalTape& t, const float* const* inputs, siz
     capacity = need;
   }
   float* v = values.get();
+  // Only the lanes the batch fills, in whole vectors: a region's batch is often a few tiles of 16.
+  const size_t lanes = std::min(kPointLanes, std::max<size_t>(16, (n + 15) & ~size_t{15}));
   for (const ir::IntervalTape::Step& s : t.steps()) {
     if (s.op != ir::Op::Param) continue;
     float* d = v + size_t(s.dst) * kPointLanes;
-    std::memset(d, 0, kPointLanes * sizeof(float));
-    if (s.a < num_inputs && inputs[s.a]) std::memcpy(d, inputs[s.a], n * sizeof(float));
+    size_t given = s.a < num_inputs && inputs[s.a] ? n : 0;
+    if (given) std::memcpy(d, inputs[s.a], given * sizeof(float));
+    std::memset(d + given, 0, (lanes - given) * sizeof(float));
   }
   switch (math::active_isa()) {
-    case math::Isa::Base: isa_base::run_tape_points(t.steps().data(), t.steps().size(), v); break;
-    case math::Isa::Avx2: isa_avx2::run_tape_points(t.steps().data(), t.steps().size(), v); break;
-    case math::Isa::Avx512: isa_avx512::run_tape_points(t.steps().data(), t.steps().size(), v); break;
+    case math::Isa::Base: isa_base::run_tape_points(t.steps().data(), t.steps().size(), v, lanes); break;
+    case math::Isa::Avx2: isa_avx2::run_tape_points(t.steps().data(), t.steps().size(), v, lanes); break;
+    case math::Isa::Avx512: isa_avx512::run_tape_points(t.steps().data(), t.steps().size(), v, lanes); break;
   }
   for (size_t k = 0; k < count; ++k) std::memcpy(out[k], v + size_t(t.outputs()[k]) * kPointLanes, n * sizeof(float));
 }

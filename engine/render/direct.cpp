@@ -181,6 +181,12 @@ class Tracer {
   static bool empty(const math::Interval& v) { return v.empty() || v.hi < 0; }
   static bool full(const math::Interval& v, bool within) { return !v.nan && v.lo >= 0 && within; }
 
+  uint32_t unhit_count(Rect r) {
+    uint32_t n = 0;
+    for (uint32_t row = r.r0; row < r.r1; ++row)
+      for (uint32_t col = r.c0; col < r.c1; ++col) n += step_at(col, row) < 0;
+    return n;
+  }
   bool unhit(Rect r) {
     for (uint32_t row = r.r0; row < r.r1; ++row)
       for (uint32_t col = r.c0; col < r.c1; ++col)
@@ -241,7 +247,7 @@ class Tracer {
     for (const Rect& t : s.tiles) s.corners.push_back(corners(t));
     s.open.clear();
     size_t open = 0;
-    for (const Rect& t : s.tiles) s.open.push_back(unhit(t)), open += static_cast<size_t>(s.open.back());
+    for (const Rect& t : s.tiles) s.open.push_back(unhit_count(t)), open += s.open.back() > 0;
     std::vector<Found>& found = s.found;
     found.clear();
     DirectLevel& st = stats_.levels[static_cast<size_t>(level)];
@@ -290,7 +296,7 @@ class Tracer {
             size_t met = 0;
             if (!children(local ? *local : field, t, c0, c1, level + 1, met)) return false;
             hits += met;
-            if (met && !unhit(t)) s.open[i] = 0, --open;
+            if (met && (s.open[i] = unhit_count(t)) == 0) --open;
           }
         }
       }
@@ -299,7 +305,7 @@ class Tracer {
         if (!finish_probe(field, found)) return false;
         for (size_t f = before; f < found.size(); ++f) {
           uint32_t i = found_tile_[f - before];
-          if (s.open[i] && !unhit(s.tiles[i])) s.open[i] = 0, --open;
+          if (--s.open[i] == 0) --open;
         }
       }
     }
@@ -364,7 +370,8 @@ class Tracer {
     std::vector<Rect> tiles;
     std::vector<Corners> corners;  // per tile
     std::vector<Found> found;      // the hits decided at this level
-    std::vector<char> open, within;  // per tile: rays still to meet; per live box: inside the shape's box
+    std::vector<uint32_t> open;  // per tile: its rays still to meet
+    std::vector<char> within;    // per live box: inside the shape's box
     std::vector<mesh::Box3> boxes;
     std::vector<size_t> live;  // the tiles bounded in this layer
     std::vector<math::Interval> iv;

@@ -8,9 +8,11 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 
 #include "engine/render/tiles.h"
+#include "ir/interval_eval.h"
 #include "runtime/support/parallel.h"
 
 namespace fscript::render {
@@ -92,11 +94,38 @@ struct Bracket {
   int face = -1;      // the box face it met, or -1
 };
 
+// A tile's last tape constant along its rays (flat() below), and which of its rays it evaluated.
+struct Memo {
+  std::vector<ir::IntervalTape::Step> steps;
+  std::vector<uint32_t> outputs;
+  std::vector<char> evaluated;
+  int sign = 0;
+};
+
+// Whether `t` is the tape kept in (steps, outputs): step by step, the operands each step reads.
+bool same_tape(const std::vector<ir::IntervalTape::Step>& steps, const std::vector<uint32_t>& outputs,
+               const ir::IntervalTape& t) {
+  if (steps.size() != t.steps().size() || outputs.size() != t.outputs().size() ||
+      !std::equal(outputs.begin(), outputs.end(), t.outputs().begin()))
+    return false;
+  for (size_t i = 0; i < steps.size(); ++i) {
+    const ir::IntervalTape::Step &a = steps[i], &b = t.steps()[i];
+    if (a.op != b.op || a.square != b.square || a.arity != b.arity || a.dst != b.dst) return false;
+    if (a.op == ir::Op::Param && a.a != b.a) return false;
+    if (a.op == ir::Op::Const && std::bit_cast<uint32_t>(a.imm) != std::bit_cast<uint32_t>(b.imm)) return false;
+    if (a.op == ir::Op::Param || a.op == ir::Op::Const) continue;
+    if ((a.arity > 0 && a.a != b.a) || (a.arity > 1 && a.b != b.b) || (a.arity > 2 && a.c != b.c)) return false;
+    if (std::bit_cast<uint32_t>(a.imm) != std::bit_cast<uint32_t>(b.imm)) return false;  // ops with an immediate
+  }
+  return true;
+}
+
 class Tracer {
  public:
   Tracer(const mesh::Field& root, const RayGrid& g, Hits& out) : root_(root), g_(g), out_(out) {
     for (int l = 0; l < kLevels; ++l) stats_.levels.push_back({kTile[l], kChunk[l], 0, 0, 0});
     for (uint32_t k = 0; k < g.steps; ++k) depths_.push_back(g.depth(k));
+    for (int a = 0; a < 3; ++a) moves_[a] = g.dir[a] != 0 || g.dir_col[a] != 0 || g.dir_row[a] != 0;
     // The normals' differences: a tenth of the longest step apart, and never under a few ulps of
     // the box's coordinates.
     double longest = 0, o[3], v[3], scale = 0;
@@ -140,6 +169,7 @@ class Tracer {
 
   // A unit of work: a tile of the second level under a top tile, its depth ranges front to back.
   bool unit(Rect u, const Top& t) {
+    memo_.clear();
     std::vector<Found> found;
     size_t hits = 0;
     for (uint32_t k = 0; k < t.bound.size() && unhit(u); ++k) {
@@ -149,7 +179,7 @@ class Tracer {
         for (uint32_t row = u.r0; row < u.r1; ++row)
           for (uint32_t col = u.c0; col < u.c1; ++col)
             if (step_at(col, row) < 0) step_at(col, row) = int32_t(c0), found.push_back({col, row, int32_t(c0)});
-      } else if (!children(t.local[k] ? *t.local[k] : root_, u, c0, c1, 1, hits)) {
+      } else if (!descend(t.local[k] ? *t.local[k] : root_, u, c0, c1, 1, hits)) {
         return false;
       }
     }
@@ -237,6 +267,76 @@ class Tracer {
   }
   static float above(float f) { return -below(-f); }
 
+  // An open region (r, [k0, k1)) on `field`, a tape that holds over it: split into the regions of
+  // `level`, or, where the tape reads no coordinate that changes along the rays, probed once a ray.
+  bool descend(const mesh::Field& field, Rect r, uint32_t k0, uint32_t k1, int level, size_t& hits) {
+    return along_rays_constant(field) ? flat(field, r, k0, k1, hits) : children(field, r, k0, k1, level, hits);
+  }
+
+  // Whether `field`'s tape leaves out every coordinate the rays move along (a shape extruded along
+  // the view, seen down its axis): then its value is one along each ray inside the region.
+  bool along_rays_constant(const mesh::Field& field) const {
+    const ir::IntervalTape* t = field.value_tape();
+    if (!t) return false;
+    for (const ir::IntervalTape::Step& s : t->steps())
+      if (s.op == ir::Op::Param && s.a < 3 && moves_[s.a]) return false;
+    return true;
+  }
+
+  // Each open ray of r at its first step in the box within [k0, k1): the same answer as every
+  // step, as long as the coordinates the tape reads are the same bits at both ends of the range
+  // (x + d * 0 turns -0 into +0 where d changes sign); where not, every step. When the tile's last
+  // such region ran the same tape at depths of the same sign, a ray it evaluated and left open is
+  // outside here too, and is not evaluated again (the inside of an extruded shape, region after
+  // region).
+  bool flat(const mesh::Field& field, Rect r, uint32_t k0, uint32_t k1, size_t& hits) {
+    ++stats_.constant;
+    const int sign = depths_[k0] >= 0 ? 1 : depths_[k1 - 1] < 0 ? -1 : 0;  // 0: x + d * 0 may change bits
+    Memo& m = memo_[{r.c0, r.r0, r.c1, r.r1}];
+    const bool again = sign != 0 && m.sign == sign && same_tape(m.steps, m.outputs, *field.value_tape());
+    if (!again) {
+      const ir::IntervalTape& t = *field.value_tape();
+      m.steps.assign(t.steps().begin(), t.steps().end());
+      m.outputs.assign(t.outputs().begin(), t.outputs().end());
+      m.sign = sign;
+      m.evaluated.assign(size_t(r.c1 - r.c0) * (r.r1 - r.r0), 0);
+    }
+    batch_.clear(), owner_.clear();
+    batch_.reserve(size_t(r.c1 - r.c0) * (r.r1 - r.r0));
+    if (steps_.size() < batch_.x.size()) steps_.resize(batch_.x.size());
+    for (uint32_t row = r.r0; row < r.r1; ++row)
+      for (uint32_t col = r.c0; col < r.c1; ++col) {
+        const size_t q = size_t(row - r.r0) * (r.c1 - r.c0) + (col - r.c0);
+        if (step_at(col, row) >= 0 || (again && m.evaluated[q])) continue;
+        Ray ray;
+        g_.ray(col, row, ray.o, ray.v);
+        uint32_t k = k0;
+        while (k < k1 && !ray.in_box(g_.box, depths_[k])) ++k;
+        if (k == k1) continue;
+        float first[3];
+        for (int a = 0; a < 3; ++a) first[a] = static_cast<float>(ray.o[a] + depths_[k] * ray.v[a]);
+        bool same = true;
+        for (int a = 0; a < 3 && sign == 0; ++a)
+          same = same &&
+              (moves_[a] ||
+               std::bit_cast<uint32_t>(first[a]) ==
+                   std::bit_cast<uint32_t>(static_cast<float>(ray.o[a] + depths_[k1 - 1] * ray.v[a])));
+        if (!same) {
+          probe(col, row, k, k1);
+          continue;
+        }
+        m.evaluated[q] = 1;
+        const auto i = static_cast<uint32_t>(batch_.n++);
+        batch_.x[i] = first[0], batch_.y[i] = first[1], batch_.z[i] = first[2], steps_[i] = static_cast<int32_t>(k);
+        add_owner(col, row, 0, i, i + 1);
+      }
+    std::vector<Found>& found = flat_found_;
+    found.clear();
+    if (!finish_probe(field, found)) return false;
+    hits += found.size();
+    return refine(field, found);
+  }
+
   // The regions of `level` under (r, [k0, k1)), front to back, on `field` (which holds the
   // whole function's bits over the parent's box); `hits` counts the rays they meet. Hits decided
   // here are refined here.
@@ -294,7 +394,7 @@ class Tracer {
           } else {
             std::shared_ptr<const mesh::Field> local = std::move(s.locals[j]);
             size_t met = 0;
-            if (!children(local ? *local : field, t, c0, c1, level + 1, met)) return false;
+            if (!descend(local ? *local : field, t, c0, c1, level + 1, met)) return false;
             hits += met;
             if (met && (s.open[i] = unhit_count(t)) == 0) --open;
           }
@@ -330,7 +430,14 @@ class Tracer {
       batch_.x[i] = p[0], batch_.y[i] = p[1], batch_.z[i] = p[2], steps_[i] = static_cast<int32_t>(k);
     }
     pr.end = static_cast<uint32_t>(batch_.n);
-    if (pr.end > pr.first) owner_.push_back(pr);
+    if (pr.end > pr.first) add_owner(pr.col, pr.row, pr.tile, pr.first, pr.end);
+  }
+
+  // Field by field: a Probe built whole on the stack and copied stalled on its partial stores.
+  void add_owner(uint32_t col, uint32_t row, uint32_t tile, uint32_t first, uint32_t end) {
+    owner_.emplace_back();
+    Probe& p = owner_.back();
+    p.col = col, p.row = row, p.tile = tile, p.first = first, p.end = end;
   }
 
   // The batch evaluated: each ray's first step inside; found_tile_ the probe's tile of each hit.
@@ -391,6 +498,9 @@ class Tracer {
   std::vector<double> mid_;
   std::vector<uint32_t> found_tile_;  // per hit of the last probe: its tile
   std::vector<Ray> rays_;             // per hit being refined
+  std::vector<Found> flat_found_;     // flat()'s hits
+  std::map<std::array<uint32_t, 4>, Memo> memo_;  // per tile of the unit at hand (c0, r0, c1, r1)
+  bool moves_[3] = {};                // per axis: whether some ray moves along it
   std::vector<std::array<float, 3>> points_;  // per hit refined: its point
 };
 
@@ -536,7 +646,7 @@ void merge(DirectStats& into, const DirectStats& part) {
     into.levels[l].ambiguous += part.levels[l].ambiguous;
   }
   into.points += part.points, into.refines += part.refines, into.gradients += part.gradients;
-  into.hits += part.hits;
+  into.hits += part.hits, into.constant += part.constant;
 }
 
 }  // namespace

@@ -94,6 +94,7 @@ struct DirectStats {
   size_t refines = 0;    // points evaluated refining hits along their rays
   size_t gradients = 0;  // normals from the function's slope (the rest from the box's faces, or facing the ray)
   size_t hits = 0;
+  size_t constant = 0;  // regions whose tape the rays cross without changing it: probed once a ray
 };
 
 struct DirectOptions {

@@ -70,11 +70,20 @@ RayGrid along(const std::array<double, 6>& box, uint32_t w, uint32_t h, uint32_t
 }  // namespace
 
 RayGrid orthographic(const std::array<double, 6>& box, uint32_t w, uint32_t h, uint32_t steps, double az, double el) {
-  const double deg = 3.14159265358979323846 / 180;
-  az *= deg, el = std::clamp(el, -90.0, 90.0) * deg;
-  V3 back = {std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)};
+  el = std::clamp(el, -90.0, 90.0);
+  // Whole quarter turns exactly (cos 90 degrees is 6e-17 in double): a view down an axis keeps its
+  // rays off the other two, which is what lets a shape extruded along it be probed once a ray.
+  auto cos_deg = [](double a) {
+    double q = std::remainder(a, 360.0);
+    return q == 0             ? 1.0
+        : std::fabs(q) == 180 ? -1.0
+        : std::fabs(q) == 90  ? 0.0
+                              : std::cos(q * 3.14159265358979323846 / 180);
+  };
+  auto sin_deg = [&](double a) { return cos_deg(a - 90); };
+  V3 back = {cos_deg(el) * sin_deg(az), sin_deg(el), cos_deg(el) * cos_deg(az)};
   // Straight up or down, "up" in the picture is -z (as if the camera had tipped over from the front).
-  V3 right = std::fabs(std::cos(el)) < 1e-12 ? V3{std::cos(az), 0, -std::sin(az)} : unit(cross({0, 1, 0}, back));
+  V3 right = std::fabs(cos_deg(el)) < 1e-12 ? V3{cos_deg(az), 0, -sin_deg(az)} : unit(cross({0, 1, 0}, back));
   V3 up = cross(back, right);
   return along(box, w, h, steps, back, right, up);
 }

@@ -58,6 +58,14 @@ same_picture render3d gyroid-ball "$SRC/examples/gyroid-ball.fs" --size 48 --bou
 printf 'function FRep(x, y, z, t) { var s = 0; for (var i = 0; i < 3; i = i + 1) s = s + x; return 0.5 - s * s - y * y - z * z; }\n' > "$T/loop3d.fs"
 same_picture render3d loop "$T/loop3d.fs" --size 24
 check render3d-loop-dense 0 'pruning: off' -- "$F" render3d "$T/loop3d.fs" --size 16 --stats -o "$T/x.png"
+# A ring extruded along y, seen down y (--view 0,90): its regions' tapes drop y and are probed once
+# a ray, with the dense picture's bytes; tilted, none is.
+cat > "$T/extruded.fs" <<'EOF2'
+function FRep(x, y, z, t) { return min(0.15 - abs(sqrt(x*x + z*z) - 0.55), 0.5 - abs(y)); }
+EOF2
+check render3d-constant-along-rays 0 'regions constant along their rays, probed once a ray: [1-9][0-9]*$' -- "$F" render3d "$T/extruded.fs" --size 96 --view 0,90 --stats -o "$T/x.png"
+check render3d-constant-tilted 0 'regions constant along their rays, probed once a ray: 0$' -- "$F" render3d "$T/extruded.fs" --size 64 --view 10,80 --stats -o "$T/x.png"
+same_picture render3d extruded "$T/extruded.fs" --size 96 --view 0,90
 if [ -f "$SHARED/data/spheres400.fs" ]; then
   same_picture render3d spheres400 "$SHARED/data/spheres400.fs" --size 48 --steps 48
 else

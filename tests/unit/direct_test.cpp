@@ -91,6 +91,39 @@ TEST_CASE("direct pictures: pruned and dense hits are the same bits, on every ba
   CHECK(pruned_points * 4 < dense_points);     // and the intervals did skip most steps
 }
 
+TEST_CASE("direct pictures: a shape extruded along the view is probed once a ray where its tape is constant") {
+  // 2D programs in (u, v) extruded along w, seen down w: the regions whose tape drops w are
+  // probed once a ray (and once a tape, region after region), with the dense picture's bits.
+  std::mt19937 rng(11);
+  struct Axis {
+    const char *u, *v, *w;
+    double az, el;
+  };
+  const Axis axes[] = {{"x", "y", "z", 0, 0}, {"z", "y", "x", 90, 0}, {"x", "z", "y", 0, 90}};
+  for (const Axis& a : axes) {
+    size_t constant = 0;
+    for (int program = 0; program < 3; ++program) {
+      std::string flat = program == 0 ? "0.2 - abs(sqrt(x*x + y*y) - 0.5)" : test::random_csg(rng, 3);
+      for (size_t at; (at = flat.find('z')) != std::string::npos;) flat.replace(at, 1, "0.0");
+      const std::string src = std::string("function F2(x, y) { return ") + flat + "; }\n" +
+          "function FRep(x, y, z, t) { return min(F2(" + a.u + ", " + a.v + "), 0.55 - abs(" + a.w + ")); }";
+      Script s = script(src);
+      INFO(src);
+      render::RayGrid g = render::orthographic({-1, 1, -1, 1, -1, 1}, 57, 50, 160, a.az, a.el);
+      render::DirectStats st;
+      render::Hits dense = trace(*s.field, g, false);
+      CHECK(same(dense, trace(*s.field, g, true, 1, &st)));
+      CHECK(same(dense, trace(*s.field, g, true, 2)));
+      constant += st.constant;
+      render::RayGrid tilted = render::orthographic({-1, 1, -1, 1, -1, 1}, 40, 40, 90, a.az + 20, a.el - 15);
+      CHECK(same(trace(*s.field, tilted, false), trace(*s.field, tilted, true, 1, &st)));
+      CHECK(st.constant == 0);  // tilted rays move along every axis
+    }
+    INFO("extruded along " << a.w);
+    CHECK(constant > 0);
+  }
+}
+
 TEST_CASE("direct pictures: a ball's depth and normals are the true ones, seen from any side") {
   Script s = script("function FRep(x,y,z,t){ return 0.36 - (x-0.1)*(x-0.1) - y*y - (z+0.05)*(z+0.05); }");
   const double c[3] = {0.1, 0, -0.05}, r = 0.6;

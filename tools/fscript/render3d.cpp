@@ -77,6 +77,7 @@ void print_stats(const render::DirectStats& st, const render::RayGrid& g) {
   std::printf("step points evaluated: %zu (%.3f%% of every step of every ray), %.2f per ray\n", st.points,
               100.0 * static_cast<double>(st.points) / dense, static_cast<double>(st.points) / rays);
   std::printf("hits: %zu; refining them: %zu points; normals from the slope: %zu\n", st.hits, st.refines, st.gradients);
+  if (st.pruned) std::printf("regions constant along their rays, probed once a ray: %zu\n", st.constant);
 }
 
 }  // namespace

@@ -21,9 +21,10 @@ namespace {
 
 // Levels of the descent: a region's side in samples and its depth in steps. The top level's tiles
 // are shared out to the threads; the last level's open regions are probed step by step, on the tape
-// of the level above.
+// of the level above. Regions deeper than wide (docs/performance.md): fewer of them to bound and
+// simplify where rays go on past a thin part.
 constexpr uint32_t kTile[] = {256, 64, 16, 4};
-constexpr uint32_t kChunk[] = {256, 64, 16, 4};
+constexpr uint32_t kChunk[] = {256, 128, 32, 8};
 constexpr int kLevels = 4;
 // Regions of the levels below this get no tape of their own: they run their parent's.
 constexpr int kOwnTapes = 3;

@@ -22,7 +22,7 @@ for image in depth normal shaded; do
   check render3d-image-$image 0 "wrote $T/ball-$image.png: 64x48" -- "$F" render3d "$T/sphere.fs" --size 64x48 --image $image -o "$T/ball-$image.png"
 done
 cmp -s "$T/ball-depth.png" "$T/ball-normal.png" && fail "render3d-image: depth and normal images are the same"
-check render3d-stats 0 'level 4x4 x 4 steps: [0-9]+ empty, [0-9]+ full, [0-9]+ ambiguous' -- "$F" render3d "$T/sphere.fs" --size 64 --stats -o "$T/s.png"
+check render3d-stats 0 'level 4x4 x 8 steps: [0-9]+ empty, [0-9]+ full, [0-9]+ ambiguous' -- "$F" render3d "$T/sphere.fs" --size 64 --stats -o "$T/s.png"
 check render3d-stats-points 0 'step points evaluated: [0-9]+ \(' -- "$F" render3d "$T/sphere.fs" --size 64 --stats -o "$T/s.png"
 check render3d-stats-time 0 'time: compiling [0-9.]+ ms, tracing [0-9.]+ ms \(the best of 2\), shading [0-9.]+ ms, writing the PNG [0-9.]+ ms' -- "$F" render3d "$T/sphere.fs" --size 64 --stats --repeat 2 -o "$T/s.png"
 check render3d-no-prune-stats 0 'pruning: off' -- "$F" render3d "$T/sphere.fs" --size 32 --stats --no-prune -o "$T/s.png"

@@ -9,24 +9,48 @@ const viewer = new FvrmlViewer($('view'), { play: $('play'), slider: $('time'), 
 let files = [];        // [{path, data}] as the user gave them (gzip inflated)
 let lastGlb = null;    // the shown scene's .glb, for saving
 let running = Promise.resolve();
+let generation = 0;    // runs started: only the latest shows its answer
 
 // The worker: fvrml-web.js's factory and worker.js's function as one script in a Blob. Where no
 // worker can start, the same function runs here, on the page's thread.
+// runner(job, replace): fvrml-run's answer for `job`. `replace`: a scene run, which cancels the
+// runs still going: a wasm run cannot be stopped midway (the build has no threads, so the emitted
+// code polls no cancel flag), so their worker is ended, a fresh one started, and each of them
+// answers {cancelled: true}. On the page's own thread runs go one after another.
 const runner = (() => {
   const source = 'var _scriptDir = undefined;\nvar createFvrmlRun = ' + createFvrmlRun.toString() + ';\n' +
     fvrmlWorkerMain.toString() + '\nfvrmlWorkerMain(self);\n';
   let next = 0;
   const waiting = new Map();
   try {
-    const worker = new Worker(URL.createObjectURL(new Blob([source], { type: 'text/javascript' })));
-    worker.onmessage = (e) => { waiting.get(e.data.id)(e.data.answer); waiting.delete(e.data.id); };
+    const url = URL.createObjectURL(new Blob([source], { type: 'text/javascript' }));
+    let worker = null;
+    const start = () => {
+      worker = new Worker(url);
+      worker.onmessage = (e) => { waiting.get(e.data.id)(e.data.answer); waiting.delete(e.data.id); };
+    };
+    start();
     document.body.dataset.worker = 'yes';
-    return (job) => new Promise((resolve) => { const id = next++; waiting.set(id, resolve); worker.postMessage({ id, job }); });
+    return (job, replace) => new Promise((resolve) => {
+      if (replace && waiting.size) {
+        worker.terminate();
+        for (const answer of waiting.values()) answer({ cancelled: true });
+        waiting.clear();
+        start();
+      }
+      const id = next++;
+      waiting.set(id, resolve);
+      worker.postMessage({ id, job });
+    });
   } catch (e) {
     document.body.dataset.worker = 'no';
     const here = { postMessage: (m) => here.answer(m) };
     fvrmlWorkerMain(here);
-    return (job) => new Promise((resolve) => { here.answer = (m) => resolve(m.answer); here.onmessage({ data: { id: 0, job } }); });
+    let queue = Promise.resolve();
+    return (job) => (queue = queue.then(() => new Promise((resolve) => {
+      here.answer = (m) => resolve(m.answer);
+      here.onmessage({ data: { id: 0, job } });
+    })));
   }
 })();
 
@@ -74,14 +98,18 @@ function showLog(log, ok) {
   box.style.display = text ? 'block' : 'none';
 }
 
+// A new run replaces the one still going (a scene dropped by mistake, a script fixed while the
+// broken one still meshes): the older's answer comes back cancelled and changes nothing.
 function runScene(fresh) {
-  running = running.then(async () => {
+  const mine = ++generation;
+  running = (async () => {
     const main = mainFile();
     if (!main) return;
     document.body.dataset.state = 'running';
     $('status').textContent = 'running ' + main + ' …';
     const t0 = performance.now();
-    const answer = await runner({ files, main, format: 'glb', args: ['--backend', $('backend').value] });
+    const answer = await runner({ files, main, format: 'glb', args: ['--backend', $('backend').value] }, true);
+    if (answer.cancelled || mine !== generation) return;
     const ms = performance.now() - t0;
     showLog(answer.log, answer.code === 0);
     if (answer.code !== 0) {
@@ -92,6 +120,7 @@ function runScene(fresh) {
     lastGlb = answer.output;
     const view = answer.stats && answer.stats.view;
     const shown = await viewer.show(answer.output.buffer, view, !fresh);
+    if (mine !== generation) return;
     // Per frame: still shapes' triangles, and animated ones' over their frames (as the preview counts).
     let triangles = 0;
     const stats = answer.stats || {};
@@ -102,7 +131,7 @@ function runScene(fresh) {
     $('saveGlb').disabled = $('saveWrl').disabled = false;
     document.body.dataset.state = 'ok';
     document.body.dataset.animated = shown.animated ? 'yes' : 'no';
-  });
+  })();
   return running;
 }
 
@@ -116,6 +145,7 @@ const baseName = () => (mainFile() || 'scene').split('/').pop().replace(/\.(wrl|
 $('saveGlb').onclick = () => lastGlb && save(lastGlb, baseName() + '.glb');
 $('saveWrl').onclick = async () => {  // VRML97 is its own run: fvrml-run -o scene.wrl
   const answer = await runner({ files, main: mainFile(), format: 'wrl', args: ['--backend', $('backend').value] });
+  if (answer.cancelled) return;  // a new scene came first
   if (answer.code === 0) save(answer.output, baseName() + '-fvrml.wrl');
   else showLog(answer.log, false);
 };

@@ -1,8 +1,8 @@
 // The browser page (web/, the browser build's site) in headless Chromium from file://: its worker
 // starts; a course file opened with the file picker, and another dropped on the page, show their
 // shapes (pixels, not only the DOM); a broken script shows its error at the right line with the
-// source line; the animation's slider changes the picture; the .glb saved from the page is the
-// Khronos validator's clean file.
+// source line; a run started while another still meshes replaces it; the animation's slider
+// changes the picture; the .glb saved from the page is the Khronos validator's clean file.
 // usage: node page_browser.mjs SITE_DIR COURSE_FILE DROPPED_FILE OUT_DIR   (beside node_modules)
 import { launch, check, failed, picture as pictureOf } from './chromium.mjs';
 import fs from 'node:fs';
@@ -59,6 +59,25 @@ try {
     assert.match(shown, /pasted\.fs:3:\d+: error: /);
     assert.ok(shown.includes('  return 1 - r - z * * z;'), shown);
     assert.ok(await page.isVisible('#diagnostics'));
+  });
+  await check('a run started while another still meshes replaces it', async () => {
+    // Minutes of work (three million loop turns a point) followed by a ball: the ball shows at once.
+    const slow = 'function FRep(x, y, z, t) {\n  var s = 0;\n  for (var i = 0; i < 3000000; i++) s = s + x;\n' +
+      '  return 0.5 - x * x - y * y - z * z + 0 * s;\n}\n';
+    const ball = 'function FRep(x, y, z, t) { return 0.3 - x * x - y * y - z * z; }\n';
+    const paste = (t) => page.evaluate((text) => {
+      document.getElementById('source').value = text;
+      document.getElementById('runSource').click();
+    }, t);
+    const before = await picture();
+    await paste(slow);
+    await page.waitForFunction(() => document.body.dataset.state === 'running');
+    const t0 = Date.now();
+    assert.equal(await run(() => paste(ball)), 'ok', await page.textContent('#diagnostics'));
+    assert.ok(Date.now() - t0 < 60000, `the ball took ${Date.now() - t0} ms`);
+    assert.match(await page.textContent('#status'), /^pasted\.fs: [0-9,]+ triangles/);
+    const p = await picture();
+    assert.ok(p.drawn > p.total / 100 && p.digest !== before.digest, `${p.drawn} pixels drawn`);
   });
   await check("the animation's slider changes the picture", async () => {
     assert.equal(await run(() => page.setInputFiles('#pick', course)), 'ok');

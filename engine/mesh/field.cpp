@@ -11,6 +11,11 @@ std::atomic<uint64_t>& evaluation_ns() {
   return total;
 }
 
+std::atomic<bool>& evaluation_timing() {
+  static std::atomic<bool> on{false};
+  return on;
+}
+
 math::Interval kernel_bound(const ir::IntervalTape& tape, const Box3& b, const std::vector<math::Interval>& extra) {
   thread_local std::vector<math::Interval> in;
   thread_local ir::IntervalEval ev;

@@ -12,7 +12,7 @@ set(j['prune']) == {'evaluated', 'evaluated_fraction', 'fallbacks', 'levels', 'l
 set(j['prune']['local_tapes']) == {'regions', 'simplified', 'mean_ops', 'full_ops', 'gradient_tapes'} and
 j['prune']['pruned'] and j['prune']['points'] == 512 and j['prune']['fallbacks'] == 0 and
 [l['size'] for l in j['prune']['levels']] == [64, 32, 16, 8] and
-all(j[k] >= 0 for k in ('compile_ms', 'evaluation_ms', 'parse_ms', 'polygonize_ms', 'write_ms')) and
+all(j[k] >= 0 for k in ('compile_ms', 'evaluation_ms', 'parse_ms', 'polygonize_ms', 'write_ms')) and j['evaluation_ms'] > 0 and
 set(j['shapes'][0]) == {'active', 'domain', 'fraction', 'frames', 'geometry', 'kind', 'line', 'resolution', 'transform', 'triangles', 'vertices'} and
 j['shape_diagnostics'] == [] and j['shape_diagnostics_ms'] >= 0 and
 j['shapes'][0]['kind'] == 'implicit' and j['shapes'][0]['line'] == 2 and j['shapes'][0]['resolution'] == [8, 8, 8] and

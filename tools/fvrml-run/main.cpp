@@ -391,6 +391,7 @@ int run(int argc, char** argv, const Merge* merge = nullptr) {
   // Under --serve the clock is per run (cancelled, the server goes on), not a watchdog on the process.
   o.instant = app.count("--time") > 0 || app.count("--fraction") > 0;
   if (!stats_file.empty()) o.stats = o.view_json = o.print_shape_diagnostics = true;
+  fscript::mesh::evaluation_timing() = o.stats || serve.on;  // only a run that reports it times evaluation
   if (!fscript::tools::apply_limits("fvrml-run", limits, !serve.on)) return 1;
   o.model.max_memory_mib = limits.max_memory_mib;
   if (serve.on) {

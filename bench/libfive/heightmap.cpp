@@ -8,21 +8,14 @@
 #include <limits>
 #include <vector>
 
-#include "balls.h"  // kBalls[][4]: r^2, cx, cy, cz
 #include "libfive/eval/evaluator.hpp"
 #include "libfive/render/discrete/heightmap.hpp"
 #include "libfive/render/discrete/voxels.hpp"
-#include "libfive/tree/tree.hpp"
+#include "spheres400.h"
 
 int main(int argc, char** argv) {
   unsigned threads = argc > 1 ? static_cast<unsigned>(std::atoi(argv[1])) : 1;
-  using libfive::Tree;
-  Tree x = Tree::X(), y = Tree::Y(), z = Tree::Z();
-  Tree t = Tree::invalid();
-  for (const auto& b : kBalls) {
-    Tree d = (x - b[1]) * (x - b[1]) + (y - b[2]) * (y - b[2]) + (z - b[3]) * (z - b[3]) - b[0];
-    t = t.is_valid() ? min(t, d) : d;
-  }
+  libfive::Tree t = spheres400_tree();
   libfive::Voxels r({-1, -1, -1}, {1, 1, 1}, 512);  // 512 voxels a unit: 1024 across the box
   std::vector<libfive::Evaluator*> es;
   for (unsigned i = 0; i < threads; ++i) es.push_back(new libfive::Evaluator(t));

@@ -8,27 +8,8 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 F=build/tools/fscript/fscript
 [ -x "$F" ] || { echo "build first: ./dev.sh build" >&2; exit 2; }
-[ $# -ge 1 ] && [ -f "$1/libfive/include/libfive/render/discrete/heightmap.hpp" ] ||
-  { echo "usage: bench/libfive/heightmap.sh LIBFIVE_CHECKOUT [ROUNDS]" >&2; exit 2; }
-LIBFIVE=$(cd "$1" && pwd)
-ROUNDS=${2:-3}
-SHARED=${SHARED:-../shared}
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
-cmake -S "$LIBFIVE" -B "$OUT/libfive" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_STUDIO_APP=OFF \
-  -DBUILD_GUILE_BINDINGS=OFF -DBUILD_PYTHON_BINDINGS=OFF -DBUILD_TESTS=OFF -DENABLE_DEBUG=OFF > /dev/null
-ninja -C "$OUT/libfive" libfive > /dev/null
-python3 - "$SHARED/data/spheres400.fs" "$OUT/balls.h" <<'PY'
-import re, sys
-balls = re.findall(r'max\(f, ([0-9.]+) - \(x - ([-0-9.]+)\)\*\(x - [-0-9.]+\) - \(y - ([-0-9.]+)\)\*\(y - [-0-9.]+\) - '
-                   r'\(z - ([-0-9.]+)\)\*\(z - [-0-9.]+\)\);', open(sys.argv[1]).read())
-assert len(balls) == 400, len(balls)
-with open(sys.argv[2], 'w') as f:
-    f.write('static const double kBalls[][4] = {\n' + ''.join(f'  {{{r}, {x}, {y}, {z}}},\n' for r, x, y, z in balls) + '};\n')
-PY
-LIB=$(dirname "$(find "$OUT/libfive" -name 'libfive.so' | head -1)")
-g++ -O3 -march=native -std=c++17 -I "$OUT" -I "$LIBFIVE/libfive/include" $(pkg-config --cflags eigen3) \
-  bench/libfive/heightmap.cpp -L "$LIB" -lfive -Wl,-rpath,"$LIB" -o "$OUT/heightmap"
+PROGRAM=heightmap
+. bench/libfive/build.sh "$@"
 printf '%-6s %8s %12s %14s\n' round threads libfive_ms render3d_ms
 for round in $(seq "$ROUNDS"); do
   for threads in 1 2; do

@@ -7,21 +7,14 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "balls.h"  // kBalls[][4]: r^2, cx, cy, cz
 #include "libfive/render/brep/mesh.hpp"
 #include "libfive/render/brep/region.hpp"
 #include "libfive/render/brep/settings.hpp"
-#include "libfive/tree/tree.hpp"
+#include "spheres400.h"
 
 int main(int argc, char** argv) {
   unsigned threads = argc > 1 ? static_cast<unsigned>(std::atoi(argv[1])) : 1;
-  using libfive::Tree;
-  Tree x = Tree::X(), y = Tree::Y(), z = Tree::Z();
-  Tree t = Tree::invalid();
-  for (const auto& b : kBalls) {
-    Tree d = (x - b[1]) * (x - b[1]) + (y - b[2]) * (y - b[2]) + (z - b[3]) * (z - b[3]) - b[0];
-    t = t.is_valid() ? min(t, d) : d;
-  }
+  libfive::Tree t = spheres400_tree();
   libfive::Region<3> r({-1, -1, -1}, {1, 1, 1});
   libfive::BRepSettings s;
   s.min_feature = 0.01;

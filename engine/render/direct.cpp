@@ -561,6 +561,10 @@ bool Tracer::refine(const mesh::Field& field, const std::vector<Found>& found) {
       double m = 0.5 * (k.lo + k.hi);
       if (std::isfinite(k.wlo) && std::isfinite(k.whi) && k.wlo < 0 && k.whi >= 0) {
         double f = k.lo + (k.hi - k.lo) * (k.wlo / (k.wlo - k.whi));
+        // Brent's rule: at least tol in from either end, so a root met (almost) exactly at one
+        // end closes the bracket from the other side next (a plane's root, f exactly 0 there, left
+        // regula falsi nothing but bisection: twelve steps, now two).
+        if (k.hi - k.lo > 2 * tol) f = std::clamp(f, k.lo + tol, k.hi - tol);
         if (f > k.lo && f < k.hi) m = f;
       }
       if (!(m > k.lo && m < k.hi)) continue;  // no double between: as close as it gets

@@ -26,4 +26,16 @@ struct Shading {
   std::array<float, 3> shade(std::array<float, 3> base, V3 normal, V3 view_dir) const;
 };
 
+// Shading seen along one direction (a picture whose rays are parallel): the key light's vectors
+// worked out once instead of per pixel, the same values as Shading::shade.
+class FixedViewShading {
+ public:
+  FixedViewShading(const Shading& s, V3 view_dir);
+  std::array<float, 3> shade(std::array<float, 3> base, V3 normal) const;
+
+ private:
+  const Shading& s_;
+  V3 view_, key_{}, hv_{};
+};
+
 }  // namespace fscript::render

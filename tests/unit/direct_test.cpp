@@ -8,6 +8,7 @@
 
 #include "engine/mesh/local_field.h"
 #include "engine/render/direct.h"
+#include "engine/render/shading.h"
 #include "ir/interval_eval.h"
 #include "tests/unit/helpers.h"
 #include "tests/unit/random_csg.h"
@@ -207,5 +208,24 @@ TEST_CASE("direct pictures: a box, a torus, and a solid cut by its box closed by
     render::RayGrid side = render::orthographic({-1, 1, -1, 1, -1, 1}, 32, 32, 64, 90, 0);  // from +x
     h = trace(*s.field, side, true);
     for (size_t i = 0; i < h.depth.size(); ++i) CHECK(h.normal[i] == std::array<float, 3>{1, 0, 0});
+  }
+}
+
+TEST_CASE("shading seen along one direction gives Shading::shade's values, bit for bit") {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  render::Shading plain, shiny, lit;
+  shiny.material = mesh::Material{};
+  shiny.material->shininess = 0.3f, shiny.material->specular = {0.5f, 0.4f, 0.3f};
+  lit.lights.push_back({{0.3f, -1, -0.2f}, {1, 0.9f, 0.8f}, 0.8f, 0.1f});
+  for (render::Shading* s : {&plain, &shiny, &lit}) {
+    s->right = {0.8, 0, -0.6}, s->up = {0, 1, 0}, s->back = {0.6, 0, 0.8};
+    const render::FixedViewShading fixed(*s, s->back);
+    for (int i = 0; i < 500; ++i) {
+      render::V3 n{u(rng), u(rng), u(rng)};
+      std::array<float, 3> base{0.8f, 0.5f, 0.2f};
+      auto want = s->shade(base, n, s->back), got = fixed.shade(base, n);
+      CHECK(std::memcmp(want.data(), got.data(), sizeof want) == 0);
+    }
   }
 }

@@ -48,6 +48,7 @@ std::vector<uint8_t> image(const render::Hits& h, const render::RayGrid& g, cons
   };
   light.right = unit(g.origin_col), light.up = unit({-g.origin_row[0], -g.origin_row[1], -g.origin_row[2]});
   light.back = unit({-g.dir[0], -g.dir[1], -g.dir[2]});
+  const render::FixedViewShading lit(light, light.back);
   auto byte = [](float v) { return static_cast<uint8_t>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); };
   const int mode = kind == "depth" ? 0 : kind == "normal" ? 1 : 2;
   for (size_t i = 0; i < n; ++i) {
@@ -60,7 +61,7 @@ std::vector<uint8_t> image(const render::Hits& h, const render::RayGrid& g, cons
     } else if (mode == 1) {
       for (int a = 0; a < 3; ++a) rgb[static_cast<size_t>(a)] = 0.5f + 0.5f * nr[static_cast<size_t>(a)];
     } else {
-      rgb = light.shade({0.8f, 0.8f, 0.8f}, {nr[0], nr[1], nr[2]}, light.back);
+      rgb = lit.shade({0.8f, 0.8f, 0.8f}, {nr[0], nr[1], nr[2]});
     }
     for (size_t k = 0; k < 3; ++k) px[3 * i + k] = byte(rgb[k]);
   }

@@ -294,9 +294,9 @@ class Tracer {
     ++stats_.constant;
     const int sign = depths_[k0] >= 0 ? 1 : depths_[k1 - 1] < 0 ? -1 : 0;  // 0: x + d * 0 may change bits
     Memo& m = memo_[{r.c0, r.r0, r.c1, r.r1}];
-    const bool again = sign != 0 && m.sign == sign && same_tape(m.steps, m.outputs, *field.value_tape());
+    const ir::IntervalTape& t = *field.value_tape();  // along_rays_constant() found one
+    const bool again = sign != 0 && m.sign == sign && same_tape(m.steps, m.outputs, t);
     if (!again) {
-      const ir::IntervalTape& t = *field.value_tape();
       m.steps.assign(t.steps().begin(), t.steps().end());
       m.outputs.assign(t.outputs().begin(), t.outputs().end());
       m.sign = sign;

@@ -237,8 +237,8 @@ class Emitter {
   uint32_t first_v128_ = 0, next_v128_ = 0, value_ = 0, output_ = 0, global_ = 0, mask_ = 0, ticks_ = 0, temp_ = 0;
   uint32_t pending_ = 0, phi_temp_ = 0, status_ = 0, trig_ = 0, saved_ = 0;
   // Speculating: per copy, the sum of min's and max's second operands; whether a trig op's
-  // arguments are in the fast range; whether the batch's inputs are within bound_.
-  uint32_t nan_sum_ = 0, trig_ok_ = 0, in_bound_ = 0;
+  // arguments are in the fast range.
+  uint32_t nan_sum_ = 0, trig_ok_ = 0;
   double bound_ = 0;  // speculating: the inputs' bound (0: none)
   std::vector<ir::Range> ranges_, no_ranges_;  // the value ranges under bound_; none
   uint32_t first_slot_ = 0;  // this function's own arrays' first slot

@@ -95,6 +95,8 @@ Interval interval_of(const Inst& in, const std::vector<Interval>& v) {
 }
 
 IntervalTape::IntervalTape(const Function& fn) : values_(fn.next_value), params_(fn.num_params) {
+  steps_.reserve(fn.entry()->insts.size());
+  sources_.reserve(fn.entry()->insts.size());
   for (const Inst* in : fn.entry()->insts) {
     if (in->op == Op::Ret) {
       for (const Inst* a : in->args) outputs_.push_back(a->id);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <thread>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -54,17 +55,16 @@ struct Tape {
 
 class Renderer {
  public:
-  Renderer(const backends::Kernel& dense, const PlaneGrid& g, const InsideOptions& o, std::vector<uint8_t>& px)
-      : dense_(dense), g_(g), o_(o), px_(px) {
+  Renderer(const backends::Kernel& dense, const PlaneGrid& g, const InsideOptions& o, const std::vector<float>& xs,
+           const std::vector<float>& ys, std::vector<uint8_t>& px)
+      : xs_(xs), ys_(ys), dense_(dense), g_(g), o_(o), px_(px) {
     for (uint32_t s : kSizes) stats_.levels.push_back({s, 0, 0, 0, 0});
-    for (uint32_t c = 0; c < g.w; ++c) xs_.push_back(g.x(c));
-    for (uint32_t r = 0; r < g.h; ++r) ys_.push_back(g.y(r));
   }
 
   // Bounds `rects` (regions of `level`) on `tape` in batches; fills the decided ones and hands each
   // open one, with its batch evaluation and lane, to `open`. False on a runtime error. `keep`: each
-  // batch is evaluated into a new entry there (dropped again when none of its regions is open), for
-  // evaluations that outlive the call, instead of the level's scratch (no copy of either).
+  // batch with an open region also gets a new entry there, for evaluations that outlive the call:
+  // its choices (what simplification reads), not its bounds; `open` is called while it is empty.
   template <typename Open>
   bool bound(const Tape& tape, const std::vector<Rect>& rects, size_t level, Open open,
              std::deque<ir::IntervalBatchEval>* keep = nullptr) {
@@ -80,9 +80,11 @@ class Renderer {
         in[0].set(k, math::iv::hull(math::Interval::point(xs_[r.c0]), math::Interval::point(xs_[r.c1 - 1])));
         in[1].set(k, math::iv::hull(math::Interval::point(ys_[r.r0]), math::Interval::point(ys_[r.r1 - 1])));
       }
-      // Per level: a parent's evaluation outlives its children's.
-      ir::IntervalBatchEval& ev = keep ? keep->emplace_back() : scratch_[level];
+      // Per level: a parent's evaluation outlives its children's. One kept keeps only what
+      // simplification reads (the choices): its bounds, 192 bytes a value, are the level's scratch.
+      ir::IntervalBatchEval& ev = scratch_[level];
       tape.flat->eval_batch(in, ev);
+      if (keep) keep->emplace_back();
       bool any = false;
       for (size_t k = 0; k < n; ++k) {
         const Rect& r = rects[first + k];
@@ -97,6 +99,7 @@ class Renderer {
         }
       }
       if (keep && !any) keep->pop_back();
+      if (keep && any) keep->back().choices = ev.choices, keep->back().outputs = ev.outputs;
     }
     return true;
   }
@@ -238,7 +241,7 @@ class Renderer {
   std::vector<const float*> in_ptrs_;
   std::vector<float*> out_ptrs_;
   std::shared_ptr<ir::IntervalTape> pool_[kLevels];  // per level: the tape its regions are simplified into
-  std::vector<float> xs_, ys_;  // the grid's coordinates, once
+  const std::vector<float>&xs_, &ys_;  // the grid's coordinates, once for every renderer
   std::vector<std::vector<float>> cols_, outs_;  // dense batches' inputs and outputs, reused
   std::vector<size_t> where_;
   const backends::Kernel& dense_;
@@ -263,7 +266,7 @@ void merge(QuadtreeStats& into, const QuadtreeStats& part) {
 
 bool render_inside(const ir::Module& m, const backends::Kernel& dense, const PlaneGrid& g, const InsideOptions& o,
                    std::vector<uint8_t>& px, QuadtreeStats& stats, backends::RuntimeError& err) {
-  px.assign(size_t(g.w) * g.h, 0);
+  px.resize(size_t(g.w) * g.h);  // (every pixel is written below: a picture's again need not be cleared)
   const ir::Function& fn = m.kernel_function();
   stats = {};
   stats.full_tape_ops = ir::tape_length(fn);
@@ -276,16 +279,17 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
       tiles.push_back({col, row, std::min(col + s, g.w), std::min(row + s, g.h)});
   int parts = static_cast<int>(std::max(1u, std::min<unsigned>(o.threads, static_cast<unsigned>(tiles.size()))));
   std::vector<std::unique_ptr<Renderer>> renderers;
-  for (int p = 0; p < parts; ++p) renderers.push_back(std::make_unique<Renderer>(dense, g, o, px));
+  std::vector<float> xs(g.w), ys(g.h);
+  for (uint32_t c = 0; c < g.w; ++c) xs[c] = g.x(c);
+  for (uint32_t r = 0; r < g.h; ++r) ys[r] = g.y(r);
+  for (int p = 0; p < parts; ++p) renderers.push_back(std::make_unique<Renderer>(dense, g, o, xs, ys, px));
   Tape full;
-  if (prune) full.flat = std::make_shared<const ir::IntervalTape>(fn);
+  if (prune) full.flat = o.tape ? o.tape : std::make_shared<const ir::IntervalTape>(fn);
   full.ops = stats.full_tape_ops;
   full.compiled = std::make_shared<Compiled>();
   full.compiled->kernel = &dense;  // the full tape is what `dense` was compiled from
-  // The top level is bounded up front, in batches; the threads then share out its open tiles, each
-  // simplifying the tile's tape and bounding its children on it, and then those children that are
-  // open (16 under each top tile, so two threads stay busy to the end). Each writes only its own
-  // pixels, so the picture does not depend on the schedule.
+  // The top level is bounded up front, in batches; the threads then share out its open tiles and
+  // their open children (below).
   struct Top {
     Rect r;
     size_t batch, lane;  // its bounds: top[batch], lane
@@ -317,58 +321,73 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
     for (auto& ev : top) full.flat->lane_masks(ev);  // before the threads share them
   }
   std::atomic<bool> failed{false};
-  // Runs job(renderer, i) for i < count on every thread, handing out the next i as one ends.
-  auto share = [&](size_t count, auto job) {
-    std::atomic<size_t> next{0};
-    return support::run_parts(parts, [&](int p) {
-      Renderer& r = *renderers[static_cast<size_t>(p)];
-      for (size_t i; !failed && (i = next.fetch_add(1)) < count;)
-        if (!job(r, i)) return failed = true, false;
-      return true;
-    });
+  const size_t kids_per_top = size_t(kSizes[0] / kSizes[1]) * (kSizes[0] / kSizes[1]);
+  if (o.progress) o.progress->set_units(prune ? tops.size() * kids_per_top : tiles.size());
+  auto advance = [&](size_t n) {
+    if (o.progress && n) o.progress->advance(n);
   };
-  ok = ok && share(tops.size(), [&](Renderer& r, size_t i) {
-         Top& t = tops[i];
-         t.tape = r.narrowed(full, top[t.batch], t.lane, 0, true);
-         if (!t.tape.compiled) t.tape.compiled = std::make_shared<Compiled>();  // before threads share it
-         if (r.last_level(0, t.tape)) return t.open.push_back({t.r, SIZE_MAX, 0}), true;
-         std::vector<Rect> kids = split(t.r, kSizes[1]);
-         for (size_t first = 0; first < kids.size(); first += ir::kIntervalLanes) {
-           std::vector<Rect> part(kids.begin() + static_cast<long>(first),
-                                  kids.begin() + static_cast<long>(std::min(kids.size(), first + ir::kIntervalLanes)));
-           size_t before = t.evals.size();
-           bool fine = r.bound(
-               t.tape, part, 1,
-               [&](Rect c, ir::IntervalBatchEval&, size_t k) {
-                 t.open.push_back({c, t.evals.size() - 1, k});
-                 return true;
-               },
-               &t.evals);
-           if (!fine) return false;
-           if (t.evals.size() > before) t.tape.flat->lane_masks(t.evals.back());
-         }
+  // A top tile's own work: its tape simplified, its children bounded on it (the decided ones filled).
+  auto open_top = [&](Renderer& r, Top& t) {
+    t.tape = r.narrowed(full, top[t.batch], t.lane, 0, true);
+    if (!t.tape.compiled) t.tape.compiled = std::make_shared<Compiled>();  // before threads share it
+    if (r.last_level(0, t.tape)) return t.open.push_back({t.r, SIZE_MAX, 0}), true;
+    std::vector<Rect> kids = split(t.r, kSizes[1]);
+    for (size_t first = 0; first < kids.size(); first += ir::kIntervalLanes) {
+      std::vector<Rect> part(kids.begin() + static_cast<long>(first),
+                             kids.begin() + static_cast<long>(std::min(kids.size(), first + ir::kIntervalLanes)));
+      size_t before = t.evals.size();
+      bool fine = r.bound(
+          t.tape, part, 1,
+          [&](Rect c, ir::IntervalBatchEval&, size_t k) {
+            t.open.push_back({c, t.evals.size() - 1, k});
+            return true;
+          },
+          &t.evals);
+      if (!fine) return false;
+      if (t.evals.size() > before) t.tape.flat->lane_masks(t.evals.back());
+    }
+    return true;
+  };
+  auto kid = [&](Renderer& r, Top& t, size_t i) {
+    const Top::Kid& k = t.open[i];
+    return k.batch == SIZE_MAX ? r.dense(t.tape, &k.r, 1) : r.region(t.tape, k.r, 1, t.evals[k.batch], k.lane);
+  };
+  // Each thread takes the next top tile, opens it and works through its open children; with no
+  // top tile left it takes children of the others' (a thread's own tiles' tapes and bounds are in
+  // its own cache: two threads reading each other's had each run a sixth slower). Each region
+  // writes only its own pixels, so the picture does not depend on the schedule.
+  std::atomic<size_t> next_top{0};
+  std::vector<std::atomic<size_t>> next_kid(tops.size());
+  std::vector<std::atomic<int>> opened(tops.size());  // 1: its children may be taken
+  auto work = [&](Renderer& r) {
+    for (size_t i; !failed && (i = next_top.fetch_add(1)) < tops.size();) {
+      Top& t = tops[i];
+      if (!open_top(r, t)) return failed = true, opened[i].store(1, std::memory_order_release), false;
+      advance(kids_per_top - t.open.size());  // (a tile evaluated whole: one open child, itself)
+      opened[i].store(1, std::memory_order_release);
+      for (size_t k; !failed && (k = next_kid[i].fetch_add(1)) < t.open.size();)
+        if (!kid(r, t, k)) return failed = true, false;
+        else advance(1);
+    }
+    for (size_t i = 0; i < tops.size() && !failed; ++i) {
+      while (!opened[i].load(std::memory_order_acquire) && !failed) std::this_thread::yield();
+      Top& t = tops[i];
+      for (size_t k; !failed && (k = next_kid[i].fetch_add(1)) < t.open.size();)
+        if (!kid(r, t, k)) return failed = true, false;
+        else advance(1);
+    }
+    return true;
+  };
+  std::atomic<size_t> next_tile{0};
+  ok = ok && support::run_parts(parts, [&](int p) {
+         Renderer& r = *renderers[static_cast<size_t>(p)];
+         if (prune) return work(r);
+         for (size_t i; !failed && (i = next_tile.fetch_add(1)) < tiles.size();)
+           if (!r.dense(full, &tiles[i], 1)) return failed = true, false;
+           else advance(1);
          return true;
        });
-  struct Unit {
-    size_t top, kid;
-  };
-  std::vector<Unit> units;
-  for (size_t i = 0; i < tops.size(); ++i)
-    for (size_t k = 0; k < tops[i].open.size(); ++k) units.push_back({i, k});
-  size_t count = prune ? units.size() : tiles.size();
-  if (o.progress) o.progress->set_units(count);
-  ok = ok && share(count, [&](Renderer& r, size_t i) {
-         bool done;
-         if (!prune) {
-           done = r.dense(full, &tiles[i], 1);
-         } else {
-           Top& t = tops[units[i].top];
-           const Top::Kid& k = t.open[units[i].kid];
-           done = k.batch == SIZE_MAX ? r.dense(t.tape, &k.r, 1) : r.region(t.tape, k.r, 1, t.evals[k.batch], k.lane);
-         }
-         if (done && o.progress) o.progress->advance(1);
-         return done;
-       });
+  if (!ok) std::fill(px.begin(), px.end(), uint8_t{0});  // (no half-made picture, whatever the schedule)
   stats.pruned = prune;
   for (uint32_t sz : kSizes) stats.levels.push_back({sz, 0, 0, 0, 0});
   for (const auto& r : renderers) merge(stats, r->stats_);

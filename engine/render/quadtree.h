@@ -5,10 +5,12 @@
 // leave open are evaluated point by point, in one batch per 64x64 tile. Every pixel is the one the
 // dense path gives.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "backends/backend.h"
+#include "ir/interval_eval.h"
 #include "ir/ir.h"
 #include "runtime/support/progress.h"
 
@@ -43,6 +45,9 @@ struct InsideOptions {
   unsigned threads = 1;
   bool prune = true;
   support::ProgressJob* progress = nullptr;  // when given, told as top-level tiles are done
+  // The kernel function's interval tape, when the caller built it ahead (ir::IntervalTape(fn), as
+  // it compiled the kernel once: render2d's repeats); else each picture builds it.
+  std::shared_ptr<const ir::IntervalTape> tape;
 };
 
 // px[row * w + col] = 255 where output 0 of `dense` is >= 0, else 0. `m` is the module `dense` was

@@ -4,32 +4,35 @@
 // work (chosen by the caller, never by timing), so what the parts compute is the same for any
 // thread count and any schedule: the "same bytes for 1 and N threads" rule rests on that.
 #include <algorithm>
-#include <system_error>
-#include <thread>
+#include <functional>
+#include <latch>
 #include <vector>
 
 namespace fscript::support {
 
+// Starts `work` on a thread of its own, one of a pool kept for the process (a thread made for
+// every call cost a picture of 5 ms a tenth of a millisecond per call before its work started,
+// twice a picture), and when `work` returns counts `done` down. False when no thread is free and
+// none can be started (the system's thread or memory limit): `work` is then not run.
+bool start_pooled(std::function<void()> work, std::latch& done);
+
 // Whether every task(k) returned true. Every part runs to its end even when another fails. A part
-// whose thread cannot start (the system's thread or memory limit) runs on the caller's thread
-// after part 0: fewer threads, the same results.
+// whose thread cannot start runs on the caller's thread after part 0: fewer threads, the same
+// results. Pooled threads have the stack set_default_thread_stack gave when they were made; one
+// made under another size is not reused.
 template <class Task>
 bool run_parts(int parts, Task task) {
   parts = std::max(1, parts);
   std::vector<char> ok(static_cast<size_t>(parts), 1);
-  std::vector<std::thread> pool;
+  std::latch done(parts - 1);
   int started = 1;
   for (; started < parts; ++started) {
     int k = started;
-    try {
-      pool.emplace_back([&, k] { ok[static_cast<size_t>(k)] = task(k); });
-    } catch (const std::system_error&) {
-      break;
-    }
+    if (!start_pooled([&, k] { ok[static_cast<size_t>(k)] = task(k); }, done)) break;
   }
   ok[0] = task(0);
-  for (int k = started; k < parts; ++k) ok[static_cast<size_t>(k)] = task(k);
-  for (auto& t : pool) t.join();
+  for (int k = started; k < parts; ++k) ok[static_cast<size_t>(k)] = task(k), done.count_down();
+  done.wait();
   return std::all_of(ok.begin(), ok.end(), [](char v) { return v != 0; });
 }
 

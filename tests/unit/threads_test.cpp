@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 #include <pthread.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <fstream>
@@ -60,4 +62,61 @@ TEST_CASE("run_parts runs the parts whose thread cannot start on the caller's th
   CHECK(ok);
   CHECK(calls == 8);
   for (int k = 0; k < 8; ++k) CHECK(done[static_cast<size_t>(k)] == k + 1);
+}
+
+namespace {
+
+// The stack size of the thread that runs part 1 of a run of two parts.
+size_t stack_of_part_one() {
+  size_t size = 0;
+  support::run_parts(2, [&](int k) {
+    pthread_attr_t attr;
+    if (k == 1 && pthread_getattr_np(pthread_self(), &attr) == 0) {
+      pthread_attr_getstacksize(&attr, &size);
+      pthread_attr_destroy(&attr);
+    }
+    return true;
+  });
+  return size;
+}
+
+}  // namespace
+
+TEST_CASE("run_parts keeps its threads for the next call, and runs every part at once") {
+  std::thread::id first, second;
+  support::run_parts(2, [&](int k) { return k == 1 ? (first = std::this_thread::get_id(), true) : true; });
+  support::run_parts(2, [&](int k) { return k == 1 ? (second = std::this_thread::get_id(), true) : true; });
+  CHECK(first != std::this_thread::get_id());
+  CHECK(first == second);
+  // Parts that wait for each other finish only if each has a thread of its own.
+  std::atomic<int> arrived{0};
+  bool ok = support::run_parts(4, [&](int) {
+    ++arrived;
+    while (arrived < 4) std::this_thread::yield();
+    return true;
+  });
+  CHECK(ok);
+}
+
+TEST_CASE("a kept thread made under another stack size is not reused") {
+  support::set_default_thread_stack(size_t{16} << 20);
+  CHECK(stack_of_part_one() == (size_t{16} << 20));
+  support::set_default_thread_stack();
+  CHECK(stack_of_part_one() == support::kWorkerStackBytes);
+}
+
+TEST_CASE("a forked child runs parts on threads of its own") {
+  support::run_parts(3, [](int) { return true; });  // the parent has kept threads
+  pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    alarm(20);  // a child waiting on the parent's threads (which it does not have) dies here
+    std::atomic<int> ran{0};
+    bool ok = support::run_parts(3, [&](int) { return ++ran, true; });
+    _exit(ok && ran == 3 ? 0 : 1);
+  }
+  int status = 0;
+  REQUIRE(waitpid(pid, &status, 0) == pid);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
 }

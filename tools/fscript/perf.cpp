@@ -252,6 +252,8 @@ int cmd_render2d(const Options& o, const std::string& file, const std::string& e
   ro.budgets = o.budgets;
   ro.threads = std::max(1u, threads);
   ro.prune = prune;
+  if (prune && ir::interval_evaluable(c.module->kernel_function()))  // built once, as the kernel is compiled once
+    ro.tape = std::make_shared<const ir::IntervalTape>(c.module->kernel_function());
   std::vector<uint8_t> px;
   render::QuadtreeStats st;
   backends::RuntimeError err;

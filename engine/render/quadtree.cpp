@@ -303,26 +303,26 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   };
   std::vector<Top> tops;
   std::deque<ir::IntervalBatchEval> top;  // the top level's bounds (stable addresses)
-  bool ok = true;
-  if (prune) {
+  // The top level, bounded by the first thread while the others start (they wait for it).
+  auto top_level = [&] {
     Renderer& r0 = *renderers[0];
-    for (size_t first = 0; first < tiles.size(); first += ir::kIntervalLanes) {
+    bool fine = true;
+    for (size_t first = 0; first < tiles.size() && fine; first += ir::kIntervalLanes) {
       std::vector<Rect> part(tiles.begin() + static_cast<long>(first),
                              tiles.begin() + static_cast<long>(std::min(tiles.size(), first + ir::kIntervalLanes)));
-      ok = ok &&
-          r0.bound(
-              full, part, 0,
-              [&](Rect r, ir::IntervalBatchEval&, size_t k) {
-                tops.push_back({r, top.size() - 1, k, {}, {}, {}});
-                return true;
-              },
-              &top);
+      fine = r0.bound(
+          full, part, 0,
+          [&](Rect r, ir::IntervalBatchEval&, size_t k) {
+            tops.push_back({r, top.size() - 1, k, {}, {}, {}});
+            return true;
+          },
+          &top);
     }
     for (auto& ev : top) full.flat->lane_masks(ev);  // before the threads share them
-  }
+    return fine;
+  };
   std::atomic<bool> failed{false};
   const size_t kids_per_top = size_t(kSizes[0] / kSizes[1]) * (kSizes[0] / kSizes[1]);
-  if (o.progress) o.progress->set_units(prune ? tops.size() * kids_per_top : tiles.size());
   auto advance = [&](size_t n) {
     if (o.progress && n) o.progress->advance(n);
   };
@@ -357,8 +357,8 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   // its own cache: two threads reading each other's had each run a sixth slower). Each region
   // writes only its own pixels, so the picture does not depend on the schedule.
   std::atomic<size_t> next_top{0};
-  std::vector<std::atomic<size_t>> next_kid(tops.size());
-  std::vector<std::atomic<int>> opened(tops.size());  // 1: its children may be taken
+  std::vector<std::atomic<size_t>> next_kid(tiles.size());  // (by top tile: as many as there are open)
+  std::vector<std::atomic<int>> opened(tiles.size());  // 1: its children may be taken
   auto work = [&](Renderer& r) {
     for (size_t i; !failed && (i = next_top.fetch_add(1)) < tops.size();) {
       Top& t = tops[i];
@@ -379,14 +379,24 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
     return true;
   };
   std::atomic<size_t> next_tile{0};
-  ok = ok && support::run_parts(parts, [&](int p) {
-         Renderer& r = *renderers[static_cast<size_t>(p)];
-         if (prune) return work(r);
-         for (size_t i; !failed && (i = next_tile.fetch_add(1)) < tiles.size();)
-           if (!r.dense(full, &tiles[i], 1)) return failed = true, false;
-           else advance(1);
-         return true;
-       });
+  std::atomic<int> topped{0};  // 1: the top level is bounded (or failed)
+  bool ok = support::run_parts(parts, [&](int p) {
+    Renderer& r = *renderers[static_cast<size_t>(p)];
+    if (p == 0) {
+      bool fine = !prune || top_level();
+      if (o.progress) o.progress->set_units(prune ? tops.size() * kids_per_top : tiles.size());
+      if (!fine) failed = true;
+      topped.store(1, std::memory_order_release);
+      if (!fine) return false;
+    }
+    while (!topped.load(std::memory_order_acquire)) std::this_thread::yield();
+    if (failed) return false;
+    if (prune) return work(r);
+    for (size_t i; !failed && (i = next_tile.fetch_add(1)) < tiles.size();)
+      if (!r.dense(full, &tiles[i], 1)) return failed = true, false;
+      else advance(1);
+    return true;
+  });
   if (!ok) std::fill(px.begin(), px.end(), uint8_t{0});  // (no half-made picture, whatever the schedule)
   stats.pruned = prune;
   for (uint32_t sz : kSizes) stats.levels.push_back({sz, 0, 0, 0, 0});

@@ -5,10 +5,10 @@
 
 #include <algorithm>
 #include <atomic>
-#include <thread>
 #include <deque>
 #include <memory>
 #include <mutex>
+#include <thread>
 
 #include "ir/interval_eval.h"
 #include "backends/vm/vm_backend.h"
@@ -266,7 +266,7 @@ void merge(QuadtreeStats& into, const QuadtreeStats& part) {
 
 bool render_inside(const ir::Module& m, const backends::Kernel& dense, const PlaneGrid& g, const InsideOptions& o,
                    std::vector<uint8_t>& px, QuadtreeStats& stats, backends::RuntimeError& err) {
-  px.resize(size_t(g.w) * g.h);  // (every pixel is written below: a picture's again need not be cleared)
+  px.resize(size_t(g.w) * g.h);  // (every pixel is written below: a reused picture is not cleared first)
   const ir::Function& fn = m.kernel_function();
   stats = {};
   stats.full_tape_ops = ir::tape_length(fn);

@@ -568,11 +568,19 @@ TEST_CASE("quadtree rendering: the same pixels as the dense path, for random pro
     const char* be = k % 3 == 2 ? "sse" : "vm";
     auto b = test::build(texts[k], "", true, {}, be);
     if (!b->ok) continue;
-    render::PlaneGrid g{
-        static_cast<uint32_t>(97 + rng() % 300), static_cast<uint32_t>(61 + rng() % 300), -1.3f, 1.1f, -0.9f, 1.4f};
+    uint32_t big = k % 8 == 0 ? 500 : 0;  // some of several top tiles a side: threads take each other's
+    render::PlaneGrid g{static_cast<uint32_t>(97 + big + rng() % 300),
+                        static_cast<uint32_t>(61 + big + rng() % 300),
+                        -1.3f,
+                        1.1f,
+                        -0.9f,
+                        1.4f};
     render::InsideOptions o;
     o.threads = 1 + static_cast<unsigned>(k % 3);
-    std::vector<uint8_t> a, d;
+    if (k % 2 && ir::interval_evaluable(b->module->kernel_function()))  // the tape built ahead, as render2d does
+      o.tape = std::make_shared<const ir::IntervalTape>(b->module->kernel_function());
+    // A picture's vector reused: every pixel is written, whatever was there.
+    std::vector<uint8_t> a(size_t(g.w) * g.h, 77), d;
     render::QuadtreeStats sa, sd;
     backends::RuntimeError err;
     REQUIRE(render::render_inside(*b->module, *b->kernel, g, o, a, sa, err));

@@ -200,8 +200,8 @@ void Emitter::inputs_in_bound() {
   const float bound = static_cast<float>(bound_);
   uint32_t bound_bits;
   std::memcpy(&bound_bits, &bound, 4);
-  if (any_widest) c.local_get(widest), i32(static_cast<int32_t>(bound_bits << 1)), c.simd(Simd::I32x4LeU);
-  if (any_widest) c.simd(Simd::I32x4AllTrue);
+  if (any_widest)
+    c.local_get(widest), i32(static_cast<int32_t>(bound_bits << 1)), c.simd(Simd::I32x4LeU), c.simd(Simd::I32x4AllTrue);
   if (any_ranged) c.local_get(ranged), c.simd(Simd::I32x4AllTrue);
   if (any_widest && any_ranged) c.op(Opc::I32And);
   if (!any_widest && !any_ranged) c.i32_const(1);

@@ -359,22 +359,24 @@ bool render_inside(const ir::Module& m, const backends::Kernel& dense, const Pla
   std::atomic<size_t> next_top{0};
   std::vector<std::atomic<size_t>> next_kid(tiles.size());  // (by top tile: as many as there are open)
   std::vector<std::atomic<int>> opened(tiles.size());  // 1: its children may be taken
+  // The open children of top tile i not yet taken, on `r`.
+  auto drain = [&](Renderer& r, size_t i) {
+    for (size_t k; !failed && (k = next_kid[i].fetch_add(1)) < tops[i].open.size();)
+      if (!kid(r, tops[i], k)) return failed = true, false;
+      else advance(1);
+    return true;
+  };
   auto work = [&](Renderer& r) {
     for (size_t i; !failed && (i = next_top.fetch_add(1)) < tops.size();) {
       Top& t = tops[i];
       if (!open_top(r, t)) return failed = true, opened[i].store(1, std::memory_order_release), false;
       advance(kids_per_top - t.open.size());  // (a tile evaluated whole: one open child, itself)
       opened[i].store(1, std::memory_order_release);
-      for (size_t k; !failed && (k = next_kid[i].fetch_add(1)) < t.open.size();)
-        if (!kid(r, t, k)) return failed = true, false;
-        else advance(1);
+      if (!drain(r, i)) return false;
     }
     for (size_t i = 0; i < tops.size() && !failed; ++i) {
       while (!opened[i].load(std::memory_order_acquire) && !failed) std::this_thread::yield();
-      Top& t = tops[i];
-      for (size_t k; !failed && (k = next_kid[i].fetch_add(1)) < t.open.size();)
-        if (!kid(r, t, k)) return failed = true, false;
-        else advance(1);
+      if (!drain(r, i)) return false;
     }
     return true;
   };
